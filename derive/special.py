@@ -1,0 +1,226 @@
+"""Angle functions with a removable singularity at 0: the building blocks of every SE(2) formula.
+
+Every closed form in this project (exp, log, the right Jacobian Φ and its inverse, the CTRV motion)
+is written with a handful of functions of one angle ``x`` that are analytic at ``x = 0`` but are
+*printed* with a division by ``x`` (``sin x / x``, ``(1 - cos x) / x`` ...).  Evaluating those
+printed forms near ``x = 0`` loses accuracy (cancellation) or divides by zero, so each one is a
+SymPy ``Function`` here with
+
+* ``definition(x)``: the exact expression (what the paper or the derivation prints),
+* a Taylor series at 0 (computed by SymPy from the definition, never typed by hand),
+* a cancellation-free closed form used away from 0 (checked equal to the definition), and
+* a threshold ``tau``: below ``|x| < tau`` the generated kernel evaluates the Taylor polynomial.
+
+The thresholds were chosen by measurement (``python -m lgekf.derive.thresholds``): ``tau`` is the
+smallest angle above which the float64 closed form stays within a few ulp of a 50-digit mpmath
+reference, and the Taylor order is the smallest whose truncation error at ``tau`` is below
+1e-17 relative.  ``tests/test_special_accuracy.py`` checks both sides of every threshold.
+
+Generated kernels call these functions as ``f(x, s, c)`` with ``s = sin x`` and ``c = cos x``
+computed once per angle, so a step needs one sincos per distinct angle.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+__all__ = [
+    "AngleFunction",
+    "sinc",
+    "cosc",
+    "sinc2",
+    "cosc2",
+    "dsinc",
+    "halfcot",
+    "halfcot1",
+    "ANGLE_FUNCTIONS",
+    "to_exact",
+    "taylor_coefficients",
+]
+
+
+class AngleFunction(sp.Function):
+    """f(x), analytic at x = 0, printed with a removable singularity there.
+
+    Subclasses set ``parity`` (+1 even, -1 odd), ``tau`` and ``order`` (highest power of the Taylor
+    polynomial used for ``|x| < tau``), ``stable`` (numba source of the closed form, in ``x, s, c``)
+    and implement ``definition``.
+    """
+
+    nargs = 1
+    parity = 1
+    tau = 0.0
+    order = 0
+    stable = ""
+    doc = ""
+
+    @classmethod
+    def definition(cls, x):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @classmethod
+    def value_at_zero(cls):
+        x = sp.Symbol("x")
+        return sp.limit(cls.definition(x), x, 0)
+
+    @classmethod
+    def eval(cls, x):
+        if x.is_zero:
+            return cls.value_at_zero()
+        if x.could_extract_minus_sign():
+            return cls.parity * cls(-x)
+        return None
+
+    def exact(self):
+        return self.definition(self.args[0])
+
+    def _eval_rewrite_as_cos(self, x, **kwargs):
+        return self.definition(x)
+
+    _eval_rewrite_as_sin = _eval_rewrite_as_cos
+
+    def fdiff(self, argindex=1):
+        x = self.args[0]
+        d = sp.Symbol("_d")
+        return sp.diff(self.definition(d), d).subs(d, x)
+
+    def _eval_evalf(self, prec):
+        x = self.args[0]
+        if not x.is_number:
+            return None
+        xv = x.evalf(prec)
+        if xv == 0:
+            return sp.Float(self.value_at_zero(), prec)
+        # near 0 the printed definition cancels even in multiprecision: use the series there
+        if abs(xv) < sp.Float("1e-4", prec):
+            t = sp.Symbol("t")
+            series = taylor_polynomial(type(self), t, 40)
+            return series.subs(t, xv).evalf(prec)
+        return self.definition(xv).evalf(prec)
+
+    def _eval_is_real(self):
+        return self.args[0].is_real
+
+
+class sinc(AngleFunction):
+    """sinc(x) = sin(x)/x (even); the diagonal of V(x) in exp_SE(2)."""
+
+    parity = 1
+    tau = 1e-4
+    order = 6
+    stable = "s / x"
+
+    @classmethod
+    def definition(cls, x):
+        return sp.sin(x) / x
+
+    def fdiff(self, argindex=1):
+        return -dsinc(self.args[0])
+
+
+class cosc(AngleFunction):
+    """cosc(x) = (1 - cos x)/x (odd); the off-diagonal of V(x) in exp_SE(2)."""
+
+    parity = -1
+    tau = 1e-4
+    order = 7
+    # 1 - cos x = sin^2 x / (1 + cos x) avoids the cancellation for cos x > 0
+    stable = "(s * s / (1.0 + c)) / x if c > 0.0 else (1.0 - c) / x"
+
+    @classmethod
+    def definition(cls, x):
+        return (1 - sp.cos(x)) / x
+
+    def fdiff(self, argindex=1):
+        x = self.args[0]
+        return sinc(x) - cosc2(x)
+
+
+class sinc2(AngleFunction):
+    """sinc2(x) = (x - sin x)/x**2 (odd); appears in the third column of Φ_SE(2)."""
+
+    parity = -1
+    tau = 0.25
+    order = 15
+    stable = "(x - s) / (x * x)"
+
+    @classmethod
+    def definition(cls, x):
+        return (x - sp.sin(x)) / x**2
+
+
+class cosc2(AngleFunction):
+    """cosc2(x) = (1 - cos x)/x**2 (even); appears in the third column of Φ_SE(2)."""
+
+    parity = 1
+    tau = 1e-4
+    order = 6
+    stable = "(s / x) * (s / x) / (1.0 + c) if c > 0.0 else (1.0 - c) / (x * x)"
+
+    @classmethod
+    def definition(cls, x):
+        return (1 - sp.cos(x)) / x**2
+
+
+class dsinc(AngleFunction):
+    """dsinc(x) = (sin x - x cos x)/x**2 = -d sinc/dx (odd); CTRV Jacobian w.r.t. the turn rate."""
+
+    parity = -1
+    tau = 0.25
+    order = 15
+    stable = "(s - x * c) / (x * x)"
+
+    @classmethod
+    def definition(cls, x):
+        return (sp.sin(x) - x * sp.cos(x)) / x**2
+
+
+class halfcot(AngleFunction):
+    """halfcot(x) = x sin x / (2 (1 - cos x)) = (x/2) cot(x/2) (even); diagonal of V(x)^-1 in log_SE(2).
+
+    Defined for |x| < 2π; log_SE(2) only uses (-π, π].
+    """
+
+    parity = 1
+    tau = 1e-4
+    order = 6
+    stable = "0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c)"
+
+    @classmethod
+    def definition(cls, x):
+        return x * sp.sin(x) / (2 * (1 - sp.cos(x)))
+
+
+class halfcot1(AngleFunction):
+    """halfcot1(x) = (1 - halfcot(x))/x (odd); third column of Φ_SE(2)^-1."""
+
+    parity = -1
+    tau = 0.25
+    order = 15
+    stable = "(1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / x"
+
+    @classmethod
+    def definition(cls, x):
+        return (1 - x * sp.sin(x) / (2 * (1 - sp.cos(x)))) / x
+
+
+ANGLE_FUNCTIONS: tuple[type[AngleFunction], ...] = (sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1)
+
+
+def to_exact(expr):
+    """Replace every angle function by its printed definition (for symbolic comparison)."""
+    return expr.replace(lambda e: isinstance(e, AngleFunction), lambda e: e.exact())
+
+
+def taylor_coefficients(func: type[AngleFunction], order: int | None = None) -> list[sp.Rational]:
+    """Coefficients a_0..a_order of the Taylor series of ``func`` at 0, computed by SymPy."""
+    order = func.order if order is None else order
+    x = sp.Symbol("x")
+    ser = sp.series(func.definition(x), x, 0, order + 1).removeO()
+    poly = sp.Poly(ser, x)
+    return [sp.Rational(poly.coeff_monomial(x**k)) for k in range(order + 1)]
+
+
+def taylor_polynomial(func: type[AngleFunction], x, order: int | None = None):
+    coeffs = taylor_coefficients(func, order)
+    return sum((c * x**k for k, c in enumerate(coeffs)), sp.Integer(0))
