@@ -1,0 +1,163 @@
+"""`lgekf derive`: regenerate generated/ from the symbolic source, or check that it is fresh."""
+
+from __future__ import annotations
+
+import difflib
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+import sympy as sp
+
+from .codegen import HEADER, render_module
+from .special import ANGLE_FUNCTIONS, taylor_coefficients
+from .steps import MODULES
+
+__all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
+
+GENERATED_DIR = Path(__file__).resolve().parent.parent / "generated"
+
+PREAMBLE = '''
+# fused steps use FMA contraction only ("contract"); every other IEEE rule holds
+FASTMATH = {"contract"}
+'''
+
+
+def _horner(coeffs, var="x2"):
+    """Horner form of Σ coeffs[k] var^k (coefficients as correctly rounded floats)."""
+    s = repr(float(coeffs[-1]))
+    for c in reversed(coeffs[:-1]):
+        s = f"{float(c)!r} + {var} * ({s})"
+    return s
+
+
+def render_special() -> str:
+    out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/special.py")]
+    out.append("import math\n\nimport numba as nb\n")
+    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle"]
+    out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
+    for f in ANGLE_FUNCTIONS:
+        coeffs = taylor_coefficients(f)
+        parity = f.parity
+        # keep the non-zero (even or odd) coefficients, in powers of x^2
+        if parity == 1:
+            c = [coeffs[k] for k in range(0, len(coeffs), 2)]
+            poly = _horner(c)
+        else:
+            c = [coeffs[k] for k in range(1, len(coeffs), 2)]
+            poly = f"x * ({_horner(c)})"
+        xs = sp.Symbol("x")
+        doc = f"{f.__name__}(x) = {sp.sstr(f.definition(xs))}; s = sin x, c = cos x.\n\n"
+        doc += f"    |x| < {f.tau!r}: Taylor polynomial of degree {f.order} (coefficients from SymPy);\n"
+        doc += f"    otherwise the cancellation-free closed form `{f.stable}`."
+        out.append(
+            f"\n\n@nb.njit(cache=True)\ndef {f.__name__}(x, s, c):\n"
+            f'    """{doc}\n    """\n'
+            f"    if abs(x) < {f.tau!r}:\n"
+            f"        x2 = x * x\n"
+            f"        return {poly}\n"
+            f"    return {f.stable}\n"
+        )
+    out.append(
+        "\n\n@nb.njit(cache=True)\ndef wrap_angle(a):\n"
+        '    """a wrapped to (-π, π]."""\n'
+        "    if -math.pi < a <= math.pi:\n"
+        "        return a\n"
+        "    r = a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))\n"
+        "    if r <= -math.pi:\n"
+        "        r += 2.0 * math.pi\n"
+        "    return r\n"
+    )
+    return "".join(out)
+
+
+def _render_one(name: str) -> tuple[str, str]:
+    title, builder = MODULES[name]
+    kernels = builder()
+    imports = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", wrap_angle  # noqa: F401"]
+    src = render_module(title, f"derive/steps.py ({name}), from derive/models.py and derive/groups.py", kernels, imports, PREAMBLE)
+    return f"{name}.py", src
+
+
+def render_all(jobs: int = 2) -> dict[str, str]:
+    """{file name: source} for every generated module (deterministic)."""
+    files = {"special.py": render_special()}
+    names = sorted(MODULES)
+    if jobs > 1:
+        with ProcessPoolExecutor(max_workers=jobs) as ex:
+            for fname, src in ex.map(_render_one, names):
+                files[fname] = src
+    else:
+        for n in names:
+            fname, src = _render_one(n)
+            files[fname] = src
+    files["__init__.py"] = HEADER.format(
+        title="Numba kernels generated from derive/ (SymPy). Import the per-model modules.", source="derive/build.py"
+    )
+    return dict(sorted(files.items()))
+
+
+def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2) -> list[str]:
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    files = render_all(jobs)
+    for name, src in files.items():
+        (outdir / name).write_text(src, encoding="utf-8")
+    return list(files)
+
+
+def check(outdir: Path = GENERATED_DIR, jobs: int = 2, stream=sys.stdout) -> int:
+    """0 if ``outdir`` equals a fresh regeneration, else 1 with a unified diff."""
+    with tempfile.TemporaryDirectory() as tmp:
+        write_all(Path(tmp), jobs)
+        stale = 0
+        for f in sorted(Path(tmp).iterdir()):
+            new = f.read_text(encoding="utf-8")
+            old_path = Path(outdir) / f.name
+            old = old_path.read_text(encoding="utf-8") if old_path.exists() else ""
+            if new != old:
+                stale += 1
+                diff = difflib.unified_diff(
+                    old.splitlines(True), new.splitlines(True), f"generated/{f.name} (checked in)", f"generated/{f.name} (regenerated)"
+                )
+                stream.writelines(list(diff)[:200])
+        extra = {p.name for p in Path(outdir).glob("*.py")} - {p.name for p in Path(tmp).iterdir()}
+        for name in sorted(extra):
+            stale += 1
+            stream.write(f"generated/{name}: not produced by derive (stale file)\n")
+    if stale:
+        stream.write(f"generated/ is stale: {stale} file(s) differ; run `lgekf derive`\n")
+        return 1
+    stream.write("generated/ is up to date\n")
+    return 0
+
+
+def main(argv=None) -> int:
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="lgekf derive", description="Derive the LG-EKF ingredients with SymPy and emit numba kernels.")
+    ap.add_argument("--check", action="store_true", help="regenerate into a temporary folder and fail with a diff if generated/ is stale")
+    ap.add_argument("--verify", action="store_true", help="compare every equation printed in the paper with the derivation")
+    ap.add_argument("--out", type=Path, default=GENERATED_DIR, help="output folder (default: the package's generated/)")
+    ap.add_argument("--jobs", type=int, default=2, help="processes used for code generation (default 2)")
+    a = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    if a.verify:
+        from .verify import run_verify
+
+        rc = run_verify()
+        print(f"verify: {time.perf_counter() - t0:.1f} s")
+        return rc
+    if a.check:
+        rc = check(a.out, a.jobs)
+        print(f"check: {time.perf_counter() - t0:.1f} s")
+        return rc
+    names = write_all(a.out, a.jobs)
+    print(f"wrote {len(names)} files to {a.out} in {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

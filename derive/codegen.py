@@ -1,0 +1,241 @@
+"""SymPy -> numba source.
+
+A :class:`Kernel` is a straight-line program: named inputs (scalars and array elements), a list of
+*stages* of intermediate definitions, and the outputs.  Each stage is printed as
+
+1. the angles it needs: for every distinct argument ``a`` of ``sin``/``cos``/an angle function
+   (derive.special) one ``math.sin``/``math.cos`` pair and the angle functions as calls
+   ``f(a, sin a, cos a)`` (Taylor branch inside, see generated/special.py);
+2. common subexpressions (``sympy.cse``) over all definitions of the stage;
+3. the definitions themselves.
+
+Structural zeros are dropped, symmetric outputs are given once by the caller, every number is printed
+as a correctly rounded float literal, integer powers are unrolled, and everything is sorted so that
+the output is byte-identical from run to run (the regeneration test relies on it).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+import sympy as sp
+
+from .special import ANGLE_FUNCTIONS, AngleFunction
+
+__all__ = ["Kernel", "Printer", "render_kernel", "render_module", "HEADER"]
+
+HEADER = '''"""{title}
+
+GENERATED FILE: DO NOT EDIT.
+Source: {source}
+Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
+"""
+'''
+
+
+class Printer:
+    """A deliberately small printer: Add, Mul, Pow, numbers, symbols, a few math functions."""
+
+    FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.atan2: "math.atan2", sp.Abs: "abs"}
+
+    def __init__(self, names: dict[sp.Symbol, str] | None = None):
+        self.names = names or {}
+
+    def __call__(self, e) -> str:
+        return self.p(sp.sympify(e))
+
+    # precedence: 0 Add, 1 Mul/Div, 2 unary minus, 3 atom
+    def p(self, e) -> str:
+        return self._p(e)[0]
+
+    def _wrap(self, e, min_prec):
+        s, prec = self._p(e)
+        return f"({s})" if prec < min_prec else s
+
+    def _p(self, e):
+        if isinstance(e, sp.Symbol):
+            return self.names.get(e, e.name), 3
+        if e is sp.S.NaN or e.has(sp.zoo, sp.oo, sp.nan):
+            raise ValueError(f"cannot print non-finite expression {e}")
+        if isinstance(e, (sp.Integer, sp.Rational, sp.Float)) or e.is_Number:
+            v = float(e)
+            s = repr(v)
+            return (s, 3) if v >= 0 else (s, 2)
+        if isinstance(e, sp.Add):
+            terms = e.as_ordered_terms()
+            out = self._wrap(terms[0], 0)
+            for t in terms[1:]:
+                if t.could_extract_minus_sign():
+                    out += " - " + self._wrap(-t, 1)
+                else:
+                    out += " + " + self._wrap(t, 1)
+            return out, 0
+        if isinstance(e, sp.Mul):
+            if e.could_extract_minus_sign():
+                return "-" + self._wrap(-e, 2), 2
+            num, den = [], []
+            for f in e.as_ordered_factors():
+                if isinstance(f, sp.Pow) and f.exp.is_Integer and f.exp < 0:
+                    den.append(sp.Pow(f.base, -f.exp))
+                elif isinstance(f, sp.Rational) and not f.is_Integer and f.p == 1:
+                    den.append(sp.Integer(f.q))
+                else:
+                    num.append(f)
+            ns = "*".join(self._wrap(f, 2) for f in num) if num else "1.0"
+            if not den:
+                return ns, 1
+            ds = "*".join(self._wrap(f, 2) for f in den)
+            if len(den) > 1 or self._p(den[0])[1] < 3:
+                ds = f"({ds})"
+            return f"{ns}/{ds}", 1
+        if isinstance(e, sp.Pow):
+            b, n = e.base, e.exp
+            if n == sp.Rational(1, 2):
+                return f"math.sqrt({self.p(b)})", 3
+            if n.is_Integer:
+                k = int(n)
+                if k == -1:
+                    return f"1.0/{self._wrap(b, 3)}", 1
+                if k < 0:
+                    inner = self._p(sp.Pow(b, -k, evaluate=False))
+                    d = inner[0] if inner[1] >= 3 else f"({inner[0]})"
+                    return f"1.0/{d}", 1
+                if 1 < k <= 4:
+                    bs = self._wrap(b, 3)
+                    return "*".join([bs] * k), 1
+                return f"{self._wrap(b, 3)}**{k}", 1
+            raise ValueError(f"unsupported power {e}")
+        if isinstance(e, sp.Function) and type(e) in self.FUNCS:
+            return f"{self.FUNCS[type(e)]}({', '.join(self.p(a) for a in e.args)})", 3
+        raise ValueError(f"unsupported expression for numba printing: {e!r} ({type(e)})")
+
+
+@dataclass
+class Kernel:
+    """One generated function.
+
+    ``inputs``: (symbol, source) pairs, e.g. (x, "s[0]") or (dt, "dt"): the symbol is read from the
+    Python expression ``source``.  ``params``: the function's parameter list.  ``stages``: lists of
+    (symbol, expr) definitions, printed in order.  ``outputs``: (target code, expr) assignments,
+    e.g. ("s[0]", x + ...), ("out[1, 2]", ...).  ``prologue``: lines before the outputs (array
+    allocation).  ``ret``: the return expression (code) or None.
+    """
+
+    name: str
+    doc: str
+    params: list[str]
+    inputs: list[tuple[sp.Symbol, str]]
+    outputs: list[tuple[str, sp.Expr]]
+    stages: list[list[tuple[sp.Symbol, sp.Expr]]] = field(default_factory=list)
+    prologue: list[str] = field(default_factory=list)
+    epilogue: list[str] = field(default_factory=list)
+    ret: str | None = None
+    substitutions: dict = field(default_factory=dict)
+    skip_zero_outputs: bool = False
+    fastmath: bool = False
+
+
+def _sort_key(e):
+    return sp.default_sort_key(e)
+
+
+def _angle_atoms(exprs):
+    """All sin(a), cos(a), f(a) atoms (f an angle function) in ``exprs``, grouped by argument a."""
+    by_arg: dict = {}
+    for ex in exprs:
+        for atom in sp.sympify(ex).atoms(sp.sin, sp.cos, *ANGLE_FUNCTIONS):
+            by_arg.setdefault(atom.args[0], set()).add(atom)
+    return sorted(by_arg.items(), key=lambda kv: _sort_key(kv[0]))
+
+
+def _safe(name: str) -> str:
+    return re.sub(r"[^0-9a-zA-Z_]", "_", name)
+
+
+def render_kernel(k: Kernel) -> str:
+    subs = k.substitutions
+    stages = [[(s, sp.sympify(e).subs(subs)) for s, e in st] for st in k.stages]
+    outputs = [(t, sp.sympify(e).subs(subs)) for t, e in k.outputs]
+    if k.skip_zero_outputs:
+        outputs = [(t, e) for t, e in outputs if e != 0]
+
+    all_exprs = [e for st in stages for _, e in st] + [e for _, e in outputs]
+    used = set().union(*[sp.sympify(e).free_symbols for e in all_exprs]) if all_exprs else set()
+    pr = Printer()
+    lines = []
+    deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
+    lines.append(deco)
+    lines.append(f"def {k.name}({', '.join(k.params)}):")
+    doc = k.doc.strip("\n")
+    lines.append('    """' + doc.replace("\n", "\n    ") + '\n    """')
+    body = []
+    for sym, src in k.inputs:
+        if sym in used and pr(sym) != src:
+            body.append(f"{pr(sym)} = {src}")
+
+    tmp = sp.numbered_symbols("_t")
+    angle_count = [0]
+
+    def emit_stage(defs, is_output):
+        exprs = [e for _, e in defs]
+        repl = {}
+        for arg, atoms in _angle_atoms(exprs):
+            if isinstance(arg, sp.Symbol):
+                base = _safe(arg.name)
+                arg_code = pr(arg)
+            else:
+                base = f"_a{angle_count[0]}"
+                angle_count[0] += 1
+                body.append(f"{base} = {pr(arg)}")
+                arg_code = base
+            s_sym, c_sym = sp.Symbol(f"_sin_{base}"), sp.Symbol(f"_cos_{base}")
+            need_sc = any(isinstance(a, AngleFunction) for a in atoms)
+            kinds = {type(a) for a in atoms}
+            if need_sc or sp.sin in kinds:
+                body.append(f"{s_sym.name} = math.sin({arg_code})")
+            if need_sc or sp.cos in kinds:
+                body.append(f"{c_sym.name} = math.cos({arg_code})")
+            for atom in sorted(atoms, key=_sort_key):
+                if isinstance(atom, sp.sin):
+                    repl[atom] = s_sym
+                elif isinstance(atom, sp.cos):
+                    repl[atom] = c_sym
+                else:
+                    fname = type(atom).__name__
+                    fs = sp.Symbol(f"_{fname}_{base}")
+                    body.append(f"{fs.name} = {fname}({arg_code}, {s_sym.name}, {c_sym.name})")
+                    repl[atom] = fs
+        exprs = [e.xreplace(repl) for e in exprs]
+        reps, reduced = sp.cse(exprs, symbols=tmp, order="canonical")
+        for s, e in reps:
+            body.append(f"{s.name} = {pr(e)}")
+        for (target, _), e in zip(defs, reduced):
+            tcode = target if isinstance(target, str) else pr(target)
+            body.append(f"{tcode} = {pr(e)}")
+
+    for st in stages:
+        emit_stage(st, False)
+    body.extend(k.prologue)
+    if outputs:
+        emit_stage(outputs, True)
+    body.extend(k.epilogue)
+    if k.ret is not None:
+        body.append(f"return {k.ret}")
+    lines.extend("    " + b for b in body)
+    return "\n".join(lines) + "\n"
+
+
+def render_module(title: str, source: str, kernels: list, imports: list[str], preamble: str = "") -> str:
+    """A module: header, imports, then each kernel (a Kernel, or a (name, source) pair for templates)."""
+    out = [HEADER.format(title=title, source=source)]
+    out.append("import math\n\nimport numba as nb\nimport numpy as np\n")
+    for imp in imports:
+        out.append(imp + "\n")
+    if preamble:
+        out.append("\n" + preamble.strip("\n") + "\n")
+    names = [k.name if isinstance(k, Kernel) else k[0] for k in kernels]
+    out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
+    for k in kernels:
+        out.append("\n\n" + (render_kernel(k) if isinstance(k, Kernel) else k[1].strip("\n") + "\n"))
+    return "".join(out)

@@ -1,0 +1,496 @@
+"""The kernels to generate: building blocks and fused filter steps, assembled from derive.models.
+
+Internal state layouts (what the fused kernels read and write in place):
+
+* se2se2: s = [x, y, cos θ, sin θ, v_x, v_y, ω, cos ω, sin ω]   (ω wrapped to (-π, π])
+* se2r3:  s = [x, y, cos θ, sin θ, v_x, v_y, ω]
+* ctrv:   s = [x, y, ψ, v, ω]
+* cv:     s = [x, y, v_x, v_y]
+
+Carrying (cos, sin) of the angles means a step needs one sincos for the prediction (of Tω) and one
+per angle of the correction ν. Covariances are packed as their upper triangle, row-major
+(21 entries for n = 6); ``P`` is always in the filter's own coordinates (the tangent coordinates
+ε of X = μ exp(ε) for the LG filters).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import sympy as sp
+
+from . import models as M
+from .codegen import Kernel
+from .groups import SE2, Rn
+
+__all__ = ["MODULES", "packed_index", "LG_LAYOUTS"]
+
+
+# --------------------------------------------------------------------------- helpers
+def packed_index(n: int):
+    """{(i, j): k} for the packed upper triangle (row-major) of an n×n symmetric matrix."""
+    idx, k = {}, 0
+    for i in range(n):
+        for j in range(i, n):
+            idx[(i, j)] = idx[(j, i)] = k
+            k += 1
+    return idx
+
+
+def sym_cov(n: int, name="p"):
+    """Symmetric symbolic covariance and its packed-input list."""
+    idx = packed_index(n)
+    syms = {}
+    for i in range(n):
+        for j in range(i, n):
+            syms[(i, j)] = sp.Symbol(f"{name}{i}{j}", real=True)
+    P = sp.Matrix(n, n, lambda i, j: syms[(min(i, j), max(i, j))])
+    inputs = [(syms[(i, j)], f"p[{idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
+    return P, inputs
+
+
+def symbolize(Mx: sp.Matrix, prefix: str, only_upper=False):
+    """Replace every non-trivial entry of Mx by a fresh symbol; returns (definitions, symbolic matrix)."""
+    defs, out = [], sp.zeros(*Mx.shape)
+    for i, j in itertools.product(range(Mx.shape[0]), range(Mx.shape[1])):
+        if only_upper and j < i:
+            continue
+        e = sp.sympify(Mx[i, j])
+        if e.is_Number or isinstance(e, sp.Symbol):
+            out[i, j] = e
+        else:
+            s = sp.Symbol(f"{prefix}{i}{j}", real=True)
+            defs.append((s, e))
+            out[i, j] = s
+        if only_upper:
+            out[j, i] = out[i, j]
+    return defs, out
+
+
+def matrix_outputs(Mx: sp.Matrix, name="out"):
+    return [(f"{name}[{i}, {j}]", Mx[i, j]) for i in range(Mx.shape[0]) for j in range(Mx.shape[1])]
+
+
+def new_matrix_kernel(name, doc, params, inputs, Mx, subs=None, stages=None):
+    return Kernel(
+        name=name,
+        doc=doc,
+        params=params,
+        inputs=inputs,
+        outputs=matrix_outputs(Mx),
+        prologue=[f"out = np.zeros(({Mx.shape[0]}, {Mx.shape[1]}))"],
+        ret="out",
+        substitutions=subs or {},
+        skip_zero_outputs=True,
+        stages=stages or [],
+    )
+
+
+def new_vector_kernel(name, doc, params, inputs, v, subs=None, stages=None):
+    v = list(v)
+    return Kernel(
+        name=name,
+        doc=doc,
+        params=params,
+        inputs=inputs,
+        outputs=[(f"out[{i}]", e) for i, e in enumerate(v)],
+        prologue=[f"out = np.zeros({len(v)})"],
+        ret="out",
+        substitutions=subs or {},
+        skip_zero_outputs=True,
+        stages=stages or [],
+    )
+
+
+def physical_into_kernel(inputs, v, doc):
+    """In-place variant of state_to_physical for loops: writes into ``out`` (no allocation)."""
+    return Kernel(
+        name="physical_into",
+        doc=doc + " Written into ``out`` (no allocation).",
+        params=["s", "out"],
+        inputs=inputs,
+        outputs=[(f"out[{i}]", e) for i, e in enumerate(v)],
+    )
+
+
+BATCH_TEMPLATE = '''
+@nb.njit(cache=True, parallel=True)
+def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 2) positions; dts (B, K) step lengths; x0 (B, {n}) physical initial states; p0 (B, {npk})
+    packed initial covariances; q ({nq},) noise stds; r the measurement std. Writes the posterior
+    physical states into out_x (B, K, {n}), the packed covariances into out_p (B, K, {npk}) when
+    out_p.shape[1] == K (pass shape (B, 0, {npk}) to skip), and the NIS into out_nis (B, K).
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        p = p0[b].copy()
+        for k in range(K):
+            predict(s, p, dts[b, k], {qargs})
+            out_nis[b, k] = update(s, p, z[b, k, 0], z[b, k, 1], r)
+            physical_into(s, out_x[b, k])
+            if keep_p:
+                for i in range({npk}):
+                    out_p[b, k, i] = p[i]
+'''
+
+
+def batch_kernel(n: int, nq: int):
+    npk = n * (n + 1) // 2
+    qargs = ", ".join(f"q[{i}]" for i in range(nq))
+    return ("run_batch", BATCH_TEMPLATE.format(n=n, npk=npk, nq=nq, qargs=qargs))
+
+
+def vec_inputs(name, syms):
+    return [(s, f"{name}[{i}]") for i, s in enumerate(syms)]
+
+
+def mat_inputs(name, rows, cols, prefix):
+    syms = sp.Matrix(rows, cols, lambda i, j: sp.Symbol(f"{prefix}{i}{j}", real=True))
+    return syms, [(syms[i, j], f"{name}[{i}, {j}]") for i in range(rows) for j in range(cols)]
+
+
+def cov_outputs(Pn: sp.Matrix):
+    n = Pn.shape[0]
+    idx = packed_index(n)
+    return [(f"p[{idx[(i, j)]}]", Pn[i, j]) for i in range(n) for j in range(i, n)]
+
+
+# --------------------------------------------------------------------------- SE(2) blocks
+def se2_kernels():
+    xs = sp.symbols("x y theta", real=True)
+    xin = vec_inputs("xi", xs)
+    T, Tin = mat_inputs("T", 3, 3, "T")
+    th = sp.Symbol("theta", real=True)
+    ks = [
+        new_matrix_kernel("se2_hat", "[x, y, θ]^∧ (paper, hat_SE(2)).", ["xi"], xin, SE2.hat(xs)),
+        new_vector_kernel("se2_vee", "[M]^∨ = (M[0, 2], M[1, 2], M[1, 0]).", ["T"], Tin, SE2.vee(T)),
+        new_matrix_kernel(
+            "se2_exp",
+            "exp_SE(2)([x, y, θ]^∧) (paper, exp_SE(2)); translation V(θ)[x, y], Taylor-safe at θ = 0.",
+            ["xi"],
+            xin,
+            SE2.exp(xs),
+        ),
+        Kernel(
+            name="se2_log",
+            doc="[log_SE(2)(T)]^∨ = [V(θ)^-1 t, θ], θ = atan2(T[1, 0], T[0, 0]) ∈ (-π, π] (paper, log_SE(2)).",
+            params=["T"],
+            inputs=Tin,
+            stages=[[(th, sp.atan2(T[1, 0], T[0, 0]))]],
+            outputs=[(f"out[{i}]", e) for i, e in enumerate(list(SE2.V_inv(th) * T[:2, 2]) + [th])],
+            prologue=["out = np.empty(3)"],
+            ret="out",
+        ),
+        new_matrix_kernel("se2_inverse", "T^-1 = [[R^T, -R^T t], [0, 1]].", ["T"], Tin, SE2.inverse(T)),
+        new_matrix_kernel("se2_adjoint", "Ad_SE(2)(T) = [[R, J t], [0, 1]], J = [[0, 1], [-1, 0]] (paper, Ad_SE(2)).", ["T"], Tin, SE2.Ad(T)),
+        new_matrix_kernel("se2_ad", "ad_SE(2)([x, y, θ]) = [[-θ J, J v], [0, 0]] (paper's ad_SE(2), corner corrected to 0).", ["xi"], xin, SE2.ad(xs)),
+        new_matrix_kernel(
+            "right_jacobian",
+            "Φ_SE(2)(ξ) = Σ (-1)^m/(m+1)! ad(ξ)^m, closed form (paper, Φ_G); log(exp(-ξ) exp(ξ + δ)) ≈ Φ δ.",
+            ["xi"],
+            xin,
+            SE2.right_jacobian(xs),
+        ),
+        new_matrix_kernel("right_jacobian_inv", "Φ_SE(2)(ξ)^-1, closed form.", ["xi"], xin, SE2.right_jacobian_inv(xs)),
+    ]
+    return ks
+
+
+# --------------------------------------------------------------------------- LG models
+cth, sth, cw, sw = sp.symbols("c_theta s_theta c_omega s_omega", real=True)
+CARRIED_THETA = {sp.cos(M.theta): cth, sp.sin(M.theta): sth}
+CARRIED_OMEGA = {sp.cos(M.omega): cw, sp.sin(M.omega): sw}
+
+LG_LAYOUTS = {
+    "se2se2": [M.x, M.y, cth, sth, M.vx, M.vy, M.omega, cw, sw],
+    "se2r3": [M.x, M.y, cth, sth, M.vx, M.vy, M.omega],
+}
+
+
+def lg_kernels(model: M.LGModel):
+    layout = LG_LAYOUTS[model.name]
+    subs = dict(CARRIED_THETA)
+    if model.name == "se2se2":
+        subs.update(CARRIED_OMEGA)
+    sin_ = vec_inputs("s", layout)
+    dt = M.dt
+    sig = M.SIGMA
+    G = model.group
+    phys = sp.symbols("x y theta v_x v_y omega", real=True)
+    # physical <-> internal
+    X, Y, TH, VX, VY, W = phys
+    to_int = [X, Y, sp.cos(TH), sp.sin(TH), VX, VY]
+    if model.name == "se2se2":
+        to_int += [sp.atan2(sp.sin(W), sp.cos(W)), sp.cos(W), sp.sin(W)]
+    else:
+        to_int += [W]
+    to_phys = [M.x, M.y, sp.atan2(sth, cth), M.vx, M.vy, M.omega]
+
+    P, pin = sym_cov(6)
+    Omega = model.Omega
+    F = model.F
+    Phi_O = G.right_jacobian(Omega)
+    Gn = M.dwna_G(3)
+
+    ks = [
+        new_vector_kernel(
+            "state_from_physical",
+            f"Internal state {[str(v) for v in layout]} from the physical [x, y, θ, v_x, v_y, ω].",
+            ["xp"],
+            vec_inputs("xp", phys),
+            to_int,
+        ),
+        new_vector_kernel(
+            "state_to_physical",
+            "Physical [x, y, θ, v_x, v_y, ω] (θ in (-π, π]) from the internal state.",
+            ["s"],
+            sin_,
+            to_phys,
+        ),
+        physical_into_kernel(sin_, to_phys, "Physical [x, y, θ, v_x, v_y, ω] from the internal state."),
+        new_matrix_kernel(
+            "group_mean",
+            "The mean μ as a block-diagonal matrix: diag(T_s, T_d) (SE(2)×SE(2), 6×6) or diag(T_s, [[I, v], [0, 1]]) (SE(2)×R^3, 7×7).",
+            ["s"],
+            sin_,
+            model.mean(),
+            subs,
+        ),
+        new_vector_kernel("motion_omega", "Ω(μ) = [T v_x, T v_y, T ω, 0, 0, 0] (eq:motionG).", ["s", "dt"], sin_ + [(dt, "dt")], Omega, subs),
+        new_matrix_kernel("calC", "𝒞 = ∂Ω(μ exp ε)/∂ε at ε = 0 (eq:C, eq:calCFinal).", ["s", "dt"], sin_ + [(dt, "dt")], model.calC, subs),
+        new_matrix_kernel("calH", "ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model).", ["s"], sin_, model.calH, subs),
+        new_matrix_kernel("transition", "F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).", ["s", "dt"], sin_ + [(dt, "dt")], F, subs),
+        new_matrix_kernel(
+            "process_noise",
+            "Q = G diag(σ_x², σ_y², σ_ω²) G^T, G = [T²/2 I; T I] (noise n_k of eq:motionG).",
+            ["dt", "sigma_x", "sigma_y", "sigma_omega"],
+            [(dt, "dt"), (sig[0], "sigma_x"), (sig[1], "sigma_y"), (sig[2], "sigma_omega")],
+            model.Q,
+        ),
+    ]
+
+    # ---- fused prediction (eq:pred_mu, eq:pred_cov)
+    fdefs, Fs = symbolize(F, "f")
+    ndefs, Ns = symbolize(Phi_O * Gn, "g")
+    Ts = SE2.element(sp.cos(M.theta), sp.sin(M.theta), M.x, M.y)
+    Ts_new = Ts * SE2.exp(Omega[:3])
+    edefs, Es = symbolize(sp.Matrix([Ts_new[0, 2], Ts_new[1, 2], Ts_new[0, 0], Ts_new[1, 0]]).T, "e")
+    mdefs, Ms = symbolize(Fs * P, "m")
+    Pn = Ms * Fs.T + Ns * sp.diag(*[s**2 for s in sig]) * Ns.T
+    outs = cov_outputs(Pn) + [(f"s[{i}]", Es[0, i]) for i in range(4)]
+    ks.append(
+        Kernel(
+            name="predict",
+            doc=(
+                "Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),\n"
+                "P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.\n"
+                "s: internal state (see module doc), p: packed covariance (21), dt > 0."
+            ),
+            params=["s", "p", "dt", "sigma_x", "sigma_y", "sigma_omega"],
+            inputs=sin_ + pin + [(dt, "dt"), (sig[0], "sigma_x"), (sig[1], "sigma_y"), (sig[2], "sigma_omega")],
+            stages=[fdefs + ndefs + edefs, mdefs],
+            outputs=outs,
+            substitutions=subs,
+            fastmath=True,
+        )
+    )
+
+    # ---- fused update (eq:K, eq:up_mu, eq:up_P) with the Joseph form inside Φ(ν)(·)Φ(ν)^T
+    zx, zy, r = sp.symbols("z_x z_y r", real=True)
+    R2 = Rn(2)
+    h_mu = R2.exp([M.x, M.y])
+    innov = R2.log(R2.inverse(h_mu) * R2.exp([zx, zy]))  # [log_G'(h(μ)^-1 Z)]^∨
+    H = model.calH
+    hdefs, HPs = symbolize(H * P, "hp")
+    S = HPs * H.T + r**2 * sp.eye(2)
+    sdefs, Ss = symbolize(S, "S", only_upper=True)
+    det = sp.Symbol("det", real=True)
+    Sinv = sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det
+    idefs, Is = symbolize(Sinv, "Si", only_upper=True)
+    kdefs, Ks = symbolize(HPs.T * Is, "k")
+    edefs2, Es2 = symbolize(innov, "inn")
+    nu = sp.Matrix(sp.symbols("nu0:6", real=True))
+    nudefs = list(zip(nu, Ks * Es2))
+    nis = sp.Symbol("nis", real=True)
+    nisdef = [(nis, (Es2.T * Is * Es2)[0, 0])]
+    phidefs, Phis = symbolize(G.right_jacobian(nu), "phi")
+    Xn = model.mean().subs(subs) * G.exp(nu)
+    if model.name == "se2se2":
+        mean_out = {0: Xn[0, 2], 1: Xn[1, 2], 2: Xn[0, 0], 3: Xn[1, 0], 4: Xn[3, 5], 5: Xn[4, 5], 7: Xn[3, 3], 8: Xn[4, 3]}
+        omega_new = M.omega + nu[5]
+    else:
+        mean_out = {0: Xn[0, 2], 1: Xn[1, 2], 2: Xn[0, 0], 3: Xn[1, 0], 4: Xn[3, 6], 5: Xn[4, 6], 6: Xn[5, 6]}
+        omega_new = None
+    mudefs, Mus = symbolize(sp.Matrix([list(mean_out.values())]), "mu")
+    Amat = sp.eye(6) - Ks * H
+    adefs, As = symbolize(Amat, "a")
+    bdefs, Bs = symbolize(As * P, "b")
+    PJ = Bs * As.T + r**2 * Ks * Ks.T
+    jdefs, PJs = symbolize(PJ, "pj", only_upper=True)
+    cdefs, Cs = symbolize(Phis * PJs, "cp")
+    Pu = Cs * Phis.T
+    outs = cov_outputs(Pu) + [(f"s[{i}]", Mus[0, n]) for n, i in enumerate(mean_out)]
+    if omega_new is not None:
+        outs.append(("s[6]", omega_new))  # ω ← ω + ν_ω, then wrapped to (-π, π] (epilogue)
+    ks.append(
+        Kernel(
+            name="update",
+            doc=(
+                "Fused LG-EKF update with a position measurement z = (z_x, z_y), noise std r, in place.\n"
+                "K = P ℋ^T (ℋ P ℋ^T + r² I)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),\n"
+                "P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + r² K K^T] Φ(ν)^T: eq:up_P in Joseph form (equal for the\n"
+                "optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e."
+            ),
+            params=["s", "p", "z_x", "z_y", "r"],
+            inputs=sin_ + pin + [(zx, "z_x"), (zy, "z_y"), (r, "r")],
+            stages=[
+                hdefs + edefs2,
+                sdefs,
+                [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)],
+                idefs,
+                kdefs + nisdef,
+                nudefs,
+                phidefs + mudefs + adefs,
+                bdefs,
+                jdefs,
+                cdefs,
+            ],
+            outputs=outs,
+            substitutions=subs,
+            ret="nis",
+            epilogue=["s[6] = wrap_angle(s[6])"] if omega_new is not None else [],
+            fastmath=True,
+        )
+    )
+    ks.append(batch_kernel(6, 3))
+    return ks
+
+
+# --------------------------------------------------------------------------- Euclidean baselines
+def euclid_update_kernel(n, H, state_syms, doc_model):
+    """Linear position update with the Joseph form, P ← (I-KH)P(I-KH)^T + r² K K^T."""
+    zx, zy, r = sp.symbols("z_x z_y r", real=True)
+    P, pin = sym_cov(n)
+    sin_ = vec_inputs("s", state_syms)
+    xs = sp.Matrix(state_syms)
+    hdefs, HPs = symbolize(H * P, "hp")
+    S = HPs * H.T + r**2 * sp.eye(2)
+    sdefs, Ss = symbolize(S, "S", only_upper=True)
+    det = sp.Symbol("det", real=True)
+    Sinv = sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det
+    idefs, Is = symbolize(Sinv, "Si", only_upper=True)
+    kdefs, Ks = symbolize(HPs.T * Is, "k")
+    e = sp.Matrix([zx, zy]) - H * xs
+    edefs, Es = symbolize(e, "inn")
+    nis = sp.Symbol("nis", real=True)
+    adefs, As = symbolize(sp.eye(n) - Ks * H, "a")
+    bdefs, Bs = symbolize(As * P, "b")
+    Pn = Bs * As.T + r**2 * Ks * Ks.T
+    xn = xs + Ks * Es
+    outs = cov_outputs(Pn) + [(f"s[{i}]", xn[i]) for i in range(n)]
+    return Kernel(
+        name="update",
+        doc=(
+            f"{doc_model} Kalman update with a position measurement z = (z_x, z_y), noise std r, in place.\n"
+            "K = P H^T S^-1, S = H P H^T + r² I, x ← x + K e, P ← (I-KH)P(I-KH)^T + r² K K^T (Joseph form).\n"
+            "Returns the NIS e^T S^-1 e."
+        ),
+        params=["s", "p", "z_x", "z_y", "r"],
+        inputs=sin_ + pin + [(zx, "z_x"), (zy, "z_y"), (r, "r")],
+        stages=[hdefs + edefs, sdefs, [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)], idefs, kdefs + [(nis, (Es.T * Is * Es)[0, 0])], adefs, bdefs],
+        outputs=outs,
+        ret="nis",
+        fastmath=True,
+    )
+
+
+def ctrv_kernels():
+    m = M.CTRV()
+    st = list(m.state)
+    sin_ = vec_inputs("s", st)
+    dt = M.dt
+    sa, sal = m.SIGMA
+    P, pin = sym_cov(5)
+    phys = sp.symbols("x y psi v omega", real=True)
+    ks = [
+        new_vector_kernel("state_from_physical", "Internal state = physical [x, y, ψ, v, ω].", ["xp"], vec_inputs("xp", phys), list(phys)),
+        new_vector_kernel(
+            "state_to_physical", "Physical [x, y, ψ, v, ω] with ψ wrapped to (-π, π].", ["s"], sin_,
+            [M.x, M.y, sp.atan2(sp.sin(m.psi), sp.cos(m.psi)), m.v, M.omega],
+        ),
+        new_vector_kernel("motion", "CTRV exact discretisation f(s): x' = x + vT cos(ψ + ωT/2) sinc(ωT/2), ...", ["s", "dt"], sin_ + [(dt, "dt")], m.f),
+        new_matrix_kernel("transition", "CTRV EKF Jacobian F = ∂f/∂s, finite at ω = 0.", ["s", "dt"], sin_ + [(dt, "dt")], m.F),
+        new_matrix_kernel(
+            "process_noise", "Q = G diag(σ_a², σ_α²) G^T, G's columns (T²/2 cos ψ, T²/2 sin ψ, 0, T, 0), (0, 0, T²/2, 0, T).",
+            ["s", "dt", "sigma_a", "sigma_alpha"], sin_ + [(dt, "dt"), (sa, "sigma_a"), (sal, "sigma_alpha")], m.Q,
+        ),
+    ]
+    fdefs, Fs = symbolize(m.F, "f")
+    gdefs, Gs = symbolize(m.G, "g")
+    xdefs, Xs = symbolize(m.f, "xn")
+    mdefs, Ms = symbolize(Fs * P, "m")
+    Pn = Ms * Fs.T + Gs * sp.diag(sa**2, sal**2) * Gs.T
+    outs = cov_outputs(Pn) + [(f"s[{i}]", Xs[i]) for i in range(3)]
+    ks.append(
+        Kernel(
+            name="predict",
+            doc="Fused CTRV EKF prediction in place: s ← f(s), P ← F P F^T + Q (Q at the state before the step).",
+            params=["s", "p", "dt", "sigma_a", "sigma_alpha"],
+            inputs=sin_ + pin + [(dt, "dt"), (sa, "sigma_a"), (sal, "sigma_alpha")],
+            stages=[fdefs + gdefs + xdefs, mdefs],
+            outputs=outs,
+            fastmath=True,
+        )
+    )
+    ks.append(euclid_update_kernel(5, m.H, st, "CTRV EKF"))
+    ks.append(physical_into_kernel(sin_, [M.x, M.y, sp.atan2(sp.sin(m.psi), sp.cos(m.psi)), m.v, M.omega], "Physical [x, y, ψ, v, ω], ψ in (-π, π]."))
+    ks.append(batch_kernel(5, 2))
+    return ks
+
+
+def cv_kernels():
+    m = M.CV()
+    st = list(m.state)
+    sin_ = vec_inputs("s", st)
+    dt = M.dt
+    P, pin = sym_cov(4)
+    ks = [
+        new_matrix_kernel("transition", "CV transition F = [[I, T I], [0, I]].", ["dt"], [(dt, "dt")], m.F),
+        new_matrix_kernel("process_noise", "Q = σ_a² G G^T, G = [T²/2 I; T I] (DWNA).", ["dt", "sigma_a"], [(dt, "dt"), (m.sigma_a, "sigma_a")], m.Q),
+    ]
+    mdefs, Ms = symbolize(m.F * P, "m")
+    Pn = Ms * m.F.T + m.Q
+    xn = m.F * sp.Matrix(st)
+    outs = cov_outputs(Pn) + [(f"s[{i}]", xn[i]) for i in range(2)]
+    ks.append(
+        Kernel(
+            name="predict",
+            doc="CV Kalman prediction in place: x ← F x, P ← F P F^T + Q.",
+            params=["s", "p", "dt", "sigma_a"],
+            inputs=sin_ + pin + [(dt, "dt"), (m.sigma_a, "sigma_a")],
+            stages=[mdefs],
+            outputs=outs,
+            fastmath=True,
+        )
+    )
+    ks.append(euclid_update_kernel(4, m.H, st, "CV"))
+    ks.append(new_vector_kernel("state_from_physical", "Internal state = physical [x, y, v_x, v_y].", ["xp"], vec_inputs("xp", st), st))
+    ks.append(new_vector_kernel("state_to_physical", "Physical state [x, y, v_x, v_y].", ["s"], sin_, st))
+    ks.append(physical_into_kernel(sin_, st, "Physical [x, y, v_x, v_y]."))
+    ks.append(batch_kernel(4, 1))
+    return ks
+
+
+# module name -> (title, builder)
+MODULES = {
+    "se2": ("SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.", se2_kernels),
+    "se2se2": ("LG-EKF on SE(2)×SE(2): model quantities and fused predict/update steps.", lambda: lg_kernels(M.SE2SE2())),
+    "se2r3": ("LG-EKF on SE(2)×R^3: model quantities and fused predict/update steps.", lambda: lg_kernels(M.SE2R3())),
+    "ctrv": ("CTRV EKF: exact motion, Jacobian, noise and fused predict/update steps.", ctrv_kernels),
+    "cv": ("CV Kalman filter: transition, noise and fused predict/update steps.", cv_kernels),
+}

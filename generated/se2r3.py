@@ -1,0 +1,589 @@
+"""LG-EKF on SE(2)×R^3: model quantities and fused predict/update steps.
+
+GENERATED FILE: DO NOT EDIT.
+Source: derive/steps.py (se2r3), from derive/models.py and derive/groups.py
+Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
+"""
+import math
+
+import numba as nb
+import numpy as np
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_angle  # noqa: F401
+
+# fused steps use FMA contraction only ("contract"); every other IEEE rule holds
+FASTMATH = {"contract"}
+
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_batch']
+
+
+@nb.njit(cache=True)
+def state_from_physical(xp):
+    """Internal state ['x', 'y', 'c_theta', 's_theta', 'v_x', 'v_y', 'omega'] from the physical [x, y, θ, v_x, v_y, ω].
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v_x = xp[3]
+    v_y = xp[4]
+    omega = xp[5]
+    out = np.zeros(7)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = x
+    out[1] = y
+    out[2] = _cos_theta
+    out[3] = _sin_theta
+    out[4] = v_x
+    out[5] = v_y
+    out[6] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def state_to_physical(s):
+    """Physical [x, y, θ, v_x, v_y, ω] (θ in (-π, π]) from the internal state.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = math.atan2(s_theta, c_theta)
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_into(s, out):
+    """Physical [x, y, θ, v_x, v_y, ω] from the internal state. Written into ``out`` (no allocation).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out[0] = x
+    out[1] = y
+    out[2] = math.atan2(s_theta, c_theta)
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+
+
+@nb.njit(cache=True)
+def group_mean(s):
+    """The mean μ as a block-diagonal matrix: diag(T_s, T_d) (SE(2)×SE(2), 6×6) or diag(T_s, [[I, v], [0, 1]]) (SE(2)×R^3, 7×7).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out = np.zeros((7, 7))
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[0, 2] = x
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+    out[1, 2] = y
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[3, 6] = v_x
+    out[4, 4] = 1.0
+    out[4, 6] = v_y
+    out[5, 5] = 1.0
+    out[5, 6] = omega
+    out[6, 6] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def motion_omega(s, dt):
+    """Ω(μ) = [T v_x, T v_y, T ω, 0, 0, 0] (eq:motionG).
+    """
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out = np.zeros(6)
+    out[0] = dt*v_x
+    out[1] = dt*v_y
+    out[2] = dt*omega
+    return out
+
+
+@nb.njit(cache=True)
+def calC(s, dt):
+    """𝒞 = ∂Ω(μ exp ε)/∂ε at ε = 0 (eq:C, eq:calCFinal).
+    """
+    out = np.zeros((6, 6))
+    out[0, 3] = dt
+    out[1, 4] = dt
+    out[2, 5] = dt
+    return out
+
+
+@nb.njit(cache=True)
+def calH(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model).
+    """
+    c_theta = s[2]
+    s_theta = s[3]
+    out = np.zeros((2, 6))
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+    return out
+
+
+@nb.njit(cache=True)
+def transition(s, dt):
+    """F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).
+    """
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out = np.zeros((6, 6))
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = dt*v_y
+    out[0, 0] = _cos__a0
+    out[0, 1] = _sin__a0
+    out[0, 2] = _t0*v_x - _t1*v_y
+    out[0, 3] = _t1
+    out[0, 4] = _t0
+    out[0, 5] = dt*(-(_cosc2__a0*_t2) + _sinc2__a0*dt*v_x)
+    out[1, 0] = -_sin__a0
+    out[1, 1] = _cos__a0
+    out[1, 2] = _t0*v_y + _t1*v_x
+    out[1, 3] = -_t0
+    out[1, 4] = _t1
+    out[1, 5] = dt*(_cosc2__a0*dt*v_x + _sinc2__a0*_t2)
+    out[2, 2] = 1.0
+    out[2, 5] = dt
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def process_noise(dt, sigma_x, sigma_y, sigma_omega):
+    """Q = G diag(σ_x², σ_y², σ_ω²) G^T, G = [T²/2 I; T I] (noise n_k of eq:motionG).
+    """
+    out = np.zeros((6, 6))
+    _t0 = sigma_x*sigma_x
+    _t1 = (dt*dt*dt*dt)/4.0
+    _t2 = (dt*dt*dt)/2.0
+    _t3 = _t0*_t2
+    _t4 = sigma_y*sigma_y
+    _t5 = _t2*_t4
+    _t6 = sigma_omega*sigma_omega
+    _t7 = _t2*_t6
+    _t8 = dt*dt
+    out[0, 0] = _t0*_t1
+    out[0, 3] = _t3
+    out[1, 1] = _t1*_t4
+    out[1, 4] = _t5
+    out[2, 2] = _t1*_t6
+    out[2, 5] = _t7
+    out[3, 0] = _t3
+    out[3, 3] = _t0*_t8
+    out[4, 1] = _t5
+    out[4, 4] = _t4*_t8
+    out[5, 2] = _t7
+    out[5, 5] = _t6*_t8
+    return out
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
+    """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
+    P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
+    s: internal state (see module doc), p: packed covariance (21), dt > 0.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p05 = p[5]
+    p11 = p[6]
+    p12 = p[7]
+    p13 = p[8]
+    p14 = p[9]
+    p15 = p[10]
+    p22 = p[11]
+    p23 = p[12]
+    p24 = p[13]
+    p25 = p[14]
+    p33 = p[15]
+    p34 = p[16]
+    p35 = p[17]
+    p44 = p[18]
+    p45 = p[19]
+    p55 = p[20]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m20 = dt*p05 + p02
+    m21 = dt*p15 + p12
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    p[0] = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    p[1] = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    p[2] = _t18*g22 + dt*m05 + m02
+    p[3] = _t16*dt + m03
+    p[4] = _t17*dt + m04
+    p[5] = _t18*dt + m05
+    p[6] = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    p[7] = _t19*g22 + dt*m15 + m12
+    p[8] = _t13*dt*g10 + m13
+    p[9] = _t14*dt*g11 + m14
+    p[10] = _t19*dt + m15
+    p[11] = _t15*(g22*g22) + dt*m25 + m22
+    p[12] = m23
+    p[13] = m24
+    p[14] = _t15*dt*g22 + m25
+    p[15] = _t13*_t20 + p33
+    p[16] = p34
+    p[17] = p35
+    p[18] = _t14*_t20 + p44
+    p[19] = p45
+    p[20] = _t15*_t20 + p55
+    s[0] = e00
+    s[1] = e01
+    s[2] = e02
+    s[3] = e03
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def update(s, p, z_x, z_y, r):
+    """Fused LG-EKF update with a position measurement z = (z_x, z_y), noise std r, in place.
+    K = P ℋ^T (ℋ P ℋ^T + r² I)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + r² K K^T] Φ(ν)^T: eq:up_P in Joseph form (equal for the
+    optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p05 = p[5]
+    p11 = p[6]
+    p12 = p[7]
+    p13 = p[8]
+    p14 = p[9]
+    p15 = p[10]
+    p22 = p[11]
+    p23 = p[12]
+    p24 = p[13]
+    p25 = p[14]
+    p33 = p[15]
+    p34 = p[16]
+    p35 = p[17]
+    p44 = p[18]
+    p45 = p[19]
+    p55 = p[20]
+    _t0 = p01*s_theta
+    _t1 = c_theta*p01
+    hp00 = -_t0 + c_theta*p00
+    hp01 = _t1 - p11*s_theta
+    hp02 = c_theta*p02 - p12*s_theta
+    hp03 = c_theta*p03 - p13*s_theta
+    hp04 = c_theta*p04 - p14*s_theta
+    hp05 = c_theta*p05 - p15*s_theta
+    hp10 = _t1 + p00*s_theta
+    hp11 = _t0 + c_theta*p11
+    hp12 = c_theta*p12 + p02*s_theta
+    hp13 = c_theta*p13 + p03*s_theta
+    hp14 = c_theta*p14 + p04*s_theta
+    hp15 = c_theta*p15 + p05*s_theta
+    inn00 = -x + z_x
+    inn10 = -y + z_y
+    _t2 = r*r
+    S00 = _t2 + c_theta*hp00 - hp01*s_theta
+    S01 = c_theta*hp01 + hp00*s_theta
+    S11 = _t2 + c_theta*hp11 + hp10*s_theta
+    det = S00*S11 - S01*S01
+    _t3 = 1.0/det
+    Si00 = S11*_t3
+    Si01 = -(S01*_t3)
+    Si11 = S00*_t3
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = inn00*(Si00*inn00 + Si01*inn10) + inn10*(Si01*inn00 + Si11*inn10)
+    nu0 = inn00*k00 + inn10*k01
+    nu1 = inn00*k10 + inn10*k11
+    nu2 = inn00*k20 + inn10*k21
+    nu3 = inn00*k30 + inn10*k31
+    nu4 = inn00*k40 + inn10*k41
+    nu5 = inn00*k50 + inn10*k51
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t4 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t5 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t4*c_theta - _t5*s_theta + x
+    mu01 = _t4*s_theta + _t5*c_theta + y
+    mu02 = _cos_nu2*c_theta - _sin_nu2*s_theta
+    mu03 = _cos_nu2*s_theta + _sin_nu2*c_theta
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    a00 = -(c_theta*k00) - k01*s_theta + 1.0
+    a01 = -(c_theta*k01) + k00*s_theta
+    a10 = -(c_theta*k10) - k11*s_theta
+    a11 = -(c_theta*k11) + k10*s_theta + 1.0
+    a20 = -(c_theta*k20) - k21*s_theta
+    a21 = -(c_theta*k21) + k20*s_theta
+    a30 = -(c_theta*k30) - k31*s_theta
+    a31 = -(c_theta*k31) + k30*s_theta
+    a40 = -(c_theta*k40) - k41*s_theta
+    a41 = -(c_theta*k41) + k40*s_theta
+    a50 = -(c_theta*k50) - k51*s_theta
+    a51 = -(c_theta*k51) + k50*s_theta
+    b00 = a00*p00 + a01*p01
+    b01 = a00*p01 + a01*p11
+    b02 = a00*p02 + a01*p12
+    b03 = a00*p03 + a01*p13
+    b04 = a00*p04 + a01*p14
+    b05 = a00*p05 + a01*p15
+    b10 = a10*p00 + a11*p01
+    b11 = a10*p01 + a11*p11
+    b12 = a10*p02 + a11*p12
+    b13 = a10*p03 + a11*p13
+    b14 = a10*p04 + a11*p14
+    b15 = a10*p05 + a11*p15
+    b20 = a20*p00 + a21*p01 + p02
+    b21 = a20*p01 + a21*p11 + p12
+    b22 = a20*p02 + a21*p12 + p22
+    b23 = a20*p03 + a21*p13 + p23
+    b24 = a20*p04 + a21*p14 + p24
+    b25 = a20*p05 + a21*p15 + p25
+    b30 = a30*p00 + a31*p01 + p03
+    b31 = a30*p01 + a31*p11 + p13
+    b32 = a30*p02 + a31*p12 + p23
+    b33 = a30*p03 + a31*p13 + p33
+    b34 = a30*p04 + a31*p14 + p34
+    b35 = a30*p05 + a31*p15 + p35
+    b40 = a40*p00 + a41*p01 + p04
+    b41 = a40*p01 + a41*p11 + p14
+    b42 = a40*p02 + a41*p12 + p24
+    b43 = a40*p03 + a41*p13 + p34
+    b44 = a40*p04 + a41*p14 + p44
+    b45 = a40*p05 + a41*p15 + p45
+    b50 = a50*p00 + a51*p01 + p05
+    b51 = a50*p01 + a51*p11 + p15
+    b52 = a50*p02 + a51*p12 + p25
+    b53 = a50*p03 + a51*p13 + p35
+    b54 = a50*p04 + a51*p14 + p45
+    b55 = a50*p05 + a51*p15 + p55
+    _t6 = r*r
+    _t7 = _t6*k00
+    _t8 = _t6*k01
+    _t9 = _t6*k10
+    _t10 = _t6*k11
+    _t11 = _t6*k20
+    _t12 = _t6*k21
+    _t13 = _t6*k30
+    _t14 = _t6*k31
+    pj00 = _t6*(k00*k00) + _t6*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t7*k10 + _t8*k11 + a10*b00 + a11*b01
+    pj02 = _t7*k20 + _t8*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t7*k30 + _t8*k31 + a30*b00 + a31*b01 + b03
+    pj04 = _t7*k40 + _t8*k41 + a40*b00 + a41*b01 + b04
+    pj05 = _t7*k50 + _t8*k51 + a50*b00 + a51*b01 + b05
+    pj11 = _t6*(k10*k10) + _t6*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t10*k21 + _t9*k20 + a20*b10 + a21*b11 + b12
+    pj13 = _t10*k31 + _t9*k30 + a30*b10 + a31*b11 + b13
+    pj14 = _t10*k41 + _t9*k40 + a40*b10 + a41*b11 + b14
+    pj15 = _t10*k51 + _t9*k50 + a50*b10 + a51*b11 + b15
+    pj22 = _t6*(k20*k20) + _t6*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t11*k30 + _t12*k31 + a30*b20 + a31*b21 + b23
+    pj24 = _t11*k40 + _t12*k41 + a40*b20 + a41*b21 + b24
+    pj25 = _t11*k50 + _t12*k51 + a50*b20 + a51*b21 + b25
+    pj33 = _t6*(k30*k30) + _t6*(k31*k31) + a30*b30 + a31*b31 + b33
+    pj34 = _t13*k40 + _t14*k41 + a40*b30 + a41*b31 + b34
+    pj35 = _t13*k50 + _t14*k51 + a50*b30 + a51*b31 + b35
+    pj44 = _t6*(k40*k40) + _t6*(k41*k41) + a40*b40 + a41*b41 + b44
+    pj45 = _t6*k40*k50 + _t6*k41*k51 + a50*b40 + a51*b41 + b45
+    pj55 = _t6*(k50*k50) + _t6*(k51*k51) + a50*b50 + a51*b51 + b55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp05
+    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[7] = cp12
+    p[8] = cp13
+    p[9] = cp14
+    p[10] = cp15
+    p[11] = pj22
+    p[12] = pj23
+    p[13] = pj24
+    p[14] = pj25
+    p[15] = pj33
+    p[16] = pj34
+    p[17] = pj35
+    p[18] = pj44
+    p[19] = pj45
+    p[20] = pj55
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    s[6] = mu06
+    return nis
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 2) positions; dts (B, K) step lengths; x0 (B, 6) physical initial states; p0 (B, 21)
+    packed initial covariances; q (3,) noise stds; r the measurement std. Writes the posterior
+    physical states into out_x (B, K, 6), the packed covariances into out_p (B, K, 21) when
+    out_p.shape[1] == K (pass shape (B, 0, 21) to skip), and the NIS into out_nis (B, K).
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        p = p0[b].copy()
+        for k in range(K):
+            predict(s, p, dts[b, k], q[0], q[1], q[2])
+            out_nis[b, k] = update(s, p, z[b, k, 0], z[b, k, 1], r)
+            physical_into(s, out_x[b, k])
+            if keep_p:
+                for i in range(21):
+                    out_p[b, k, i] = p[i]
