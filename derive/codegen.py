@@ -93,6 +93,12 @@ class Printer:
             b, n = e.base, e.exp
             if n == sp.Rational(1, 2):
                 return f"math.sqrt({self.p(b)})", 3
+            if n == sp.Rational(-1, 2):
+                return f"1.0/math.sqrt({self.p(b)})", 1
+            if n == sp.Rational(3, 2):
+                return f"{self._wrap(b, 2)}*math.sqrt({self.p(b)})", 1
+            if n == sp.Rational(-3, 2):
+                return f"1.0/({self._wrap(b, 2)}*math.sqrt({self.p(b)}))", 1
             if n.is_Integer:
                 k = int(n)
                 if k == -1:

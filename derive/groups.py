@@ -235,6 +235,9 @@ class Product:
     def hat(self, xi):
         return sp.diag(*[f.hat(p) for f, p in zip(self.factors, self._split(xi))])
 
+    def vee(self, M):
+        return sp.Matrix.vstack(*[f.vee(B) for f, B in zip(self.factors, self._split_matrix(M))])
+
     def exp(self, xi):
         return sp.diag(*[f.exp(p) for f, p in zip(self.factors, self._split(xi))])
 

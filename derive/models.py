@@ -116,6 +116,29 @@ class LGModel:
     def F(self) -> sp.Matrix:
         return self.F_of(self.calC)
 
+    def propagated(self, n) -> sp.Matrix:
+        """The exact motion X exp([Ω(X) + G n]^∧) of eq:model for a noise sample n = (n_x, n_y, n_ω)."""
+        Gn = dwna_G(3)
+        return self.mean() * self.group.exp(self.Omega + Gn * sp.Matrix(n))
+
+    @cached_property
+    def common_jacobian(self) -> sp.Matrix:
+        """∂ε/∂c at the mean: tangent coordinates ε (X = μ exp ε) w.r.t. the physical state c.
+
+        To first order log(μ^-1 X(c + d)) = [μ^-1 X(c + d) - I]^∨, so J = ∂/∂d of that at d = 0.
+        """
+        d = sp.symbols("_d0:6", real=True)
+        mu = self.mean()
+        Xd = mu.subs({c: c + di for c, di in zip(self.state, d)}, simultaneous=True)
+        E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
+        J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
+        return J.applyfunc(sp.trigsimp)
+
+    @property
+    def from_common(self) -> sp.Matrix:
+        """The LG filters' physical state is the common one."""
+        return sp.Matrix(self.state)
+
     @cached_property
     def Q(self) -> sp.Matrix:
         """Q = G diag(σ_x², σ_y², σ_ω²) G^T for n_k of eq:motionG."""
@@ -198,6 +221,16 @@ class CTRV:
 
     H = sp.Matrix([[1, 0, 0, 0, 0], [0, 1, 0, 0, 0]])
 
+    @property
+    def from_common(self) -> sp.Matrix:
+        """(x, y, ψ, v, ω) from the common physical state (x, y, θ, v_x, v_y, ω), v_x, v_y body-frame:
+        ψ = θ + atan2(v_y, v_x) is the heading of the velocity, v its magnitude."""
+        return sp.Matrix([x, y, theta + sp.atan2(vy, vx), sp.sqrt(vx**2 + vy**2), omega])
+
+    @property
+    def common_jacobian(self) -> sp.Matrix:
+        return self.from_common.jacobian(sp.Matrix([x, y, theta, vx, vy, omega])).applyfunc(sp.simplify)
+
 
 class CV:
     """Constant velocity, state (x, y, v_x, v_y) in the world frame, DWNA noise σ_a."""
@@ -217,3 +250,13 @@ class CV:
         return self.sigma_a**2 * G * G.T
 
     H = sp.Matrix([[1, 0, 0, 0], [0, 1, 0, 0]])
+
+    @property
+    def from_common(self) -> sp.Matrix:
+        """(x, y, w_x, w_y) with (w_x, w_y) = R(θ) (v_x, v_y) the world-frame velocity."""
+        w = sp.Matrix([[sp.cos(theta), -sp.sin(theta)], [sp.sin(theta), sp.cos(theta)]]) * sp.Matrix([vx, vy])
+        return sp.Matrix([x, y, w[0], w[1]])
+
+    @property
+    def common_jacobian(self) -> sp.Matrix:
+        return self.from_common.jacobian(sp.Matrix([x, y, theta, vx, vy, omega]))

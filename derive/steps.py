@@ -212,6 +212,56 @@ LG_LAYOUTS = {
 }
 
 
+def internal_from_matrix(name, X):
+    """{index in the internal state: entry of the block matrix X} (ω of SE(2)×SE(2) handled apart)."""
+    if name == "se2se2":
+        return {0: X[0, 2], 1: X[1, 2], 2: X[0, 0], 3: X[1, 0], 4: X[3, 5], 5: X[4, 5], 7: X[3, 3], 8: X[4, 3]}
+    return {0: X[0, 2], 1: X[1, 2], 2: X[0, 0], 3: X[1, 0], 4: X[3, 6], 5: X[4, 6], 6: X[5, 6]}
+
+
+SIMULATE_TEMPLATE = '''
+@nb.njit(cache=True, parallel=True)
+def simulate_batch(x0, dts, noise, out_x):
+    """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
+
+    x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of
+    n = (n_x, n_y, n_ω) (already scaled by their stds); out_x (B, K + 1, 6) receives the physical
+    states, out_x[:, 0] = x0 (ω wrapped to (-π, π] for SE(2)×SE(2)).
+    """
+    B = x0.shape[0]
+    K = dts.shape[1]
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        physical_into(s, out_x[b, 0])
+        for k in range(K):
+            propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1], noise[b, k, 2])
+            physical_into(s, out_x[b, k + 1])
+'''
+
+
+def common_kernels(model):
+    """Conversion from the common physical state c = (x, y, θ, v_x, v_y, ω) (body-frame velocity)."""
+    c = sp.Matrix(sp.symbols("x y theta v_x v_y omega", real=True))
+    cin = vec_inputs("c", list(c))
+    sub = dict(zip([M.x, M.y, M.theta, M.vx, M.vy, M.omega], list(c)))
+    return [
+        new_vector_kernel(
+            "common_to_state",
+            "The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.",
+            ["c"],
+            cin,
+            model.from_common.subs(sub, simultaneous=True),
+        ),
+        new_matrix_kernel(
+            "common_jacobian",
+            "J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).",
+            ["c"],
+            cin,
+            model.common_jacobian.subs(sub, simultaneous=True),
+        ),
+    ]
+
+
 def lg_kernels(model: M.LGModel):
     layout = LG_LAYOUTS[model.name]
     subs = dict(CARRIED_THETA)
@@ -320,12 +370,8 @@ def lg_kernels(model: M.LGModel):
     nisdef = [(nis, (Es2.T * Is * Es2)[0, 0])]
     phidefs, Phis = symbolize(G.right_jacobian(nu), "phi")
     Xn = model.mean().subs(subs) * G.exp(nu)
-    if model.name == "se2se2":
-        mean_out = {0: Xn[0, 2], 1: Xn[1, 2], 2: Xn[0, 0], 3: Xn[1, 0], 4: Xn[3, 5], 5: Xn[4, 5], 7: Xn[3, 3], 8: Xn[4, 3]}
-        omega_new = M.omega + nu[5]
-    else:
-        mean_out = {0: Xn[0, 2], 1: Xn[1, 2], 2: Xn[0, 0], 3: Xn[1, 0], 4: Xn[3, 6], 5: Xn[4, 6], 6: Xn[5, 6]}
-        omega_new = None
+    mean_out = internal_from_matrix(model.name, Xn)
+    omega_new = M.omega + nu[5] if model.name == "se2se2" else None
     mudefs, Mus = symbolize(sp.Matrix([list(mean_out.values())]), "mu")
     Amat = sp.eye(6) - Ks * H
     adefs, As = symbolize(Amat, "a")
@@ -368,6 +414,31 @@ def lg_kernels(model: M.LGModel):
         )
     )
     ks.append(batch_kernel(6, 3))
+
+    # ---- exact motion for simulation (eq:model with a given noise sample)
+    nn = sp.symbols("n_x n_y n_omega", real=True)
+    Xp = model.propagated(nn).subs(subs)
+    prop = internal_from_matrix(model.name, Xp)
+    pdefs, Ps = symbolize(sp.Matrix([list(prop.values())]), "xn")
+    pouts = [(f"s[{i}]", Ps[0, n]) for n, i in enumerate(prop)]
+    epi = []
+    if model.name == "se2se2":
+        pouts.append(("s[6]", M.omega + dt * nn[2]))
+        epi = ["s[6] = wrap_angle(s[6])"]
+    ks.append(
+        Kernel(
+            name="propagate",
+            doc="Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n = (n_x, n_y, n_ω), in place.",
+            params=["s", "dt", "n_x", "n_y", "n_omega"],
+            inputs=sin_ + [(dt, "dt"), (nn[0], "n_x"), (nn[1], "n_y"), (nn[2], "n_omega")],
+            stages=[pdefs],
+            outputs=pouts,
+            substitutions=subs,
+            epilogue=epi,
+        )
+    )
+    ks.append(("simulate_batch", SIMULATE_TEMPLATE))
+    ks.extend(common_kernels(model))
     return ks
 
 
@@ -450,6 +521,7 @@ def ctrv_kernels():
     ks.append(euclid_update_kernel(5, m.H, st, "CTRV EKF"))
     ks.append(physical_into_kernel(sin_, [M.x, M.y, sp.atan2(sp.sin(m.psi), sp.cos(m.psi)), m.v, M.omega], "Physical [x, y, ψ, v, ω], ψ in (-π, π]."))
     ks.append(batch_kernel(5, 2))
+    ks.extend(common_kernels(m))
     return ks
 
 
@@ -483,6 +555,7 @@ def cv_kernels():
     ks.append(new_vector_kernel("state_to_physical", "Physical state [x, y, v_x, v_y].", ["s"], sin_, st))
     ks.append(physical_into_kernel(sin_, st, "Physical [x, y, v_x, v_y]."))
     ks.append(batch_kernel(4, 1))
+    ks.extend(common_kernels(m))
     return ks
 
 

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_an
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'motion', 'transition', 'process_noise', 'predict', 'update', 'physical_into', 'run_batch']
+__all__ = ['state_from_physical', 'state_to_physical', 'motion', 'transition', 'process_noise', 'predict', 'update', 'physical_into', 'run_batch', 'common_to_state', 'common_jacobian']
 
 
 @nb.njit(cache=True)
@@ -399,3 +399,43 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             if keep_p:
                 for i in range(15):
                     out_p[b, k, i] = p[i]
+
+
+@nb.njit(cache=True)
+def common_to_state(c):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """
+    x = c[0]
+    y = c[1]
+    theta = c[2]
+    v_x = c[3]
+    v_y = c[4]
+    omega = c[5]
+    out = np.zeros(5)
+    out[0] = x
+    out[1] = y
+    out[2] = theta + math.atan2(v_y, v_x)
+    out[3] = math.sqrt(v_x*v_x + v_y*v_y)
+    out[4] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def common_jacobian(c):
+    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """
+    v_x = c[3]
+    v_y = c[4]
+    out = np.zeros((5, 6))
+    _t0 = v_x*v_x + v_y*v_y
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[2, 3] = -(_t1*v_y)
+    out[2, 4] = _t1*v_x
+    out[3, 3] = _t2*v_x
+    out[3, 4] = _t2*v_y
+    out[4, 5] = 1.0
+    return out

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_an
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_batch']
+__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_batch', 'common_to_state', 'common_jacobian']
 
 
 @nb.njit(cache=True)
@@ -249,3 +249,43 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             if keep_p:
                 for i in range(10):
                     out_p[b, k, i] = p[i]
+
+
+@nb.njit(cache=True)
+def common_to_state(c):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """
+    x = c[0]
+    y = c[1]
+    theta = c[2]
+    v_x = c[3]
+    v_y = c[4]
+    out = np.zeros(4)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = x
+    out[1] = y
+    out[2] = _cos_theta*v_x - _sin_theta*v_y
+    out[3] = _cos_theta*v_y + _sin_theta*v_x
+    return out
+
+
+@nb.njit(cache=True)
+def common_jacobian(c):
+    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """
+    theta = c[2]
+    v_x = c[3]
+    v_y = c[4]
+    out = np.zeros((4, 6))
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = -(_cos_theta*v_y) - _sin_theta*v_x
+    out[2, 3] = _cos_theta
+    out[2, 4] = -_sin_theta
+    out[3, 2] = _cos_theta*v_x - _sin_theta*v_y
+    out[3, 3] = _sin_theta
+    out[3, 4] = _cos_theta
+    return out

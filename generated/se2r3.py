@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_an
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_batch']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian']
 
 
 @nb.njit(cache=True)
@@ -587,3 +587,97 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             if keep_p:
                 for i in range(21):
                     out_p[b, k, i] = p[i]
+
+
+@nb.njit(cache=True)
+def propagate(s, dt, n_x, n_y, n_omega):
+    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n = (n_x, n_y, n_ω), in place.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    _a0 = (dt*dt)*n_omega/2.0 + dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _t0 = (dt*dt)/2.0
+    _t1 = _t0*n_y + dt*v_y
+    _t2 = _t0*n_x + dt*v_x
+    _t3 = -(_cosc__a0*_t1) + _sinc__a0*_t2
+    _t4 = _cosc__a0*_t2 + _sinc__a0*_t1
+    xn00 = _t3*c_theta - _t4*s_theta + x
+    xn01 = _t3*s_theta + _t4*c_theta + y
+    xn02 = _cos__a0*c_theta - _sin__a0*s_theta
+    xn03 = _cos__a0*s_theta + _sin__a0*c_theta
+    xn04 = dt*n_x + v_x
+    xn05 = dt*n_y + v_y
+    xn06 = dt*n_omega + omega
+    s[0] = xn00
+    s[1] = xn01
+    s[2] = xn02
+    s[3] = xn03
+    s[4] = xn04
+    s[5] = xn05
+    s[6] = xn06
+
+
+@nb.njit(cache=True, parallel=True)
+def simulate_batch(x0, dts, noise, out_x):
+    """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
+
+    x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of
+    n = (n_x, n_y, n_ω) (already scaled by their stds); out_x (B, K + 1, 6) receives the physical
+    states, out_x[:, 0] = x0 (ω wrapped to (-π, π] for SE(2)×SE(2)).
+    """
+    B = x0.shape[0]
+    K = dts.shape[1]
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        physical_into(s, out_x[b, 0])
+        for k in range(K):
+            propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1], noise[b, k, 2])
+            physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True)
+def common_to_state(c):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """
+    x = c[0]
+    y = c[1]
+    theta = c[2]
+    v_x = c[3]
+    v_y = c[4]
+    omega = c[5]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = theta
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def common_jacobian(c):
+    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """
+    theta = c[2]
+    out = np.zeros((6, 6))
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0, 0] = _cos_theta
+    out[0, 1] = _sin_theta
+    out[1, 0] = -_sin_theta
+    out[1, 1] = _cos_theta
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+    return out

@@ -1,0 +1,59 @@
+"""The `lgekf` command line: one subcommand per job; bad input gives one line on stderr and exit 2."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+__all__ = ["main", "UsageError"]
+
+
+class UsageError(ValueError):
+    """A user-facing error: printed as one line, exit status 2."""
+
+
+def _cmd_derive(argv) -> int:
+    # SymPy is imported only here (the runtime never needs it)
+    from .derive.build import main as derive_main
+
+    return derive_main(argv)
+
+
+COMMANDS = {
+    "derive": (_cmd_derive, "derive the model ingredients with SymPy and regenerate the numba kernels (--check, --verify)"),
+}
+
+
+def _register(name, func, help_text):
+    COMMANDS[name] = (func, help_text)
+
+
+def main(argv=None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    # late registration keeps `lgekf derive` free of numba start-up cost and vice versa
+    from . import commands  # noqa: F401  (registers study, figures, track, evaluate)
+
+    parser = argparse.ArgumentParser(
+        prog="lgekf",
+        description="Tracking with the extended Kalman filter on matrix Lie groups (SE(2)xSE(2), SE(2)xR3) and CTRV/CV baselines.",
+    )
+    parser.add_argument("command", choices=sorted(COMMANDS), help="; ".join(f"{k}: {v[1]}" for k, v in sorted(COMMANDS.items())))
+    if not argv or argv[0] in ("-h", "--help"):
+        parser.print_help()
+        return 0 if argv else 2
+    if argv[0] not in COMMANDS:
+        print(f"lgekf: error: unknown command {argv[0]!r}; choose one of {', '.join(sorted(COMMANDS))}", file=sys.stderr)
+        return 2
+    func = COMMANDS[argv[0]][0]
+    try:
+        return int(func(argv[1:]) or 0)
+    except (UsageError, ValueError, OSError) as e:
+        print(f"lgekf {argv[0]}: error: {e}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("lgekf: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
