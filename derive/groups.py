@@ -11,8 +11,9 @@ Conventions (used everywhere in lgekf):
 Each group offers two kinds of functions: the *closed forms* written with the angle functions of
 ``derive.special`` (the forms the code generator emits), and ``derived_*`` functions that obtain
 the same quantity from first principles (matrix exponential, definition of Ad by conjugation,
-the Lie bracket, the series of Φ summed as ∫_0^1 exp(-s ad) ds).  ``derive.verify`` checks that
-the two agree; the tests re-check it.
+the Lie bracket, the series of Φ summed as ∫_0^1 exp(-s ad) ds).  ``derive.verify`` compares the paper's printed
+equations with them, and ``tests/test_groups.py`` checks symbolically that closed and derived forms agree
+(exp, Ad, ad, Φ, Φ·Φ^-1 = I, exp∘log).
 """
 
 from __future__ import annotations
