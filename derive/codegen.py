@@ -240,7 +240,12 @@ def render_module(title: str, source: str, kernels: list, imports: list[str], pr
         out.append(imp + "\n")
     if preamble:
         out.append("\n" + preamble.strip("\n") + "\n")
-    names = [k.name if isinstance(k, Kernel) else k[0] for k in kernels]
+    names = []
+    for k in kernels:
+        if isinstance(k, Kernel):
+            names.append(k.name)
+        else:  # a template: every function it defines
+            names.extend(re.findall(r"^def (\w+)\(", k[1], flags=re.M))
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
     for k in kernels:
         out.append("\n\n" + (render_kernel(k) if isinstance(k, Kernel) else k[1].strip("\n") + "\n"))

@@ -114,6 +114,22 @@ def physical_into_kernel(inputs, v, doc):
 
 
 BATCH_TEMPLATE = '''
+@nb.njit(cache=True)
+def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory: z (K, 2), dts (K,), x0 ({n},), p0 ({npk},); see run_batch."""
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], {qargs})
+        out_nis[k] = update(s, p, z[k, 0], z[k, 1], r)
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range({npk}):
+                out_p[k, i] = p[i]
+
+
 @nb.njit(cache=True, parallel=True)
 def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter B trajectories in parallel (numba prange), predict then update at every step.
@@ -123,26 +139,15 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     physical states into out_x (B, K, {n}), the packed covariances into out_p (B, K, {npk}) when
     out_p.shape[1] == K (pass shape (B, 0, {npk}) to skip), and the NIS into out_nis (B, K).
     """
-    B = z.shape[0]
-    K = z.shape[1]
-    keep_p = out_p.shape[1] == K
-    for b in nb.prange(B):
-        s = state_from_physical(x0[b])
-        p = p0[b].copy()
-        for k in range(K):
-            predict(s, p, dts[b, k], {qargs})
-            out_nis[b, k] = update(s, p, z[b, k, 0], z[b, k, 1], r)
-            physical_into(s, out_x[b, k])
-            if keep_p:
-                for i in range({npk}):
-                    out_p[b, k, i] = p[i]
+    for b in nb.prange(z.shape[0]):
+        run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
 '''
 
 
 def batch_kernel(n: int, nq: int):
     npk = n * (n + 1) // 2
     qargs = ", ".join(f"q[{i}]" for i in range(nq))
-    return ("run_batch", BATCH_TEMPLATE.format(n=n, npk=npk, nq=nq, qargs=qargs))
+    return ("run_one", BATCH_TEMPLATE.format(n=n, npk=npk, nq=nq, qargs=qargs))
 
 
 def vec_inputs(name, syms):

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_an
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_batch', 'common_to_state', 'common_jacobian']
+__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_one', 'run_batch', 'common_to_state', 'common_jacobian']
 
 
 @nb.njit(cache=True)
@@ -227,6 +227,22 @@ def physical_into(s, out):
     out[3] = w_y
 
 
+@nb.njit(cache=True)
+def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory: z (K, 2), dts (K,), x0 (4,), p0 (10,); see run_batch."""
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0])
+        out_nis[k] = update(s, p, z[k, 0], z[k, 1], r)
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(10):
+                out_p[k, i] = p[i]
+
+
 @nb.njit(cache=True, parallel=True)
 def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter B trajectories in parallel (numba prange), predict then update at every step.
@@ -236,19 +252,8 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     physical states into out_x (B, K, 4), the packed covariances into out_p (B, K, 10) when
     out_p.shape[1] == K (pass shape (B, 0, 10) to skip), and the NIS into out_nis (B, K).
     """
-    B = z.shape[0]
-    K = z.shape[1]
-    keep_p = out_p.shape[1] == K
-    for b in nb.prange(B):
-        s = state_from_physical(x0[b])
-        p = p0[b].copy()
-        for k in range(K):
-            predict(s, p, dts[b, k], q[0])
-            out_nis[b, k] = update(s, p, z[b, k, 0], z[b, k, 1], r)
-            physical_into(s, out_x[b, k])
-            if keep_p:
-                for i in range(10):
-                    out_p[b, k, i] = p[i]
+    for b in nb.prange(z.shape[0]):
+        run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
 
 
 @nb.njit(cache=True)

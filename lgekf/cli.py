@@ -5,11 +5,18 @@ from __future__ import annotations
 import argparse
 import sys
 
-__all__ = ["main", "UsageError"]
+__all__ = ["main", "UsageError", "ArgumentParser"]
 
 
 class UsageError(ValueError):
     """A user-facing error: printed as one line, exit status 2."""
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    """argparse that reports a bad option as one line (UsageError) instead of usage + message."""
+
+    def error(self, message):
+        raise UsageError(f"{message} (see `{self.prog} --help`)")
 
 
 def _cmd_derive(argv) -> int:

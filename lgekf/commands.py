@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import argparse
 import csv
 import io
 import json
@@ -12,7 +11,7 @@ import sys
 import time
 from pathlib import Path
 
-from .cli import COMMANDS, UsageError
+from .cli import COMMANDS, ArgumentParser, UsageError
 
 __all__ = ["write_atomic", "cmd_study", "cmd_figures"]
 
@@ -59,7 +58,7 @@ def parse_sigmas(text: str):
 
 
 def study_parser():
-    ap = argparse.ArgumentParser(prog="lgekf study", description="Run the paper's Monte Carlo study (Fig. 4) and check its claims.")
+    ap = ArgumentParser(prog="lgekf study", description="Run the paper's Monte Carlo study (Fig. 4) and check its claims.")
     ap.add_argument("--out", type=Path, default=Path("results"), help="results folder (default: results/)")
     ap.add_argument("--trajectories", type=int, default=100, help="trajectories per σ_ω (default 100)")
     ap.add_argument("--sigmas", default="0:3:30", help="σ_ω values: START:STOP:COUNT (linspace) or a list (default 0:3:30)")
@@ -176,7 +175,7 @@ def cmd_study(argv) -> int:
 def cmd_figures(argv) -> int:
     from .figures import banana_figure, trajectories_figure
 
-    ap = argparse.ArgumentParser(prog="lgekf figures", description="Reproduce the paper's Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example tracks).")
+    ap = ArgumentParser(prog="lgekf figures", description="Reproduce the paper's Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example tracks).")
     ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default: figures/)")
     ap.add_argument("--pdf", action="store_true", help="also write PDF files")
     a = ap.parse_args(argv)

@@ -1,0 +1,25 @@
+"""Shared test plumbing: a table of measured accuracies printed in the terminal summary."""
+
+from __future__ import annotations
+
+import pytest
+
+_ACCURACY = pytest.StashKey[dict]()
+
+
+@pytest.fixture(scope="session")
+def accuracy_table(request):
+    """{kernel name: (max relative error, entry, angle)}; printed at the end of the run."""
+    return request.config.stash.setdefault(_ACCURACY, {})
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    table = config.stash.get(_ACCURACY, None)
+    if not table:
+        return
+    tr = terminalreporter
+    tr.section("max relative error per kernel near theta = 0 (vs 50-digit SymPy/mpmath)")
+    tr.write_line(f"{'kernel':<28} {'max rel. error':>14}  {'ulp(1)':>7}  {'entry':<8} {'at angle':>24}")
+    for name in sorted(table):
+        err, entry, angle = table[name]
+        tr.write_line(f"{name:<28} {err:14.3e}  {err / 2.220446049250313e-16:7.1f}  {entry!s:<8} {angle!r:>24}")
