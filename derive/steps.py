@@ -444,6 +444,22 @@ def lg_kernels(model: M.LGModel):
     )
     ks.append(("simulate_batch", SIMULATE_TEMPLATE))
     ks.extend(common_kernels(model))
+
+    # ---- estimation error in the filter's tangent coordinates, for NEES
+    c = sp.symbols("xt yt thetat vxt vyt omegat", real=True)
+    true_mean = model.mean().subs(dict(zip(model.state, c)), simultaneous=True)
+    rel = G.inverse(model.mean()).subs(subs) * true_mean
+    ks.append(
+        new_vector_kernel(
+            "tangent_error",
+            "ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true physical state c,\n"
+            "in the coordinates of P (for NEES = εᵀ P^-1 ε).",
+            ["s", "c"],
+            sin_ + vec_inputs("c", c),
+            G.log(rel),
+            subs,
+        )
+    )
     return ks
 
 

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_an
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
@@ -755,4 +755,53 @@ def common_jacobian(c):
     out[4, 3] = -_sin_omega
     out[4, 4] = _cos_omega
     out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def tangent_error(s, c):
+    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true physical state c,
+    in the coordinates of P (for NEES = εᵀ P^-1 ε).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    c_omega = s[7]
+    s_omega = s[8]
+    xt = c[0]
+    yt = c[1]
+    thetat = c[2]
+    vxt = c[3]
+    vyt = c[4]
+    omegat = c[5]
+    out = np.zeros(6)
+    _sin_omegat = math.sin(omegat)
+    _cos_omegat = math.cos(omegat)
+    _sin_thetat = math.sin(thetat)
+    _cos_thetat = math.cos(thetat)
+    _a0 = math.atan2(c_omega*math.sin(omegat) - s_omega*math.cos(omegat), c_omega*math.cos(omegat) + s_omega*math.sin(omegat))
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _a1 = math.atan2(c_theta*math.sin(thetat) - s_theta*math.cos(thetat), c_theta*math.cos(thetat) + s_theta*math.sin(thetat))
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t0 = -(c_theta*x) + c_theta*xt - s_theta*y + s_theta*yt
+    _t1 = -(c_theta*y) + c_theta*yt + s_theta*x - s_theta*xt
+    _t2 = math.atan2(-(_cos_thetat*s_theta) + _sin_thetat*c_theta, _cos_thetat*c_theta + _sin_thetat*s_theta)
+    _t3 = _t2/2.0
+    _t4 = -(c_omega*v_x) + c_omega*vxt - s_omega*v_y + s_omega*vyt
+    _t5 = -(c_omega*v_y) + c_omega*vyt + s_omega*v_x - s_omega*vxt
+    _t6 = math.atan2(-(_cos_omegat*s_omega) + _sin_omegat*c_omega, _cos_omegat*c_omega + _sin_omegat*s_omega)
+    _t7 = _t6/2.0
+    out[0] = _halfcot__a1*_t0 + _t1*_t3
+    out[1] = _halfcot__a1*_t1 - _t0*_t3
+    out[2] = _t2
+    out[3] = _halfcot__a0*_t4 + _t5*_t7
+    out[4] = _halfcot__a0*_t5 - _t4*_t7
+    out[5] = _t6
     return out

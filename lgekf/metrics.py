@@ -1,0 +1,57 @@
+"""Accuracy and consistency: position RMSE, NEES (estimation error vs P) and NIS (from the updates).
+
+NEES uses each filter's own coordinates: for the LG filters the error is ε = [log(μ⁻¹ X_true)]^∨
+(generated ``tangent_error``), for CTRV and CV the difference of the state vectors (angles wrapped).
+For a consistent filter the mean NEES is n (the state dimension) and the mean NIS is 2.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .registry import get_model
+
+__all__ = ["position_rmse", "nees", "chi2_band"]
+
+
+def position_rmse(est, truth_xy) -> np.ndarray:
+    """Per-trajectory RMSE of the position: est (B, K, >=2), truth_xy (B, K, >=2) -> (B,)."""
+    est = np.asarray(est, float)
+    truth_xy = np.asarray(truth_xy, float)
+    return np.sqrt(np.mean(np.sum((est[..., :2] - truth_xy[..., :2]) ** 2, axis=-1), axis=-1))
+
+
+def _wrap(a):
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def nees(model: str, est, cov, truth) -> np.ndarray:
+    """NEES of every estimate: est (..., n) physical states of ``model``, cov (..., n, n) its P,
+    truth (..., 6) common physical states (x, y, θ, v_x, v_y, ω) -> (...)."""
+    spec = get_model(model)
+    k = spec.kernels
+    est = np.asarray(est, float)
+    cov = np.asarray(cov, float)
+    truth = np.asarray(truth, float)
+    flat_e = est.reshape(-1, spec.n)
+    flat_t = truth.reshape(-1, 6)
+    err = np.empty_like(flat_e)
+    for i, (e, t) in enumerate(zip(flat_e, flat_t)):
+        if model in ("se2se2", "se2r3"):
+            err[i] = k.tangent_error(k.state_from_physical(e), t)
+        else:
+            err[i] = k.common_to_state(t) - e
+            if model == "ctrv":
+                err[i, 2] = _wrap(err[i, 2])
+    err = err.reshape(est.shape)
+    sol = np.linalg.solve(cov, err[..., None])[..., 0]
+    return np.einsum("...i,...i->...", err, sol)
+
+
+def chi2_band(dof: int, runs: int, p: float = 0.95):
+    """Two-sided band of the mean of ``runs`` chi-square(dof) variables (normal approximation)."""
+    from statistics import NormalDist
+
+    zq = NormalDist().inv_cdf(0.5 + p / 2)
+    half = zq * np.sqrt(2.0 * dof / runs)
+    return dof - half, dof + half
