@@ -217,6 +217,29 @@ LG_LAYOUTS = {
 }
 
 
+def kalman_gain(H, P, e, r):
+    """Stages of a position update shared by every filter: HP, S = H P Hᵀ + r² I, S⁻¹ (2×2, by its
+    determinant), K = P Hᵀ S⁻¹, the innovation e and NIS = eᵀ S⁻¹ e; then the Joseph form pieces
+    A = I - K H, B = A P and the posterior P_J = B Aᵀ + r² K Kᵀ (symmetric, PSD by construction)."""
+    n = P.shape[0]
+    hdefs, HPs = symbolize(H * P, "hp")
+    edefs, Es = symbolize(e, "inn")
+    sdefs, Ss = symbolize(HPs * H.T + r**2 * sp.eye(2), "S", only_upper=True)
+    det = sp.Symbol("det", real=True)
+    idefs, Is = symbolize(sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det, "Si", only_upper=True)
+    kdefs, Ks = symbolize(HPs.T * Is, "k")
+    nis = sp.Symbol("nis", real=True)
+    adefs, As = symbolize(sp.eye(n) - Ks * H, "a")
+    bdefs, Bs = symbolize(As * P, "b")
+    return {
+        "gain_stages": [hdefs + edefs, sdefs, [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)], idefs, kdefs + [(nis, (Es.T * Is * Es)[0, 0])]],
+        "joseph_stages": [adefs, bdefs],
+        "K": Ks,
+        "e": Es,
+        "PJ": Bs * As.T + r**2 * Ks * Ks.T,
+    }
+
+
 def internal_from_matrix(name, X):
     """{index in the internal state: entry of the block matrix X} (ω of SE(2)×SE(2) handled apart)."""
     if name == "se2se2":
@@ -360,29 +383,15 @@ def lg_kernels(model: M.LGModel):
     R2 = Rn(2)
     h_mu = R2.exp([M.x, M.y])
     innov = R2.log(R2.inverse(h_mu) * R2.exp([zx, zy]))  # [log_G'(h(μ)^-1 Z)]^∨
-    H = model.calH
-    hdefs, HPs = symbolize(H * P, "hp")
-    S = HPs * H.T + r**2 * sp.eye(2)
-    sdefs, Ss = symbolize(S, "S", only_upper=True)
-    det = sp.Symbol("det", real=True)
-    Sinv = sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det
-    idefs, Is = symbolize(Sinv, "Si", only_upper=True)
-    kdefs, Ks = symbolize(HPs.T * Is, "k")
-    edefs2, Es2 = symbolize(innov, "inn")
+    kg = kalman_gain(model.calH, P, innov, r)
     nu = sp.Matrix(sp.symbols("nu0:6", real=True))
-    nudefs = list(zip(nu, Ks * Es2))
-    nis = sp.Symbol("nis", real=True)
-    nisdef = [(nis, (Es2.T * Is * Es2)[0, 0])]
+    nudefs = list(zip(nu, kg["K"] * kg["e"]))
     phidefs, Phis = symbolize(G.right_jacobian(nu), "phi")
     Xn = model.mean().subs(subs) * G.exp(nu)
     mean_out = internal_from_matrix(model.name, Xn)
     omega_new = M.omega + nu[5] if model.name == "se2se2" else None
     mudefs, Mus = symbolize(sp.Matrix([list(mean_out.values())]), "mu")
-    Amat = sp.eye(6) - Ks * H
-    adefs, As = symbolize(Amat, "a")
-    bdefs, Bs = symbolize(As * P, "b")
-    PJ = Bs * As.T + r**2 * Ks * Ks.T
-    jdefs, PJs = symbolize(PJ, "pj", only_upper=True)
+    jdefs, PJs = symbolize(kg["PJ"], "pj", only_upper=True)
     cdefs, Cs = symbolize(Phis * PJs, "cp")
     Pu = Cs * Phis.T
     outs = cov_outputs(Pu) + [(f"s[{i}]", Mus[0, n]) for n, i in enumerate(mean_out)]
@@ -399,18 +408,7 @@ def lg_kernels(model: M.LGModel):
             ),
             params=["s", "p", "z_x", "z_y", "r"],
             inputs=sin_ + pin + [(zx, "z_x"), (zy, "z_y"), (r, "r")],
-            stages=[
-                hdefs + edefs2,
-                sdefs,
-                [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)],
-                idefs,
-                kdefs + nisdef,
-                nudefs,
-                phidefs + mudefs + adefs,
-                bdefs,
-                jdefs,
-                cdefs,
-            ],
+            stages=kg["gain_stages"] + [nudefs, phidefs + mudefs] + kg["joseph_stages"] + [jdefs, cdefs],
             outputs=outs,
             substitutions=subs,
             ret="nis",
@@ -470,20 +468,9 @@ def euclid_update_kernel(n, H, state_syms, doc_model):
     P, pin = sym_cov(n)
     sin_ = vec_inputs("s", state_syms)
     xs = sp.Matrix(state_syms)
-    hdefs, HPs = symbolize(H * P, "hp")
-    S = HPs * H.T + r**2 * sp.eye(2)
-    sdefs, Ss = symbolize(S, "S", only_upper=True)
-    det = sp.Symbol("det", real=True)
-    Sinv = sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det
-    idefs, Is = symbolize(Sinv, "Si", only_upper=True)
-    kdefs, Ks = symbolize(HPs.T * Is, "k")
-    e = sp.Matrix([zx, zy]) - H * xs
-    edefs, Es = symbolize(e, "inn")
-    nis = sp.Symbol("nis", real=True)
-    adefs, As = symbolize(sp.eye(n) - Ks * H, "a")
-    bdefs, Bs = symbolize(As * P, "b")
-    Pn = Bs * As.T + r**2 * Ks * Ks.T
-    xn = xs + Ks * Es
+    kg = kalman_gain(H, P, sp.Matrix([zx, zy]) - H * xs, r)
+    Pn = kg["PJ"]
+    xn = xs + kg["K"] * kg["e"]
     outs = cov_outputs(Pn) + [(f"s[{i}]", xn[i]) for i in range(n)]
     return Kernel(
         name="update",
@@ -494,7 +481,7 @@ def euclid_update_kernel(n, H, state_syms, doc_model):
         ),
         params=["s", "p", "z_x", "z_y", "r"],
         inputs=sin_ + pin + [(zx, "z_x"), (zy, "z_y"), (r, "r")],
-        stages=[hdefs + edefs, sdefs, [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)], idefs, kdefs + [(nis, (Es.T * Is * Es)[0, 0])], adefs, bdefs],
+        stages=kg["gain_stages"] + kg["joseph_stages"],
         outputs=outs,
         ret="nis",
         fastmath=True,
