@@ -16,10 +16,13 @@ SHORT = ["LG close", "LG best", "CV good small", "CV degrades", "CTRV weak small
 
 VARIANTS = [
     ("default (matched noise)", {}),
+    ("--noise-scale cv=3", {"noise_scale": {"cv": 3.0}}),
     ("--noise-scale cv=10", {"noise_scale": {"cv": 10.0}}),
     ("--noise-scale cv=30", {"noise_scale": {"cv": 30.0}}),
     ("--noise-scale cv=30 ctrv=3", {"noise_scale": {"cv": 30.0, "ctrv": 3.0}}),
     ("--truth se2r3 --noise-scale cv=30", {"truth": "se2r3", "noise_scale": {"cv": 30.0}}),
+    ("--truth se2r3 --noise-scale cv=30 ctrv=3", {"truth": "se2r3", "noise_scale": {"cv": 30.0, "ctrv": 3.0}}),
+    ("--dt 0.5 --steps 20 --noise-scale cv=30 ctrv=3", {"dt": 0.5, "steps": 20, "noise_scale": {"cv": 30.0, "ctrv": 3.0}}),
     ("--v0 1,0 --noise-scale cv=30", {"v0": (1.0, 0.0), "noise_scale": {"cv": 30.0}}),
     ("--v0 3,1 --noise-scale cv=30", {"v0": (3.0, 1.0), "noise_scale": {"cv": 30.0}}),
     ("--w0 0.5 --noise-scale cv=30", {"w0": 0.5, "noise_scale": {"cv": 30.0}}),

@@ -36,7 +36,7 @@ def _horner(coeffs, var="x2"):
 def render_special() -> str:
     out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/special.py")]
     out.append("import math\n\nimport numba as nb\n")
-    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle"]
+    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "gain_damping"]
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
     for f in ANGLE_FUNCTIONS:
         coeffs = taylor_coefficients(f)
@@ -70,13 +70,22 @@ def render_special() -> str:
         "        r += 2.0 * math.pi\n"
         "    return r\n"
     )
+    out.append(
+        "\n\n@nb.njit(cache=True)\ndef gain_damping(a, b):\n"
+        '    """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]\n'
+        '    (see derive.special.gain_damping)."""\n'
+        "    m = max(abs(a), abs(b))\n"
+        "    if m <= math.pi:\n"
+        "        return 1.0\n"
+        "    return math.pi / m\n"
+    )
     return "".join(out)
 
 
 def _render_one(name: str) -> tuple[str, str]:
     title, builder = MODULES[name]
     kernels = builder()
-    imports = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", wrap_angle  # noqa: F401"]
+    imports = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle  # noqa: F401"]
     src = render_module(title, f"derive/steps.py ({name}), from derive/models.py and derive/groups.py", kernels, imports, PREAMBLE)
     return f"{name}.py", src
 

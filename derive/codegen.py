@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from .special import ANGLE_FUNCTIONS, AngleFunction
+from .special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
 
 __all__ = ["Kernel", "Printer", "render_kernel", "render_module", "HEADER"]
 
@@ -114,6 +114,8 @@ class Printer:
             raise ValueError(f"unsupported power {e}")
         if isinstance(e, sp.Function) and type(e) in self.FUNCS:
             return f"{self.FUNCS[type(e)]}({', '.join(self.p(a) for a in e.args)})", 3
+        if isinstance(e, RUNTIME_FUNCTIONS):
+            return f"{type(e).numba_name}({', '.join(self.p(a) for a in e.args)})", 3
         raise ValueError(f"unsupported expression for numba printing: {e!r} ({type(e)})")
 
 

@@ -147,7 +147,7 @@ class LGModel:
 
 
 class SE2SE2(LGModel):
-    """G = SE(2)×SE(2): X = (T_s, T_d), T_d = (R_ω, (v_x, v_y)), ω ∈ (-π, π]."""
+    """G = SE(2)×SE(2): X = (T_s, T_d), T_d = (R_ω, (v_x, v_y)), ω = log_SO(2)(R_ω) ∈ [-π, π]."""
 
     name = "se2se2"
     group = Product(SE2, SE2)

@@ -211,6 +211,31 @@ class halfcot1(AngleFunction):
 ANGLE_FUNCTIONS: tuple[type[AngleFunction], ...] = (sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1)
 
 
+class wrap(sp.Function):
+    """wrap(a): the angle a wrapped to (-π, π] (printed as the generated helper ``wrap_angle``)."""
+
+    nargs = 1
+    numba_name = "wrap_angle"
+
+
+class gain_damping(sp.Function):
+    """gain_damping(a, b) = min(1, π / max(|a|, |b|)): the factor that keeps the rotation angles a, b of
+    a Kalman correction ν within [-π, π] (printed as the generated helper ``gain_damping``).
+
+    The concentrated Gaussian is only defined where exp is bijective (|angle| < π, paper Sec. II-B);
+    a correction that turns the estimate by more than half a turn is a linearisation failure, and at
+    angles 2πk (k ≠ 0) Φ(ν) is singular.  Damping the gain K → αK keeps Φ(ν) well conditioned; the
+    Joseph-form covariance is exact for the damped gain.  α = 1 whenever |angle| ≤ π (every regular
+    step), so the paper's filter is unchanged there.
+    """
+
+    nargs = 2
+    numba_name = "gain_damping"
+
+
+RUNTIME_FUNCTIONS = (wrap, gain_damping)
+
+
 def to_exact(expr):
     """Replace every angle function by its printed definition (for symbolic comparison)."""
     return expr.replace(lambda e: isinstance(e, AngleFunction), lambda e: e.exact())

@@ -2,7 +2,8 @@
 
 Internal state layouts (what the fused kernels read and write in place):
 
-* se2se2: s = [x, y, cos θ, sin θ, v_x, v_y, ω, cos ω, sin ω]   (ω wrapped to (-π, π])
+* se2se2: s = [x, y, cos θ, sin θ, v_x, v_y, ω, cos ω, sin ω]   (ω = atan2(sin ω, cos ω), the log
+  of T_d's rotation, so equal means always predict alike)
 * se2r3:  s = [x, y, cos θ, sin θ, v_x, v_y, ω]
 * ctrv:   s = [x, y, ψ, v, ω]
 * cv:     s = [x, y, v_x, v_y]
@@ -22,6 +23,7 @@ import sympy as sp
 from . import models as M
 from .codegen import Kernel
 from .groups import SE2, Rn
+from .special import gain_damping, wrap
 
 __all__ = ["MODULES", "packed_index", "LG_LAYOUTS"]
 
@@ -150,6 +152,79 @@ def batch_kernel(n: int, nq: int):
     return ("run_one", BATCH_TEMPLATE.format(n=n, npk=npk, nq=nq, qargs=qargs))
 
 
+PD_TOL = 1e-13  # LDLᵀ pivot / largest variance below which a covariance counts as lost to rounding
+
+
+def pd_check_kernels(n: int):
+    """``covariance_is_pd(p)`` and ``repair_pd(p)`` for a packed n×n covariance (scalar-unrolled LDLᵀ).
+
+    At condition numbers beyond ~1e13 (e.g. a position known to 1e-4 m next to a heading variance of
+    1e5 rad² in a diverging filter) rounding alone can make the smallest eigenvalue of
+    Φ(ν) P_J Φ(ν)ᵀ negative.  ``covariance_is_pd`` runs LDLᵀ and requires every pivot
+    d_j > PD_TOL · max_i P_ii (a condition-number bound that float64 eigen-solvers can still certify);
+    ``repair_pd`` adds the smallest diagonal jitter (PD_TOL · max_i P_ii, growing ×4) that passes.
+    Regular steps never trigger it (their condition numbers are many orders smaller).
+    """
+    idx = packed_index(n)
+    lines = ["@nb.njit(cache=True)", "def covariance_is_pd(p):",
+             f'    """LDLᵀ test of the packed covariance: every pivot d_j > {PD_TOL!r} · max_i P_ii (NaN fails)."""']
+    for i in range(n):
+        for j in range(i, n):
+            lines.append(f"    p{i}{j} = p[{idx[(i, j)]}]")
+    lines.append(f"    tol = {PD_TOL!r} * max({', '.join(f'p{j}{j}' for j in range(n))})")
+    for j in range(n):
+        terms = "".join(f" - l{j}{k} * l{j}{k} * d{k}" for k in range(j))
+        lines.append(f"    d{j} = p{j}{j}{terms}")
+        lines.append(f"    if not d{j} > tol:")
+        lines.append("        return False")
+        for i in range(j + 1, n):
+            terms = "".join(f" - l{i}{k} * l{j}{k} * d{k}" for k in range(j))
+            lines.append(f"    l{i}{j} = (p{j}{i}{terms}) / d{j}")
+    lines.append("    return True")
+    check = "\n".join(lines)
+    diag = [idx[(j, j)] for j in range(n)]
+    repair = f'''
+@nb.njit(cache=True)
+def repair_pd(p):
+    """Add the smallest diagonal jitter ({PD_TOL!r} · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
+    scale = 0.0
+    for i in {tuple(diag)!r}:
+        scale = max(scale, abs(p[i]))
+    delta = {PD_TOL!r} * scale
+    for _ in range(60):
+        if covariance_is_pd(p):
+            return
+        for i in {tuple(diag)!r}:
+            p[i] += delta
+        delta *= 4.0
+'''
+    return [("covariance_is_pd", check), ("repair_pd", repair)]
+
+
+def angle_limit_kernel(n: int, angles: tuple[int, ...]):
+    """``limit_angle_variance(p)``: cap the std of the tangent angle coordinates at π (congruence scaling).
+
+    A concentrated Gaussian is only meaningful where exp is bijective, |ε_θ| < π (paper, Sec. II-B); an
+    angle std beyond π says "heading unknown", which the CGD cannot express.  With position-only
+    measurements the heading and the direction of the body-frame velocity are observable only as a sum,
+    so that variance can otherwise grow without bound (and with it the condition number of P).
+    P ← D P D with D = diag(1, ..., π/σ_θ, ...) keeps P symmetric positive definite.  Inactive while
+    σ_θ ≤ π, i.e. in every regular step.
+    """
+    idx = packed_index(n)
+    lines = ["@nb.njit(cache=True)", "def limit_angle_variance(p):",
+             '    """Cap the std of the angle coordinates ' + str(list(angles)) + ' of P at π by congruence scaling (see derive/steps.py)."""']
+    for a in angles:
+        d = idx[(a, a)]
+        lines.append(f"    if p[{d}] > math.pi * math.pi:")
+        lines.append(f"        f = math.pi / math.sqrt(p[{d}])")
+        for j in range(n):
+            if j != a:
+                lines.append(f"        p[{idx[(a, j)]}] *= f")
+        lines.append(f"        p[{d}] = math.pi * math.pi")
+    return ("limit_angle_variance", "\n".join(lines))
+
+
 def vec_inputs(name, syms):
     return [(s, f"{name}[{i}]") for i, s in enumerate(syms)]
 
@@ -217,10 +292,11 @@ LG_LAYOUTS = {
 }
 
 
-def kalman_gain(H, P, e, r):
+def kalman_gain(H, P, e, r, scale=1):
     """Stages of a position update shared by every filter: HP, S = H P Hᵀ + r² I, S⁻¹ (2×2, by its
     determinant), K = P Hᵀ S⁻¹, the innovation e and NIS = eᵀ S⁻¹ e; then the Joseph form pieces
-    A = I - K H, B = A P and the posterior P_J = B Aᵀ + r² K Kᵀ (symmetric, PSD by construction)."""
+    A = I - K' H, B = A P and the posterior P_J = B Aᵀ + r² K' K'ᵀ (symmetric, PSD by construction)
+    for the applied gain K' = scale·K (scale a symbol defined by the caller between the two parts)."""
     n = P.shape[0]
     hdefs, HPs = symbolize(H * P, "hp")
     edefs, Es = symbolize(e, "inn")
@@ -229,14 +305,14 @@ def kalman_gain(H, P, e, r):
     idefs, Is = symbolize(sp.Matrix([[Ss[1, 1], -Ss[0, 1]], [-Ss[0, 1], Ss[0, 0]]]) / det, "Si", only_upper=True)
     kdefs, Ks = symbolize(HPs.T * Is, "k")
     nis = sp.Symbol("nis", real=True)
-    adefs, As = symbolize(sp.eye(n) - Ks * H, "a")
+    adefs, As = symbolize(sp.eye(n) - scale * Ks * H, "a")
     bdefs, Bs = symbolize(As * P, "b")
     return {
         "gain_stages": [hdefs + edefs, sdefs, [(det, Ss[0, 0] * Ss[1, 1] - Ss[0, 1] ** 2)], idefs, kdefs + [(nis, (Es.T * Is * Es)[0, 0])]],
         "joseph_stages": [adefs, bdefs],
         "K": Ks,
         "e": Es,
-        "PJ": Bs * As.T + r**2 * Ks * Ks.T,
+        "PJ": Bs * As.T + (r * scale) ** 2 * Ks * Ks.T,
     }
 
 
@@ -254,7 +330,7 @@ def simulate_batch(x0, dts, noise, out_x):
 
     x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of
     n = (n_x, n_y, n_ω) (already scaled by their stds); out_x (B, K + 1, 6) receives the physical
-    states, out_x[:, 0] = x0 (ω wrapped to (-π, π] for SE(2)×SE(2)).
+    states, out_x[:, 0] = x0 (for SE(2)×SE(2) ω is the log of T_d's rotation, in [-π, π]).
     """
     B = x0.shape[0]
     K = dts.shape[1]
@@ -304,10 +380,11 @@ def lg_kernels(model: M.LGModel):
     X, Y, TH, VX, VY, W = phys
     to_int = [X, Y, sp.cos(TH), sp.sin(TH), VX, VY]
     if model.name == "se2se2":
+        # ω is always the log of the stored rotation: atan2(sin ω, cos ω) (so equal means predict alike)
         to_int += [sp.atan2(sp.sin(W), sp.cos(W)), sp.cos(W), sp.sin(W)]
     else:
         to_int += [W]
-    to_phys = [M.x, M.y, sp.atan2(sth, cth), M.vx, M.vy, M.omega]
+    to_phys = [M.x, M.y, wrap(sp.atan2(sth, cth)), M.vx, M.vy, M.omega]
 
     P, pin = sym_cov(6)
     Omega = model.Omega
@@ -361,19 +438,23 @@ def lg_kernels(model: M.LGModel):
     mdefs, Ms = symbolize(Fs * P, "m")
     Pn = Ms * Fs.T + Ns * sp.diag(*[s**2 for s in sig]) * Ns.T
     outs = cov_outputs(Pn) + [(f"s[{i}]", Es[0, i]) for i in range(4)]
+    angle_coords = (2, 5) if model.name == "se2se2" else (2,)
+    ks.append(angle_limit_kernel(6, angle_coords))
     ks.append(
         Kernel(
             name="predict",
             doc=(
                 "Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),\n"
                 "P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.\n"
-                "s: internal state (see module doc), p: packed covariance (21), dt > 0."
+                "s: internal state (see module doc), p: packed covariance (21), dt > 0.\n"
+                "Then the std of the tangent angles is capped at π (limit_angle_variance; inactive while ≤ π)."
             ),
             params=["s", "p", "dt", "sigma_x", "sigma_y", "sigma_omega"],
             inputs=sin_ + pin + [(dt, "dt"), (sig[0], "sigma_x"), (sig[1], "sigma_y"), (sig[2], "sigma_omega")],
             stages=[fdefs + ndefs + edefs, mdefs],
             outputs=outs,
             substitutions=subs,
+            epilogue=["limit_angle_variance(p)"],
             fastmath=True,
         )
     )
@@ -383,20 +464,23 @@ def lg_kernels(model: M.LGModel):
     R2 = Rn(2)
     h_mu = R2.exp([M.x, M.y])
     innov = R2.log(R2.inverse(h_mu) * R2.exp([zx, zy]))  # [log_G'(h(μ)^-1 Z)]^∨
-    kg = kalman_gain(model.calH, P, innov, r)
+    alpha = sp.Symbol("alpha", positive=True)
+    kg = kalman_gain(model.calH, P, innov, r, scale=alpha)
+    nu_raw = sp.Matrix(sp.symbols("nk0:6", real=True))
     nu = sp.Matrix(sp.symbols("nu0:6", real=True))
-    nudefs = list(zip(nu, kg["K"] * kg["e"]))
+    angles = (nu_raw[2], nu_raw[5]) if model.name == "se2se2" else (nu_raw[2], sp.Integer(0))
+    nudefs = [list(zip(nu_raw, kg["K"] * kg["e"])), [(alpha, gain_damping(*angles))], list(zip(nu, alpha * nu_raw))]
     phidefs, Phis = symbolize(G.right_jacobian(nu), "phi")
     Xn = model.mean().subs(subs) * G.exp(nu)
     mean_out = internal_from_matrix(model.name, Xn)
-    omega_new = M.omega + nu[5] if model.name == "se2se2" else None
     mudefs, Mus = symbolize(sp.Matrix([list(mean_out.values())]), "mu")
     jdefs, PJs = symbolize(kg["PJ"], "pj", only_upper=True)
     cdefs, Cs = symbolize(Phis * PJs, "cp")
     Pu = Cs * Phis.T
     outs = cov_outputs(Pu) + [(f"s[{i}]", Mus[0, n]) for n, i in enumerate(mean_out)]
-    if omega_new is not None:
-        outs.append(("s[6]", omega_new))  # ω ← ω + ν_ω, then wrapped to (-π, π] (epilogue)
+    if model.name == "se2se2":
+        # ω ← log of the new rotation of T_d, atan2(sin, cos) ∈ [-π, π]
+        outs.append(("s[6]", sp.atan2(Mus[0, list(mean_out).index(8)], Mus[0, list(mean_out).index(7)])))
     ks.append(
         Kernel(
             name="update",
@@ -404,18 +488,22 @@ def lg_kernels(model: M.LGModel):
                 "Fused LG-EKF update with a position measurement z = (z_x, z_y), noise std r, in place.\n"
                 "K = P ℋ^T (ℋ P ℋ^T + r² I)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),\n"
                 "P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + r² K K^T] Φ(ν)^T: eq:up_P in Joseph form (equal for the\n"
-                "optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e."
+                "optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e.\n"
+                "Safeguards (inactive in regular steps): if a rotation angle of ν exceeds π the gain is damped,\n"
+                "K → αK with α = π/|angle| (derive.special.gain_damping); if rounding leaves P not positive\n"
+                "definite (condition numbers ≳ 1e15) a rounding-level diagonal jitter restores it (repair_pd)."
             ),
             params=["s", "p", "z_x", "z_y", "r"],
             inputs=sin_ + pin + [(zx, "z_x"), (zy, "z_y"), (r, "r")],
-            stages=kg["gain_stages"] + [nudefs, phidefs + mudefs] + kg["joseph_stages"] + [jdefs, cdefs],
+            stages=kg["gain_stages"] + nudefs + [phidefs + mudefs] + kg["joseph_stages"] + [jdefs, cdefs],
             outputs=outs,
             substitutions=subs,
             ret="nis",
-            epilogue=["s[6] = wrap_angle(s[6])"] if omega_new is not None else [],
+            epilogue=["if not covariance_is_pd(p):", "    repair_pd(p)"],
             fastmath=True,
         )
     )
+    ks.extend(pd_check_kernels(6))
     ks.append(batch_kernel(6, 3))
 
     # ---- exact motion for simulation (eq:model with a given noise sample)
@@ -424,10 +512,8 @@ def lg_kernels(model: M.LGModel):
     prop = internal_from_matrix(model.name, Xp)
     pdefs, Ps = symbolize(sp.Matrix([list(prop.values())]), "xn")
     pouts = [(f"s[{i}]", Ps[0, n]) for n, i in enumerate(prop)]
-    epi = []
     if model.name == "se2se2":
-        pouts.append(("s[6]", M.omega + dt * nn[2]))
-        epi = ["s[6] = wrap_angle(s[6])"]
+        pouts.append(("s[6]", sp.atan2(Ps[0, list(prop).index(8)], Ps[0, list(prop).index(7)])))
     ks.append(
         Kernel(
             name="propagate",
@@ -437,7 +523,6 @@ def lg_kernels(model: M.LGModel):
             stages=[pdefs],
             outputs=pouts,
             substitutions=subs,
-            epilogue=epi,
         )
     )
     ks.append(("simulate_batch", SIMULATE_TEMPLATE))
@@ -500,7 +585,7 @@ def ctrv_kernels():
         new_vector_kernel("state_from_physical", "Internal state = physical [x, y, ψ, v, ω].", ["xp"], vec_inputs("xp", phys), list(phys)),
         new_vector_kernel(
             "state_to_physical", "Physical [x, y, ψ, v, ω] with ψ wrapped to (-π, π].", ["s"], sin_,
-            [M.x, M.y, sp.atan2(sp.sin(m.psi), sp.cos(m.psi)), m.v, M.omega],
+            [M.x, M.y, wrap(m.psi), m.v, M.omega],
         ),
         new_vector_kernel("motion", "CTRV exact discretisation f(s): x' = x + vT cos(ψ + ωT/2) sinc(ωT/2), ...", ["s", "dt"], sin_ + [(dt, "dt")], m.f),
         new_matrix_kernel("transition", "CTRV EKF Jacobian F = ∂f/∂s, finite at ω = 0.", ["s", "dt"], sin_ + [(dt, "dt")], m.F),
@@ -527,7 +612,7 @@ def ctrv_kernels():
         )
     )
     ks.append(euclid_update_kernel(5, m.H, st, "CTRV EKF"))
-    ks.append(physical_into_kernel(sin_, [M.x, M.y, sp.atan2(sp.sin(m.psi), sp.cos(m.psi)), m.v, M.omega], "Physical [x, y, ψ, v, ω], ψ in (-π, π]."))
+    ks.append(physical_into_kernel(sin_, [M.x, M.y, wrap(m.psi), m.v, M.omega], "Physical [x, y, ψ, v, ω], ψ in (-π, π]."))
     ks.append(batch_kernel(5, 2))
     ks.extend(common_kernels(m))
     return ks

@@ -8,7 +8,7 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_angle  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
@@ -44,11 +44,9 @@ def state_to_physical(s):
     v = s[3]
     omega = s[4]
     out = np.zeros(5)
-    _sin_psi = math.sin(psi)
-    _cos_psi = math.cos(psi)
     out[0] = x
     out[1] = y
-    out[2] = math.atan2(_sin_psi, _cos_psi)
+    out[2] = wrap_angle(psi)
     out[3] = v
     out[4] = omega
     return out
@@ -368,11 +366,9 @@ def physical_into(s, out):
     psi = s[2]
     v = s[3]
     omega = s[4]
-    _sin_psi = math.sin(psi)
-    _cos_psi = math.cos(psi)
     out[0] = x
     out[1] = y
-    out[2] = math.atan2(_sin_psi, _cos_psi)
+    out[2] = wrap_angle(psi)
     out[3] = v
     out[4] = omega
 

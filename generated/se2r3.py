@@ -8,12 +8,12 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, wrap_angle  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'predict', 'update', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'update', 'covariance_is_pd', 'repair_pd', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
@@ -53,7 +53,7 @@ def state_to_physical(s):
     out = np.zeros(6)
     out[0] = x
     out[1] = y
-    out[2] = math.atan2(s_theta, c_theta)
+    out[2] = wrap_angle(math.atan2(s_theta, c_theta))
     out[3] = v_x
     out[4] = v_y
     out[5] = omega
@@ -73,7 +73,7 @@ def physical_into(s, out):
     omega = s[6]
     out[0] = x
     out[1] = y
-    out[2] = math.atan2(s_theta, c_theta)
+    out[2] = wrap_angle(math.atan2(s_theta, c_theta))
     out[3] = v_x
     out[4] = v_y
     out[5] = omega
@@ -214,11 +214,25 @@ def process_noise(dt, sigma_x, sigma_y, sigma_omega):
     return out
 
 
+@nb.njit(cache=True)
+def limit_angle_variance(p):
+    """Cap the std of the angle coordinates [2] of P at π by congruence scaling (see derive/steps.py)."""
+    if p[11] > math.pi * math.pi:
+        f = math.pi / math.sqrt(p[11])
+        p[2] *= f
+        p[7] *= f
+        p[12] *= f
+        p[13] *= f
+        p[14] *= f
+        p[11] = math.pi * math.pi
+
+
 @nb.njit(cache=True, fastmath=FASTMATH)
 def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
     P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
     s: internal state (see module doc), p: packed covariance (21), dt > 0.
+    Then the std of the tangent angles is capped at π (limit_angle_variance; inactive while ≤ π).
     """
     x = s[0]
     y = s[1]
@@ -342,6 +356,7 @@ def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     s[1] = e01
     s[2] = e02
     s[3] = e03
+    limit_angle_variance(p)
 
 
 @nb.njit(cache=True, fastmath=FASTMATH)
@@ -350,6 +365,9 @@ def update(s, p, z_x, z_y, r):
     K = P ℋ^T (ℋ P ℋ^T + r² I)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
     P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + r² K K^T] Φ(ν)^T: eq:up_P in Joseph form (equal for the
     optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e.
+    Safeguards (inactive in regular steps): if a rotation angle of ν exceeds π the gain is damped,
+    K → αK with α = π/|angle| (derive.special.gain_damping); if rounding leaves P not positive
+    definite (condition numbers ≳ 1e15) a rounding-level diagonal jitter restores it (repair_pd).
     """
     x = s[0]
     y = s[1]
@@ -417,12 +435,19 @@ def update(s, p, z_x, z_y, r):
     k50 = Si00*hp05 + Si01*hp15
     k51 = Si01*hp05 + Si11*hp15
     nis = inn00*(Si00*inn00 + Si01*inn10) + inn10*(Si01*inn00 + Si11*inn10)
-    nu0 = inn00*k00 + inn10*k01
-    nu1 = inn00*k10 + inn10*k11
-    nu2 = inn00*k20 + inn10*k21
-    nu3 = inn00*k30 + inn10*k31
-    nu4 = inn00*k40 + inn10*k41
-    nu5 = inn00*k50 + inn10*k51
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
     _sin_nu2 = math.sin(nu2)
     _cos_nu2 = math.cos(nu2)
     _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
@@ -444,18 +469,25 @@ def update(s, p, z_x, z_y, r):
     mu04 = nu3 + v_x
     mu05 = nu4 + v_y
     mu06 = nu5 + omega
-    a00 = -(c_theta*k00) - k01*s_theta + 1.0
-    a01 = -(c_theta*k01) + k00*s_theta
-    a10 = -(c_theta*k10) - k11*s_theta
-    a11 = -(c_theta*k11) + k10*s_theta + 1.0
-    a20 = -(c_theta*k20) - k21*s_theta
-    a21 = -(c_theta*k21) + k20*s_theta
-    a30 = -(c_theta*k30) - k31*s_theta
-    a31 = -(c_theta*k31) + k30*s_theta
-    a40 = -(c_theta*k40) - k41*s_theta
-    a41 = -(c_theta*k41) + k40*s_theta
-    a50 = -(c_theta*k50) - k51*s_theta
-    a51 = -(c_theta*k51) + k50*s_theta
+    _t6 = alpha*k01
+    _t7 = alpha*k10
+    _t8 = alpha*k11
+    _t9 = alpha*k21
+    _t10 = alpha*k31
+    _t11 = alpha*k41
+    _t12 = alpha*k51
+    a00 = -(_t6*s_theta) - alpha*c_theta*k00 + 1.0
+    a01 = -(_t6*c_theta) + alpha*k00*s_theta
+    a10 = -(_t7*c_theta) - _t8*s_theta
+    a11 = _t7*s_theta - _t8*c_theta + 1.0
+    a20 = -(_t9*s_theta) - alpha*c_theta*k20
+    a21 = -(_t9*c_theta) + alpha*k20*s_theta
+    a30 = -(_t10*s_theta) - alpha*c_theta*k30
+    a31 = -(_t10*c_theta) + alpha*k30*s_theta
+    a40 = -(_t11*s_theta) - alpha*c_theta*k40
+    a41 = -(_t11*c_theta) + alpha*k40*s_theta
+    a50 = -(_t12*s_theta) - alpha*c_theta*k50
+    a51 = -(_t12*c_theta) + alpha*k50*s_theta
     b00 = a00*p00 + a01*p01
     b01 = a00*p01 + a01*p11
     b02 = a00*p02 + a01*p12
@@ -492,36 +524,36 @@ def update(s, p, z_x, z_y, r):
     b53 = a50*p03 + a51*p13 + p35
     b54 = a50*p04 + a51*p14 + p45
     b55 = a50*p05 + a51*p15 + p55
-    _t6 = r*r
-    _t7 = _t6*k00
-    _t8 = _t6*k01
-    _t9 = _t6*k10
-    _t10 = _t6*k11
-    _t11 = _t6*k20
-    _t12 = _t6*k21
-    _t13 = _t6*k30
-    _t14 = _t6*k31
-    pj00 = _t6*(k00*k00) + _t6*(k01*k01) + a00*b00 + a01*b01
-    pj01 = _t7*k10 + _t8*k11 + a10*b00 + a11*b01
-    pj02 = _t7*k20 + _t8*k21 + a20*b00 + a21*b01 + b02
-    pj03 = _t7*k30 + _t8*k31 + a30*b00 + a31*b01 + b03
-    pj04 = _t7*k40 + _t8*k41 + a40*b00 + a41*b01 + b04
-    pj05 = _t7*k50 + _t8*k51 + a50*b00 + a51*b01 + b05
-    pj11 = _t6*(k10*k10) + _t6*(k11*k11) + a10*b10 + a11*b11
-    pj12 = _t10*k21 + _t9*k20 + a20*b10 + a21*b11 + b12
-    pj13 = _t10*k31 + _t9*k30 + a30*b10 + a31*b11 + b13
-    pj14 = _t10*k41 + _t9*k40 + a40*b10 + a41*b11 + b14
-    pj15 = _t10*k51 + _t9*k50 + a50*b10 + a51*b11 + b15
-    pj22 = _t6*(k20*k20) + _t6*(k21*k21) + a20*b20 + a21*b21 + b22
-    pj23 = _t11*k30 + _t12*k31 + a30*b20 + a31*b21 + b23
-    pj24 = _t11*k40 + _t12*k41 + a40*b20 + a41*b21 + b24
-    pj25 = _t11*k50 + _t12*k51 + a50*b20 + a51*b21 + b25
-    pj33 = _t6*(k30*k30) + _t6*(k31*k31) + a30*b30 + a31*b31 + b33
-    pj34 = _t13*k40 + _t14*k41 + a40*b30 + a41*b31 + b34
-    pj35 = _t13*k50 + _t14*k51 + a50*b30 + a51*b31 + b35
-    pj44 = _t6*(k40*k40) + _t6*(k41*k41) + a40*b40 + a41*b41 + b44
-    pj45 = _t6*k40*k50 + _t6*k41*k51 + a50*b40 + a51*b41 + b45
-    pj55 = _t6*(k50*k50) + _t6*(k51*k51) + a50*b50 + a51*b51 + b55
+    _t13 = (alpha*alpha)*(r*r)
+    _t14 = _t13*k00
+    _t15 = _t13*k01
+    _t16 = _t13*k10
+    _t17 = _t13*k11
+    _t18 = _t13*k20
+    _t19 = _t13*k21
+    _t20 = _t13*k30
+    _t21 = _t13*k31
+    pj00 = _t13*(k00*k00) + _t13*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t14*k10 + _t15*k11 + a10*b00 + a11*b01
+    pj02 = _t14*k20 + _t15*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t14*k30 + _t15*k31 + a30*b00 + a31*b01 + b03
+    pj04 = _t14*k40 + _t15*k41 + a40*b00 + a41*b01 + b04
+    pj05 = _t14*k50 + _t15*k51 + a50*b00 + a51*b01 + b05
+    pj11 = _t13*(k10*k10) + _t13*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t16*k20 + _t17*k21 + a20*b10 + a21*b11 + b12
+    pj13 = _t16*k30 + _t17*k31 + a30*b10 + a31*b11 + b13
+    pj14 = _t16*k40 + _t17*k41 + a40*b10 + a41*b11 + b14
+    pj15 = _t16*k50 + _t17*k51 + a50*b10 + a51*b11 + b15
+    pj22 = _t13*(k20*k20) + _t13*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t18*k30 + _t19*k31 + a30*b20 + a31*b21 + b23
+    pj24 = _t18*k40 + _t19*k41 + a40*b20 + a41*b21 + b24
+    pj25 = _t18*k50 + _t19*k51 + a50*b20 + a51*b21 + b25
+    pj33 = _t13*(k30*k30) + _t13*(k31*k31) + a30*b30 + a31*b31 + b33
+    pj34 = _t20*k40 + _t21*k41 + a40*b30 + a41*b31 + b34
+    pj35 = _t20*k50 + _t21*k51 + a50*b30 + a51*b31 + b35
+    pj44 = _t13*(k40*k40) + _t13*(k41*k41) + a40*b40 + a41*b41 + b44
+    pj45 = _t13*k40*k50 + _t13*k41*k51 + a50*b40 + a51*b41 + b45
+    pj55 = _t13*(k50*k50) + _t13*(k51*k51) + a50*b50 + a51*b51 + b55
     cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
     cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
     cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
@@ -562,7 +594,85 @@ def update(s, p, z_x, z_y, r):
     s[4] = mu04
     s[5] = mu05
     s[6] = mu06
+    if not covariance_is_pd(p):
+        repair_pd(p)
     return nis
+
+
+@nb.njit(cache=True)
+def covariance_is_pd(p):
+    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p05 = p[5]
+    p11 = p[6]
+    p12 = p[7]
+    p13 = p[8]
+    p14 = p[9]
+    p15 = p[10]
+    p22 = p[11]
+    p23 = p[12]
+    p24 = p[13]
+    p25 = p[14]
+    p33 = p[15]
+    p34 = p[16]
+    p35 = p[17]
+    p44 = p[18]
+    p45 = p[19]
+    p55 = p[20]
+    tol = 1e-13 * max(p00, p11, p22, p33, p44, p55)
+    d0 = p00
+    if not d0 > tol:
+        return False
+    l10 = (p01) / d0
+    l20 = (p02) / d0
+    l30 = (p03) / d0
+    l40 = (p04) / d0
+    l50 = (p05) / d0
+    d1 = p11 - l10 * l10 * d0
+    if not d1 > tol:
+        return False
+    l21 = (p12 - l20 * l10 * d0) / d1
+    l31 = (p13 - l30 * l10 * d0) / d1
+    l41 = (p14 - l40 * l10 * d0) / d1
+    l51 = (p15 - l50 * l10 * d0) / d1
+    d2 = p22 - l20 * l20 * d0 - l21 * l21 * d1
+    if not d2 > tol:
+        return False
+    l32 = (p23 - l30 * l20 * d0 - l31 * l21 * d1) / d2
+    l42 = (p24 - l40 * l20 * d0 - l41 * l21 * d1) / d2
+    l52 = (p25 - l50 * l20 * d0 - l51 * l21 * d1) / d2
+    d3 = p33 - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2
+    if not d3 > tol:
+        return False
+    l43 = (p34 - l40 * l30 * d0 - l41 * l31 * d1 - l42 * l32 * d2) / d3
+    l53 = (p35 - l50 * l30 * d0 - l51 * l31 * d1 - l52 * l32 * d2) / d3
+    d4 = p44 - l40 * l40 * d0 - l41 * l41 * d1 - l42 * l42 * d2 - l43 * l43 * d3
+    if not d4 > tol:
+        return False
+    l54 = (p45 - l50 * l40 * d0 - l51 * l41 * d1 - l52 * l42 * d2 - l53 * l43 * d3) / d4
+    d5 = p55 - l50 * l50 * d0 - l51 * l51 * d1 - l52 * l52 * d2 - l53 * l53 * d3 - l54 * l54 * d4
+    if not d5 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True)
+def repair_pd(p):
+    """Add the smallest diagonal jitter (1e-13 · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
+    scale = 0.0
+    for i in (0, 6, 11, 15, 18, 20):
+        scale = max(scale, abs(p[i]))
+    delta = 1e-13 * scale
+    for _ in range(60):
+        if covariance_is_pd(p):
+            return
+        for i in (0, 6, 11, 15, 18, 20):
+            p[i] += delta
+        delta *= 4.0
 
 
 @nb.njit(cache=True)
@@ -637,7 +747,7 @@ def simulate_batch(x0, dts, noise, out_x):
 
     x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of
     n = (n_x, n_y, n_ω) (already scaled by their stds); out_x (B, K + 1, 6) receives the physical
-    states, out_x[:, 0] = x0 (ω wrapped to (-π, π] for SE(2)×SE(2)).
+    states, out_x[:, 0] = x0 (for SE(2)×SE(2) ω is the log of T_d's rotation, in [-π, π]).
     """
     B = x0.shape[0]
     K = dts.shape[1]

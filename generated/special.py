@@ -8,7 +8,7 @@ import math
 
 import numba as nb
 
-__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle']
+__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'gain_damping']
 
 
 @nb.njit(cache=True)
@@ -111,3 +111,13 @@ def wrap_angle(a):
     if r <= -math.pi:
         r += 2.0 * math.pi
     return r
+
+
+@nb.njit(cache=True)
+def gain_damping(a, b):
+    """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]
+    (see derive.special.gain_damping)."""
+    m = max(abs(a), abs(b))
+    if m <= math.pi:
+        return 1.0
+    return math.pi / m

@@ -51,6 +51,8 @@ def filter_batch(model, z, *, dt, accel_std, meas_std, x0, P0, return_cov=False,
     r = positive_scalar("meas_std", meas_std)
     x0 = np.ascontiguousarray(as_float_array("x0", x0, (B, n)))
     P0 = spd_matrix("P0", P0, n, batch=True)
+    if P0.ndim == 3 and P0.shape[0] != B:
+        raise ValueError(f"P0: expected ({n}, {n}) or ({B}, {n}, {n}) for {B} trajectories, got {P0.shape}")
     p0 = pack(np.broadcast_to(P0, (B, n, n)))
     out_x = np.empty((B, K, n))
     out_p = np.empty((B, K if return_cov else 0, spec.n_packed))

@@ -62,5 +62,7 @@ def main(argv=None) -> int:
         return 130
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+if __name__ == "__main__":  # `python -m lgekf.cli`: use the package's module, where commands register
+    from lgekf.cli import main as _main
+
+    sys.exit(_main())

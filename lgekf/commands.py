@@ -189,3 +189,19 @@ def cmd_figures(argv) -> int:
 
 COMMANDS["study"] = (cmd_study, "run the paper's Monte Carlo study (main job): results/summary.csv, rmse.csv, meta.json, study.png")
 COMMANDS["figures"] = (cmd_figures, "reproduce Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example trajectories)")
+
+
+def cmd_track(argv) -> int:
+    from .track import cmd_track as run  # imported on use, like the other commands
+
+    return run(argv)
+
+
+def cmd_evaluate(argv) -> int:
+    from .evaluate import cmd_evaluate as run
+
+    return run(argv)
+
+
+COMMANDS["track"] = (cmd_track, "track the objects of a measurement file (CSV t,x,y[,id] or pedestrian format) with one or all filters")
+COMMANDS["evaluate"] = (cmd_evaluate, "evaluate the four trackers on real ground-truth trajectories (ETH/UCY, KITTI, cyclists, DUT or your CSV)")

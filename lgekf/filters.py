@@ -8,7 +8,8 @@ Conventions
 * ``SE2SE2Filter`` / ``SE2R3Filter``: ``x = [x, y, θ, v_x, v_y, ω]`` with (v_x, v_y) the body-frame
   velocity and ω the angular velocity; the mean is X = (T_s, T_d) (resp. (T_s, v)), see ``mean``.
   ``P`` is 6×6 in the right-perturbation tangent coordinates X = μ·exp(ε), ε ordered like ``x``.
-  In SE(2)×SE(2) ω is the angle of T_d's rotation, so it lives in (-π, π] (rad per step / dt).
+  In SE(2)×SE(2) ω is the angle of T_d's rotation (its log, atan2(sin, cos)), so it lives in
+  [-π, π] rad/s: a larger turn rate aliases (Ω = T·ω uses that angle, as in the paper).
 * ``CTRVFilter``: ``x = [x, y, ψ, v, ω]``; ``CVFilter``: ``x = [x, y, v_x, v_y]`` (world frame);
   their ``P`` is in those coordinates.
 * ``accel_std``: SE(2) filters (σ_x, σ_y, σ_ω) entering as n_k of the paper (Q = G diag(σ²) Gᵀ,

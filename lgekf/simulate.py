@@ -4,7 +4,7 @@ Truth models (eq:model): X_{k+1} = X_k exp([Ω(X_k) + G n_k]^∧), n_k = (n_x, n
 n_x, n_y ~ N(0, σ_v²), n_ω ~ N(0, σ_ω²), G = [T²/2 I; T I], on SE(2)×SE(2) (default) or SE(2)×R³.
 The common physical state is c = (x, y, θ, v_x, v_y, ω) with (v_x, v_y) the body-frame velocity.
 
-Subtlety (SE(2)×SE(2)): ω is the angle of the rotation in T_d, so it lives in (-π, π]; a random walk
+Subtlety (SE(2)×SE(2)): ω is the angle of the rotation in T_d, so it lives in [-π, π]; a random walk
 of ω that crosses ±π wraps to the other sign (the object suddenly turns the other way at π rad per
 step/T).  ``Simulation.wrapped`` flags the trajectories where that happens; the SE(2)×R³ truth has
 no such wrap.

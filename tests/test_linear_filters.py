@@ -169,6 +169,9 @@ def test_cv_nees_nis_consistent():
     # each step's average is inside the 95% band with probability 0.95 (fixed seed)
     assert inside >= 0.9, nees
     assert inside2 >= 0.9, nis
+    # the average over all runs and steps lies in the band for 4·N_RUNS dof as well (conservative:
+    # averaging over correlated steps narrows the spread less than independent samples would)
+    assert lo < nees.mean() < hi and lo2 < nis.mean() < hi2
     assert abs(nees.mean() - 4) < 0.2 and abs(nis.mean() - 2) < 0.1
 
 
@@ -381,3 +384,10 @@ def test_ctrv_sequence_matches_reference():
         d[2] = abs(_wrapped(f.x[2] - s[2]))
         assert np.max(d) < 1e-11 * max(1.0, np.max(np.abs(s))), (k, f.x, s)
         assert _rel(f.P, P) < 1e-11, k
+
+
+def test_ctrv_heading_output_in_documented_range():
+    """``state_to_physical`` documents ψ wrapped to (-π, π]."""
+    for a in (math.pi, -math.pi, 3 * math.pi, -3 * math.pi, 7.0):
+        f = CTRVFilter(dt=0.1, accel_std=(0.1, 0.1), meas_std=0.5, x0=[0.0, 0.0, a, 1.0, 0.0], P0=np.eye(5))
+        assert -math.pi < f.x[2] <= math.pi, f"ψ = {a!r} -> {f.x[2]!r}"

@@ -1,0 +1,118 @@
+"""Time `lgekf track` on 10⁶ measurements: end to end (a subprocess, as a user runs it) and its parts.
+
+    python benchmarks/bench_track.py [--objects 10000] [--steps 100] [--model se2se2] [--keep DIR]
+
+Writes a CSV of OBJECTS x STEPS rows (``id,t,x,y``; objects interleaved in time order, irregular steps
+around 0.1 s, turning trajectories with 0.2 m noise) to a temporary folder, then reports:
+  read     lgekf.io.read_csv + grouping/validation
+  init     two-point initialisation of every object (x0, P0 via common_jacobian)
+  filter   the filter over all objects (generated run_batch kernels, objects bucketed by length)
+  format   CSV text of the output (numba formatter) and writing it
+  end2end  `lgekf track IN -o OUT --model M` in a fresh process (imports and numba cache loading included)
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+
+def generate(path: Path, objects: int, steps: int, seed: int = 0) -> None:
+    from lgekf.io import format_rows, label_bytes
+
+    rng = np.random.default_rng(seed)
+    dt = rng.uniform(0.07, 0.13, (objects, steps))
+    t = np.cumsum(dt, axis=1) + rng.uniform(0, 5, (objects, 1))
+    w = rng.uniform(-0.5, 0.5, (objects, 1)) + np.cumsum(0.05 * rng.standard_normal((objects, steps)), axis=1)
+    th = rng.uniform(-np.pi, np.pi, (objects, 1)) + np.cumsum(w * dt, axis=1)
+    speed = rng.uniform(0.5, 15.0, (objects, 1))
+    x = np.cumsum(speed * np.cos(th) * dt, axis=1) + rng.uniform(-500, 500, (objects, 1))
+    y = np.cumsum(speed * np.sin(th) * dt, axis=1) + rng.uniform(-500, 500, (objects, 1))
+    x += 0.2 * rng.standard_normal(x.shape)
+    y += 0.2 * rng.standard_normal(y.shape)
+    order = np.argsort(t.ravel(), kind="stable")  # interleave the objects in time order
+    obj = np.repeat(np.arange(objects), steps)[order]
+    lab = label_bytes([str(i) for i in range(objects)])
+    with open(path, "wb") as f:
+        f.write(b"id,t,x,y\n")
+        f.write(format_rows(lab, obj, t.ravel()[order], np.column_stack([x.ravel()[order], y.ravel()[order]]), 9, t_digits=9))
+
+
+def cli_command():
+    exe = Path(sys.executable).with_name("lgekf")
+    return [str(exe)] if exe.exists() else [sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())"]
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--objects", type=int, default=10_000)
+    ap.add_argument("--steps", type=int, default=100)
+    ap.add_argument("--model", default="se2se2")
+    ap.add_argument("--keep", type=Path, default=None, help="write the files here and keep them")
+    a = ap.parse_args(argv)
+
+    from lgekf.io import format_rows, label_bytes, read_csv
+    from lgekf.registry import MODELS
+    from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
+
+    tmp = Path(tempfile.mkdtemp(prefix="bench_track_")) if a.keep is None else a.keep
+    tmp.mkdir(parents=True, exist_ok=True)
+    try:
+        inp, out = tmp / "measurements.csv", tmp / "tracks.csv"
+        t0 = time.perf_counter()
+        generate(inp, a.objects, a.steps)
+        n = a.objects * a.steps
+        print(f"{n} measurements ({a.objects} objects x {a.steps} steps), {inp.stat().st_size / 1e6:.1f} MB, "
+              f"generated in {time.perf_counter() - t0:.2f} s; {os.cpu_count()} CPUs")
+
+        # warm the numba caches (not timed), then each part once
+        small = read_csv(inp).grouped()
+        track_arrays(a.model, small[0].t[:1000], small[0].z[:1000], np.array([0, 1000]), TrackConfig())
+        rows = []
+        t0 = time.perf_counter()
+        meas, starts, _ = read_csv(inp).grouped()
+        rows.append(("read", time.perf_counter() - t0))
+        cfg = TrackConfig()
+        t0 = time.perf_counter()
+        c, var = initial_common(meas.t, meas.z, starts, cfg.meas_std)
+        x0, P0 = initial_estimates(a.model, c, var)
+        rows.append(("init", time.perf_counter() - t0))
+        t0 = time.perf_counter()
+        x, p, nis = track_arrays(a.model, meas.t, meas.z, starts, cfg, x0=x0, P0=P0)
+        rows.append(("filter", time.perf_counter() - t0))
+        t0 = time.perf_counter()
+        spec = MODELS[a.model]
+        diag = [i * spec.n - i * (i - 1) // 2 for i in range(spec.n)]
+        body = format_rows(label_bytes(meas.labels), meas.obj, meas.t, np.hstack([x, np.sqrt(p[:, diag]), nis[:, None]]), 10)
+        with open(out, "wb") as f:
+            f.write((",".join(output_columns(a.model)) + "\n").encode())
+            f.write(body)
+        rows.append(("format+write", time.perf_counter() - t0))
+        rows.append(("sum of parts", sum(r[1] for r in rows)))
+        t0 = time.perf_counter()
+        r = subprocess.run([*cli_command(), "track", str(inp), "-o", str(out), "--model", a.model, "--quiet"], capture_output=True, text=True)
+        if r.returncode != 0:
+            print(r.stderr, file=sys.stderr)
+            return 1
+        rows.append(("end2end (lgekf track)", time.perf_counter() - t0))
+
+        print(f"\nmodel {a.model}, output {out.stat().st_size / 1e6:.1f} MB")
+        print(f"{'part':<24}{'seconds':>9}{'ns/measurement':>16}")
+        for name, sec in rows:
+            print(f"{name:<24}{sec:9.3f}{1e9 * sec / n:16.0f}")
+    finally:
+        if a.keep is None:
+            shutil.rmtree(tmp, ignore_errors=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

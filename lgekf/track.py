@@ -1,0 +1,366 @@
+"""Track objects in a measurement file with any of the four filters (`lgekf track`).
+
+Initialisation (per object, from its first two measurements z0 at t0 and z1 at t1, Δ = t1 - t0)
+---------------------------------------------------------------------------------------------
+The estimate is made at t1 in the common physical coordinates c = (x, y, θ, v_x, v_y, ω) (body-frame
+velocity) and converted to each model with the generated ``common_to_state`` / ``common_jacobian``
+(P0_model = J P0_c Jᵀ):
+
+* position (x, y) = z1, variance r² (r = measurement std);
+* world velocity v = (z1 - z0)/Δ, each component with variance σ_v² = 2r²/Δ²;
+* heading θ = atan2(v) (0 if v = 0), body velocity (|v|, 0), ω = 0;
+* var θ = min(σ_v²/|v|², π²) (the lateral velocity error seen as a heading error, at most π²);
+* var v_x = σ_v²; var v_y = max(σ_v² - |v|² var θ, (0.1 σ_v)²): the lateral velocity the heading
+  cannot explain (slow objects), and at least a small side-slip prior (10 % of σ_v) otherwise;
+* var ω = ``omega_std``² (default 0.5 rad/s: a pedestrian or car turns at well under 1 rad/s);
+* with ``use_heading`` the measured heading h1 at t1 replaces atan2(v) (variance ``heading_std``²,
+  default 0.1 rad) and the body velocity is (v·(cos h1, sin h1), 0) with var v_y = (0.1 σ_v)²;
+* P0_c is diagonal; after conversion any angle variance of the model (θ, ψ) is capped at π² by scaling
+  its row and column (CTRV's ψ variance grows like var v_y/|v|² for slow objects).
+
+The filter then runs predict(t_k - t_{k-1}) + update(z_k) for k = 2, 3, ... Output rows exist for every
+measurement: row 0 holds z0 as position with the two-point velocity/heading and covariance P0 (nis empty
+= nan), row 1 the initial estimate (x0, P0) at t1 (nis nan), rows k >= 2 the filter's posterior.
+
+Process noise defaults (``DEFAULT_ACCEL_STD``, one table; see docs/track_evaluate.md):
+SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); CTRV (σ_a, σ_ω̇) = (0.5, 1.0);
+CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numba as nb
+import numpy as np
+
+from .covariance import pack
+from .io import AtomicFiles, format_rows, label_bytes, read_measurements
+from .registry import MODELS, get_model
+
+__all__ = [
+    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
+    "initial_common", "initial_estimates", "track_arrays", "output_columns", "cmd_track",
+]
+
+DEFAULT_ACCEL_STD = {
+    "se2se2": (0.5, 0.5, 1.0),
+    "se2r3": (0.5, 0.5, 1.0),
+    "ctrv": (0.5, 1.0),
+    "cv": (0.5,),
+}
+DEFAULT_MEAS_STD = 0.3
+DEFAULT_OMEGA_STD = 0.5
+DEFAULT_HEADING_STD = 0.1
+SIDESLIP_FRACTION = 0.1
+ANGLE_COORDS = {"se2se2": (2,), "se2r3": (2,), "ctrv": (2,), "cv": ()}
+
+ROWS_PER_CHUNK = 1 << 17
+
+
+@dataclass
+class TrackConfig:
+    """Noise and initialisation parameters of one tracking run (validated by ``validate``)."""
+
+    accel_std: dict = field(default_factory=lambda: dict(DEFAULT_ACCEL_STD))
+    meas_std: float = DEFAULT_MEAS_STD
+    omega_std: float = DEFAULT_OMEGA_STD
+    heading_std: float = DEFAULT_HEADING_STD
+
+    def validate(self):
+        for name, val in (("meas_std", self.meas_std), ("omega_std", self.omega_std), ("heading_std", self.heading_std)):
+            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
+                raise ValueError(f"{name.replace('_', '-')}: must be a positive number, got {val}")
+        for model, q in self.accel_std.items():
+            spec = get_model(model)
+            q = tuple(q)
+            if len(q) != len(spec.noise_names):
+                raise ValueError(f"accel-std for {model}: expected {len(spec.noise_names)} values ({', '.join(spec.noise_names)}), got {len(q)}")
+            if any((not math.isfinite(v)) or v < 0 for v in q):
+                raise ValueError(f"accel-std for {model}: must be non-negative numbers, got {list(q)}")
+        return self
+
+    def q(self, model):
+        return np.asarray(self.accel_std.get(model, DEFAULT_ACCEL_STD[model]), dtype=float)
+
+
+def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD):
+    """Common-coordinate initial states c (B, 6) and their diagonal variances (B, 6), one per object.
+
+    t (N,), z (N, 2) sorted by object with ``starts`` (B + 1,); every object has >= 2 rows.
+    """
+    i0 = starts[:-1]
+    i1 = i0 + 1
+    dt = t[i1] - t[i0]
+    v = (z[i1] - z[i0]) / dt[:, None]
+    speed = np.hypot(v[:, 0], v[:, 1])
+    r2 = meas_std**2
+    var_v = 2.0 * r2 / dt**2
+    floor_vy = (SIDESLIP_FRACTION**2) * var_v
+    B = len(i0)
+    c = np.zeros((B, 6))
+    c[:, :2] = z[i1]
+    var = np.empty((B, 6))
+    var[:, 0] = var[:, 1] = r2
+    var[:, 3] = var_v
+    var[:, 5] = omega_std**2
+    if heading is None:
+        c[:, 2] = np.where(speed > 0, np.arctan2(v[:, 1], v[:, 0]), 0.0)
+        c[:, 3] = speed
+        with np.errstate(divide="ignore"):
+            var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), math.pi**2)
+        var[:, 2] = var_th
+        var[:, 4] = np.maximum(var_v - speed**2 * var_th, floor_vy)
+    else:
+        h = heading[i1]
+        c[:, 2] = np.arctan2(np.sin(h), np.cos(h))
+        c[:, 3] = v[:, 0] * np.cos(h) + v[:, 1] * np.sin(h)
+        var[:, 2] = heading_std**2
+        var[:, 4] = floor_vy
+    return c, var
+
+
+def initial_estimates(model, c, var):
+    """Each object's x0 (B, n) in the model's physical coordinates and P0 (B, n, n) in its filter coordinates."""
+    spec = get_model(model)
+    k = spec.kernels
+    B = c.shape[0]
+    x0 = np.empty((B, spec.n))
+    J = np.empty((B, spec.n, 6))
+    cj = c.copy()
+    # the Jacobian of CTRV's ψ = θ + atan2(v_y, v_x) is singular at v = 0; evaluate it just off zero
+    tiny = 1e-9 * np.sqrt(var[:, 3])
+    cj[:, 3] = np.where(np.abs(cj[:, 3]) < tiny, np.where(cj[:, 3] < 0, -tiny, tiny), cj[:, 3])
+    for b in range(B):
+        x0[b] = k.common_to_state(c[b])
+        J[b] = k.common_jacobian(cj[b])
+    P0 = np.einsum("bij,bj,bkj->bik", J, var, J)
+    P0 = 0.5 * (P0 + np.swapaxes(P0, 1, 2))
+    for a in ANGLE_COORDS[model]:
+        big = P0[:, a, a] > math.pi**2
+        if big.any():
+            s = np.ones((int(big.sum()), spec.n))
+            s[:, a] = math.pi / np.sqrt(P0[big, a, a])
+            P0[big] *= s[:, :, None] * s[:, None, :]
+    return x0, P0
+
+
+def _length_batches(lengths, max_rows):
+    """Group objects (indices) of similar filter length: padding waste <= 25 %, at most ~max_rows cells."""
+    order = np.argsort(lengths, kind="stable")
+    order = order[lengths[order] > 0]
+    i = 0
+    out = []
+    while i < len(order):
+        lo = lengths[order[i]]
+        hi_allowed = max(int(lo * 1.25), lo + 4)
+        j = int(np.searchsorted(lengths[order], hi_allowed, side="right"))
+        cap = max(1, max_rows // max(int(lengths[order[j - 1]]), 1))
+        j = min(j, i + cap)
+        out.append(order[i:j])
+        i = j
+    return out
+
+
+@nb.njit(cache=True)
+def _gather(t, z, first, lens, K, zb, dts):
+    """Padded batch inputs: object b's filter steps are rows first[b] .. first[b] + lens[b] - 1."""
+    for b in range(first.shape[0]):
+        a = first[b]
+        for k in range(K):
+            if k < lens[b]:
+                zb[b, k, 0] = z[a + k, 0]
+                zb[b, k, 1] = z[a + k, 1]
+                dts[b, k] = t[a + k] - t[a + k - 1]
+            else:  # padding after the object's end: never read back
+                zb[b, k, 0] = zb[b, k - 1, 0]
+                zb[b, k, 1] = zb[b, k - 1, 1]
+                dts[b, k] = 1.0
+
+
+@nb.njit(cache=True)
+def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
+    for b in range(first.shape[0]):
+        a = first[b]
+        for k in range(lens[b]):
+            out_x[a + k, :] = bx[b, k, :]
+            out_p[a + k, :] = bp[b, k, :]
+            out_nis[a + k] = bn[b, k]
+
+
+def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None):
+    """Track every object of sorted measurements; no Python per filter step.
+
+    t (N,), z (N, 2) sorted by object (``starts`` (B + 1,) offsets; >= 2 rows and increasing t each).
+    Returns states (N, n) in the model's physical coordinates, packed covariances (N, n(n+1)/2) in
+    its filter coordinates, nis (N,) (nan for the first two rows of each object). ``x0``/``P0``
+    (B, n), (B, n, n) override the two-point initialisation.
+    """
+    spec = get_model(model)
+    kern = spec.kernels
+    n, npk = spec.n, spec.n_packed
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(z, dtype=float)
+    starts = np.asarray(starts, dtype=np.int64)
+    if x0 is None or P0 is None:
+        c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std)
+        x0, P0 = initial_estimates(model, c, var)
+    p0 = pack(P0)
+    q = cfg.q(model)
+    r = float(cfg.meas_std)
+    N = t.size
+    out_x = np.empty((N, n))
+    out_p = np.empty((N, npk))
+    out_nis = np.full(N, np.nan)
+    i0 = starts[:-1]
+    out_x[i0] = x0
+    out_x[i0, :2] = z[i0]
+    out_x[i0 + 1] = x0
+    out_p[i0] = p0
+    out_p[i0 + 1] = p0
+    lengths = np.diff(starts) - 2
+    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
+        Lb = np.ascontiguousarray(lengths[objs])
+        K = int(Lb.max())
+        first = np.ascontiguousarray(starts[objs] + 2)
+        B = len(objs)
+        zb = np.empty((B, K, 2))
+        dts = np.empty((B, K))
+        _gather(t, z, first, Lb, K, zb, dts)
+        bx = np.empty((B, K, n))
+        bp = np.empty((B, K, npk))
+        bn = np.empty((B, K))
+        kern.run_batch(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
+        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+    return out_x, out_p, out_nis
+
+
+# ------------------------------------------------------------------------------------------ CLI
+def output_columns(model, full_cov=False):
+    spec = get_model(model)
+    names = list(spec.state_names)
+    cols = ["id", "t", *names, *(f"std_{s}" for s in names)]
+    if full_cov:
+        i, j = np.triu_indices(spec.n)
+        cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
+    return cols + ["nis"]
+
+
+def output_path(out: Path, model: str, all_models: bool) -> Path:
+    if not all_models:
+        return out
+    return out.with_name(f"{out.stem}_{model}{out.suffix}")
+
+
+def parse_accel_std(items, models):
+    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable)."""
+    table = {m: DEFAULT_ACCEL_STD[m] for m in models}
+    for item in items:
+        if "=" in item:
+            name, text = item.split("=", 1)
+            name = name.strip()
+            if name not in MODELS:
+                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(MODELS)}")
+            targets = [name]
+        else:
+            if len(models) > 1:
+                raise ValueError("--accel-std: with --model all give one MODEL=LIST per model, e.g. --accel-std cv=0.8")
+            targets, text = list(models), item
+        try:
+            vals = tuple(float(v) for v in text.split(","))
+        except ValueError:
+            raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
+        for m in targets:
+            need = len(MODELS[m].noise_names)
+            if len(vals) != need:
+                raise ValueError(
+                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(MODELS[m].noise_names)}), got {len(vals)}"
+                )
+            if any((not math.isfinite(v)) or v < 0 for v in vals):
+                raise ValueError(f"--accel-std: noise stds must be non-negative numbers, got {text!r}")
+            if m in table:
+                table[m] = vals
+    return table
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse whose errors become one-line ValueErrors (printed by lgekf.cli.main, exit 2)."""
+
+    def error(self, message):
+        raise ValueError(message)
+
+
+def track_parser():
+    ap = _Parser(
+        prog="lgekf track",
+        description="Track every object of a measurement file with an LG-EKF (SE(2)xSE(2), SE(2)xR3), CTRV-EKF or CV-KF.",
+    )
+    ap.add_argument("input", type=Path, help="measurements: CSV with header t,x,y[,id][,heading], or the pedestrian format")
+    ap.add_argument("-o", "--output", type=Path, required=True, help="output CSV (with --model all: one file per model, OUTPUT_<model>.csv)")
+    ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all"], help="filter (default se2se2)")
+    ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
+    ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
+    ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
+                    help="process noise stds (se2se2/se2r3: σx,σy,σω; ctrv: σa,σω̇; cv: σa); repeatable MODEL=LIST")
+    ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
+    ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
+    ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
+    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
+    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--quiet", action="store_true", help="print nothing on success")
+    return ap
+
+
+def _write_model(fh, model, meas, starts, cfg, full_cov, digits):
+    """Track and write one model's file in chunks of objects (bounded memory)."""
+    spec = get_model(model)
+    fh.write((",".join(output_columns(model, full_cov)) + "\n").encode())
+    lab = label_bytes(meas.labels)
+    diag = np.array([i * spec.n - i * (i - 1) // 2 for i in range(spec.n)])  # packed index of (i, i)
+    B = len(starts) - 1
+    o = 0
+    while o < B:
+        o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
+        o2 = min(max(o2, o + 1), B)
+        a, b = int(starts[o]), int(starts[o2])
+        sub_starts = starts[o:o2 + 1] - a
+        h = None if meas.heading is None else meas.heading[a:b]
+        x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h)
+        std = np.sqrt(np.maximum(p[:, diag], 0.0))
+        parts = [x, std] + ([p] if full_cov else []) + [nis[:, None]]
+        fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), digits))
+        o = o2
+    return starts[-1]
+
+
+def cmd_track(argv) -> int:
+    a = track_parser().parse_args(argv)
+    models = list(MODELS) if a.model == "all" else [a.model]
+    if not 1 <= a.precision <= 17:
+        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
+    cfg = TrackConfig(parse_accel_std(a.accel_std, models), a.meas_std, a.omega_std, a.heading_std).validate()
+    if a.format == "csv" and a.frame_dt is not None:
+        raise ValueError("--frame-dt: only used with --format pedestrian")
+    outs = [output_path(a.output, m, a.model == "all") for m in models]
+    if any(o.resolve() == a.input.resolve() for o in outs):
+        raise ValueError(f"--output: {a.output} would overwrite the input file")
+    t0 = time.perf_counter()
+    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading)
+    meas, starts, _ = meas.grouped(min_length=2)
+    t_read = time.perf_counter() - t0
+    with AtomicFiles(outs) as files:
+        for i, m in enumerate(models):
+            _write_model(files.open(i), m, meas, starts, cfg, a.full_cov, a.precision)
+        files.commit()
+    if not a.quiet:
+        wall = time.perf_counter() - t0
+        for m, o in zip(models, outs):
+            print(f"{o}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m})")
+        print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
+    return 0

@@ -1,0 +1,243 @@
+"""`lgekf evaluate`: statistics helpers, a synthetic dataset end to end (no real data needed), the
+loaders of the real datasets (skipped when ../shared/data or $LGEKF_DATA is absent)."""
+
+import csv
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from lgekf.evaluate import (
+    FILTERS, Dataset, evaluate_dataset, load_dataset, mean_ci, run_filters, t_quantile, tune_split, world_velocity,
+)
+from lgekf.track import TrackConfig, track_arrays
+
+DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[1].parent / "shared" / "data")
+
+
+def needs(rel):
+    p = DATA / rel
+    if not p.exists():
+        pytest.skip(f"real dataset {p} not available (set LGEKF_DATA to the data folder; the data are not shipped)")
+    return p
+
+
+def cli_command():
+    """As in test_track_cli: `python -m lgekf.cli` if it dispatches subcommands, else the console script."""
+    r = subprocess.run([sys.executable, "-m", "lgekf.cli", "evaluate", "--help"], capture_output=True, text=True)
+    if r.returncode == 0 and "lgekf evaluate" in r.stdout:
+        return (sys.executable, "-m", "lgekf.cli")
+    exe = Path(sys.executable).with_name("lgekf")
+    if exe.exists():
+        return (str(exe),)
+    return (sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())")
+
+
+def evaluate(*args):
+    return subprocess.run([*cli_command(), "evaluate", *map(str, args)], capture_output=True, text=True)
+
+
+def test_t_quantile_against_scipy():
+    stats = pytest.importorskip("scipy.stats")
+    for nu in (1, 2, 3, 5, 10, 20, 100, 1000):
+        assert t_quantile(0.975, nu) == pytest.approx(stats.t.ppf(0.975, nu), rel=2e-3 if nu > 2 else 1e-2)
+
+
+def test_mean_ci():
+    m, lo, hi = mean_ci([1.0, 2.0, 3.0, 4.0])
+    assert m == 2.5
+    half = t_quantile(0.975, 3) * np.std([1, 2, 3, 4], ddof=1) / 2
+    assert (lo, hi) == pytest.approx((2.5 - half, 2.5 + half))
+    assert np.isnan(mean_ci([1.0])[1])
+
+
+def test_world_velocity_of_each_model():
+    th, v = 0.7, 2.0
+    expect = [v * np.cos(th), v * np.sin(th)]
+    np.testing.assert_allclose(world_velocity("se2se2", np.array([[0, 0, th, v, 0, 0.1]])), [expect])
+    np.testing.assert_allclose(world_velocity("ctrv", np.array([[0, 0, th, v, 0.1]])), [expect])
+    np.testing.assert_allclose(world_velocity("cv", np.array([[0, 0, *expect]])), [expect])
+
+
+def synthetic_tracks(n=12, K=40, dt=0.1, seed=0):
+    """Circles (turning) and straight lines with exact velocities."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for i in range(n):
+        t = np.arange(K) * dt + rng.uniform(0, 1)
+        w = 0.0 if i % 3 == 0 else rng.uniform(-0.8, 0.8)
+        sp, th0 = rng.uniform(1, 4), rng.uniform(-np.pi, np.pi)
+        th = th0 + w * (t - t[0])
+        if w == 0:
+            x = sp * np.cos(th0) * (t - t[0])
+            y = sp * np.sin(th0) * (t - t[0])
+        else:
+            x = sp / w * (np.sin(th) - np.sin(th0))
+            y = -sp / w * (np.cos(th) - np.cos(th0))
+        rows += [(i, tt, xx, yy, sp * np.cos(a), sp * np.sin(a)) for tt, xx, yy, a in zip(t, x, y, th)]
+    return rows
+
+
+def write_synthetic(path, rows, short=0):
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["id", "t", "x", "y", "vx", "vy"])
+        w.writerows([[r[0], *map(repr, map(float, r[1:]))] for r in rows])
+        for k in range(short):  # a track too short to evaluate
+            w.writerow([999, float(k), 0.0, 0.0, 0.0, 0.0])
+    return path
+
+
+def test_evaluate_synthetic_end_to_end(tmp_path):
+    data = write_synthetic(tmp_path / "synth.csv", synthetic_tracks(), short=3)
+    out = tmp_path / "ev"
+    r = evaluate(data, "--seeds", "2", "--out", out)
+    assert r.returncode == 0, r.stderr
+    assert "synth: 12 tracks used, 1 shorter than 5 skipped" in r.stderr
+    rows = list(csv.DictReader(open(out / "summary.csv")))
+    assert [x["filter"] for x in rows] == [*FILTERS, "measurements"]
+    by = {x["filter"]: x for x in rows}
+    for m in FILTERS:
+        assert float(by[m]["pos_ci_lo"]) <= float(by[m]["pos_rmse"]) <= float(by[m]["pos_ci_hi"])
+        assert float(by[m]["vel_rmse"]) > 0 and by[m]["tracks"] == "12" and by[m]["seeds"] == "2"
+        assert float(by[m]["pos_median"]) < float(by["measurements"]["pos_median"])  # filtering helps
+    # constant-turn truth: the turning models beat CV, which lags in the faster turns
+    for m in ("se2se2", "se2r3", "ctrv"):
+        assert float(by[m]["pos_rmse"]) < float(by["measurements"]["pos_rmse"])
+        assert float(by[m]["dpos_vs_cv"]) < -0.05
+    assert (out / "evaluation.png").stat().st_size > 1000
+    per = list(csv.DictReader(open(out / "per_track.csv")))
+    assert len(per) == 12 * 2 * 5
+    assert "pos RMSE" in r.stdout and "se2r3" in r.stdout
+
+
+def test_evaluate_tune_uses_only_the_tuning_split(tmp_path):
+    data = write_synthetic(tmp_path / "synth.csv", synthetic_tracks(n=10))
+    out = tmp_path / "ev"
+    r = evaluate(data, "--seeds", "1", "--tune", "--out", out, "--no-figure")
+    assert r.returncode == 0, r.stderr
+    rows = list(csv.DictReader(open(out / "summary.csv")))
+    assert {x["noise"] for x in rows} == {"default", "tuned", "-"}
+    assert all(x["tracks"] == "7" for x in rows)  # 3 of 10 tracks tune, 7 evaluate
+    tun = list(csv.DictReader(open(out / "tuning.csv")))
+    assert all(x["tune_tracks"] == "3" for x in tun)
+    for m in FILTERS:
+        chosen = [x for x in tun if x["filter"] == m and x["chosen"] == "True"]
+        assert len(chosen) == 1
+        best = min(float(x["tune_pos_rmse"]) for x in tun if x["filter"] == m)
+        assert float(chosen[0]["tune_pos_rmse"]) == best
+        tuned = next(x for x in rows if x["filter"] == m and x["noise"] == "tuned")
+        assert float(tuned["scale"]) == float(chosen[0]["scale"])
+        assert float(tuned["turn_ratio"]) == float(chosen[0]["turn_ratio"])
+        stages = {x["stage"] for x in tun if x["filter"] == m}
+        assert stages == ({"1"} if m == "cv" else {"1", "2", "3"})
+
+
+def test_tuning_never_sees_the_evaluation_tracks():
+    rows = synthetic_tracks(n=10, K=20)
+    t = np.array([r[1] for r in rows])
+    p = np.array([[r[2], r[3]] for r in rows])
+    starts = np.arange(0, 201, 20)
+    ds = Dataset("s", t, p, None, starts, [str(i) for i in range(10)])
+    tune_idx, eval_idx = tune_split(ds.n_tracks)
+    assert set(tune_idx).isdisjoint(eval_idx) and len(tune_idx) == 3
+    # poisoning the evaluation part does not change the chosen scales
+    a = evaluate_dataset(ds, seeds=1, tune=True)[1].scale
+    ds.p[starts[3]:] += 1e3 * np.random.default_rng(0).standard_normal(ds.p[starts[3]:].shape)
+    b = evaluate_dataset(ds, seeds=1, tune=True)[1].scale
+    assert a == b
+
+
+def test_run_filters_uses_common_noise_and_track_arrays():
+    rows = synthetic_tracks(n=3, K=15)
+    t = np.array([r[1] for r in rows])
+    p = np.array([[r[2], r[3]] for r in rows])
+    ds = Dataset("s", t, p, None, np.array([0, 15, 30, 45]), ["0", "1", "2"])
+    cfg = TrackConfig()
+    res = run_filters(ds, cfg, [4], 0)
+    from lgekf.evaluate import _seed_rng
+
+    z = ds.p + cfg.meas_std * _seed_rng(4, 0, "s").standard_normal(ds.p.shape)
+    x, _, _ = track_arrays("se2r3", t, z, ds.starts, cfg)
+    e = np.sqrt(np.mean(np.sum((x[17:30, :2] - p[17:30]) ** 2, axis=1)))  # track 1, rows k >= 2
+    assert res["se2r3"][0][0, 1] == pytest.approx(e)
+
+
+def test_evaluate_pedestrian_file_and_errors(tmp_path):
+    text = "".join(f"{10 * k}\t{i}\t{0.5 * k}\t{1.0 * i + 0.02 * k * k}\n" for k in range(12) for i in range(1, 5))
+    data = tmp_path / "ped.txt"
+    data.write_text(text)
+    r = evaluate(data, "--format", "pedestrian", "--frame-dt", "0.04", "--seeds", "1", "--out", tmp_path / "ev", "--no-figure")
+    assert r.returncode == 0, r.stderr
+    for args, message in (
+        (["nosuchset"], "neither a preset"),
+        ([data], "cannot infer the format"),
+        ([data, "--format", "pedestrian"], "frame-dt"),
+        (["eth", "--data-root", tmp_path / "empty"], "--data-root"),
+        ([data, "--format", "pedestrian", "--frame-dt", "0.04", "--meas-std", "-1"], "meas-std"),
+        ([data, "--format", "pedestrian", "--frame-dt", "0.04", "--seeds", "0"], "seeds"),
+    ):
+        r = evaluate(*args, "--out", tmp_path / "bad")
+        assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1 and message in r.stderr, r.stderr
+    assert not (tmp_path / "bad").exists()
+
+
+# ------------------------------------------------------------------ real data (skipped when absent)
+def test_eth_ucy_presets_and_time_step():
+    needs("eth_ucy_trajectronpp/biwi_eth.txt")
+    eth = load_dataset("eth", root=DATA, min_length=2)
+    assert eth.n_tracks == 360 and eth.t.size == 5492
+    # SOURCES.md: 10 frames = 0.6667 s; median speed then ~1.47 m/s (the obsmat velocity median)
+    with np.errstate(divide="ignore", invalid="ignore"):  # steps between tracks are masked below
+        step = np.diff(eth.p, axis=0) / np.diff(eth.t)[:, None]
+    inside = np.ones(len(step), bool)
+    inside[eth.starts[1:-1] - 1] = False
+    assert np.median(np.hypot(*step[inside].T)) == pytest.approx(1.47, abs=0.05)
+    assert np.allclose(np.diff(eth.t)[inside], 0.6667)
+    eth5 = load_dataset("eth", root=DATA)
+    assert eth5.n_tracks + eth5.skipped == 360 and eth5.skipped > 0
+    univ = load_dataset("univ", root=DATA, min_length=2)
+    assert univ.n_tracks == 415 + 434 and np.allclose(np.diff(univ.t[:2]), 0.4)
+
+
+def test_kitti_loader_velocity_truth_matches_positions():
+    needs("kitti_oxts/0000.txt")
+    ds = load_dataset("kitti", root=DATA)
+    assert ds.n_tracks == 21 and ds.v is not None
+    fds, vs = [], []
+    for i in range(ds.n_tracks):
+        a, b = ds.starts[i], ds.starts[i + 1]
+        fds.append((ds.p[a + 2:b] - ds.p[a:b - 2]) / (ds.t[a + 2:b] - ds.t[a:b - 2])[:, None])
+        vs.append(ds.v[a + 1:b - 1])
+    fd, v = np.concatenate(fds), np.concatenate(vs)
+    moving = np.hypot(*v.T) > 2.0
+    fd, v = fd[moving], v[moving]
+    # 0.1035 s steps: finite-difference speed within ~2 % of the OXTS speed (it is 4.7 % off with 0.1 s)
+    assert np.median(np.hypot(*fd.T) / np.hypot(*v.T)) == pytest.approx(1.0, abs=0.025)
+    cos = np.sum(fd * v, axis=1) / np.hypot(*fd.T) / np.hypot(*v.T)
+    assert np.median(cos) > 0.999  # (ve, vn) point along the Mercator track
+
+
+def test_cyclists_and_dut_loaders():
+    needs("vru_cyclists_moving")
+    needs("dut_vehicles/raw")
+    cyc = load_dataset("cyclists", root=DATA)
+    assert cyc.n_tracks == 86 and np.median(np.diff(cyc.t[:50])) == pytest.approx(0.08)
+    dut = load_dataset("dut", root=DATA)
+    assert dut.n_tracks == 69 and dut.t.size == 18765
+    a, b = dut.starts[0], dut.starts[1]
+    speed = np.median(np.hypot(*np.diff(dut.p[a:b], axis=0).T) / np.diff(dut.t[a:b]))
+    assert 1.0 < speed < 20.0  # metres per second, not pixels
+
+
+def test_evaluate_real_subset_runs():
+    needs("eth_ucy_trajectronpp/crowds_zara01.txt")
+    ds = load_dataset("zara1", root=DATA)
+    res = evaluate_dataset(ds.subset(range(20)), seeds=1)[0]
+    rows = {r["filter"]: r for r in res.summary()}
+    assert all(np.isfinite(rows[m]["pos_rmse"]) for m in FILTERS)
+    assert rows["cv"]["pos_rmse"] < rows["measurements"]["pos_rmse"]

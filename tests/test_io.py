@@ -1,0 +1,147 @@
+"""lgekf.io: readers (columns, ids, line numbers in errors), the numba number formatter, atomic writes."""
+
+import numpy as np
+import pytest
+
+from lgekf.io import AtomicFiles, DataError, format_g, format_rows, label_bytes, read_csv, read_pedestrian
+
+
+def write(tmp_path, name, text):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_csv_columns_aliases_blank_lines_and_quotes(tmp_path):
+    p = write(tmp_path, "a.csv", 'Timestamp, X ,y,extra\n0,1,2,a\n\n   \n"0.5",1.5,2.5,b\n')
+    m = read_csv(p)
+    np.testing.assert_array_equal(m.t, [0.0, 0.5])
+    np.testing.assert_array_equal(m.z, [[1, 2], [1.5, 2.5]])
+    np.testing.assert_array_equal(m.line, [2, 5])
+    assert m.labels == ["0"] and m.heading is None
+
+
+def test_csv_ids_numeric_and_text_in_order_of_first_appearance(tmp_path):
+    m = read_csv(write(tmp_path, "a.csv", "id,t,x,y\n7,0,0,0\n3,0,1,1\n7,1,0,0\n3.5,0,2,2\n"))
+    assert m.labels == ["7", "3", "3.5"]
+    np.testing.assert_array_equal(m.obj, [0, 1, 0, 2])
+    m = read_csv(write(tmp_path, "b.csv", "t,x,y,id\n0,0,0,car b\n0,1,1,ped\n1,0,0,car b\n"))
+    assert m.labels == ["car b", "ped"]
+    np.testing.assert_array_equal(m.obj, [0, 1, 0])
+
+
+def test_text_ids_after_the_first_chunk(tmp_path, monkeypatch):
+    import lgekf.io as lio
+
+    monkeypatch.setattr(lio, "CHUNK_LINES", 2)
+    m = read_csv(write(tmp_path, "a.csv", "id,t,x,y\n1,0,0,0\n1,1,0,0\nbob,0,0,0\nbob,1,0,0\n"))
+    assert m.labels == ["1", "bob"]
+    np.testing.assert_array_equal(m.line, [2, 3, 4, 5])
+
+
+def test_grouped_sorts_by_object_and_checks_time(tmp_path):
+    m = read_csv(write(tmp_path, "a.csv", "id,t,x,y\n1,0,0,0\n2,0,5,5\n1,1,1,0\n2,0.5,6,5\n1,3,2,0\n"))
+    g, starts, dropped = m.grouped()
+    np.testing.assert_array_equal(starts, [0, 3, 5])
+    np.testing.assert_array_equal(g.t, [0, 1, 3, 0, 0.5])
+    np.testing.assert_array_equal(g.line, [2, 4, 6, 3, 5])
+    assert dropped == []
+    bad = read_csv(write(tmp_path, "b.csv", "id,t,x,y\n1,0,0,0\n2,0,5,5\n1,1,1,0\n2,0.5,6,5\n1,1,2,0\n"))
+    with pytest.raises(DataError, match=r"line 6: time is not increasing within object id 1"):
+        bad.grouped()
+
+
+def test_grouped_short_objects(tmp_path):
+    m = read_csv(write(tmp_path, "a.csv", "id,t,x,y\n1,0,0,0\n2,0,5,5\n1,1,1,0\n"))
+    with pytest.raises(DataError, match=r"object id 2 \(line 3\) has a single measurement"):
+        m.grouped()
+    g, starts, dropped = m.grouped(drop_short=True)
+    assert dropped == ["2"] and g.labels == ["1"]
+    np.testing.assert_array_equal(starts, [0, 2])
+
+
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        ("", "empty file"),
+        ("t,x,y\n", "no measurements"),
+        ("t,x\n0,1\n", "missing column 'y'"),
+        ("0,1,2\n1,2,3\n", "looks like data"),
+        ("t,x,y\n0,1,2\n1,abc,3\n", "line 3: column 'x': 'abc' is not a number"),
+        ("t,x,y\n0,1,2\n1,,3\n", "line 3: column 'x': '(empty)' is not a number"),
+        ("t,x,y\n0,1,2\n1,2\n", "line 3: expected at least 3 columns"),
+        ("t,x,y\n0,1,2\n1,nan,3\n", "line 3: column 'x' is nan"),
+        ("t,x,y\n0,1,2\n1,2,-inf\n", "line 3: column 'y' is -inf"),
+        ("t,x,y,t\n0,1,2,3\n", "more than one column for 't'"),
+    ],
+)
+def test_csv_errors_name_the_problem(tmp_path, text, message):
+    with pytest.raises(DataError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        read_csv(write(tmp_path, "bad.csv", text))
+
+
+def test_heading_only_when_asked(tmp_path):
+    p = write(tmp_path, "h.csv", "t,x,y,heading\n0,0,0,oops\n1,1,0,0.5\n")
+    assert read_csv(p).heading is None  # ignored, not even parsed
+    with pytest.raises(DataError, match="column 'heading': 'oops'"):
+        read_csv(p, use_heading=True)
+    with pytest.raises(DataError, match="needs a 'heading' column"):
+        read_csv(write(tmp_path, "n.csv", "t,x,y\n0,0,0\n"), use_heading=True)
+
+
+def test_unreadable_paths(tmp_path):
+    with pytest.raises(DataError, match="cannot read"):
+        read_csv(tmp_path / "missing.csv")
+    with pytest.raises(DataError, match="is a directory"):
+        read_csv(tmp_path)
+
+
+def test_pedestrian_format(tmp_path):
+    p = write(tmp_path, "p.txt", "780\t1.0\t8.46\t3.59\n790\t1.0\t9.57\t3.79\n790  2.0  1 2\n")
+    m = read_pedestrian(p, 0.04)
+    np.testing.assert_allclose(m.t, [31.2, 31.6, 31.6])
+    assert m.labels == ["1", "2"]
+    with pytest.raises(DataError, match="frame-dt"):
+        read_pedestrian(p, None)
+    with pytest.raises(DataError, match="frame-dt"):
+        read_pedestrian(p, -1.0)
+    with pytest.raises(DataError, match="line 1: column 'frame': 't' is not a number"):
+        read_pedestrian(write(tmp_path, "q.txt", "t x y id\n"), 0.04)
+
+
+@pytest.mark.parametrize("p", [1, 3, 6, 10, 15])
+def test_format_g_matches_python(p):
+    rng = np.random.default_rng(p)
+    v = np.concatenate([
+        rng.standard_normal(3000) * 10.0 ** rng.integers(-5, 9, 3000),
+        [1.0, 0.5, 9.99999999999, 1e-5, 1e-4, 123456789012.0, 0.1 + 0.2, 1e16, -2.5e-7],
+    ])
+    assert format_g(v, p) == ["%.*g" % (p, x) for x in v]
+
+
+def test_format_g_round_trips_at_17_digits_and_specials():
+    rng = np.random.default_rng(0)
+    v = rng.standard_normal(5000) * 10.0 ** rng.integers(-30, 30, 5000)
+    back = np.array([float(s) for s in format_g(v, 17)])
+    np.testing.assert_allclose(back, v, rtol=4e-16, atol=0)
+    assert format_g([np.nan, np.inf, -np.inf, 0.0, -0.0], 10) == ["nan", "inf", "-inf", "0", "0"]
+
+
+def test_format_rows_quotes_labels():
+    lab = label_bytes(["a", 'b,"c"'])
+    text = format_rows(lab, [0, 1], [0.5, 1.0], np.array([[1.0, 2.0], [3.0, np.nan]]), 6).decode()
+    assert text == 'a,0.5,1,2\n"b,""c""",1,3,nan\n'
+
+
+def test_atomic_files_all_or_nothing(tmp_path):
+    paths = [tmp_path / "a.csv", tmp_path / "b.csv"]
+    with pytest.raises(RuntimeError):
+        with AtomicFiles(paths) as f:
+            f.open(0).write(b"x")
+            raise RuntimeError("boom")
+    assert list(tmp_path.iterdir()) == []
+    with AtomicFiles(paths) as f:
+        f.open(0).write(b"x")
+        f.open(1).write(b"y")
+        f.commit()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
