@@ -213,9 +213,9 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     rho = _spearman(s, m["cv"]) if S > 2 else float("nan")
     grow = float(np.mean(m["cv"][hi]) / np.mean(m["cv"][lo]))
     out.append(Claim(
-        "CV degrades as σ_ω grows",
-        bool(S > 2 and rho > 0.8 and grow > 1.1),
-        f"Spearman ρ(σ_ω, CV RMSE) = {rho:.2f}; CV RMSE large/small σ_ω = {grow:.2f}x",
+        "CV degrades as σ_ω grows (large-σ_ω RMSE at least 1.5x the small-σ_ω RMSE)",
+        bool(S > 1 and grow >= 1.5),
+        f"CV RMSE large/small σ_ω = {grow:.2f}x; Spearman ρ(σ_ω, CV RMSE) = {rho:.2f}",
     ))
     ctrv_lo = float(np.mean(m["ctrv"][lo] / lg_best[lo] - 1))
     ctrv_hi = float(np.mean(m["ctrv"][hi] / lg_best[hi] - 1))
