@@ -93,7 +93,6 @@ def filterpy_ns(K):
         from filterpy.kalman import KalmanFilter
     except ImportError:
         return None
-    from filterpy.common import Q_discrete_white_noise  # noqa: F401
 
     z = data(1, K)[0]
     dt, sa = 0.1, 0.5

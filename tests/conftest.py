@@ -6,6 +6,22 @@ import pytest
 
 _ACCURACY = pytest.StashKey[dict]()
 
+# The tests work with many tiny (≤ 7×7) matrices; OpenBLAS's worker threads only add overhead there
+# and, on a loaded 2-core machine, slow the reference tests down several-fold: one BLAS thread.
+try:
+    from threadpoolctl import threadpool_limits
+except ImportError:  # pragma: no cover
+    threadpool_limits = None
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _single_blas_thread():
+    if threadpool_limits is None:
+        yield
+    else:
+        with threadpool_limits(limits=1, user_api="blas"):
+            yield
+
 
 @pytest.fixture(scope="session")
 def accuracy_table(request):

@@ -27,22 +27,6 @@ from scipy.linalg import expm, logm
 from lgekf import SE2R3Filter, SE2SE2Filter
 
 
-# The reference works with many tiny (≤ 7×7) matrices; OpenBLAS's worker threads only add overhead
-# there and, on a loaded machine, slow this module down several-fold. Use one BLAS thread when
-# threadpoolctl is available (optional).
-try:
-    from threadpoolctl import threadpool_limits
-except ImportError:  # pragma: no cover
-    threadpool_limits = None
-
-
-@pytest.fixture(autouse=True, scope="module")
-def _single_blas_thread():
-    if threadpool_limits is None:
-        yield
-    else:
-        with threadpool_limits(limits=1, user_api="blas"):
-            yield
 
 # ---------------------------------------------------------------------------------------------
 # Dense reference: matrix Lie group G = SE(2)×SE(2) ("se2se2") or SE(2)×R³ ("se2r3")
