@@ -144,6 +144,20 @@ class Kernel:
     fastmath: bool = False
 
 
+def _prune_dead(stages, outputs, ret):
+    """Drop intermediate definitions that no output (nor the returned name) depends on."""
+    needed = {x.name for _, e in outputs for x in sp.sympify(e).free_symbols}
+    if ret is not None:
+        needed |= set(re.findall(r"[A-Za-z_]\w*", ret))
+    kept = []
+    for st in reversed(stages):
+        keep = [(s, e) for s, e in st if getattr(s, "name", s) in needed]
+        for _, e in keep:
+            needed |= {x.name for x in sp.sympify(e).free_symbols}
+        kept.append(keep)
+    return [st for st in reversed(kept) if st]
+
+
 def _sort_key(e):
     return sp.default_sort_key(e)
 
@@ -167,6 +181,7 @@ def render_kernel(k: Kernel) -> str:
     outputs = [(t, sp.sympify(e).subs(subs)) for t, e in k.outputs]
     if k.skip_zero_outputs:
         outputs = [(t, e) for t, e in outputs if e != 0]
+    stages = _prune_dead(stages, outputs, k.ret)
 
     all_exprs = [e for st in stages for _, e in st] + [e for _, e in outputs]
     used = set().union(*[sp.sympify(e).free_symbols for e in all_exprs]) if all_exprs else set()

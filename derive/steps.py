@@ -177,9 +177,11 @@ def pd_check_kernels(n: int):
         lines.append(f"    d{j} = p{j}{j}{terms}")
         lines.append(f"    if not d{j} > tol:")
         lines.append("        return False")
+        if j < n - 1:
+            lines.append(f"    r{j} = 1.0 / d{j}")
         for i in range(j + 1, n):
             terms = "".join(f" - l{i}{k} * l{j}{k} * d{k}" for k in range(j))
-            lines.append(f"    l{i}{j} = (p{j}{i}{terms}) / d{j}")
+            lines.append(f"    l{i}{j} = (p{j}{i}{terms}) * r{j}")
     lines.append("    return True")
     check = "\n".join(lines)
     diag = [idx[(j, j)] for j in range(n)]

@@ -73,7 +73,6 @@ def predict(s, p, dt, sigma_a):
     m01 = dt*p12 + p01
     m02 = dt*p22 + p02
     m03 = _t0 + p03
-    m10 = dt*p03 + p01
     m11 = dt*p13 + p11
     m12 = _t0 + p12
     m13 = dt*p33 + p13
@@ -157,7 +156,6 @@ def update(s, p, z_x, z_y, r):
     b23 = a20*p03 + a21*p13 + p23
     b30 = a30*p00 + a31*p01 + p03
     b31 = a30*p01 + a31*p11 + p13
-    b32 = a30*p02 + a31*p12 + p23
     b33 = a30*p03 + a31*p13 + p33
     _t3 = r*r
     _t4 = _t3*k00

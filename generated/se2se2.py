@@ -344,8 +344,6 @@ def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
     m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
     m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
-    m20 = dt*p05 + p02
-    m21 = dt*p15 + p12
     m22 = dt*p25 + p22
     m23 = dt*p35 + p23
     m24 = dt*p45 + p24
@@ -551,21 +549,15 @@ def update(s, p, z_x, z_y, r):
     b25 = a20*p05 + a21*p15 + p25
     b30 = a30*p00 + a31*p01 + p03
     b31 = a30*p01 + a31*p11 + p13
-    b32 = a30*p02 + a31*p12 + p23
     b33 = a30*p03 + a31*p13 + p33
     b34 = a30*p04 + a31*p14 + p34
     b35 = a30*p05 + a31*p15 + p35
     b40 = a40*p00 + a41*p01 + p04
     b41 = a40*p01 + a41*p11 + p14
-    b42 = a40*p02 + a41*p12 + p24
-    b43 = a40*p03 + a41*p13 + p34
     b44 = a40*p04 + a41*p14 + p44
     b45 = a40*p05 + a41*p15 + p45
     b50 = a50*p00 + a51*p01 + p05
     b51 = a50*p01 + a51*p11 + p15
-    b52 = a50*p02 + a51*p12 + p25
-    b53 = a50*p03 + a51*p13 + p35
-    b54 = a50*p04 + a51*p14 + p45
     b55 = a50*p05 + a51*p15 + p55
     _t15 = (alpha*alpha)*(r*r)
     _t16 = _t15*k00
@@ -609,15 +601,9 @@ def update(s, p, z_x, z_y, r):
     cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
     cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
     cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
-    cp30 = phi33*pj03 + phi34*pj04 + phi35*pj05
-    cp31 = phi33*pj13 + phi34*pj14 + phi35*pj15
-    cp32 = phi33*pj23 + phi34*pj24 + phi35*pj25
     cp33 = phi33*pj33 + phi34*pj34 + phi35*pj35
     cp34 = phi33*pj34 + phi34*pj44 + phi35*pj45
     cp35 = phi33*pj35 + phi34*pj45 + phi35*pj55
-    cp40 = phi43*pj03 + phi44*pj04 + phi45*pj05
-    cp41 = phi43*pj13 + phi44*pj14 + phi45*pj15
-    cp42 = phi43*pj23 + phi44*pj24 + phi45*pj25
     cp43 = phi43*pj33 + phi44*pj34 + phi45*pj35
     cp44 = phi43*pj34 + phi44*pj44 + phi45*pj45
     cp45 = phi43*pj35 + phi44*pj45 + phi45*pj55
@@ -684,33 +670,38 @@ def covariance_is_pd(p):
     d0 = p00
     if not d0 > tol:
         return False
-    l10 = (p01) / d0
-    l20 = (p02) / d0
-    l30 = (p03) / d0
-    l40 = (p04) / d0
-    l50 = (p05) / d0
+    r0 = 1.0 / d0
+    l10 = (p01) * r0
+    l20 = (p02) * r0
+    l30 = (p03) * r0
+    l40 = (p04) * r0
+    l50 = (p05) * r0
     d1 = p11 - l10 * l10 * d0
     if not d1 > tol:
         return False
-    l21 = (p12 - l20 * l10 * d0) / d1
-    l31 = (p13 - l30 * l10 * d0) / d1
-    l41 = (p14 - l40 * l10 * d0) / d1
-    l51 = (p15 - l50 * l10 * d0) / d1
+    r1 = 1.0 / d1
+    l21 = (p12 - l20 * l10 * d0) * r1
+    l31 = (p13 - l30 * l10 * d0) * r1
+    l41 = (p14 - l40 * l10 * d0) * r1
+    l51 = (p15 - l50 * l10 * d0) * r1
     d2 = p22 - l20 * l20 * d0 - l21 * l21 * d1
     if not d2 > tol:
         return False
-    l32 = (p23 - l30 * l20 * d0 - l31 * l21 * d1) / d2
-    l42 = (p24 - l40 * l20 * d0 - l41 * l21 * d1) / d2
-    l52 = (p25 - l50 * l20 * d0 - l51 * l21 * d1) / d2
+    r2 = 1.0 / d2
+    l32 = (p23 - l30 * l20 * d0 - l31 * l21 * d1) * r2
+    l42 = (p24 - l40 * l20 * d0 - l41 * l21 * d1) * r2
+    l52 = (p25 - l50 * l20 * d0 - l51 * l21 * d1) * r2
     d3 = p33 - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2
     if not d3 > tol:
         return False
-    l43 = (p34 - l40 * l30 * d0 - l41 * l31 * d1 - l42 * l32 * d2) / d3
-    l53 = (p35 - l50 * l30 * d0 - l51 * l31 * d1 - l52 * l32 * d2) / d3
+    r3 = 1.0 / d3
+    l43 = (p34 - l40 * l30 * d0 - l41 * l31 * d1 - l42 * l32 * d2) * r3
+    l53 = (p35 - l50 * l30 * d0 - l51 * l31 * d1 - l52 * l32 * d2) * r3
     d4 = p44 - l40 * l40 * d0 - l41 * l41 * d1 - l42 * l42 * d2 - l43 * l43 * d3
     if not d4 > tol:
         return False
-    l54 = (p45 - l50 * l40 * d0 - l51 * l41 * d1 - l52 * l42 * d2 - l53 * l43 * d3) / d4
+    r4 = 1.0 / d4
+    l54 = (p45 - l50 * l40 * d0 - l51 * l41 * d1 - l52 * l42 * d2 - l53 * l43 * d3) * r4
     d5 = p55 - l50 * l50 * d0 - l51 * l51 * d1 - l52 * l52 * d2 - l53 * l53 * d3 - l54 * l54 * d4
     if not d5 > tol:
         return False
