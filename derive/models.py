@@ -139,6 +139,11 @@ class LGModel:
         """The LG filters' physical state is the common one."""
         return sp.Matrix(self.state)
 
+    @property
+    def world_velocity(self) -> sp.Matrix:
+        """R(θ) (v_x, v_y): the body-frame velocity in the world frame."""
+        return sp.Matrix([[sp.cos(theta), -sp.sin(theta)], [sp.sin(theta), sp.cos(theta)]]) * sp.Matrix([vx, vy])
+
     @cached_property
     def Q(self) -> sp.Matrix:
         """Q = G diag(σ_x², σ_y², σ_ω²) G^T for n_k of eq:motionG."""
@@ -229,7 +234,12 @@ class CTRV:
 
     @property
     def common_jacobian(self) -> sp.Matrix:
+        """Singular at v = 0, where the heading of the velocity is undefined."""
         return self.from_common.jacobian(sp.Matrix([x, y, theta, vx, vy, omega])).applyfunc(sp.simplify)
+
+    @property
+    def world_velocity(self) -> sp.Matrix:
+        return self.v * sp.Matrix([sp.cos(self.psi), sp.sin(self.psi)])
 
 
 class CV:
@@ -260,3 +270,7 @@ class CV:
     @property
     def common_jacobian(self) -> sp.Matrix:
         return self.from_common.jacobian(sp.Matrix([x, y, theta, vx, vy, omega]))
+
+    @property
+    def world_velocity(self) -> sp.Matrix:
+        return sp.Matrix([self.wx, self.wy])

@@ -345,12 +345,33 @@ def simulate_batch(x0, dts, noise, out_x):
 '''
 
 
+WORLD_VELOCITY_TEMPLATE = '''
+@nb.njit(cache=True)
+def world_velocities(X, out):
+    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    for i in range(X.shape[0]):
+        v = world_velocity(X[i])
+        out[i, 0] = v[0]
+        out[i, 1] = v[1]
+'''
+
+
 def common_kernels(model):
-    """Conversion from the common physical state c = (x, y, θ, v_x, v_y, ω) (body-frame velocity)."""
+    """Conversion from the common physical state c = (x, y, θ, v_x, v_y, ω) (body-frame velocity),
+    and the world-frame velocity of a physical state."""
     c = sp.Matrix(sp.symbols("x y theta v_x v_y omega", real=True))
     cin = vec_inputs("c", list(c))
     sub = dict(zip([M.x, M.y, M.theta, M.vx, M.vy, M.omega], list(c)))
+    phys = list(model.state)
     return [
+        new_vector_kernel(
+            "world_velocity",
+            "World-frame velocity (2,) of a physical state x of this model.",
+            ["x"],
+            vec_inputs("x", phys),
+            model.world_velocity,
+        ),
+        ("world_velocities", WORLD_VELOCITY_TEMPLATE),
         new_vector_kernel(
             "common_to_state",
             "The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.",

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_one', 'run_batch', 'common_to_state', 'common_jacobian']
+__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_one', 'run_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian']
 
 
 @nb.njit(cache=True)
@@ -252,6 +252,27 @@ def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """
     for b in nb.prange(z.shape[0]):
         run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def world_velocity(x):
+    """World-frame velocity (2,) of a physical state x of this model.
+    """
+    w_x = x[2]
+    w_y = x[3]
+    out = np.zeros(2)
+    out[0] = w_x
+    out[1] = w_y
+    return out
+
+
+@nb.njit(cache=True)
+def world_velocities(X, out):
+    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    for i in range(X.shape[0]):
+        v = world_velocity(X[i])
+        out[i, 0] = v[0]
+        out[i, 1] = v[1]
 
 
 @nb.njit(cache=True)

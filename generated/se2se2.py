@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'update', 'covariance_is_pd', 'repair_pd', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'update', 'covariance_is_pd', 'repair_pd', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
@@ -818,6 +818,30 @@ def simulate_batch(x0, dts, noise, out_x):
         for k in range(K):
             propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1], noise[b, k, 2])
             physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True)
+def world_velocity(x):
+    """World-frame velocity (2,) of a physical state x of this model.
+    """
+    theta = x[2]
+    v_x = x[3]
+    v_y = x[4]
+    out = np.zeros(2)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = _cos_theta*v_x - _sin_theta*v_y
+    out[1] = _cos_theta*v_y + _sin_theta*v_x
+    return out
+
+
+@nb.njit(cache=True)
+def world_velocities(X, out):
+    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    for i in range(X.shape[0]):
+        v = world_velocity(X[i])
+        out[i, 0] = v[0]
+        out[i, 1] = v[1]
 
 
 @nb.njit(cache=True)

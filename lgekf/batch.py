@@ -50,6 +50,7 @@ def filter_batch(model, z, *, dt, accel_std, meas_std, x0, P0, return_cov=False,
     q = positive_vector("accel_std", accel_std, len(spec.noise_names))
     r = positive_scalar("meas_std", meas_std)
     x0 = np.ascontiguousarray(as_float_array("x0", x0, (B, n)))
+    spec.check_state("x0", x0)
     P0 = spd_matrix("P0", P0, n, batch=True)
     if P0.ndim == 3 and P0.shape[0] != B:
         raise ValueError(f"P0: expected ({n}, {n}) or ({B}, {n}, {n}) for {B} trajectories, got {P0.shape}")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 
 __all__ = ["main", "UsageError", "ArgumentParser"]
@@ -13,10 +14,26 @@ class UsageError(ValueError):
 
 
 class ArgumentParser(argparse.ArgumentParser):
-    """argparse that reports a bad option as one line (UsageError) instead of usage + message."""
+    """argparse that reports a bad option as one line (UsageError) instead of usage + message, and
+    accepts negative values after an option (``--v0 -3,0``, not only ``--v0=-3,0``)."""
+
+    _NEGATIVE = re.compile(r"^-(\d|\.\d)")
 
     def error(self, message):
         raise UsageError(f"{message} (see `{self.prog} --help`)")
+
+    def parse_known_args(self, args=None, namespace=None):
+        args = list(sys.argv[1:] if args is None else args)
+        takes_value = {o for a in self._actions if a.nargs is None and a.option_strings for o in a.option_strings}
+        merged, i = [], 0
+        while i < len(args):
+            if args[i] in takes_value and i + 1 < len(args) and self._NEGATIVE.match(args[i + 1]):
+                merged.append(f"{args[i]}={args[i + 1]}")
+                i += 2
+            else:
+                merged.append(args[i])
+                i += 1
+        return super().parse_known_args(merged, namespace)
 
 
 def _cmd_derive(argv) -> int:

@@ -5,28 +5,15 @@ from __future__ import annotations
 import csv
 import io
 import json
-import os
 import platform
 import sys
 import time
 from pathlib import Path
 
 from .cli import COMMANDS, ArgumentParser, UsageError
+from .output import staged_directory, write_atomic
 
-__all__ = ["write_atomic", "cmd_study", "cmd_figures"]
-
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file and a rename (no partial files)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp{os.getpid()}")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        tmp.replace(path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+__all__ = ["cmd_study", "cmd_figures"]
 
 
 def _floats(name, text, n=None):
@@ -151,14 +138,15 @@ def cmd_study(argv) -> int:
             "SE(2)xSE(2) truth: omega is the angle of T_d and wraps at +-pi; see wrapped_trajectories_per_sigma",
         ],
     }
-    write_atomic(out / "summary.csv", summary)
-    write_atomic(out / "rmse.csv", rmse_csv)
-    if not a.no_figure:
-        from .figures import study_figure
+    with staged_directory(out) as stage:
+        write_atomic(stage / "summary.csv", summary)
+        write_atomic(stage / "rmse.csv", rmse_csv)
+        if not a.no_figure:
+            from .figures import study_figure
 
-        study_figure(res, out / "study.png", pdf=a.pdf)
-    meta["wall_seconds"] = round(time.perf_counter() - t0, 3)
-    write_atomic(out / "meta.json", json.dumps(meta, indent=2) + "\n")
+            study_figure(res, stage / "study.png", pdf=a.pdf)
+        meta["wall_seconds"] = round(time.perf_counter() - t0, 3)
+        write_atomic(stage / "meta.json", json.dumps(meta, indent=2) + "\n")
     if a.quiet:
         print(out)
         return 0
@@ -179,10 +167,11 @@ def cmd_figures(argv) -> int:
     ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default: figures/)")
     ap.add_argument("--pdf", action="store_true", help="also write PDF files")
     a = ap.parse_args(argv)
-    written = banana_figure(a.out / "fig2_banana.png", pdf=a.pdf)
-    written += trajectories_figure(a.out / "fig3_trajectories.png", pdf=a.pdf)
+    with staged_directory(a.out) as stage:
+        written = banana_figure(stage / "fig2_banana.png", pdf=a.pdf)
+        written += trajectories_figure(stage / "fig3_trajectories.png", pdf=a.pdf)
     for p in written:
-        print(p)
+        print(a.out / p.name)
     print("Fig. 4 is written by `lgekf study` (study.png)")
     return 0
 

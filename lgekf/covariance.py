@@ -4,12 +4,18 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["pack", "unpack", "packed_indices"]
+__all__ = ["pack", "unpack", "packed_indices", "packed_diagonal"]
 
 
 def packed_indices(n: int):
     """Row and column indices of the packed upper triangle, in storage order."""
     return np.triu_indices(n)
+
+
+def packed_diagonal(n: int) -> np.ndarray:
+    """Positions of the diagonal entries in the packed storage."""
+    i, j = packed_indices(n)
+    return np.flatnonzero(i == j)
 
 
 def pack(P: np.ndarray) -> np.ndarray:

@@ -47,8 +47,9 @@ from pathlib import Path
 import numpy as np
 
 from .io import DataError, read_csv, read_pedestrian
-from .registry import MODELS
-from .track import DEFAULT_ACCEL_STD, TrackConfig, _Parser, track_arrays
+from .registry import MODELS, get_model
+from .cli import ArgumentParser
+from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
 
 __all__ = [
     "Dataset", "PRESETS", "data_root", "load_dataset", "evaluate_dataset", "t_quantile", "mean_ci",
@@ -290,13 +291,10 @@ def mean_ci(x, level=0.95):
 
 # ------------------------------------------------------------------------------------ running
 def world_velocity(model: str, x: np.ndarray) -> np.ndarray:
-    """World-frame velocity (N, 2) from a model's physical states (N, n)."""
-    if model in ("se2se2", "se2r3"):
-        c, s = np.cos(x[:, 2]), np.sin(x[:, 2])
-        return np.column_stack([c * x[:, 3] - s * x[:, 4], s * x[:, 3] + c * x[:, 4]])
-    if model == "ctrv":
-        return x[:, 3:4] * np.column_stack([np.cos(x[:, 2]), np.sin(x[:, 2])])
-    return x[:, 2:4].copy()
+    """World-frame velocity (N, 2) from a model's physical states (N, n) (generated world_velocity)."""
+    out = np.empty((x.shape[0], 2))
+    get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), out)
+    return out
 
 
 def _seed_rng(seed, stream, name):
@@ -514,19 +512,14 @@ def evaluation_figure(rows, path: Path, noise: str):
     fig.legend(handles, labels, loc="upper center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, 0.93), frameon=False)
     fig.suptitle(f"Tracking error on real trajectories ({noise} process noise; bars: mean over tracks, 95 % CI)", fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.88))
-    path = Path(path)
-    tmp = path.with_name(f".{path.stem}.tmp{os.getpid()}{path.suffix}")
     try:
-        fig.savefig(tmp, dpi=120)
-        tmp.replace(path)
+        fig.savefig(Path(path), dpi=120)
     finally:
         plt.close(fig)
-        if tmp.exists():
-            tmp.unlink()
 
 
 def evaluate_parser():
-    ap = _Parser(prog="lgekf evaluate", description="Evaluate the four trackers on real ground-truth trajectories with added position noise.")
+    ap = ArgumentParser(prog="lgekf evaluate", description="Evaluate the four trackers on real ground-truth trajectories with added position noise.")
     ap.add_argument("datasets", nargs="+", metavar="DATASET",
                     help=f"preset ({', '.join([*PRESETS, *GROUPS])}) or a file (--format csv | pedestrian --frame-dt S)")
     ap.add_argument("--format", choices=["csv", "pedestrian"], default=None, help="format of DATASET files (default: csv for *.csv)")
@@ -545,7 +538,7 @@ def evaluate_parser():
 
 
 def cmd_evaluate(argv) -> int:
-    from .commands import write_atomic
+    from .output import staged_directory, write_atomic
 
     a = evaluate_parser().parse_args(argv)
     if not (math.isfinite(a.meas_std) and a.meas_std > 0):
@@ -579,28 +572,28 @@ def cmd_evaluate(argv) -> int:
         seen = set()
         rows = [r for r in rows if not (r["filter"] == "measurements" and (r["dataset"] in seen or seen.add(r["dataset"])))]
     out = a.out
-    out.mkdir(parents=True, exist_ok=True)
-    write_atomic(out / "summary.csv", _csv_text(SUMMARY_FIELDS, rows))
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["dataset", "noise", "track", "seed", "filter", "pos_rmse", "vel_rmse"])
-    for r in per_track:
-        w.writerow(r[:5] + [_fmt(float(r[5]), 6), _fmt(float(r[6]), 6)])
-    write_atomic(out / "per_track.csv", buf.getvalue())
-    if tuning:
-        write_atomic(out / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
-    meta = {
-        "datasets": {d.name: {"description": d.description, "tracks": d.n_tracks, "skipped_short": d.skipped,
-                              "samples": int(d.t.size), "velocity_truth": d.v is not None} for d in datasets},
-        "meas_std": a.meas_std, "seeds": a.seeds, "first_seed": a.seed, "min_length": a.min_length, "tune": a.tune,
-        "tune_scales": list(TUNE_SCALES) if a.tune else None, "tune_turn_ratios": list(TUNE_RATIOS) if a.tune else None, "tune_split": "first 30 % of tracks" if a.tune else None,
-        "default_accel_std": {m: list(v) for m, v in DEFAULT_ACCEL_STD.items()},
-        "ci": "mean over tracks of the seed-averaged per-track RMSE; Student-t 95 % interval over tracks",
-        "seconds": round(time.perf_counter() - t0, 2),
-    }
-    write_atomic(out / "meta.json", json.dumps(meta, indent=2) + "\n")
-    if not a.no_figure:
-        evaluation_figure(rows, out / "evaluation.png", "tuned" if a.tune else "default")
+    with staged_directory(out) as stage:
+        write_atomic(stage / "summary.csv", _csv_text(SUMMARY_FIELDS, rows))
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["dataset", "noise", "track", "seed", "filter", "pos_rmse", "vel_rmse"])
+        for r in per_track:
+            w.writerow(r[:5] + [_fmt(float(r[5]), 6), _fmt(float(r[6]), 6)])
+        write_atomic(stage / "per_track.csv", buf.getvalue())
+        if tuning:
+            write_atomic(stage / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
+        meta = {
+            "datasets": {d.name: {"description": d.description, "tracks": d.n_tracks, "skipped_short": d.skipped,
+                                  "samples": int(d.t.size), "velocity_truth": d.v is not None} for d in datasets},
+            "meas_std": a.meas_std, "seeds": a.seeds, "first_seed": a.seed, "min_length": a.min_length, "tune": a.tune,
+            "tune_scales": list(TUNE_SCALES) if a.tune else None, "tune_turn_ratios": list(TUNE_RATIOS) if a.tune else None, "tune_split": "first 30 % of tracks" if a.tune else None,
+            "default_accel_std": {m: list(v) for m, v in DEFAULT_ACCEL_STD.items()},
+            "ci": "mean over tracks of the seed-averaged per-track RMSE; Student-t 95 % interval over tracks",
+            "seconds": round(time.perf_counter() - t0, 2),
+        }
+        write_atomic(stage / "meta.json", json.dumps(meta, indent=2) + "\n")
+        if not a.no_figure:
+            evaluation_figure(rows, stage / "evaluation.png", "tuned" if a.tune else "default")
     print(markdown_table(rows) if a.markdown else format_table(rows))
     for d in datasets:
         print(f"{d.name}: {d.n_tracks} tracks used, {d.skipped} shorter than {a.min_length} skipped ({d.description})", file=sys.stderr)

@@ -32,18 +32,14 @@ def _plt():
 
 
 def _save(fig, path: Path, pdf: bool):
+    """PNG (and PDF); the CLI writes into a staged folder, so no partial set is left on failure."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.stem + ".tmp" + path.suffix)
-    fig.savefig(tmp, dpi=150, bbox_inches="tight")
-    tmp.replace(path)
+    fig.savefig(path, dpi=150, bbox_inches="tight")
     written = [path]
     if pdf:
-        p = path.with_suffix(".pdf")
-        tmp = p.with_name(p.stem + ".tmp.pdf")
-        fig.savefig(tmp, bbox_inches="tight")
-        tmp.replace(p)
-        written.append(p)
+        fig.savefig(path.with_suffix(".pdf"), bbox_inches="tight")
+        written.append(path.with_suffix(".pdf"))
     return written
 
 

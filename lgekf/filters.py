@@ -39,6 +39,7 @@ class _KernelFilter:
         self.accel_std = positive_vector("accel_std", accel_std, len(spec.noise_names))
         self.meas_std = positive_scalar("meas_std", meas_std)
         x0 = as_float_array("x0", x0, (spec.n,))
+        spec.check_state("x0", x0)
         P0 = spd_matrix("P0", P0, spec.n)
         self._s = self._k.state_from_physical(x0)
         self._p = pack(P0)
@@ -103,9 +104,6 @@ class CVFilter(_KernelFilter):
     """Linear Kalman filter with the constant velocity model (Joseph update)."""
 
     model = "cv"
-
-    def __init__(self, dt, accel_std, meas_std, x0, P0):
-        super().__init__(dt, accel_std, meas_std, x0, P0)
 
 
 _CLASSES = {c.model: c for c in (SE2SE2Filter, SE2R3Filter, CTRVFilter, CVFilter)}

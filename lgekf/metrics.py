@@ -11,7 +11,7 @@ import numpy as np
 
 from .registry import get_model
 
-__all__ = ["position_rmse", "nees", "chi2_band"]
+__all__ = ["position_rmse", "nees"]
 
 
 def position_rmse(est, truth_xy) -> np.ndarray:
@@ -46,12 +46,3 @@ def nees(model: str, est, cov, truth) -> np.ndarray:
     err = err.reshape(est.shape)
     sol = np.linalg.solve(cov, err[..., None])[..., 0]
     return np.einsum("...i,...i->...", err, sol)
-
-
-def chi2_band(dof: int, runs: int, p: float = 0.95):
-    """Two-sided band of the mean of ``runs`` chi-square(dof) variables (normal approximation)."""
-    from statistics import NormalDist
-
-    zq = NormalDist().inv_cdf(0.5 + p / 2)
-    half = zq * np.sqrt(2.0 * dof / runs)
-    return dof - half, dof + half

@@ -5,6 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from types import ModuleType
 
+import numpy as np
+
 from .generated import ctrv, cv, se2r3, se2se2
 
 __all__ = ["ModelSpec", "MODELS", "get_model"]
@@ -17,6 +19,21 @@ class ModelSpec:
     state_names: tuple[str, ...]  # physical state, also the order of P's coordinates
     noise_names: tuple[str, ...]  # the entries of accel_std
     description: str
+
+    def check_state(self, name: str, x) -> None:
+        """Reject physical states the model cannot represent (ValueError naming ``name``).
+
+        SE(2)×SE(2): ω is the angle of T_d's rotation, so only |ω| ≤ π rad/s exists; a larger turn rate
+        would silently alias to ω − 2π.  Use SE2R3Filter (ω a plain number) for faster rotations.
+        """
+        if self.name == "se2se2":
+            w = np.asarray(x, dtype=float)[..., 5]
+            bad = np.abs(w) > np.pi * (1 + 1e-12)
+            if np.any(bad):
+                raise ValueError(
+                    f"{name}: ω = {float(w[bad].flat[0]):.6g} rad/s is not representable in SE(2)xSE(2), where ω is the "
+                    "angle of T_d (|ω| <= π); use the se2r3 model for faster rotations"
+                )
 
     @property
     def n(self) -> int:

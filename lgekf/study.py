@@ -27,6 +27,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from .batch import filter_batch
+from .metrics import position_rmse
 from .registry import MODELS
 from .simulate import simulate
 
@@ -53,14 +54,28 @@ class StudyConfig:
     def validate(self) -> None:
         if not (self.dt > 0 and math.isfinite(self.dt)):
             raise ValueError(f"dt: must be a positive number, got {self.dt}")
+        if len(self.v0) != 2 or not all(math.isfinite(v) for v in self.v0):
+            raise ValueError(f"v0: expected two finite numbers (body velocity v_x, v_y in m/s), got {list(self.v0)}")
+        if not math.isfinite(self.w0):
+            raise ValueError(f"w0: must be a finite number, got {self.w0}")
+        # SE(2)xSE(2) represents only |ω| ≤ π (ω is the angle of T_d); keep the initial estimate inside too
+        if abs(self.w0) + 5 * self.init_std[5] > math.pi:
+            raise ValueError(
+                f"w0: |w0| + 5·(initial ω std) must stay below π = 3.1416 rad/s, the largest turn rate SE(2)xSE(2) can "
+                f"represent (ω is the angle of T_d); got w0 = {self.w0}"
+            )
+        if self.seed < 0:
+            raise ValueError(f"seed: must be a non-negative integer, got {self.seed}")
         if self.steps < 1:
             raise ValueError(f"steps: must be at least 1, got {self.steps}")
         if self.trajectories < 2:
             raise ValueError(f"trajectories: must be at least 2 (a std is reported), got {self.trajectories}")
         if len(self.sigmas) < 1 or any((not math.isfinite(s)) or s < 0 for s in self.sigmas):
             raise ValueError("sigmas: need at least one finite, non-negative σ_ω")
-        if self.meas_std <= 0 or self.sigma_v < 0:
-            raise ValueError("meas_std must be positive and sigma_v non-negative")
+        if not (self.meas_std > 0 and math.isfinite(self.meas_std)):
+            raise ValueError(f"meas_std: must be a positive number, got {self.meas_std}")
+        if not (self.sigma_v >= 0 and math.isfinite(self.sigma_v)):
+            raise ValueError(f"sigma_v: must be a non-negative number, got {self.sigma_v}")
         if any(s < 0 for s in self.init_std):
             raise ValueError("init_std: stds must be non-negative")
         if self.truth not in ("se2se2", "se2r3"):
@@ -148,13 +163,13 @@ def run_study(cfg: StudyConfig, progress: bool = False) -> StudyResult:
         )
         pos = sim.truth[:, 1:, :2]
         wrapped[i] = int(sim.wrapped.sum())
-        rmse["measurements"][i] = np.sqrt(np.mean(np.sum((sim.z - pos) ** 2, axis=2), axis=1))
+        rmse["measurements"][i] = position_rmse(sim.z, pos)
         for name in FILTERS:
             x0, P0 = inits[name]
             est = filter_batch(
                 name, sim.z, dt=cfg.dt, accel_std=cfg.filter_noise(name, sw), meas_std=cfg.meas_std, x0=x0, P0=P0
             )
-            rmse[name][i] = np.sqrt(np.mean(np.sum((est[:, :, :2] - pos) ** 2, axis=2), axis=1))
+            rmse[name][i] = position_rmse(est, pos)
         _progress(i, S, progress)
     return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0)
 
@@ -186,8 +201,9 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     lg_best = np.minimum(m["se2se2"], m["se2r3"])
     lg_worst = np.maximum(m["se2se2"], m["se2r3"])
     S = len(s)
-    lo = slice(0, max(1, S // 6))
-    hi = slice(S - max(1, S // 6), S)
+    order = np.argsort(s, kind="stable")  # by value: --sigmas may be given in any order
+    lo = order[: max(1, S // 6)]
+    hi = order[S - max(1, S // 6):]
     out = []
 
     rel = np.abs(m["se2se2"] - m["se2r3"]) / lg_best

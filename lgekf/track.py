@@ -29,7 +29,6 @@ CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
 
 from __future__ import annotations
 
-import argparse
 import math
 import sys
 import time
@@ -39,7 +38,8 @@ from pathlib import Path
 import numba as nb
 import numpy as np
 
-from .covariance import pack
+from .cli import ArgumentParser
+from .covariance import pack, packed_diagonal
 from .io import AtomicFiles, format_rows, label_bytes, read_measurements
 from .registry import MODELS, get_model
 
@@ -288,15 +288,10 @@ def parse_accel_std(items, models):
     return table
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse whose errors become one-line ValueErrors (printed by lgekf.cli.main, exit 2)."""
-
-    def error(self, message):
-        raise ValueError(message)
 
 
 def track_parser():
-    ap = _Parser(
+    ap = ArgumentParser(
         prog="lgekf track",
         description="Track every object of a measurement file with an LG-EKF (SE(2)xSE(2), SE(2)xR3), CTRV-EKF or CV-KF.",
     )
@@ -322,7 +317,7 @@ def _write_model(fh, model, meas, starts, cfg, full_cov, digits):
     spec = get_model(model)
     fh.write((",".join(output_columns(model, full_cov)) + "\n").encode())
     lab = label_bytes(meas.labels)
-    diag = np.array([i * spec.n - i * (i - 1) // 2 for i in range(spec.n)])  # packed index of (i, i)
+    diag = packed_diagonal(spec.n)
     B = len(starts) - 1
     o = 0
     while o < B:

@@ -539,13 +539,19 @@ def test_physical_angles_in_documented_range(model):
     """``x`` documents θ in (-π, π]; on SE(2)² ω is the log of T_d's rotation, atan2(sin, cos) ∈ [-π, π]
     (the inputs ±π denote the same rotation)."""
     for a in (math.pi, -math.pi, 3 * math.pi, -3 * math.pi):
-        f = CLASSES[model](dt=0.1, accel_std=(0.1, 0.1, 0.1), meas_std=0.5, x0=[0.0, 0.0, a, 1.0, 0.0, a if model == "se2se2" else 0.2], P0=np.eye(6))
+        w = (a if abs(a) <= math.pi else 0.3) if model == "se2se2" else 0.2
+        f = CLASSES[model](dt=0.1, accel_std=(0.1, 0.1, 0.1), meas_std=0.5, x0=[0.0, 0.0, a, 1.0, 0.0, w], P0=np.eye(6))
         x = f.x
         assert -math.pi < x[2] <= math.pi, f"θ = {a!r} -> {x[2]!r}"
         if model == "se2se2":
-            assert -math.pi <= x[5] <= math.pi, f"ω = {a!r} -> {x[5]!r}"
+            assert -math.pi <= x[5] <= math.pi, f"ω = {w!r} -> {x[5]!r}"
             assert x[5] == math.atan2(f.mean[4, 3], f.mean[3, 3]), "ω must be the log of the stored rotation"
-        np.testing.assert_allclose(f.mean, mean_from_physical(model, [0.0, 0.0, a, 1.0, 0.0, a if model == "se2se2" else 0.2]), atol=1e-15)
+        np.testing.assert_allclose(f.mean, mean_from_physical(model, [0.0, 0.0, a, 1.0, 0.0, w]), atol=1e-15)
+    if model == "se2se2":
+        # |ω| > π is not representable (it would alias to ω - 2π): rejected, naming x0
+        for w in (3 * math.pi, -3.5):
+            with pytest.raises(ValueError, match="x0"):
+                CLASSES[model](dt=0.1, accel_std=(0.1, 0.1, 0.1), meas_std=0.5, x0=[0.0, 0.0, 0.0, 1.0, 0.0, w], P0=np.eye(6))
 
 
 def test_same_mean_same_prediction_at_omega_minus_pi():
