@@ -243,6 +243,8 @@ def load_dataset(spec: str, *, root=None, fmt=None, frame_dt=None, min_length=5)
         else:
             raise DataError(f"dataset {spec}: cannot infer the format; give --format csv or --format pedestrian --frame-dt S")
     if fmt == "csv":
+        if frame_dt is not None:
+            raise DataError("--frame-dt: only for --format pedestrian (CSV input has a time column)")
         return load_csv_dataset([path], path.stem, min_length, f"CSV {path.name}")
     if fmt == "pedestrian":
         return load_pedestrian([path], frame_dt, path.stem, min_length, f"pedestrian format {path.name}, frame_dt {frame_dt} s")
