@@ -5,7 +5,7 @@
 Reports ns per predict+update step: generated kernels over a batch (3000 trajectories × 200 steps,
 numba prange over trajectories, all cores), over one long trajectory (one core), through the Python
 classes (one call per step), the dense-numpy SE(2)×SE(2) LG-EKF, and FilterPy's KalmanFilter /
-ExtendedKalmanFilter on the same CV model where FilterPy is installed; then the JIT cost: the first
+ExtendedKalmanFilter (CV resp. CTRV written in numpy) where FilterPy is installed; then the JIT cost: the first
 call in a fresh process with an empty numba cache, and with a warm cache.
 """
 
@@ -111,6 +111,51 @@ def filterpy_ns(K):
     return (time.perf_counter() - t) / K * 1e9
 
 
+def filterpy_ekf_ctrv_ns(K):
+    """FilterPy's ExtendedKalmanFilter with a CTRV model written in numpy (as FilterPy users do)."""
+    try:
+        from filterpy.kalman import ExtendedKalmanFilter
+    except ImportError:
+        return None
+
+    dt, sa, sw = 0.1, 0.1, 1.0
+
+    def f(x):
+        px, py, psi, v, w = x
+        if abs(w) > 1e-6:
+            return np.array([px + v / w * (np.sin(psi + w * dt) - np.sin(psi)),
+                             py + v / w * (np.cos(psi) - np.cos(psi + w * dt)), psi + w * dt, v, w])
+        return np.array([px + v * dt * np.cos(psi), py + v * dt * np.sin(psi), psi, v, w])
+
+    def jac(x, eps=1e-6):
+        J = np.empty((5, 5))
+        for i in range(5):
+            d = np.zeros(5)
+            d[i] = eps
+            J[:, i] = (f(x + d) - f(x - d)) / (2 * eps)
+        return J
+
+    class CTRVEKF(ExtendedKalmanFilter):
+        def predict_x(self, u=0):
+            self.x = f(self.x)
+
+    z = data(1, K)[0]
+    ekf = CTRVEKF(dim_x=5, dim_z=2)
+    ekf.x = np.array([0.0, 0.0, 0.0, 3.0, 0.1])
+    ekf.P = np.eye(5) * 0.1
+    ekf.R = 0.25 * np.eye(2)
+    H = np.array([[1, 0, 0, 0, 0], [0, 1, 0, 0, 0.0]])
+    t = time.perf_counter()
+    for k in range(K):
+        ekf.F = jac(ekf.x)
+        c, s = np.cos(ekf.x[2]), np.sin(ekf.x[2])
+        G = np.array([[dt**2 / 2 * c, 0], [dt**2 / 2 * s, 0], [0, dt**2 / 2], [dt, 0], [0, dt]])
+        ekf.Q = G @ np.diag([sa**2, sw**2]) @ G.T
+        ekf.predict()
+        ekf.update(z[k], HJacobian=lambda x: H, Hx=lambda x: x[:2])
+    return (time.perf_counter() - t) / K * 1e9
+
+
 JIT_SNIPPET = """
 import time, numpy as np
 t0 = time.perf_counter()
@@ -147,6 +192,7 @@ def main():
         rows[m] = (kernel_ns(m, B, K), kernel_ns(m, 1, Kone), class_ns(m, 2000 if a.quick else 20000))
     dense = dense_ns(3 if a.quick else 10, 200)
     fp = filterpy_ns(2000 if a.quick else 20000)
+    fpe = filterpy_ekf_ctrv_ns(2000 if a.quick else 20000)
     print(f"\nns per predict+update step (batch {B}x{K}; single trajectory {Kone} steps; class API)")
     print(f"{'model':8} {'batch':>10} {'single':>10} {'class API':>10}")
     for m, (b, s, c) in rows.items():
@@ -158,6 +204,9 @@ def main():
         print(f"FilterPy KalmanFilter (CV): {fp:,.0f} ns/step")
         print(f"  ratio FilterPy / generated CV batch : {fp / rows['cv'][0]:8.0f}x")
         print(f"  ratio FilterPy / generated CV single: {fp / rows['cv'][1]:8.0f}x")
+        print(f"FilterPy ExtendedKalmanFilter (CTRV in numpy): {fpe:,.0f} ns/step")
+        print(f"  ratio FilterPy EKF / generated CTRV batch : {fpe / rows['ctrv'][0]:8.0f}x")
+        print(f"  ratio FilterPy EKF / generated CTRV single: {fpe / rows['ctrv'][1]:8.0f}x")
     else:
         print("FilterPy not installed: no FilterPy comparison")
     (imp0, jit0), (imp1, jit1) = jit_cost()
