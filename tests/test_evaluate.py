@@ -4,11 +4,11 @@ loaders of the real datasets (skipped when ../shared/data or $LGEKF_DATA is abse
 import csv
 import os
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from _cli import cli_command
 
 from lgekf.evaluate import (
     FILTERS, Dataset, evaluate_dataset, load_dataset, mean_ci, run_filters, t_quantile, tune_split, world_velocity,
@@ -25,15 +25,6 @@ def needs(rel):
     return p
 
 
-def cli_command():
-    """As in test_track_cli: `python -m lgekf.cli` if it dispatches subcommands, else the console script."""
-    r = subprocess.run([sys.executable, "-m", "lgekf.cli", "evaluate", "--help"], capture_output=True, text=True)
-    if r.returncode == 0 and "lgekf evaluate" in r.stdout:
-        return (sys.executable, "-m", "lgekf.cli")
-    exe = Path(sys.executable).with_name("lgekf")
-    if exe.exists():
-        return (str(exe),)
-    return (sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())")
 
 
 def evaluate(*args):

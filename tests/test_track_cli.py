@@ -2,14 +2,12 @@
 happy paths (columns, ids, irregular dt, formats, --model all, --full-cov) and correctness against
 filter_batch (same x0/P0, to 1e-12) and against noise-free trajectories."""
 
-import functools
 import math
 import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _cli import cli_command
 
 from lgekf.batch import filter_batch
 from lgekf.covariance import unpack
@@ -17,16 +15,6 @@ from lgekf.registry import MODELS
 from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
 
 
-@functools.lru_cache(maxsize=1)
-def cli_command():
-    """`python -m lgekf.cli` if it dispatches subcommands, else the console script beside sys.executable."""
-    r = subprocess.run([sys.executable, "-m", "lgekf.cli", "track", "--help"], capture_output=True, text=True)
-    if r.returncode == 0 and "lgekf track" in r.stdout:
-        return (sys.executable, "-m", "lgekf.cli")
-    exe = Path(sys.executable).with_name("lgekf")
-    if exe.exists():
-        return (str(exe),)
-    return (sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())")
 
 
 def run(*args, cwd=None):
