@@ -1,6 +1,6 @@
-"""Numba kernels generated from derive/ (SymPy). Import the per-model modules.
+"""Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/build.py
+Source: derive/codegen/build.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """

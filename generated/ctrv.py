@@ -1,7 +1,7 @@
-"""CTRV EKF: exact motion, Jacobian, noise and fused predict/update steps.
+"""EKF with the constant turn rate and velocity model: model quantities, fused predict/update steps and loops.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/steps.py (ctrv), from derive/models.py and derive/groups.py
+Source: derive/models/ctrv.py (definition) through derive/codegen/emitter.py and derive/algebra.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """
 import math
@@ -13,12 +13,12 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'motion', 'transition', 'process_noise', 'predict', 'update', 'physical_into', 'run_one', 'run_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
 def state_from_physical(xp):
-    """Internal state = physical [x, y, ψ, v, ω].
+    """Internal state [x, y, psi, v, omega] from the physical [x, y, psi, v, omega].
     """
     x = xp[0]
     y = xp[1]
@@ -36,7 +36,7 @@ def state_from_physical(xp):
 
 @nb.njit(cache=True)
 def state_to_physical(s):
-    """Physical [x, y, ψ, v, ω] with ψ wrapped to (-π, π].
+    """Physical [x, y, psi, v, omega] (angles in (-π, π]) from the internal state.
     """
     x = s[0]
     y = s[1]
@@ -53,11 +53,49 @@ def state_to_physical(s):
 
 
 @nb.njit(cache=True)
-def motion(s, dt):
-    """CTRV exact discretisation f(s): x' = x + vT cos(ψ + ωT/2) sinc(ωT/2), ...
+def physical_into(s, out):
+    """Physical [x, y, psi, v, omega] from the internal state, written into ``out`` (no allocation).
     """
     x = s[0]
     y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    out[0] = x
+    out[1] = y
+    out[2] = wrap_angle(psi)
+    out[3] = v
+    out[4] = omega
+
+
+@nb.njit(cache=True)
+def group_mean(s):
+    """The mean μ as a group matrix (block-diagonal for a product group).
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    out = np.zeros((6, 6))
+    out[0, 0] = 1.0
+    out[0, 5] = x
+    out[1, 1] = 1.0
+    out[1, 5] = y
+    out[2, 2] = 1.0
+    out[2, 5] = psi
+    out[3, 3] = 1.0
+    out[3, 5] = v
+    out[4, 4] = 1.0
+    out[4, 5] = omega
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def motion_omega(s, dt):
+    """Ω(μ), the tangent increment of one step (eq:motionG).
+    """
     psi = s[2]
     v = s[3]
     omega = s[4]
@@ -70,17 +108,15 @@ def motion(s, dt):
     _sin__a1 = math.sin(_a1)
     _cos__a1 = math.cos(_a1)
     _t0 = _sinc__a0*dt*v
-    out[0] = _cos__a1*_t0 + x
-    out[1] = _sin__a1*_t0 + y
-    out[2] = dt*omega + psi
-    out[3] = v
-    out[4] = omega
+    out[0] = _cos__a1*_t0
+    out[1] = _sin__a1*_t0
+    out[2] = dt*omega
     return out
 
 
 @nb.njit(cache=True)
-def transition(s, dt):
-    """CTRV EKF Jacobian F = ∂f/∂s, finite at ω = 0.
+def calC(s, dt):
+    """𝒞 = ∂Ω(μ exp ε)/∂ε at ε = 0 (eq:C, eq:calCFinal).
     """
     psi = s[2]
     v = s[3]
@@ -94,20 +130,50 @@ def transition(s, dt):
     _a1 = dt*omega/2.0 + psi
     _sin__a1 = math.sin(_a1)
     _cos__a1 = math.cos(_a1)
-    _t0 = _sinc__a0*dt
-    _t1 = _sin__a1*_t0
-    _t2 = _cos__a1*_t0
-    _t3 = (dt*dt)*v/2.0
-    _t4 = _cos__a1*_t3
-    _t5 = _sin__a1*_t3
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    out[0, 2] = -(_t1*v)
+    out[0, 3] = _t3
+    out[0, 4] = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    out[1, 2] = _t3*v
+    out[1, 3] = _t1
+    out[1, 4] = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    out[2, 4] = dt
+    return out
+
+
+@nb.njit(cache=True)
+def transition(s, dt):
+    """F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).
+    """
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    out = np.zeros((5, 5))
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
     out[0, 0] = 1.0
     out[0, 2] = -(_t1*v)
-    out[0, 3] = _t2
-    out[0, 4] = -(_dsinc__a0*_t4) - _sinc__a0*_t5
+    out[0, 3] = _t3
+    out[0, 4] = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
     out[1, 1] = 1.0
-    out[1, 2] = _t2*v
+    out[1, 2] = _t3*v
     out[1, 3] = _t1
-    out[1, 4] = -(_dsinc__a0*_t5) + _sinc__a0*_t4
+    out[1, 4] = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
     out[2, 2] = 1.0
     out[2, 4] = dt
     out[3, 3] = 1.0
@@ -117,7 +183,7 @@ def transition(s, dt):
 
 @nb.njit(cache=True)
 def process_noise(s, dt, sigma_a, sigma_alpha):
-    """Q = G diag(σ_a², σ_α²) G^T, G's columns (T²/2 cos ψ, T²/2 sin ψ, 0, T, 0), (0, 0, T²/2, 0, T).
+    """Q = G diag(σ²) G^T: the noise n (sigma_a, sigma_alpha) of eq:motionG in the tangent.
     """
     psi = s[2]
     out = np.zeros((5, 5))
@@ -150,9 +216,127 @@ def process_noise(s, dt, sigma_a, sigma_alpha):
     return out
 
 
+@nb.njit(cache=True)
+def limit_angle_variance(p):
+    """Cap the std of the angle coordinates [] of P at π by congruence scaling (see derive/codegen/emitter.py)."""
+    return
+
+
 @nb.njit(cache=True, fastmath=FASTMATH)
 def predict(s, p, dt, sigma_a, sigma_alpha):
-    """Fused CTRV EKF prediction in place: s ← f(s), P ← F P F^T + Q (Q at the state before the step).
+    """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
+    P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
+    s: internal state [x, y, psi, v, omega], p: packed covariance (15), dt > 0.
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc02 = -(_t1*v)
+    cc03 = _t3
+    cc04 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc12 = _t3*v
+    cc13 = _t1
+    cc14 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _t5 = (dt*dt)/2.0
+    _t6 = _sinc__a0*dt*v
+    g00 = _cos_psi*_t5
+    g10 = _sin_psi*_t5
+    g21 = _t5
+    e00 = _cos__a1*_t6 + x
+    e01 = _sin__a1*_t6 + y
+    e02 = dt*omega + psi
+    m00 = cc02*p02 + cc03*p03 + cc04*p04 + p00
+    m01 = cc02*p12 + cc03*p13 + cc04*p14 + p01
+    m02 = cc02*p22 + cc03*p23 + cc04*p24 + p02
+    m03 = cc02*p23 + cc03*p33 + cc04*p34 + p03
+    m04 = cc02*p24 + cc03*p34 + cc04*p44 + p04
+    m11 = cc12*p12 + cc13*p13 + cc14*p14 + p11
+    m12 = cc12*p22 + cc13*p23 + cc14*p24 + p12
+    m13 = cc12*p23 + cc13*p33 + cc14*p34 + p13
+    m14 = cc12*p24 + cc13*p34 + cc14*p44 + p14
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t7 = sigma_a*sigma_a
+    _t8 = _t7*g00
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = dt*dt
+    p[0] = _t7*(g00*g00) + cc02*m02 + cc03*m03 + cc04*m04 + m00
+    p[1] = _t8*g10 + cc12*m02 + cc13*m03 + cc14*m04 + m01
+    p[2] = dt*m04 + m02
+    p[3] = _t8*dt + m03
+    p[4] = m04
+    p[5] = _t7*(g10*g10) + cc12*m12 + cc13*m13 + cc14*m14 + m11
+    p[6] = dt*m14 + m12
+    p[7] = _t7*dt*g10 + m13
+    p[8] = m14
+    p[9] = _t9*(g21*g21) + dt*m24 + m22
+    p[10] = m23
+    p[11] = _t9*dt*g21 + m24
+    p[12] = _t10*_t7 + p33
+    p[13] = p34
+    p[14] = _t10*_t9 + p44
+    s[0] = e00
+    s[1] = e01
+    s[2] = e02
+
+
+@nb.njit(cache=True)
+def calH_pose(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for pose measurements.
+    """
+    psi = s[2]
+    out = np.zeros((3, 5))
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    out[0, 0] = _cos_psi
+    out[0, 1] = _sin_psi
+    out[1, 0] = -_sin_psi
+    out[1, 1] = _cos_psi
+    out[2, 2] = 1.0
+    return out
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """Fused update with a pose measurement (2-D pose z = (x, y, θ) in SE(2) with noise stds (r_x, r_y, r_θ) in its tangent (body frame)), in place.
+    z = (z_x, z_y, z_theta), noise stds (r_x, r_y, r_theta); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -176,76 +360,246 @@ def predict(s, p, dt, sigma_a, sigma_alpha):
     p44 = p[14]
     _sin_psi = math.sin(psi)
     _cos_psi = math.cos(psi)
-    _a0 = dt*omega/2.0
+    hh00 = _cos_psi
+    hh01 = _sin_psi
+    hh10 = -_sin_psi
+    hh11 = _cos_psi
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a0 = math.atan2(-(math.sin(psi)*math.cos(z_theta)) + math.sin(z_theta)*math.cos(psi), math.sin(psi)*math.sin(z_theta) + math.cos(psi)*math.cos(z_theta))
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _a1 = dt*omega/2.0 + psi
-    _sin__a1 = math.sin(_a1)
-    _cos__a1 = math.cos(_a1)
-    _t0 = _sinc__a0*dt
-    _t1 = _sin__a1*_t0
-    _t2 = _t1*v
-    _t3 = _cos__a1*_t0
-    _t4 = (dt*dt)/2.0
-    _t5 = _t4*v
-    _t6 = _cos__a1*_t5
-    _t7 = _sin__a1*_t5
-    _t8 = _t3*v
-    f02 = -_t2
-    f03 = _t3
-    f04 = -(_dsinc__a0*_t6) - _sinc__a0*_t7
-    f12 = _t8
-    f13 = _t1
-    f14 = -(_dsinc__a0*_t7) + _sinc__a0*_t6
-    g00 = _cos_psi*_t4
-    g10 = _sin_psi*_t4
-    g21 = _t4
-    xn00 = _t8 + x
-    xn10 = _t2 + y
-    xn20 = dt*omega + psi
-    m00 = f02*p02 + f03*p03 + f04*p04 + p00
-    m01 = f02*p12 + f03*p13 + f04*p14 + p01
-    m02 = f02*p22 + f03*p23 + f04*p24 + p02
-    m03 = f02*p23 + f03*p33 + f04*p34 + p03
-    m04 = f02*p24 + f03*p34 + f04*p44 + p04
-    m11 = f12*p12 + f13*p13 + f14*p14 + p11
-    m12 = f12*p22 + f13*p23 + f14*p24 + p12
-    m13 = f12*p23 + f13*p33 + f14*p34 + p13
-    m14 = f12*p24 + f13*p34 + f14*p44 + p14
-    m22 = dt*p24 + p22
-    m23 = dt*p34 + p23
-    m24 = dt*p44 + p24
-    _t9 = sigma_a*sigma_a
-    _t10 = _t9*g00
-    _t11 = sigma_alpha*sigma_alpha
-    _t12 = dt*dt
-    p[0] = _t9*(g00*g00) + f02*m02 + f03*m03 + f04*m04 + m00
-    p[1] = _t10*g10 + f12*m02 + f13*m03 + f14*m04 + m01
-    p[2] = dt*m04 + m02
-    p[3] = _t10*dt + m03
-    p[4] = m04
-    p[5] = _t9*(g10*g10) + f12*m12 + f13*m13 + f14*m14 + m11
-    p[6] = dt*m14 + m12
-    p[7] = _t9*dt*g10 + m13
-    p[8] = m14
-    p[9] = _t11*(g21*g21) + dt*m24 + m22
-    p[10] = m23
-    p[11] = _t11*dt*g21 + m24
-    p[12] = _t12*_t9 + p33
-    p[13] = p34
-    p[14] = _t11*_t12 + p44
-    s[0] = xn00
-    s[1] = xn10
-    s[2] = xn20
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = -(_cos_psi*x) + _cos_psi*z_x - _sin_psi*y + _sin_psi*z_y
+    _t1 = -(_cos_psi*y) + _cos_psi*z_y + _sin_psi*x - _sin_psi*z_x
+    _t2 = math.atan2(_cos_psi*_sin_z_theta - _cos_z_theta*_sin_psi, _cos_psi*_cos_z_theta + _sin_psi*_sin_z_theta)
+    _t3 = _t2/2.0
+    hp00 = hh00*p00 + hh01*p01
+    hp01 = hh00*p01 + hh01*p11
+    hp02 = hh00*p02 + hh01*p12
+    hp03 = hh00*p03 + hh01*p13
+    hp04 = hh00*p04 + hh01*p14
+    hp10 = hh10*p00 + hh11*p01
+    hp11 = hh10*p01 + hh11*p11
+    hp12 = hh10*p02 + hh11*p12
+    hp13 = hh10*p03 + hh11*p13
+    hp14 = hh10*p04 + hh11*p14
+    inn00 = _halfcot__a0*_t0 + _t1*_t3
+    inn10 = _halfcot__a0*_t1 - _t0*_t3
+    inn20 = _t2
+    S00 = hh00*hp00 + hh01*hp01 + r_x*r_x
+    S01 = hh10*hp00 + hh11*hp01
+    S11 = hh10*hp10 + hh11*hp11 + r_y*r_y
+    S22 = p22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(hp12*hp12) - (S01*S01)*S22 + 2.0*S01*hp02*hp12 - S11*(hp02*hp02))
+    Si00 = rdet*(S11*S22 - hp12*hp12)
+    Si01 = rdet*(-(S01*S22) + hp02*hp12)
+    Si02 = rdet*(S01*hp12 - S11*hp02)
+    Si11 = rdet*(S00*S22 - hp02*hp02)
+    Si12 = rdet*(-(S00*hp12) + S01*hp02)
+    Si22 = rdet*(S00*S11 - S01*S01)
+    _t4 = 2.0*inn00
+    k00 = Si00*hp00 + Si01*hp10 + Si02*p02
+    k01 = Si01*hp00 + Si11*hp10 + Si12*p02
+    k02 = Si02*hp00 + Si12*hp10 + Si22*p02
+    k10 = Si00*hp01 + Si01*hp11 + Si02*p12
+    k11 = Si01*hp01 + Si11*hp11 + Si12*p12
+    k12 = Si02*hp01 + Si12*hp11 + Si22*p12
+    k20 = Si00*hp02 + Si01*hp12 + Si02*p22
+    k21 = Si01*hp02 + Si11*hp12 + Si12*p22
+    k22 = Si02*hp02 + Si12*hp12 + Si22*p22
+    k30 = Si00*hp03 + Si01*hp13 + Si02*p23
+    k31 = Si01*hp03 + Si11*hp13 + Si12*p23
+    k32 = Si02*hp03 + Si12*hp13 + Si22*p23
+    k40 = Si00*hp04 + Si01*hp14 + Si02*p24
+    k41 = Si01*hp04 + Si11*hp14 + Si12*p24
+    k42 = Si02*hp04 + Si12*hp14 + Si22*p24
+    nis = Si00*(inn00*inn00) + Si01*_t4*inn10 + Si02*_t4*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    mu00 = nk0 + x
+    mu01 = nk1 + y
+    mu02 = nk2 + psi
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
+    a00 = -(hh00*k00) - hh10*k01 + 1.0
+    a01 = -(hh01*k00) - hh11*k01
+    a02 = -k02
+    a10 = -(hh00*k10) - hh10*k11
+    a11 = -(hh01*k10) - hh11*k11 + 1.0
+    a12 = -k12
+    a20 = -(hh00*k20) - hh10*k21
+    a21 = -(hh01*k20) - hh11*k21
+    a22 = 1.0 - k22
+    a30 = -(hh00*k30) - hh10*k31
+    a31 = -(hh01*k30) - hh11*k31
+    a32 = -k32
+    a40 = -(hh00*k40) - hh10*k41
+    a41 = -(hh01*k40) - hh11*k41
+    a42 = -k42
+    b00 = a00*p00 + a01*p01 + a02*p02
+    b01 = a00*p01 + a01*p11 + a02*p12
+    b02 = a00*p02 + a01*p12 + a02*p22
+    b03 = a00*p03 + a01*p13 + a02*p23
+    b04 = a00*p04 + a01*p14 + a02*p24
+    b10 = a10*p00 + a11*p01 + a12*p02
+    b11 = a10*p01 + a11*p11 + a12*p12
+    b12 = a10*p02 + a11*p12 + a12*p22
+    b13 = a10*p03 + a11*p13 + a12*p23
+    b14 = a10*p04 + a11*p14 + a12*p24
+    b20 = a20*p00 + a21*p01 + a22*p02
+    b21 = a20*p01 + a21*p11 + a22*p12
+    b22 = a20*p02 + a21*p12 + a22*p22
+    b23 = a20*p03 + a21*p13 + a22*p23
+    b24 = a20*p04 + a21*p14 + a22*p24
+    b30 = a30*p00 + a31*p01 + a32*p02 + p03
+    b31 = a30*p01 + a31*p11 + a32*p12 + p13
+    b32 = a30*p02 + a31*p12 + a32*p22 + p23
+    b33 = a30*p03 + a31*p13 + a32*p23 + p33
+    b34 = a30*p04 + a31*p14 + a32*p24 + p34
+    b40 = a40*p00 + a41*p01 + a42*p02 + p04
+    b41 = a40*p01 + a41*p11 + a42*p12 + p14
+    b42 = a40*p02 + a41*p12 + a42*p22 + p24
+    b44 = a40*p04 + a41*p14 + a42*p24 + p44
+    _t5 = r_x*r_x
+    _t6 = r_y*r_y
+    _t7 = r_theta*r_theta
+    _t8 = _t5*k00
+    _t9 = _t6*k01
+    _t10 = _t7*k02
+    _t11 = _t5*k10
+    _t12 = _t6*k11
+    _t13 = _t7*k12
+    _t14 = _t5*k20
+    _t15 = _t6*k21
+    _t16 = _t7*k22
+    pj00 = _t5*(k00*k00) + _t6*(k01*k01) + _t7*(k02*k02) + a00*b00 + a01*b01 + a02*b02
+    pj01 = _t10*k12 + _t8*k10 + _t9*k11 + a10*b00 + a11*b01 + a12*b02
+    pj02 = _t10*k22 + _t8*k20 + _t9*k21 + a20*b00 + a21*b01 + a22*b02
+    pj03 = _t10*k32 + _t8*k30 + _t9*k31 + a30*b00 + a31*b01 + a32*b02 + b03
+    pj04 = _t10*k42 + _t8*k40 + _t9*k41 + a40*b00 + a41*b01 + a42*b02 + b04
+    pj11 = _t5*(k10*k10) + _t6*(k11*k11) + _t7*(k12*k12) + a10*b10 + a11*b11 + a12*b12
+    pj12 = _t11*k20 + _t12*k21 + _t13*k22 + a20*b10 + a21*b11 + a22*b12
+    pj13 = _t11*k30 + _t12*k31 + _t13*k32 + a30*b10 + a31*b11 + a32*b12 + b13
+    pj14 = _t11*k40 + _t12*k41 + _t13*k42 + a40*b10 + a41*b11 + a42*b12 + b14
+    pj22 = _t5*(k20*k20) + _t6*(k21*k21) + _t7*(k22*k22) + a20*b20 + a21*b21 + a22*b22
+    pj23 = _t14*k30 + _t15*k31 + _t16*k32 + a30*b20 + a31*b21 + a32*b22 + b23
+    pj24 = _t14*k40 + _t15*k41 + _t16*k42 + a40*b20 + a41*b21 + a42*b22 + b24
+    pj33 = _t5*(k30*k30) + _t6*(k31*k31) + _t7*(k32*k32) + a30*b30 + a31*b31 + a32*b32 + b33
+    pj34 = _t5*k30*k40 + _t6*k31*k41 + _t7*k32*k42 + a40*b30 + a41*b31 + a42*b32 + b34
+    pj44 = _t5*(k40*k40) + _t6*(k41*k41) + _t7*(k42*k42) + a40*b40 + a41*b41 + a42*b42 + b44
+    p[0] = pj00
+    p[1] = pj01
+    p[2] = pj02
+    p[3] = pj03
+    p[4] = pj04
+    p[5] = pj11
+    p[6] = pj12
+    p[7] = pj13
+    p[8] = pj14
+    p[9] = pj22
+    p[10] = pj23
+    p[11] = pj24
+    p[12] = pj33
+    p[13] = pj34
+    p[14] = pj44
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    return nis
+
+
+@nb.njit(cache=True)
+def measure_pose(s, m0, m1, m2):
+    """Simulated pose measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    out = np.zeros(3)
+    _sin_m2 = math.sin(m2)
+    _cos_m2 = math.cos(m2)
+    _cosc_m2 = cosc(m2, _sin_m2, _cos_m2)
+    _sinc_m2 = sinc(m2, _sin_m2, _cos_m2)
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _t0 = -(_cosc_m2*m1) + _sinc_m2*m0
+    _t1 = _cosc_m2*m0 + _sinc_m2*m1
+    out[0] = _cos_psi*_t0 - _sin_psi*_t1 + x
+    out[1] = _cos_psi*_t1 + _sin_psi*_t0 + y
+    out[2] = math.atan2(_cos_m2*_sin_psi + _cos_psi*_sin_m2, _cos_m2*_cos_psi - _sin_m2*_sin_psi)
+    return out
+
+
+@nb.njit(cache=True)
+def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with pose measurements: z (K, 3), dts (K,), x0 (5,), p0 (15,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0], q[1])
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]) or np.isnan(z[k, 2]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(15):
+                out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 3) pose measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 5)
+    physical initial states; p0 (B, 15) packed initial covariances; q (2,) process-noise stds;
+    r (3,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 5), the
+    packed covariances into out_p (B, K, 15) when out_p.shape[1] == K (pass (B, 0, 15) to skip),
+    and the NIS into out_nis (B, K).
+    """
+    for b in nb.prange(z.shape[0]):
+        run_one_pose(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_pose(X, noise, out):
+    """Simulated pose measurements z = vector(h(X)·exp(m)) of every physical state X (N, 5),
+    noise samples m (N, 3) (already scaled), into out (N, 3)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_pose(s, noise[i, 0], noise[i, 1], noise[i, 2])
+        for j in range(3):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def calH_position(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    """
+    out = np.zeros((2, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    return out
 
 
 @nb.njit(cache=True, fastmath=FASTMATH)
-def update(s, p, z_x, z_y, r):
-    """CTRV EKF Kalman update with a position measurement z = (z_x, z_y), noise std r, in place.
-    K = P H^T S^-1, S = H P H^T + r² I, x ← x + K e, P ← (I-KH)P(I-KH)^T + r² K K^T (Joseph form).
-    Returns the NIS e^T S^-1 e.
+def update_position(s, p, z_x, z_y, r):
+    """Fused update with a position measurement (2-D position z = (x, y) with isotropic noise std r (the paper's measurement)), in place.
+    z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -272,23 +626,32 @@ def update(s, p, z_x, z_y, r):
     _t0 = r*r
     S00 = _t0 + p00
     S11 = _t0 + p11
-    det = S00*S11 - p01*p01
-    _t1 = 1.0/det
-    Si00 = S11*_t1
-    Si01 = -(_t1*p01)
-    Si11 = S00*_t1
-    _t2 = Si01*p01
-    k00 = Si00*p00 + _t2
+    rdet = 1.0/(S00*S11 - p01*p01)
+    Si00 = S11*rdet
+    Si01 = -(p01*rdet)
+    Si11 = S00*rdet
+    _t1 = Si01*p01
+    k00 = Si00*p00 + _t1
     k01 = Si01*p00 + Si11*p01
     k10 = Si00*p01 + Si01*p11
-    k11 = Si11*p11 + _t2
+    k11 = Si11*p11 + _t1
     k20 = Si00*p02 + Si01*p12
     k21 = Si01*p02 + Si11*p12
     k30 = Si00*p03 + Si01*p13
     k31 = Si01*p03 + Si11*p13
     k40 = Si00*p04 + Si01*p14
     k41 = Si01*p04 + Si11*p14
-    nis = inn00*(Si00*inn00 + Si01*inn10) + inn10*(Si01*inn00 + Si11*inn10)
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    mu00 = nk0 + x
+    mu01 = nk1 + y
+    mu02 = nk2 + psi
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
     a00 = 1.0 - k00
     a01 = -k01
     a10 = -k10
@@ -321,62 +684,79 @@ def update(s, p, z_x, z_y, r):
     b40 = a40*p00 + a41*p01 + p04
     b41 = a40*p01 + a41*p11 + p14
     b44 = a40*p04 + a41*p14 + p44
-    _t3 = r*r
-    _t4 = _t3*k00
-    _t5 = _t3*k01
-    _t6 = _t3*k10
-    _t7 = _t3*k11
-    _t8 = _t3*k20
-    _t9 = _t3*k21
-    p[0] = _t3*(k00*k00) + _t3*(k01*k01) + a00*b00 + a01*b01
-    p[1] = _t4*k10 + _t5*k11 + a10*b00 + a11*b01
-    p[2] = _t4*k20 + _t5*k21 + a20*b00 + a21*b01 + b02
-    p[3] = _t4*k30 + _t5*k31 + a30*b00 + a31*b01 + b03
-    p[4] = _t4*k40 + _t5*k41 + a40*b00 + a41*b01 + b04
-    p[5] = _t3*(k10*k10) + _t3*(k11*k11) + a10*b10 + a11*b11
-    p[6] = _t6*k20 + _t7*k21 + a20*b10 + a21*b11 + b12
-    p[7] = _t6*k30 + _t7*k31 + a30*b10 + a31*b11 + b13
-    p[8] = _t6*k40 + _t7*k41 + a40*b10 + a41*b11 + b14
-    p[9] = _t3*(k20*k20) + _t3*(k21*k21) + a20*b20 + a21*b21 + b22
-    p[10] = _t8*k30 + _t9*k31 + a30*b20 + a31*b21 + b23
-    p[11] = _t8*k40 + _t9*k41 + a40*b20 + a41*b21 + b24
-    p[12] = _t3*(k30*k30) + _t3*(k31*k31) + a30*b30 + a31*b31 + b33
-    p[13] = _t3*k30*k40 + _t3*k31*k41 + a40*b30 + a41*b31 + b34
-    p[14] = _t3*(k40*k40) + _t3*(k41*k41) + a40*b40 + a41*b41 + b44
-    s[0] = inn00*k00 + inn10*k01 + x
-    s[1] = inn00*k10 + inn10*k11 + y
-    s[2] = inn00*k20 + inn10*k21 + psi
-    s[3] = inn00*k30 + inn10*k31 + v
-    s[4] = inn00*k40 + inn10*k41 + omega
+    _t2 = r*r
+    _t3 = _t2*k00
+    _t4 = _t2*k01
+    _t5 = _t2*k10
+    _t6 = _t2*k11
+    _t7 = _t2*k20
+    _t8 = _t2*k21
+    pj00 = _t2*(k00*k00) + _t2*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t3*k10 + _t4*k11 + a10*b00 + a11*b01
+    pj02 = _t3*k20 + _t4*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t3*k30 + _t4*k31 + a30*b00 + a31*b01 + b03
+    pj04 = _t3*k40 + _t4*k41 + a40*b00 + a41*b01 + b04
+    pj11 = _t2*(k10*k10) + _t2*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t5*k20 + _t6*k21 + a20*b10 + a21*b11 + b12
+    pj13 = _t5*k30 + _t6*k31 + a30*b10 + a31*b11 + b13
+    pj14 = _t5*k40 + _t6*k41 + a40*b10 + a41*b11 + b14
+    pj22 = _t2*(k20*k20) + _t2*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t7*k30 + _t8*k31 + a30*b20 + a31*b21 + b23
+    pj24 = _t7*k40 + _t8*k41 + a40*b20 + a41*b21 + b24
+    pj33 = _t2*(k30*k30) + _t2*(k31*k31) + a30*b30 + a31*b31 + b33
+    pj34 = _t2*k30*k40 + _t2*k31*k41 + a40*b30 + a41*b31 + b34
+    pj44 = _t2*(k40*k40) + _t2*(k41*k41) + a40*b40 + a41*b41 + b44
+    p[0] = pj00
+    p[1] = pj01
+    p[2] = pj02
+    p[3] = pj03
+    p[4] = pj04
+    p[5] = pj11
+    p[6] = pj12
+    p[7] = pj13
+    p[8] = pj14
+    p[9] = pj22
+    p[10] = pj23
+    p[11] = pj24
+    p[12] = pj33
+    p[13] = pj34
+    p[14] = pj44
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
     return nis
 
 
 @nb.njit(cache=True)
-def physical_into(s, out):
-    """Physical [x, y, ψ, v, ω], ψ in (-π, π]. Written into ``out`` (no allocation).
+def measure_position(s, m0, m1):
+    """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
     """
     x = s[0]
     y = s[1]
-    psi = s[2]
-    v = s[3]
-    omega = s[4]
-    out[0] = x
-    out[1] = y
-    out[2] = wrap_angle(psi)
-    out[3] = v
-    out[4] = omega
+    out = np.zeros(2)
+    out[0] = m0 + x
+    out[1] = m1 + y
+    return out
 
 
 @nb.njit(cache=True)
-def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """Filter one trajectory: z (K, 2), dts (K,), x0 (5,), p0 (15,); see run_batch."""
+def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with position measurements: z (K, 2), dts (K,), x0 (5,), p0 (15,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
         predict(s, p, dts[k], q[0], q[1])
-        out_nis[k] = update(s, p, z[k, 0], z[k, 1], r)
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(15):
@@ -384,16 +764,144 @@ def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
 
 
 @nb.njit(cache=True, parallel=True)
-def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+def run_batch_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter B trajectories in parallel (numba prange), predict then update at every step.
 
-    z (B, K, 2) positions; dts (B, K) step lengths; x0 (B, 5) physical initial states; p0 (B, 15)
-    packed initial covariances; q (2,) noise stds; r the measurement std. Writes the posterior
-    physical states into out_x (B, K, 5), the packed covariances into out_p (B, K, 15) when
-    out_p.shape[1] == K (pass shape (B, 0, 15) to skip), and the NIS into out_nis (B, K).
+    z (B, K, 2) position measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 5)
+    physical initial states; p0 (B, 15) packed initial covariances; q (2,) process-noise stds;
+    r (1,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 5), the
+    packed covariances into out_p (B, K, 15) when out_p.shape[1] == K (pass (B, 0, 15) to skip),
+    and the NIS into out_nis (B, K).
     """
     for b in nb.prange(z.shape[0]):
-        run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+        run_one_position(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_position(X, noise, out):
+    """Simulated position measurements z = vector(h(X)·exp(m)) of every physical state X (N, 5),
+    noise samples m (N, 2) (already scaled), into out (N, 2)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_position(s, noise[i, 0], noise[i, 1])
+        for j in range(2):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def covariance_is_pd(p):
+    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+    p0_0 = p[0]
+    p0_1 = p[1]
+    p0_2 = p[2]
+    p0_3 = p[3]
+    p0_4 = p[4]
+    p1_1 = p[5]
+    p1_2 = p[6]
+    p1_3 = p[7]
+    p1_4 = p[8]
+    p2_2 = p[9]
+    p2_3 = p[10]
+    p2_4 = p[11]
+    p3_3 = p[12]
+    p3_4 = p[13]
+    p4_4 = p[14]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3, p4_4)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    r3 = 1.0 / d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
+    if not d4 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True)
+def repair_pd(p):
+    """Add the smallest diagonal jitter (1e-13 · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
+    scale = 0.0
+    for i in (0, 5, 9, 12, 14):
+        scale = max(scale, abs(p[i]))
+    delta = 1e-13 * scale
+    for _ in range(60):
+        if covariance_is_pd(p):
+            return
+        for i in (0, 5, 9, 12, 14):
+            p[i] += delta
+        delta *= 4.0
+
+
+@nb.njit(cache=True)
+def propagate(s, dt, n0, n1):
+    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n, in place.
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sinc__a0*dt*v
+    _t1 = (dt*dt)/2.0
+    _t2 = _t1*n0
+    xn00 = _cos__a1*_t0 + _cos_psi*_t2 + x
+    xn01 = _sin__a1*_t0 + _sin_psi*_t2 + y
+    xn02 = _t1*n1 + dt*omega + psi
+    xn03 = dt*n0 + v
+    xn04 = dt*n1 + omega
+    s[0] = xn00
+    s[1] = xn01
+    s[2] = xn02
+    s[3] = xn03
+    s[4] = xn04
+
+
+@nb.njit(cache=True, parallel=True)
+def simulate_batch(x0, dts, noise, out_x):
+    """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
+
+    x0 (B, 5) physical initial states; dts (B, K) step lengths; noise (B, K, 2) samples of n (already
+    scaled by their stds); out_x (B, K + 1, 5) receives the physical states, out_x[:, 0] = x0.
+    """
+    B = x0.shape[0]
+    K = dts.shape[1]
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        physical_into(s, out_x[b, 0])
+        for k in range(K):
+            propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1])
+            physical_into(s, out_x[b, k + 1])
 
 
 @nb.njit(cache=True)
@@ -423,37 +931,62 @@ def world_velocities(X, out):
 def common_to_state(c):
     """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
     """
-    x = c[0]
-    y = c[1]
-    theta = c[2]
-    v_x = c[3]
-    v_y = c[4]
-    omega = c[5]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
     out = np.zeros(5)
-    out[0] = x
-    out[1] = y
-    out[2] = theta + math.atan2(v_y, v_x)
-    out[3] = math.sqrt(v_x*v_x + v_y*v_y)
-    out[4] = omega
+    out[0] = c0
+    out[1] = c1
+    out[2] = c2 + math.atan2(c4, c3)
+    out[3] = math.sqrt(c3*c3 + c4*c4)
+    out[4] = c5
     return out
 
 
 @nb.njit(cache=True)
 def common_jacobian(c):
-    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
     """
-    v_x = c[3]
-    v_y = c[4]
+    c3 = c[3]
+    c4 = c[4]
     out = np.zeros((5, 6))
-    _t0 = v_x*v_x + v_y*v_y
+    _t0 = c3*c3 + c4*c4
     _t1 = 1.0/_t0
     _t2 = 1.0/math.sqrt(_t0)
     out[0, 0] = 1.0
     out[1, 1] = 1.0
     out[2, 2] = 1.0
-    out[2, 3] = -(_t1*v_y)
-    out[2, 4] = _t1*v_x
-    out[3, 3] = _t2*v_x
-    out[3, 4] = _t2*v_y
+    out[2, 3] = -(_t1*c4)
+    out[2, 4] = _t1*c3
+    out[3, 3] = _t2*c3
+    out[3, 4] = _t2*c4
     out[4, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def tangent_error(s, c):
+    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
+    in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
+    out = np.zeros(5)
+    out[0] = c0 - x
+    out[1] = c1 - y
+    out[2] = wrap_angle(c2 - psi + math.atan2(c4, c3))
+    out[3] = -v + math.sqrt(c3*c3 + c4*c4)
+    out[4] = c5 - omega
     return out

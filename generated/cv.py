@@ -1,7 +1,7 @@
-"""CV Kalman filter: transition, noise and fused predict/update steps.
+"""Kalman filter with the constant (world-frame) velocity model: model quantities, fused predict/update steps and loops.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/steps.py (cv), from derive/models.py and derive/groups.py
+Source: derive/models/cv.py (definition) through derive/codegen/emitter.py and derive/algebra.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """
 import math
@@ -13,12 +13,101 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['transition', 'process_noise', 'predict', 'update', 'state_from_physical', 'state_to_physical', 'physical_into', 'run_one', 'run_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
-def transition(dt):
-    """CV transition F = [[I, T I], [0, I]].
+def state_from_physical(xp):
+    """Internal state [x, y, w_x, w_y] from the physical [x, y, vx, vy].
+    """
+    x = xp[0]
+    y = xp[1]
+    w_x = xp[2]
+    w_y = xp[3]
+    out = np.zeros(4)
+    out[0] = x
+    out[1] = y
+    out[2] = w_x
+    out[3] = w_y
+    return out
+
+
+@nb.njit(cache=True)
+def state_to_physical(s):
+    """Physical [x, y, vx, vy] (angles in (-π, π]) from the internal state.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    out = np.zeros(4)
+    out[0] = x
+    out[1] = y
+    out[2] = w_x
+    out[3] = w_y
+    return out
+
+
+@nb.njit(cache=True)
+def physical_into(s, out):
+    """Physical [x, y, vx, vy] from the internal state, written into ``out`` (no allocation).
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    out[0] = x
+    out[1] = y
+    out[2] = w_x
+    out[3] = w_y
+
+
+@nb.njit(cache=True)
+def group_mean(s):
+    """The mean μ as a group matrix (block-diagonal for a product group).
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    out = np.zeros((5, 5))
+    out[0, 0] = 1.0
+    out[0, 4] = x
+    out[1, 1] = 1.0
+    out[1, 4] = y
+    out[2, 2] = 1.0
+    out[2, 4] = w_x
+    out[3, 3] = 1.0
+    out[3, 4] = w_y
+    out[4, 4] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def motion_omega(s, dt):
+    """Ω(μ), the tangent increment of one step (eq:motionG).
+    """
+    w_x = s[2]
+    w_y = s[3]
+    out = np.zeros(4)
+    out[0] = dt*w_x
+    out[1] = dt*w_y
+    return out
+
+
+@nb.njit(cache=True)
+def calC(s, dt):
+    """𝒞 = ∂Ω(μ exp ε)/∂ε at ε = 0 (eq:C, eq:calCFinal).
+    """
+    out = np.zeros((4, 4))
+    out[0, 2] = dt
+    out[1, 3] = dt
+    return out
+
+
+@nb.njit(cache=True)
+def transition(s, dt):
+    """F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).
     """
     out = np.zeros((4, 4))
     out[0, 0] = 1.0
@@ -31,8 +120,8 @@ def transition(dt):
 
 
 @nb.njit(cache=True)
-def process_noise(dt, sigma_a):
-    """Q = σ_a² G G^T, G = [T²/2 I; T I] (DWNA).
+def process_noise(s, dt, sigma_a):
+    """Q = G diag(σ²) G^T: the noise n (sigma_a) of eq:motionG in the tangent.
     """
     out = np.zeros((4, 4))
     _t0 = sigma_a*sigma_a
@@ -50,9 +139,18 @@ def process_noise(dt, sigma_a):
     return out
 
 
+@nb.njit(cache=True)
+def limit_angle_variance(p):
+    """Cap the std of the angle coordinates [] of P at π by congruence scaling (see derive/codegen/emitter.py)."""
+    return
+
+
 @nb.njit(cache=True, fastmath=FASTMATH)
 def predict(s, p, dt, sigma_a):
-    """CV Kalman prediction in place: x ← F x, P ← F P F^T + Q.
+    """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
+    P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
+    s: internal state [x, y, w_x, w_y], p: packed covariance (10), dt > 0.
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -68,37 +166,53 @@ def predict(s, p, dt, sigma_a):
     p22 = p[7]
     p23 = p[8]
     p33 = p[9]
-    _t0 = dt*p23
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
     m00 = dt*p02 + p00
     m01 = dt*p12 + p01
     m02 = dt*p22 + p02
-    m03 = _t0 + p03
+    m03 = _t1 + p03
     m11 = dt*p13 + p11
-    m12 = _t0 + p12
+    m12 = _t1 + p12
     m13 = dt*p33 + p13
-    _t1 = sigma_a*sigma_a
-    _t2 = _t1*(dt*dt*dt*dt)/4.0
-    _t3 = _t1*(dt*dt*dt)/2.0
-    _t4 = _t1*(dt*dt)
-    p[0] = _t2 + dt*m02 + m00
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    p[0] = _t2*(g00*g00) + dt*m02 + m00
     p[1] = dt*m03 + m01
-    p[2] = _t3 + m02
+    p[2] = _t3*g00 + m02
     p[3] = m03
-    p[4] = _t2 + dt*m13 + m11
+    p[4] = _t2*(g11*g11) + dt*m13 + m11
     p[5] = m12
-    p[6] = _t3 + m13
+    p[6] = _t3*g11 + m13
     p[7] = _t4 + p22
     p[8] = p23
     p[9] = _t4 + p33
-    s[0] = dt*w_x + x
-    s[1] = dt*w_y + y
+    s[0] = e00
+    s[1] = e01
+
+
+@nb.njit(cache=True)
+def calH_position(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    """
+    out = np.zeros((2, 4))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    return out
 
 
 @nb.njit(cache=True, fastmath=FASTMATH)
-def update(s, p, z_x, z_y, r):
-    """CV Kalman update with a position measurement z = (z_x, z_y), noise std r, in place.
-    K = P H^T S^-1, S = H P H^T + r² I, x ← x + K e, P ← (I-KH)P(I-KH)^T + r² K K^T (Joseph form).
-    Returns the NIS e^T S^-1 e.
+def update_position(s, p, z_x, z_y, r):
+    """Fused update with a position measurement (2-D position z = (x, y) with isotropic noise std r (the paper's measurement)), in place.
+    z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -119,21 +233,28 @@ def update(s, p, z_x, z_y, r):
     _t0 = r*r
     S00 = _t0 + p00
     S11 = _t0 + p11
-    det = S00*S11 - p01*p01
-    _t1 = 1.0/det
-    Si00 = S11*_t1
-    Si01 = -(_t1*p01)
-    Si11 = S00*_t1
-    _t2 = Si01*p01
-    k00 = Si00*p00 + _t2
+    rdet = 1.0/(S00*S11 - p01*p01)
+    Si00 = S11*rdet
+    Si01 = -(p01*rdet)
+    Si11 = S00*rdet
+    _t1 = Si01*p01
+    k00 = Si00*p00 + _t1
     k01 = Si01*p00 + Si11*p01
     k10 = Si00*p01 + Si01*p11
-    k11 = Si11*p11 + _t2
+    k11 = Si11*p11 + _t1
     k20 = Si00*p02 + Si01*p12
     k21 = Si01*p02 + Si11*p12
     k30 = Si00*p03 + Si01*p13
     k31 = Si01*p03 + Si11*p13
-    nis = inn00*(Si00*inn00 + Si01*inn10) + inn10*(Si01*inn00 + Si11*inn10)
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x
+    mu01 = nk1 + y
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
     a00 = 1.0 - k00
     a01 = -k01
     a10 = -k10
@@ -157,84 +278,66 @@ def update(s, p, z_x, z_y, r):
     b30 = a30*p00 + a31*p01 + p03
     b31 = a30*p01 + a31*p11 + p13
     b33 = a30*p03 + a31*p13 + p33
-    _t3 = r*r
-    _t4 = _t3*k00
-    _t5 = _t3*k01
-    _t6 = _t3*k10
-    _t7 = _t3*k11
-    p[0] = _t3*(k00*k00) + _t3*(k01*k01) + a00*b00 + a01*b01
-    p[1] = _t4*k10 + _t5*k11 + a10*b00 + a11*b01
-    p[2] = _t4*k20 + _t5*k21 + a20*b00 + a21*b01 + b02
-    p[3] = _t4*k30 + _t5*k31 + a30*b00 + a31*b01 + b03
-    p[4] = _t3*(k10*k10) + _t3*(k11*k11) + a10*b10 + a11*b11
-    p[5] = _t6*k20 + _t7*k21 + a20*b10 + a21*b11 + b12
-    p[6] = _t6*k30 + _t7*k31 + a30*b10 + a31*b11 + b13
-    p[7] = _t3*(k20*k20) + _t3*(k21*k21) + a20*b20 + a21*b21 + b22
-    p[8] = _t3*k20*k30 + _t3*k21*k31 + a30*b20 + a31*b21 + b23
-    p[9] = _t3*(k30*k30) + _t3*(k31*k31) + a30*b30 + a31*b31 + b33
-    s[0] = inn00*k00 + inn10*k01 + x
-    s[1] = inn00*k10 + inn10*k11 + y
-    s[2] = inn00*k20 + inn10*k21 + w_x
-    s[3] = inn00*k30 + inn10*k31 + w_y
+    _t2 = r*r
+    _t3 = _t2*k00
+    _t4 = _t2*k01
+    _t5 = _t2*k10
+    _t6 = _t2*k11
+    pj00 = _t2*(k00*k00) + _t2*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t3*k10 + _t4*k11 + a10*b00 + a11*b01
+    pj02 = _t3*k20 + _t4*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t3*k30 + _t4*k31 + a30*b00 + a31*b01 + b03
+    pj11 = _t2*(k10*k10) + _t2*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t5*k20 + _t6*k21 + a20*b10 + a21*b11 + b12
+    pj13 = _t5*k30 + _t6*k31 + a30*b10 + a31*b11 + b13
+    pj22 = _t2*(k20*k20) + _t2*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t2*k20*k30 + _t2*k21*k31 + a30*b20 + a31*b21 + b23
+    pj33 = _t2*(k30*k30) + _t2*(k31*k31) + a30*b30 + a31*b31 + b33
+    p[0] = pj00
+    p[1] = pj01
+    p[2] = pj02
+    p[3] = pj03
+    p[4] = pj11
+    p[5] = pj12
+    p[6] = pj13
+    p[7] = pj22
+    p[8] = pj23
+    p[9] = pj33
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
     return nis
 
 
 @nb.njit(cache=True)
-def state_from_physical(xp):
-    """Internal state = physical [x, y, v_x, v_y].
+def measure_position(s, m0, m1):
+    """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
     """
-    x = xp[0]
-    y = xp[1]
-    w_x = xp[2]
-    w_y = xp[3]
-    out = np.zeros(4)
-    out[0] = x
-    out[1] = y
-    out[2] = w_x
-    out[3] = w_y
+    x = s[0]
+    y = s[1]
+    out = np.zeros(2)
+    out[0] = m0 + x
+    out[1] = m1 + y
     return out
 
 
 @nb.njit(cache=True)
-def state_to_physical(s):
-    """Physical state [x, y, v_x, v_y].
+def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with position measurements: z (K, 2), dts (K,), x0 (4,), p0 (10,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
     """
-    x = s[0]
-    y = s[1]
-    w_x = s[2]
-    w_y = s[3]
-    out = np.zeros(4)
-    out[0] = x
-    out[1] = y
-    out[2] = w_x
-    out[3] = w_y
-    return out
-
-
-@nb.njit(cache=True)
-def physical_into(s, out):
-    """Physical [x, y, v_x, v_y]. Written into ``out`` (no allocation).
-    """
-    x = s[0]
-    y = s[1]
-    w_x = s[2]
-    w_y = s[3]
-    out[0] = x
-    out[1] = y
-    out[2] = w_x
-    out[3] = w_y
-
-
-@nb.njit(cache=True)
-def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """Filter one trajectory: z (K, 2), dts (K,), x0 (4,), p0 (10,); see run_batch."""
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
         predict(s, p, dts[k], q[0])
-        out_nis[k] = update(s, p, z[k, 0], z[k, 1], r)
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(10):
@@ -242,16 +345,117 @@ def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
 
 
 @nb.njit(cache=True, parallel=True)
-def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+def run_batch_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter B trajectories in parallel (numba prange), predict then update at every step.
 
-    z (B, K, 2) positions; dts (B, K) step lengths; x0 (B, 4) physical initial states; p0 (B, 10)
-    packed initial covariances; q (1,) noise stds; r the measurement std. Writes the posterior
-    physical states into out_x (B, K, 4), the packed covariances into out_p (B, K, 10) when
-    out_p.shape[1] == K (pass shape (B, 0, 10) to skip), and the NIS into out_nis (B, K).
+    z (B, K, 2) position measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 4)
+    physical initial states; p0 (B, 10) packed initial covariances; q (1,) process-noise stds;
+    r (1,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 4), the
+    packed covariances into out_p (B, K, 10) when out_p.shape[1] == K (pass (B, 0, 10) to skip),
+    and the NIS into out_nis (B, K).
     """
     for b in nb.prange(z.shape[0]):
-        run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+        run_one_position(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_position(X, noise, out):
+    """Simulated position measurements z = vector(h(X)·exp(m)) of every physical state X (N, 4),
+    noise samples m (N, 2) (already scaled), into out (N, 2)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_position(s, noise[i, 0], noise[i, 1])
+        for j in range(2):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def covariance_is_pd(p):
+    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+    p0_0 = p[0]
+    p0_1 = p[1]
+    p0_2 = p[2]
+    p0_3 = p[3]
+    p1_1 = p[4]
+    p1_2 = p[5]
+    p1_3 = p[6]
+    p2_2 = p[7]
+    p2_3 = p[8]
+    p3_3 = p[9]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True)
+def repair_pd(p):
+    """Add the smallest diagonal jitter (1e-13 · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
+    scale = 0.0
+    for i in (0, 4, 7, 9):
+        scale = max(scale, abs(p[i]))
+    delta = 1e-13 * scale
+    for _ in range(60):
+        if covariance_is_pd(p):
+            return
+        for i in (0, 4, 7, 9):
+            p[i] += delta
+        delta *= 4.0
+
+
+@nb.njit(cache=True)
+def propagate(s, dt, n0, n1):
+    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n, in place.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    _t0 = (dt*dt)/2.0
+    xn00 = _t0*n0 + dt*w_x + x
+    xn01 = _t0*n1 + dt*w_y + y
+    xn02 = dt*n0 + w_x
+    xn03 = dt*n1 + w_y
+    s[0] = xn00
+    s[1] = xn01
+    s[2] = xn02
+    s[3] = xn03
+
+
+@nb.njit(cache=True, parallel=True)
+def simulate_batch(x0, dts, noise, out_x):
+    """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
+
+    x0 (B, 4) physical initial states; dts (B, K) step lengths; noise (B, K, 2) samples of n (already
+    scaled by their stds); out_x (B, K + 1, 4) receives the physical states, out_x[:, 0] = x0.
+    """
+    B = x0.shape[0]
+    K = dts.shape[1]
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        physical_into(s, out_x[b, 0])
+        for k in range(K):
+            propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1])
+            physical_into(s, out_x[b, k + 1])
 
 
 @nb.njit(cache=True)
@@ -279,37 +483,61 @@ def world_velocities(X, out):
 def common_to_state(c):
     """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
     """
-    x = c[0]
-    y = c[1]
-    theta = c[2]
-    v_x = c[3]
-    v_y = c[4]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
     out = np.zeros(4)
-    _sin_theta = math.sin(theta)
-    _cos_theta = math.cos(theta)
-    out[0] = x
-    out[1] = y
-    out[2] = _cos_theta*v_x - _sin_theta*v_y
-    out[3] = _cos_theta*v_y + _sin_theta*v_x
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    out[0] = c0
+    out[1] = c1
+    out[2] = _cos_c2*c3 - _sin_c2*c4
+    out[3] = _cos_c2*c4 + _sin_c2*c3
     return out
 
 
 @nb.njit(cache=True)
 def common_jacobian(c):
-    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
     """
-    theta = c[2]
-    v_x = c[3]
-    v_y = c[4]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
     out = np.zeros((4, 6))
-    _sin_theta = math.sin(theta)
-    _cos_theta = math.cos(theta)
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
     out[0, 0] = 1.0
     out[1, 1] = 1.0
-    out[2, 2] = -(_cos_theta*v_y) - _sin_theta*v_x
-    out[2, 3] = _cos_theta
-    out[2, 4] = -_sin_theta
-    out[3, 2] = _cos_theta*v_x - _sin_theta*v_y
-    out[3, 3] = _sin_theta
-    out[3, 4] = _cos_theta
+    out[2, 2] = -(_cos_c2*c4) - _sin_c2*c3
+    out[2, 3] = _cos_c2
+    out[2, 4] = -_sin_c2
+    out[3, 2] = _cos_c2*c3 - _sin_c2*c4
+    out[3, 3] = _sin_c2
+    out[3, 4] = _cos_c2
+    return out
+
+
+@nb.njit(cache=True)
+def tangent_error(s, c):
+    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
+    in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    out = np.zeros(4)
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    out[0] = c0 - x
+    out[1] = c1 - y
+    out[2] = _cos_c2*c3 - _sin_c2*c4 - w_x
+    out[3] = _cos_c2*c4 + _sin_c2*c3 - w_y
     return out

@@ -1,7 +1,7 @@
 """SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/steps.py (se2), from derive/models.py and derive/groups.py
+Source: derive/lie/groups.py through derive/codegen/emitter.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """
 import math

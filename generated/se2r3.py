@@ -1,7 +1,7 @@
-"""LG-EKF on SE(2)×R^3: model quantities and fused predict/update steps.
+"""LG-EKF on SE(2)xR^3 (pose + body-frame velocity vector): model quantities, fused predict/update steps and loops.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/steps.py (se2r3), from derive/models.py and derive/groups.py
+Source: derive/models/se2r3.py (definition) through derive/codegen/emitter.py and derive/algebra.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """
 import math
@@ -13,12 +13,12 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'calH', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'update', 'covariance_is_pd', 'repair_pd', 'run_one', 'run_batch', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
 def state_from_physical(xp):
-    """Internal state ['x', 'y', 'c_theta', 's_theta', 'v_x', 'v_y', 'omega'] from the physical [x, y, θ, v_x, v_y, ω].
+    """Internal state [x, y, c_theta, s_theta, v_x, v_y, omega] from the physical [x, y, theta, vx, vy, omega].
     """
     x = xp[0]
     y = xp[1]
@@ -41,7 +41,7 @@ def state_from_physical(xp):
 
 @nb.njit(cache=True)
 def state_to_physical(s):
-    """Physical [x, y, θ, v_x, v_y, ω] (θ in (-π, π]) from the internal state.
+    """Physical [x, y, theta, vx, vy, omega] (angles in (-π, π]) from the internal state.
     """
     x = s[0]
     y = s[1]
@@ -62,7 +62,7 @@ def state_to_physical(s):
 
 @nb.njit(cache=True)
 def physical_into(s, out):
-    """Physical [x, y, θ, v_x, v_y, ω] from the internal state. Written into ``out`` (no allocation).
+    """Physical [x, y, theta, vx, vy, omega] from the internal state, written into ``out`` (no allocation).
     """
     x = s[0]
     y = s[1]
@@ -81,7 +81,7 @@ def physical_into(s, out):
 
 @nb.njit(cache=True)
 def group_mean(s):
-    """The mean μ as a block-diagonal matrix: diag(T_s, T_d) (SE(2)×SE(2), 6×6) or diag(T_s, [[I, v], [0, 1]]) (SE(2)×R^3, 7×7).
+    """The mean μ as a group matrix (block-diagonal for a product group).
     """
     x = s[0]
     y = s[1]
@@ -110,7 +110,7 @@ def group_mean(s):
 
 @nb.njit(cache=True)
 def motion_omega(s, dt):
-    """Ω(μ) = [T v_x, T v_y, T ω, 0, 0, 0] (eq:motionG).
+    """Ω(μ), the tangent increment of one step (eq:motionG).
     """
     v_x = s[4]
     v_y = s[5]
@@ -130,20 +130,6 @@ def calC(s, dt):
     out[0, 3] = dt
     out[1, 4] = dt
     out[2, 5] = dt
-    return out
-
-
-@nb.njit(cache=True)
-def calH(s):
-    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model).
-    """
-    c_theta = s[2]
-    s_theta = s[3]
-    out = np.zeros((2, 6))
-    out[0, 0] = c_theta
-    out[0, 1] = -s_theta
-    out[1, 0] = s_theta
-    out[1, 1] = c_theta
     return out
 
 
@@ -186,8 +172,8 @@ def transition(s, dt):
 
 
 @nb.njit(cache=True)
-def process_noise(dt, sigma_x, sigma_y, sigma_omega):
-    """Q = G diag(σ_x², σ_y², σ_ω²) G^T, G = [T²/2 I; T I] (noise n_k of eq:motionG).
+def process_noise(s, dt, sigma_x, sigma_y, sigma_omega):
+    """Q = G diag(σ²) G^T: the noise n (sigma_x, sigma_y, sigma_omega) of eq:motionG in the tangent.
     """
     out = np.zeros((6, 6))
     _t0 = sigma_x*sigma_x
@@ -216,7 +202,7 @@ def process_noise(dt, sigma_x, sigma_y, sigma_omega):
 
 @nb.njit(cache=True)
 def limit_angle_variance(p):
-    """Cap the std of the angle coordinates [2] of P at π by congruence scaling (see derive/steps.py)."""
+    """Cap the std of the angle coordinates [2] of P at π by congruence scaling (see derive/codegen/emitter.py)."""
     if p[11] > math.pi * math.pi:
         f = math.pi / math.sqrt(p[11])
         p[2] *= f
@@ -231,8 +217,9 @@ def limit_angle_variance(p):
 def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
     P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
-    s: internal state (see module doc), p: packed covariance (21), dt > 0.
+    s: internal state [x, y, c_theta, s_theta, v_x, v_y, omega], p: packed covariance (21), dt > 0.
     Then the std of the tangent angles is capped at π (limit_angle_variance; inactive while ≤ π).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -357,15 +344,27 @@ def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     limit_angle_variance(p)
 
 
+@nb.njit(cache=True)
+def calH_pose(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for pose measurements.
+    """
+    out = np.zeros((3, 6))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    return out
+
+
 @nb.njit(cache=True, fastmath=FASTMATH)
-def update(s, p, z_x, z_y, r):
-    """Fused LG-EKF update with a position measurement z = (z_x, z_y), noise std r, in place.
-    K = P ℋ^T (ℋ P ℋ^T + r² I)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
-    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + r² K K^T] Φ(ν)^T: eq:up_P in Joseph form (equal for the
-    optimal gain, positive semidefinite by construction). Returns the NIS e^T S^-1 e.
-    Safeguards (inactive in regular steps): if a rotation angle of ν exceeds π the gain is damped,
-    K → αK with α = π/|angle| (derive.special.gain_damping); if rounding leaves P not positive
-    definite (condition numbers ≳ 1e15) a rounding-level diagonal jitter restores it (repair_pd).
+def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """Fused update with a pose measurement (2-D pose z = (x, y, θ) in SE(2) with noise stds (r_x, r_y, r_θ) in its tangent (body frame)), in place.
+    z = (z_x, z_y, z_theta), noise stds (r_x, r_y, r_theta); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
+    (derive.lie.special.gain_damping; α = 1 in every regular step).
+    If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -395,50 +394,58 @@ def update(s, p, z_x, z_y, r):
     p44 = p[18]
     p45 = p[19]
     p55 = p[20]
-    _t0 = p01*s_theta
-    _t1 = c_theta*p01
-    hp00 = -_t0 + c_theta*p00
-    hp01 = _t1 - p11*s_theta
-    hp02 = c_theta*p02 - p12*s_theta
-    hp03 = c_theta*p03 - p13*s_theta
-    hp04 = c_theta*p04 - p14*s_theta
-    hp05 = c_theta*p05 - p15*s_theta
-    hp10 = _t1 + p00*s_theta
-    hp11 = _t0 + c_theta*p11
-    hp12 = c_theta*p12 + p02*s_theta
-    hp13 = c_theta*p13 + p03*s_theta
-    hp14 = c_theta*p14 + p04*s_theta
-    hp15 = c_theta*p15 + p05*s_theta
-    inn00 = -x + z_x
-    inn10 = -y + z_y
-    _t2 = r*r
-    S00 = _t2 + c_theta*hp00 - hp01*s_theta
-    S01 = c_theta*hp01 + hp00*s_theta
-    S11 = _t2 + c_theta*hp11 + hp10*s_theta
-    det = S00*S11 - S01*S01
-    _t3 = 1.0/det
-    Si00 = S11*_t3
-    Si01 = -(S01*_t3)
-    Si11 = S00*_t3
-    k00 = Si00*hp00 + Si01*hp10
-    k01 = Si01*hp00 + Si11*hp10
-    k10 = Si00*hp01 + Si01*hp11
-    k11 = Si01*hp01 + Si11*hp11
-    k20 = Si00*hp02 + Si01*hp12
-    k21 = Si01*hp02 + Si11*hp12
-    k30 = Si00*hp03 + Si01*hp13
-    k31 = Si01*hp03 + Si11*hp13
-    k40 = Si00*hp04 + Si01*hp14
-    k41 = Si01*hp04 + Si11*hp14
-    k50 = Si00*hp05 + Si01*hp15
-    k51 = Si01*hp05 + Si11*hp15
-    nis = inn00*(Si00*inn00 + Si01*inn10) + inn10*(Si01*inn00 + Si11*inn10)
-    nk0 = inn00*k00 + inn10*k01
-    nk1 = inn00*k10 + inn10*k11
-    nk2 = inn00*k20 + inn10*k21
-    nk3 = inn00*k30 + inn10*k31
-    nk4 = inn00*k40 + inn10*k41
-    nk5 = inn00*k50 + inn10*k51
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a0 = math.atan2(c_theta*math.sin(z_theta) - s_theta*math.cos(z_theta), c_theta*math.cos(z_theta) + s_theta*math.sin(z_theta))
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = -(c_theta*x) + c_theta*z_x - s_theta*y + s_theta*z_y
+    _t1 = -(c_theta*y) + c_theta*z_y + s_theta*x - s_theta*z_x
+    _t2 = math.atan2(-(_cos_z_theta*s_theta) + _sin_z_theta*c_theta, _cos_z_theta*c_theta + _sin_z_theta*s_theta)
+    _t3 = _t2/2.0
+    inn00 = _halfcot__a0*_t0 + _t1*_t3
+    inn10 = _halfcot__a0*_t1 - _t0*_t3
+    inn20 = _t2
+    S00 = p00 + r_x*r_x
+    S11 = p11 + r_y*r_y
+    S22 = p22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(p12*p12) - S11*(p02*p02) - S22*(p01*p01) + 2.0*p01*p02*p12)
+    Si00 = rdet*(S11*S22 - p12*p12)
+    Si01 = rdet*(-(S22*p01) + p02*p12)
+    Si02 = rdet*(-(S11*p02) + p01*p12)
+    Si11 = rdet*(S00*S22 - p02*p02)
+    Si12 = rdet*(-(S00*p12) + p01*p02)
+    Si22 = rdet*(S00*S11 - p01*p01)
+    _t4 = Si01*p01
+    _t5 = Si02*p02
+    _t6 = Si12*p12
+    _t7 = 2.0*inn00
+    k00 = Si00*p00 + _t4 + _t5
+    k01 = Si01*p00 + Si11*p01 + Si12*p02
+    k02 = Si02*p00 + Si12*p01 + Si22*p02
+    k10 = Si00*p01 + Si01*p11 + Si02*p12
+    k11 = Si11*p11 + _t4 + _t6
+    k12 = Si02*p01 + Si12*p11 + Si22*p12
+    k20 = Si00*p02 + Si01*p12 + Si02*p22
+    k21 = Si01*p02 + Si11*p12 + Si12*p22
+    k22 = Si22*p22 + _t5 + _t6
+    k30 = Si00*p03 + Si01*p13 + Si02*p23
+    k31 = Si01*p03 + Si11*p13 + Si12*p23
+    k32 = Si02*p03 + Si12*p13 + Si22*p23
+    k40 = Si00*p04 + Si01*p14 + Si02*p24
+    k41 = Si01*p04 + Si11*p14 + Si12*p24
+    k42 = Si02*p04 + Si12*p14 + Si22*p24
+    k50 = Si00*p05 + Si01*p15 + Si02*p25
+    k51 = Si01*p05 + Si11*p15 + Si12*p25
+    k52 = Si02*p05 + Si12*p15 + Si22*p25
+    nis = Si00*(inn00*inn00) + Si01*_t7*inn10 + Si02*_t7*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    nk5 = inn00*k50 + inn10*k51 + inn20*k52
     alpha = gain_damping(nk2, 0.0)
     nu0 = alpha*nk0
     nu1 = alpha*nk1
@@ -452,100 +459,109 @@ def update(s, p, z_x, z_y, r):
     _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
     _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
     _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
-    _t4 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
-    _t5 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    _t8 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t9 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     phi00 = _sinc_nu2
     phi01 = _cosc_nu2
     phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
     phi10 = -_cosc_nu2
     phi11 = _sinc_nu2
     phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
-    mu00 = _t4*c_theta - _t5*s_theta + x
-    mu01 = _t4*s_theta + _t5*c_theta + y
+    mu00 = _t8*c_theta - _t9*s_theta + x
+    mu01 = _t8*s_theta + _t9*c_theta + y
     mu02 = _cos_nu2*c_theta - _sin_nu2*s_theta
     mu03 = _cos_nu2*s_theta + _sin_nu2*c_theta
     mu04 = nu3 + v_x
     mu05 = nu4 + v_y
     mu06 = nu5 + omega
-    _t6 = alpha*k01
-    _t7 = alpha*k10
-    _t8 = alpha*k11
-    _t9 = alpha*k21
-    _t10 = alpha*k31
-    _t11 = alpha*k41
-    _t12 = alpha*k51
-    a00 = -(_t6*s_theta) - alpha*c_theta*k00 + 1.0
-    a01 = -(_t6*c_theta) + alpha*k00*s_theta
-    a10 = -(_t7*c_theta) - _t8*s_theta
-    a11 = _t7*s_theta - _t8*c_theta + 1.0
-    a20 = -(_t9*s_theta) - alpha*c_theta*k20
-    a21 = -(_t9*c_theta) + alpha*k20*s_theta
-    a30 = -(_t10*s_theta) - alpha*c_theta*k30
-    a31 = -(_t10*c_theta) + alpha*k30*s_theta
-    a40 = -(_t11*s_theta) - alpha*c_theta*k40
-    a41 = -(_t11*c_theta) + alpha*k40*s_theta
-    a50 = -(_t12*s_theta) - alpha*c_theta*k50
-    a51 = -(_t12*c_theta) + alpha*k50*s_theta
-    b00 = a00*p00 + a01*p01
-    b01 = a00*p01 + a01*p11
-    b02 = a00*p02 + a01*p12
-    b03 = a00*p03 + a01*p13
-    b04 = a00*p04 + a01*p14
-    b05 = a00*p05 + a01*p15
-    b10 = a10*p00 + a11*p01
-    b11 = a10*p01 + a11*p11
-    b12 = a10*p02 + a11*p12
-    b13 = a10*p03 + a11*p13
-    b14 = a10*p04 + a11*p14
-    b15 = a10*p05 + a11*p15
-    b20 = a20*p00 + a21*p01 + p02
-    b21 = a20*p01 + a21*p11 + p12
-    b22 = a20*p02 + a21*p12 + p22
-    b23 = a20*p03 + a21*p13 + p23
-    b24 = a20*p04 + a21*p14 + p24
-    b25 = a20*p05 + a21*p15 + p25
-    b30 = a30*p00 + a31*p01 + p03
-    b31 = a30*p01 + a31*p11 + p13
-    b33 = a30*p03 + a31*p13 + p33
-    b34 = a30*p04 + a31*p14 + p34
-    b35 = a30*p05 + a31*p15 + p35
-    b40 = a40*p00 + a41*p01 + p04
-    b41 = a40*p01 + a41*p11 + p14
-    b44 = a40*p04 + a41*p14 + p44
-    b45 = a40*p05 + a41*p15 + p45
-    b50 = a50*p00 + a51*p01 + p05
-    b51 = a50*p01 + a51*p11 + p15
-    b55 = a50*p05 + a51*p15 + p55
-    _t13 = (alpha*alpha)*(r*r)
-    _t14 = _t13*k00
-    _t15 = _t13*k01
-    _t16 = _t13*k10
-    _t17 = _t13*k11
-    _t18 = _t13*k20
-    _t19 = _t13*k21
-    _t20 = _t13*k30
-    _t21 = _t13*k31
-    pj00 = _t13*(k00*k00) + _t13*(k01*k01) + a00*b00 + a01*b01
-    pj01 = _t14*k10 + _t15*k11 + a10*b00 + a11*b01
-    pj02 = _t14*k20 + _t15*k21 + a20*b00 + a21*b01 + b02
-    pj03 = _t14*k30 + _t15*k31 + a30*b00 + a31*b01 + b03
-    pj04 = _t14*k40 + _t15*k41 + a40*b00 + a41*b01 + b04
-    pj05 = _t14*k50 + _t15*k51 + a50*b00 + a51*b01 + b05
-    pj11 = _t13*(k10*k10) + _t13*(k11*k11) + a10*b10 + a11*b11
-    pj12 = _t16*k20 + _t17*k21 + a20*b10 + a21*b11 + b12
-    pj13 = _t16*k30 + _t17*k31 + a30*b10 + a31*b11 + b13
-    pj14 = _t16*k40 + _t17*k41 + a40*b10 + a41*b11 + b14
-    pj15 = _t16*k50 + _t17*k51 + a50*b10 + a51*b11 + b15
-    pj22 = _t13*(k20*k20) + _t13*(k21*k21) + a20*b20 + a21*b21 + b22
-    pj23 = _t18*k30 + _t19*k31 + a30*b20 + a31*b21 + b23
-    pj24 = _t18*k40 + _t19*k41 + a40*b20 + a41*b21 + b24
-    pj25 = _t18*k50 + _t19*k51 + a50*b20 + a51*b21 + b25
-    pj33 = _t13*(k30*k30) + _t13*(k31*k31) + a30*b30 + a31*b31 + b33
-    pj34 = _t20*k40 + _t21*k41 + a40*b30 + a41*b31 + b34
-    pj35 = _t20*k50 + _t21*k51 + a50*b30 + a51*b31 + b35
-    pj44 = _t13*(k40*k40) + _t13*(k41*k41) + a40*b40 + a41*b41 + b44
-    pj45 = _t13*k40*k50 + _t13*k41*k51 + a50*b40 + a51*b41 + b45
-    pj55 = _t13*(k50*k50) + _t13*(k51*k51) + a50*b50 + a51*b51 + b55
+    a00 = -(alpha*k00) + 1.0
+    a01 = -(alpha*k01)
+    a02 = -(alpha*k02)
+    a10 = -(alpha*k10)
+    a11 = -(alpha*k11) + 1.0
+    a12 = -(alpha*k12)
+    a20 = -(alpha*k20)
+    a21 = -(alpha*k21)
+    a22 = -(alpha*k22) + 1.0
+    a30 = -(alpha*k30)
+    a31 = -(alpha*k31)
+    a32 = -(alpha*k32)
+    a40 = -(alpha*k40)
+    a41 = -(alpha*k41)
+    a42 = -(alpha*k42)
+    a50 = -(alpha*k50)
+    a51 = -(alpha*k51)
+    a52 = -(alpha*k52)
+    b00 = a00*p00 + a01*p01 + a02*p02
+    b01 = a00*p01 + a01*p11 + a02*p12
+    b02 = a00*p02 + a01*p12 + a02*p22
+    b03 = a00*p03 + a01*p13 + a02*p23
+    b04 = a00*p04 + a01*p14 + a02*p24
+    b05 = a00*p05 + a01*p15 + a02*p25
+    b10 = a10*p00 + a11*p01 + a12*p02
+    b11 = a10*p01 + a11*p11 + a12*p12
+    b12 = a10*p02 + a11*p12 + a12*p22
+    b13 = a10*p03 + a11*p13 + a12*p23
+    b14 = a10*p04 + a11*p14 + a12*p24
+    b15 = a10*p05 + a11*p15 + a12*p25
+    b20 = a20*p00 + a21*p01 + a22*p02
+    b21 = a20*p01 + a21*p11 + a22*p12
+    b22 = a20*p02 + a21*p12 + a22*p22
+    b23 = a20*p03 + a21*p13 + a22*p23
+    b24 = a20*p04 + a21*p14 + a22*p24
+    b25 = a20*p05 + a21*p15 + a22*p25
+    b30 = a30*p00 + a31*p01 + a32*p02 + p03
+    b31 = a30*p01 + a31*p11 + a32*p12 + p13
+    b32 = a30*p02 + a31*p12 + a32*p22 + p23
+    b33 = a30*p03 + a31*p13 + a32*p23 + p33
+    b34 = a30*p04 + a31*p14 + a32*p24 + p34
+    b35 = a30*p05 + a31*p15 + a32*p25 + p35
+    b40 = a40*p00 + a41*p01 + a42*p02 + p04
+    b41 = a40*p01 + a41*p11 + a42*p12 + p14
+    b42 = a40*p02 + a41*p12 + a42*p22 + p24
+    b44 = a40*p04 + a41*p14 + a42*p24 + p44
+    b45 = a40*p05 + a41*p15 + a42*p25 + p45
+    b50 = a50*p00 + a51*p01 + a52*p02 + p05
+    b51 = a50*p01 + a51*p11 + a52*p12 + p15
+    b52 = a50*p02 + a51*p12 + a52*p22 + p25
+    b55 = a50*p05 + a51*p15 + a52*p25 + p55
+    _t10 = alpha*alpha
+    _t11 = _t10*(r_x*r_x)
+    _t12 = _t10*(r_y*r_y)
+    _t13 = _t10*(r_theta*r_theta)
+    _t14 = _t11*k00
+    _t15 = _t12*k01
+    _t16 = _t13*k02
+    _t17 = _t11*k10
+    _t18 = _t12*k11
+    _t19 = _t13*k12
+    _t20 = _t11*k20
+    _t21 = _t12*k21
+    _t22 = _t13*k22
+    _t23 = _t11*k30
+    _t24 = _t12*k31
+    _t25 = _t13*k32
+    pj00 = _t11*(k00*k00) + _t12*(k01*k01) + _t13*(k02*k02) + a00*b00 + a01*b01 + a02*b02
+    pj01 = _t14*k10 + _t15*k11 + _t16*k12 + a10*b00 + a11*b01 + a12*b02
+    pj02 = _t14*k20 + _t15*k21 + _t16*k22 + a20*b00 + a21*b01 + a22*b02
+    pj03 = _t14*k30 + _t15*k31 + _t16*k32 + a30*b00 + a31*b01 + a32*b02 + b03
+    pj04 = _t14*k40 + _t15*k41 + _t16*k42 + a40*b00 + a41*b01 + a42*b02 + b04
+    pj05 = _t14*k50 + _t15*k51 + _t16*k52 + a50*b00 + a51*b01 + a52*b02 + b05
+    pj11 = _t11*(k10*k10) + _t12*(k11*k11) + _t13*(k12*k12) + a10*b10 + a11*b11 + a12*b12
+    pj12 = _t17*k20 + _t18*k21 + _t19*k22 + a20*b10 + a21*b11 + a22*b12
+    pj13 = _t17*k30 + _t18*k31 + _t19*k32 + a30*b10 + a31*b11 + a32*b12 + b13
+    pj14 = _t17*k40 + _t18*k41 + _t19*k42 + a40*b10 + a41*b11 + a42*b12 + b14
+    pj15 = _t17*k50 + _t18*k51 + _t19*k52 + a50*b10 + a51*b11 + a52*b12 + b15
+    pj22 = _t11*(k20*k20) + _t12*(k21*k21) + _t13*(k22*k22) + a20*b20 + a21*b21 + a22*b22
+    pj23 = _t20*k30 + _t21*k31 + _t22*k32 + a30*b20 + a31*b21 + a32*b22 + b23
+    pj24 = _t20*k40 + _t21*k41 + _t22*k42 + a40*b20 + a41*b21 + a42*b22 + b24
+    pj25 = _t20*k50 + _t21*k51 + _t22*k52 + a50*b20 + a51*b21 + a52*b22 + b25
+    pj33 = _t11*(k30*k30) + _t12*(k31*k31) + _t13*(k32*k32) + a30*b30 + a31*b31 + a32*b32 + b33
+    pj34 = _t23*k40 + _t24*k41 + _t25*k42 + a40*b30 + a41*b31 + a42*b32 + b34
+    pj35 = _t23*k50 + _t24*k51 + _t25*k52 + a50*b30 + a51*b31 + a52*b32 + b35
+    pj44 = _t11*(k40*k40) + _t12*(k41*k41) + _t13*(k42*k42) + a40*b40 + a41*b41 + a42*b42 + b44
+    pj45 = _t11*k40*k50 + _t12*k41*k51 + _t13*k42*k52 + a50*b40 + a51*b41 + a52*b42 + b45
+    pj55 = _t11*(k50*k50) + _t12*(k51*k51) + _t13*(k52*k52) + a50*b50 + a51*b51 + a52*b52 + b55
     cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
     cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
     cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
@@ -592,8 +608,105 @@ def update(s, p, z_x, z_y, r):
 
 
 @nb.njit(cache=True)
-def covariance_is_pd(p):
-    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+def measure_pose(s, m0, m1, m2):
+    """Simulated pose measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    out = np.zeros(3)
+    _sin_m2 = math.sin(m2)
+    _cos_m2 = math.cos(m2)
+    _cosc_m2 = cosc(m2, _sin_m2, _cos_m2)
+    _sinc_m2 = sinc(m2, _sin_m2, _cos_m2)
+    _t0 = -(_cosc_m2*m1) + _sinc_m2*m0
+    _t1 = _cosc_m2*m0 + _sinc_m2*m1
+    out[0] = _t0*c_theta - _t1*s_theta + x
+    out[1] = _t0*s_theta + _t1*c_theta + y
+    out[2] = math.atan2(_cos_m2*s_theta + _sin_m2*c_theta, _cos_m2*c_theta - _sin_m2*s_theta)
+    return out
+
+
+@nb.njit(cache=True)
+def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with pose measurements: z (K, 3), dts (K,), x0 (6,), p0 (21,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0], q[1], q[2])
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]) or np.isnan(z[k, 2]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(21):
+                out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 3) pose measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 6)
+    physical initial states; p0 (B, 21) packed initial covariances; q (3,) process-noise stds;
+    r (3,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 6), the
+    packed covariances into out_p (B, K, 21) when out_p.shape[1] == K (pass (B, 0, 21) to skip),
+    and the NIS into out_nis (B, K).
+    """
+    for b in nb.prange(z.shape[0]):
+        run_one_pose(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_pose(X, noise, out):
+    """Simulated pose measurements z = vector(h(X)·exp(m)) of every physical state X (N, 6),
+    noise samples m (N, 3) (already scaled), into out (N, 3)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_pose(s, noise[i, 0], noise[i, 1], noise[i, 2])
+        for j in range(3):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def calH_position(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    """
+    c_theta = s[2]
+    s_theta = s[3]
+    out = np.zeros((2, 6))
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+    return out
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def update_position(s, p, z_x, z_y, r):
+    """Fused update with a position measurement (2-D position z = (x, y) with isotropic noise std r (the paper's measurement)), in place.
+    z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
+    (derive.lie.special.gain_damping; α = 1 in every regular step).
+    If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
     p00 = p[0]
     p01 = p[1]
     p02 = p[2]
@@ -615,43 +728,317 @@ def covariance_is_pd(p):
     p44 = p[18]
     p45 = p[19]
     p55 = p[20]
-    tol = 1e-13 * max(p00, p11, p22, p33, p44, p55)
-    d0 = p00
+    hh01 = -s_theta
+    _t0 = c_theta*p01
+    hp00 = c_theta*p00 + hh01*p01
+    hp01 = _t0 + hh01*p11
+    hp02 = c_theta*p02 + hh01*p12
+    hp03 = c_theta*p03 + hh01*p13
+    hp04 = c_theta*p04 + hh01*p14
+    hp05 = c_theta*p05 + hh01*p15
+    hp10 = _t0 + p00*s_theta
+    hp11 = c_theta*p11 + p01*s_theta
+    hp12 = c_theta*p12 + p02*s_theta
+    hp13 = c_theta*p13 + p03*s_theta
+    hp14 = c_theta*p14 + p04*s_theta
+    hp15 = c_theta*p15 + p05*s_theta
+    inn00 = -x + z_x
+    inn10 = -y + z_y
+    _t1 = r*r
+    S00 = _t1 + c_theta*hp00 + hh01*hp01
+    S01 = c_theta*hp01 + hp00*s_theta
+    S11 = _t1 + c_theta*hp11 + hp10*s_theta
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t2 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t3 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t2*c_theta - _t3*s_theta + x
+    mu01 = _t2*s_theta + _t3*c_theta + y
+    mu02 = _cos_nu2*c_theta - _sin_nu2*s_theta
+    mu03 = _cos_nu2*s_theta + _sin_nu2*c_theta
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    _t4 = alpha*c_theta
+    _t5 = alpha*s_theta
+    _t6 = alpha*hh01
+    a00 = -(_t4*k00) - _t5*k01 + 1.0
+    a01 = -(_t4*k01) - _t6*k00
+    a10 = -(_t4*k10) - _t5*k11
+    a11 = -(_t4*k11) - _t6*k10 + 1.0
+    a20 = -(_t4*k20) - _t5*k21
+    a21 = -(_t4*k21) - _t6*k20
+    a30 = -(_t4*k30) - _t5*k31
+    a31 = -(_t4*k31) - _t6*k30
+    a40 = -(_t4*k40) - _t5*k41
+    a41 = -(_t4*k41) - _t6*k40
+    a50 = -(_t4*k50) - _t5*k51
+    a51 = -(_t4*k51) - _t6*k50
+    b00 = a00*p00 + a01*p01
+    b01 = a00*p01 + a01*p11
+    b02 = a00*p02 + a01*p12
+    b03 = a00*p03 + a01*p13
+    b04 = a00*p04 + a01*p14
+    b05 = a00*p05 + a01*p15
+    b10 = a10*p00 + a11*p01
+    b11 = a10*p01 + a11*p11
+    b12 = a10*p02 + a11*p12
+    b13 = a10*p03 + a11*p13
+    b14 = a10*p04 + a11*p14
+    b15 = a10*p05 + a11*p15
+    b20 = a20*p00 + a21*p01 + p02
+    b21 = a20*p01 + a21*p11 + p12
+    b22 = a20*p02 + a21*p12 + p22
+    b23 = a20*p03 + a21*p13 + p23
+    b24 = a20*p04 + a21*p14 + p24
+    b25 = a20*p05 + a21*p15 + p25
+    b30 = a30*p00 + a31*p01 + p03
+    b31 = a30*p01 + a31*p11 + p13
+    b33 = a30*p03 + a31*p13 + p33
+    b34 = a30*p04 + a31*p14 + p34
+    b35 = a30*p05 + a31*p15 + p35
+    b40 = a40*p00 + a41*p01 + p04
+    b41 = a40*p01 + a41*p11 + p14
+    b44 = a40*p04 + a41*p14 + p44
+    b45 = a40*p05 + a41*p15 + p45
+    b50 = a50*p00 + a51*p01 + p05
+    b51 = a50*p01 + a51*p11 + p15
+    b55 = a50*p05 + a51*p15 + p55
+    _t7 = (alpha*alpha)*(r*r)
+    _t8 = _t7*k00
+    _t9 = _t7*k01
+    _t10 = _t7*k10
+    _t11 = _t7*k11
+    _t12 = _t7*k20
+    _t13 = _t7*k21
+    _t14 = _t7*k30
+    _t15 = _t7*k31
+    pj00 = _t7*(k00*k00) + _t7*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t8*k10 + _t9*k11 + a10*b00 + a11*b01
+    pj02 = _t8*k20 + _t9*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t8*k30 + _t9*k31 + a30*b00 + a31*b01 + b03
+    pj04 = _t8*k40 + _t9*k41 + a40*b00 + a41*b01 + b04
+    pj05 = _t8*k50 + _t9*k51 + a50*b00 + a51*b01 + b05
+    pj11 = _t7*(k10*k10) + _t7*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t10*k20 + _t11*k21 + a20*b10 + a21*b11 + b12
+    pj13 = _t10*k30 + _t11*k31 + a30*b10 + a31*b11 + b13
+    pj14 = _t10*k40 + _t11*k41 + a40*b10 + a41*b11 + b14
+    pj15 = _t10*k50 + _t11*k51 + a50*b10 + a51*b11 + b15
+    pj22 = _t7*(k20*k20) + _t7*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t12*k30 + _t13*k31 + a30*b20 + a31*b21 + b23
+    pj24 = _t12*k40 + _t13*k41 + a40*b20 + a41*b21 + b24
+    pj25 = _t12*k50 + _t13*k51 + a50*b20 + a51*b21 + b25
+    pj33 = _t7*(k30*k30) + _t7*(k31*k31) + a30*b30 + a31*b31 + b33
+    pj34 = _t14*k40 + _t15*k41 + a40*b30 + a41*b31 + b34
+    pj35 = _t14*k50 + _t15*k51 + a50*b30 + a51*b31 + b35
+    pj44 = _t7*(k40*k40) + _t7*(k41*k41) + a40*b40 + a41*b41 + b44
+    pj45 = _t7*k40*k50 + _t7*k41*k51 + a50*b40 + a51*b41 + b45
+    pj55 = _t7*(k50*k50) + _t7*(k51*k51) + a50*b50 + a51*b51 + b55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp05
+    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[7] = cp12
+    p[8] = cp13
+    p[9] = cp14
+    p[10] = cp15
+    p[11] = pj22
+    p[12] = pj23
+    p[13] = pj24
+    p[14] = pj25
+    p[15] = pj33
+    p[16] = pj34
+    p[17] = pj35
+    p[18] = pj44
+    p[19] = pj45
+    p[20] = pj55
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    s[6] = mu06
+    if not covariance_is_pd(p):
+        repair_pd(p)
+    return nis
+
+
+@nb.njit(cache=True)
+def measure_position(s, m0, m1):
+    """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
+    """
+    x = s[0]
+    y = s[1]
+    out = np.zeros(2)
+    out[0] = m0 + x
+    out[1] = m1 + y
+    return out
+
+
+@nb.njit(cache=True)
+def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with position measurements: z (K, 2), dts (K,), x0 (6,), p0 (21,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0], q[1], q[2])
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(21):
+                out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 2) position measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 6)
+    physical initial states; p0 (B, 21) packed initial covariances; q (3,) process-noise stds;
+    r (1,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 6), the
+    packed covariances into out_p (B, K, 21) when out_p.shape[1] == K (pass (B, 0, 21) to skip),
+    and the NIS into out_nis (B, K).
+    """
+    for b in nb.prange(z.shape[0]):
+        run_one_position(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_position(X, noise, out):
+    """Simulated position measurements z = vector(h(X)·exp(m)) of every physical state X (N, 6),
+    noise samples m (N, 2) (already scaled), into out (N, 2)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_position(s, noise[i, 0], noise[i, 1])
+        for j in range(2):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def covariance_is_pd(p):
+    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+    p0_0 = p[0]
+    p0_1 = p[1]
+    p0_2 = p[2]
+    p0_3 = p[3]
+    p0_4 = p[4]
+    p0_5 = p[5]
+    p1_1 = p[6]
+    p1_2 = p[7]
+    p1_3 = p[8]
+    p1_4 = p[9]
+    p1_5 = p[10]
+    p2_2 = p[11]
+    p2_3 = p[12]
+    p2_4 = p[13]
+    p2_5 = p[14]
+    p3_3 = p[15]
+    p3_4 = p[16]
+    p3_5 = p[17]
+    p4_4 = p[18]
+    p4_5 = p[19]
+    p5_5 = p[20]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3, p4_4, p5_5)
+    d0 = p0_0
     if not d0 > tol:
         return False
     r0 = 1.0 / d0
-    l10 = (p01) * r0
-    l20 = (p02) * r0
-    l30 = (p03) * r0
-    l40 = (p04) * r0
-    l50 = (p05) * r0
-    d1 = p11 - l10 * l10 * d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    l5_0 = (p0_5) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
     if not d1 > tol:
         return False
     r1 = 1.0 / d1
-    l21 = (p12 - l20 * l10 * d0) * r1
-    l31 = (p13 - l30 * l10 * d0) * r1
-    l41 = (p14 - l40 * l10 * d0) * r1
-    l51 = (p15 - l50 * l10 * d0) * r1
-    d2 = p22 - l20 * l20 * d0 - l21 * l21 * d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    l5_1 = (p1_5 - l5_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
     if not d2 > tol:
         return False
     r2 = 1.0 / d2
-    l32 = (p23 - l30 * l20 * d0 - l31 * l21 * d1) * r2
-    l42 = (p24 - l40 * l20 * d0 - l41 * l21 * d1) * r2
-    l52 = (p25 - l50 * l20 * d0 - l51 * l21 * d1) * r2
-    d3 = p33 - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    l5_2 = (p2_5 - l5_0 * l2_0 * d0 - l5_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
     if not d3 > tol:
         return False
     r3 = 1.0 / d3
-    l43 = (p34 - l40 * l30 * d0 - l41 * l31 * d1 - l42 * l32 * d2) * r3
-    l53 = (p35 - l50 * l30 * d0 - l51 * l31 * d1 - l52 * l32 * d2) * r3
-    d4 = p44 - l40 * l40 * d0 - l41 * l41 * d1 - l42 * l42 * d2 - l43 * l43 * d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    l5_3 = (p3_5 - l5_0 * l3_0 * d0 - l5_1 * l3_1 * d1 - l5_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
     if not d4 > tol:
         return False
     r4 = 1.0 / d4
-    l54 = (p45 - l50 * l40 * d0 - l51 * l41 * d1 - l52 * l42 * d2 - l53 * l43 * d3) * r4
-    d5 = p55 - l50 * l50 * d0 - l51 * l51 * d1 - l52 * l52 * d2 - l53 * l53 * d3 - l54 * l54 * d4
+    l5_4 = (p4_5 - l5_0 * l4_0 * d0 - l5_1 * l4_1 * d1 - l5_2 * l4_2 * d2 - l5_3 * l4_3 * d3) * r4
+    d5 = p5_5 - l5_0 * l5_0 * d0 - l5_1 * l5_1 * d1 - l5_2 * l5_2 * d2 - l5_3 * l5_3 * d3 - l5_4 * l5_4 * d4
     if not d5 > tol:
         return False
     return True
@@ -673,37 +1060,8 @@ def repair_pd(p):
 
 
 @nb.njit(cache=True)
-def run_one(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """Filter one trajectory: z (K, 2), dts (K,), x0 (6,), p0 (21,); see run_batch."""
-    s = state_from_physical(x0)
-    p = p0.copy()
-    K = z.shape[0]
-    keep_p = out_p.shape[0] == K
-    for k in range(K):
-        predict(s, p, dts[k], q[0], q[1], q[2])
-        out_nis[k] = update(s, p, z[k, 0], z[k, 1], r)
-        physical_into(s, out_x[k])
-        if keep_p:
-            for i in range(21):
-                out_p[k, i] = p[i]
-
-
-@nb.njit(cache=True, parallel=True)
-def run_batch(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """Filter B trajectories in parallel (numba prange), predict then update at every step.
-
-    z (B, K, 2) positions; dts (B, K) step lengths; x0 (B, 6) physical initial states; p0 (B, 21)
-    packed initial covariances; q (3,) noise stds; r the measurement std. Writes the posterior
-    physical states into out_x (B, K, 6), the packed covariances into out_p (B, K, 21) when
-    out_p.shape[1] == K (pass shape (B, 0, 21) to skip), and the NIS into out_nis (B, K).
-    """
-    for b in nb.prange(z.shape[0]):
-        run_one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
-
-
-@nb.njit(cache=True)
-def propagate(s, dt, n_x, n_y, n_omega):
-    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n = (n_x, n_y, n_ω), in place.
+def propagate(s, dt, n0, n1, n2):
+    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n, in place.
     """
     x = s[0]
     y = s[1]
@@ -712,23 +1070,23 @@ def propagate(s, dt, n_x, n_y, n_omega):
     v_x = s[4]
     v_y = s[5]
     omega = s[6]
-    _a0 = (dt*dt)*n_omega/2.0 + dt*omega
+    _a0 = (dt*dt)*n2/2.0 + dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
     _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
     _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
     _t0 = (dt*dt)/2.0
-    _t1 = _t0*n_y + dt*v_y
-    _t2 = _t0*n_x + dt*v_x
+    _t1 = _t0*n1 + dt*v_y
+    _t2 = _t0*n0 + dt*v_x
     _t3 = -(_cosc__a0*_t1) + _sinc__a0*_t2
     _t4 = _cosc__a0*_t2 + _sinc__a0*_t1
     xn00 = _t3*c_theta - _t4*s_theta + x
     xn01 = _t3*s_theta + _t4*c_theta + y
     xn02 = _cos__a0*c_theta - _sin__a0*s_theta
     xn03 = _cos__a0*s_theta + _sin__a0*c_theta
-    xn04 = dt*n_x + v_x
-    xn05 = dt*n_y + v_y
-    xn06 = dt*n_omega + omega
+    xn04 = dt*n0 + v_x
+    xn05 = dt*n1 + v_y
+    xn06 = dt*n2 + omega
     s[0] = xn00
     s[1] = xn01
     s[2] = xn02
@@ -742,9 +1100,8 @@ def propagate(s, dt, n_x, n_y, n_omega):
 def simulate_batch(x0, dts, noise, out_x):
     """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
 
-    x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of
-    n = (n_x, n_y, n_ω) (already scaled by their stds); out_x (B, K + 1, 6) receives the physical
-    states, out_x[:, 0] = x0 (for SE(2)×SE(2) ω is the log of T_d's rotation, in [-π, π]).
+    x0 (B, 6) physical initial states; dts (B, K) step lengths; noise (B, K, 3) samples of n (already
+    scaled by their stds); out_x (B, K + 1, 6) receives the physical states, out_x[:, 0] = x0.
     """
     B = x0.shape[0]
     K = dts.shape[1]
@@ -784,34 +1141,34 @@ def world_velocities(X, out):
 def common_to_state(c):
     """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
     """
-    x = c[0]
-    y = c[1]
-    theta = c[2]
-    v_x = c[3]
-    v_y = c[4]
-    omega = c[5]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
     out = np.zeros(6)
-    out[0] = x
-    out[1] = y
-    out[2] = theta
-    out[3] = v_x
-    out[4] = v_y
-    out[5] = omega
+    out[0] = c0
+    out[1] = c1
+    out[2] = c2
+    out[3] = c3
+    out[4] = c4
+    out[5] = c5
     return out
 
 
 @nb.njit(cache=True)
 def common_jacobian(c):
-    """J = ∂(filter coordinates)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
     """
-    theta = c[2]
+    c2 = c[2]
     out = np.zeros((6, 6))
-    _sin_theta = math.sin(theta)
-    _cos_theta = math.cos(theta)
-    out[0, 0] = _cos_theta
-    out[0, 1] = _sin_theta
-    out[1, 0] = -_sin_theta
-    out[1, 1] = _cos_theta
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    out[0, 0] = _cos_c2
+    out[0, 1] = _sin_c2
+    out[1, 0] = -_sin_c2
+    out[1, 1] = _cos_c2
     out[2, 2] = 1.0
     out[3, 3] = 1.0
     out[4, 4] = 1.0
@@ -821,8 +1178,8 @@ def common_jacobian(c):
 
 @nb.njit(cache=True)
 def tangent_error(s, c):
-    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true physical state c,
-    in the coordinates of P (for NEES = εᵀ P^-1 ε).
+    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
+    in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
     """
     x = s[0]
     y = s[1]
@@ -831,27 +1188,27 @@ def tangent_error(s, c):
     v_x = s[4]
     v_y = s[5]
     omega = s[6]
-    xt = c[0]
-    yt = c[1]
-    thetat = c[2]
-    vxt = c[3]
-    vyt = c[4]
-    omegat = c[5]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
     out = np.zeros(6)
-    _sin_thetat = math.sin(thetat)
-    _cos_thetat = math.cos(thetat)
-    _a0 = math.atan2(c_theta*math.sin(thetat) - s_theta*math.cos(thetat), c_theta*math.cos(thetat) + s_theta*math.sin(thetat))
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    _a0 = math.atan2(c_theta*math.sin(c2) - s_theta*math.cos(c2), c_theta*math.cos(c2) + s_theta*math.sin(c2))
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
     _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
-    _t0 = -(c_theta*x) + c_theta*xt - s_theta*y + s_theta*yt
-    _t1 = -(c_theta*y) + c_theta*yt + s_theta*x - s_theta*xt
-    _t2 = math.atan2(-(_cos_thetat*s_theta) + _sin_thetat*c_theta, _cos_thetat*c_theta + _sin_thetat*s_theta)
+    _t0 = c0*c_theta + c1*s_theta - c_theta*x - s_theta*y
+    _t1 = -(c0*s_theta) + c1*c_theta - c_theta*y + s_theta*x
+    _t2 = math.atan2(-(_cos_c2*s_theta) + _sin_c2*c_theta, _cos_c2*c_theta + _sin_c2*s_theta)
     _t3 = _t2/2.0
     out[0] = _halfcot__a0*_t0 + _t1*_t3
     out[1] = _halfcot__a0*_t1 - _t0*_t3
-    out[2] = _t2
-    out[3] = -v_x + vxt
-    out[4] = -v_y + vyt
-    out[5] = -omega + omegat
+    out[2] = wrap_angle(_t2)
+    out[3] = c3 - v_x
+    out[4] = c4 - v_y
+    out[5] = c5 - omega
     return out

@@ -1,14 +1,49 @@
 """lgekf: moving-object tracking with the extended Kalman filter on matrix Lie groups.
 
-Four trackers share one interface (``predict()``, ``update(z)``, ``x``, ``P``):
-``SE2SE2Filter`` and ``SE2R3Filter`` (LG-EKF, Ćesić, Marković, Petrović), ``CTRVFilter`` and
-``CVFilter`` (baselines). ``filter_batch`` runs any of them over many trajectories in numba.
+Every model shares one interface (``predict()``, ``update(z)``, ``x``, ``P``): ``SE2SE2Filter`` and
+``SE2R3Filter`` (the paper's LG-EKF, Ćesić, Marković, Petrović), ``SE2R2Filter`` (a unicycle on SE(2)×R²),
+``CTRVFilter`` and ``CVFilter`` (baselines), one class per model definition in ``derive/models``.
+``filter_batch`` runs any of them over many trajectories in numba; ``state_from_common`` and
+``covariance_from_common`` build a model's initial state and P0 from common coordinates.
 The runtime never imports SymPy; the symbolic source of truth is ``lgekf.derive``.
+
+The public names are imported on first use, so ``import lgekf`` is fast and ``lgekf derive`` works
+even when the generated kernels are stale.
 """
 
-from .batch import filter_batch
-from .filters import CTRVFilter, CVFilter, SE2R3Filter, SE2SE2Filter, make_filter
+from __future__ import annotations
 
-__version__ = "0.1.0"
+import importlib
 
-__all__ = ["SE2SE2Filter", "SE2R3Filter", "CTRVFilter", "CVFilter", "filter_batch", "make_filter", "__version__"]
+__version__ = "0.2.0.dev0"
+
+_PUBLIC = {
+    "filter_batch": "lgekf.core.batch",
+    "Filter": "lgekf.core.filters",
+    "make_filter": "lgekf.core.filters",
+    "state_from_common": "lgekf.core.common",
+    "covariance_from_common": "lgekf.core.common",
+    "MODELS": "lgekf.core.registry",
+    "get_model": "lgekf.core.registry",
+}
+
+
+def _filter_classes() -> list:
+    from .generated.registry import MODELS
+
+    return [f"{name.upper()}Filter" for name in MODELS]
+
+
+def __getattr__(name):
+    if name in _PUBLIC:
+        return getattr(importlib.import_module(_PUBLIC[name]), name)
+    if name.endswith("Filter") and name in _filter_classes():
+        return getattr(importlib.import_module("lgekf.core.filters"), name)
+    raise AttributeError(f"module 'lgekf' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted([*_PUBLIC, *_filter_classes(), "__version__"])
+
+
+__all__ = [*_PUBLIC, *_filter_classes(), "__version__"]

@@ -38,7 +38,7 @@ class ArgumentParser(argparse.ArgumentParser):
 
 def _cmd_derive(argv) -> int:
     # SymPy is imported only here (the runtime never needs it)
-    from .derive.build import main as derive_main
+    from .derive.codegen.build import main as derive_main
 
     return derive_main(argv)
 

@@ -56,7 +56,15 @@ def study_parser():
     ap.add_argument("--w0", type=float, default=0.0, help="initial angular velocity in rad/s (default 0)")
     ap.add_argument("--sigma-v", type=float, default=0.1, help="std of n_x, n_y (default 0.1)")
     ap.add_argument("--meas-std", type=float, default=0.5, help="measurement noise std per axis in m (default 0.5)")
-    ap.add_argument("--truth", default="se2se2", choices=["se2se2", "se2r3"], help="truth motion model (default se2se2)")
+    from .experiments.simulate import truth_models
+    from .core.registry import MEASUREMENTS, MODELS
+
+    ap.add_argument("--truth", default="se2se2", choices=list(truth_models()), help="truth motion model (default se2se2)")
+    ap.add_argument("--filters", default=",".join(MODELS), metavar="LIST",
+                    help=f"comma-separated filters to run (default: all, {','.join(MODELS)})")
+    ap.add_argument("--measure", default="position", choices=list(MEASUREMENTS),
+                    help="measurement model: position (x, y) or pose (x, y, θ) in SE(2); filters without a heading (CV) get the position part")
+    ap.add_argument("--heading-std", type=float, default=0.1, help="pose measurements: std of the heading noise in rad (default 0.1)")
     ap.add_argument(
         "--noise-scale", action="append", default=[], metavar="FILTER=K",
         help="multiply a filter's process-noise stds by K (repeatable), e.g. --noise-scale cv=10",
@@ -68,7 +76,7 @@ def study_parser():
 
 
 def config_from_args(a):
-    from .study import FILTERS, StudyConfig
+    from .experiments.study import FILTERS, StudyConfig
 
     scale = {f: 1.0 for f in FILTERS}
     for item in a.noise_scale:
@@ -81,16 +89,25 @@ def config_from_args(a):
     cfg = StudyConfig(
         dt=a.dt, steps=a.steps, trajectories=a.trajectories, sigmas=parse_sigmas(a.sigmas),
         v0=tuple(_floats("--v0", a.v0, 2)), w0=a.w0, sigma_v=a.sigma_v, meas_std=a.meas_std,
-        truth=a.truth, seed=a.seed, noise_scale=scale,
+        truth=a.truth, seed=a.seed, noise_scale=scale, filters=_filter_list(a.filters),
+        measurement=a.measure, heading_std=a.heading_std,
     )
     cfg.validate()
     return cfg
 
 
-def format_table(res) -> str:
-    from .study import FILTERS
+def _filter_list(text):
+    from .core.registry import MODELS
 
-    names = (*FILTERS, "measurements")
+    names = [v.strip() for v in str(text).split(",") if v.strip()]
+    bad = [v for v in names if v not in MODELS]
+    if bad or not names:
+        raise UsageError(f"--filters: unknown filter {bad[0] if bad else text!r}; choose from {', '.join(MODELS)}")
+    return tuple(dict.fromkeys(names))
+
+
+def format_table(res) -> str:
+    names = (*res.filters, "measurements")
     lines = ["σ_ω     " + "".join(f"{n:>16}" for n in names)]
     for i, s in enumerate(res.sigmas):
         row = "".join(f"{res.mean(n)[i]:8.3f}±{res.std(n)[i]:<7.3f}" for n in names)
@@ -100,7 +117,7 @@ def format_table(res) -> str:
 
 def cmd_study(argv) -> int:
     from . import __version__
-    from .study import claims_check, config_dict, run_study
+    from .experiments.study import claims_check, config_dict, run_study
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
@@ -128,6 +145,8 @@ def cmd_study(argv) -> int:
     meta = {
         "protocol": config_dict(cfg),
         "wrapped_trajectories_per_sigma": {f"{s:.6g}": int(k) for s, k in zip(res.sigmas, res.wrapped)},
+        "aliased_trajectories": {name: int(c.sum()) for name, c in res.aliased.items()},
+        "filter_measurements": {f: cfg.filter_measurement(f) for f in res.filters},
         "claims": [{"claim": c.text, "holds": c.holds, "evidence": c.evidence} for c in claims],
         "compute_seconds": round(res.compute_seconds, 4),
         "wall_seconds": None,
@@ -152,6 +171,13 @@ def cmd_study(argv) -> int:
         return 0
     print(format_table(res))
     print(f"\ntrajectories whose ω wrapped at ±π: {int(res.wrapped.sum())} of {res.wrapped.size * cfg.trajectories}")
+    for name, counts in res.aliased.items():
+        if counts.sum():
+            print(f"trajectories the {name} filter cannot represent (its estimate aliases): {int(counts.sum())} of {counts.size * cfg.trajectories}")
+    if cfg.measurement != "position":
+        pos_only = [f for f in res.filters if cfg.filter_measurement(f) != cfg.measurement]
+        print(f"measurements: {cfg.measurement} (heading std {cfg.heading_std} rad)"
+              + (f"; {', '.join(pos_only)} got the position part only (no heading)" if pos_only else ""))
     print("\nclaims of the paper about Fig. 4 under this protocol:")
     for c in claims:
         print(f"  [{'holds' if c.holds else 'does not hold'}] {c.text}: {c.evidence}")

@@ -47,7 +47,7 @@ from pathlib import Path
 import numpy as np
 
 from .io import DataError, read_csv, read_pedestrian
-from .registry import MODELS, get_model
+from .core.registry import MODELS, get_model
 from .cli import ArgumentParser
 from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
 

@@ -6,20 +6,15 @@ from pathlib import Path
 
 import numpy as np
 
-from .filters import SE2SE2Filter
+from .core.filters import SE2SE2Filter
+from .core.registry import MODELS
 from .generated import se2
-from .simulate import simulate
+from .experiments.simulate import simulate
 
 __all__ = ["study_figure", "banana_figure", "trajectories_figure", "COLORS", "LABELS"]
 
-COLORS = {"se2se2": "tab:blue", "se2r3": "tab:orange", "ctrv": "tab:green", "cv": "tab:red", "measurements": "black"}
-LABELS = {
-    "se2se2": "SE(2)×SE(2) LG-EKF",
-    "se2r3": "SE(2)×R³ LG-EKF",
-    "ctrv": "CTRV EKF",
-    "cv": "CV KF",
-    "measurements": "measurements",
-}
+COLORS = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "black"}
+LABELS = {**{name: spec.display_name for name, spec in MODELS.items()}, "measurements": "measurements"}
 
 
 def _plt():
@@ -48,14 +43,15 @@ def study_figure(result, path, pdf: bool = False):
     plt = _plt()
     fig, ax = plt.subplots(figsize=(7.0, 4.2))
     s = result.sigmas
-    for name in ("measurements", "cv", "ctrv", "se2r3", "se2se2"):
+    for name in ("measurements", *reversed(result.filters)):
         m, sd = result.mean(name), result.std(name)
         ax.plot(s, m, color=COLORS[name], lw=1.8 if name != "measurements" else 1.2, label=LABELS[name])
         ax.fill_between(s, m - sd, m + sd, color=COLORS[name], alpha=0.15, lw=0)
     c = result.config
     ax.set_xlabel("rotational process noise σ_ω [rad/s²]")
     ax.set_ylabel("position RMSE [m]")
-    ax.set_title(f"{c.trajectories} trajectories per σ_ω, T = {c.dt:g} s, {c.steps} steps, truth {c.truth}")
+    meas = "" if c.measurement == "position" else f", {c.measurement} measurements"
+    ax.set_title(f"{c.trajectories} trajectories per σ_ω, T = {c.dt:g} s, {c.steps} steps, truth {c.truth}{meas}")
     ax.set_xlim(s.min(), s.max() if s.max() > s.min() else s.min() + 1)
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
@@ -143,7 +139,7 @@ def banana_figure(path, pdf: bool = False, sigmas=(0.1, 0.3, 0.6, 1.0), steps: i
 
 def trajectories_figure(path, pdf: bool = False, sigmas=(0.01, 0.1, 1.0), seed: int = 3, dt: float = 0.1, steps: int = 100):
     """Fig. 3: example trajectories for small, medium and large σ_ω with SE(2)×SE(2) and CV estimates."""
-    from .batch import filter_batch
+    from .core.batch import filter_batch
 
     plt = _plt()
     rng = np.random.default_rng(seed)

@@ -39,9 +39,9 @@ import numba as nb
 import numpy as np
 
 from .cli import ArgumentParser
-from .covariance import pack, packed_diagonal
+from .core.covariance import pack, packed_diagonal
 from .io import AtomicFiles, format_rows, label_bytes, read_measurements
-from .registry import MODELS, get_model
+from .core.registry import MODELS, get_model
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",

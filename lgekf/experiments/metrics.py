@@ -1,15 +1,15 @@
 """Accuracy and consistency: position RMSE, NEES (estimation error vs P) and NIS (from the updates).
 
-NEES uses each filter's own coordinates: for the LG filters the error is ε = [log(μ⁻¹ X_true)]^∨
-(generated ``tangent_error``), for CTRV and CV the difference of the state vectors (angles wrapped).
-For a consistent filter the mean NEES is n (the state dimension) and the mean NIS is 2.
+NEES uses each filter's own coordinates: the error ε = [log(μ⁻¹ X_true)]^∨ (generated ``tangent_error``;
+for the Euclidean models the difference of the state vectors, angles wrapped). For a consistent filter
+the mean NEES is n (the state dimension) and the mean NIS is m (the measurement dimension).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from .registry import get_model
+from ..core.registry import get_model
 
 __all__ = ["position_rmse", "nees"]
 
@@ -19,10 +19,6 @@ def position_rmse(est, truth_xy) -> np.ndarray:
     est = np.asarray(est, float)
     truth_xy = np.asarray(truth_xy, float)
     return np.sqrt(np.mean(np.sum((est[..., :2] - truth_xy[..., :2]) ** 2, axis=-1), axis=-1))
-
-
-def _wrap(a):
-    return (a + np.pi) % (2 * np.pi) - np.pi
 
 
 def nees(model: str, est, cov, truth) -> np.ndarray:
@@ -37,12 +33,7 @@ def nees(model: str, est, cov, truth) -> np.ndarray:
     flat_t = truth.reshape(-1, 6)
     err = np.empty_like(flat_e)
     for i, (e, t) in enumerate(zip(flat_e, flat_t)):
-        if model in ("se2se2", "se2r3"):
-            err[i] = k.tangent_error(k.state_from_physical(e), t)
-        else:
-            err[i] = k.common_to_state(t) - e
-            if model == "ctrv":
-                err[i, 2] = _wrap(err[i, 2])
+        err[i] = k.tangent_error(k.state_from_physical(e), t)
     err = err.reshape(est.shape)
     sol = np.linalg.solve(cov, err[..., None])[..., 0]
     return np.einsum("...i,...i->...", err, sol)

@@ -11,13 +11,15 @@ from pathlib import Path
 
 import sympy as sp
 
-from .codegen import HEADER, render_module
-from .special import ANGLE_FUNCTIONS, taylor_coefficients
-from .steps import MODULES
+from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
+from ..measurements import load_measurements
+from ..models import load_models
+from .emitter import model_kernels, registry_entry, se2_kernels
+from .printer import HEADER, render_module
 
 __all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
 
-GENERATED_DIR = Path(__file__).resolve().parent.parent / "generated"
+GENERATED_DIR = Path(__file__).resolve().parent.parent.parent / "generated"
 
 PREAMBLE = '''
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
@@ -82,36 +84,86 @@ def render_special() -> str:
     return "".join(out)
 
 
-def _render_one(name: str) -> tuple[str, str]:
-    title, builder = MODULES[name]
-    kernels = builder()
-    imports = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle  # noqa: F401"]
-    src = render_module(title, f"derive/steps.py ({name}), from derive/models.py and derive/groups.py", kernels, imports, PREAMBLE)
+IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle  # noqa: F401"]
+
+
+def _fitting(model, measurements):
+    """(measurements that fit ``model``, {name: reason} of those that do not)."""
+    fit, refused = {}, {}
+    for name, meas in measurements.items():
+        why = meas.fits(model)
+        if why is None:
+            fit[name] = meas
+        else:
+            refused[name] = why
+    return fit, refused
+
+
+def _render_model(args) -> tuple[str, str]:
+    name, models_dir, meas_dir = args
+    model = load_models(models_dir)[name]
+    fit, _ = _fitting(model, load_measurements(meas_dir))
+    title = f"{model.description}: model quantities, fused predict/update steps and loops."
+    src_path = f"derive/models/{name}.py" if models_dir is None else f"{Path(models_dir).name}/{name}.py"
+    src = render_module(title, f"{src_path} (definition) through derive/codegen/emitter.py and derive/algebra.py",
+                        model_kernels(model, fit), IMPORTS, PREAMBLE)
     return f"{name}.py", src
 
 
-def render_all(jobs: int = 2) -> dict[str, str]:
-    """{file name: source} for every generated module (deterministic)."""
+def render_registry(models: dict, measurements: dict) -> str:
+    """generated/registry.py: the plain-data model table the runtime reads (no SymPy at run time)."""
+    import pprint
+
+    table = {}
+    for name, model in models.items():
+        fit, refused = _fitting(model, measurements)
+        table[name] = registry_entry(model, fit, refused)
+    meas = {
+        name: {"description": m.description, "z_names": tuple(m.z_names), "noise_names": tuple(m.noise_names),
+               "angles": tuple(m.angles), "dim": m.m}
+        for name, m in measurements.items()
+    }
+    out = [HEADER.format(title="The model table: one entry per motion-model definition, read by lgekf.core.registry.",
+                         source="derive/models/*.py, derive/measurements/*.py through derive/codegen/build.py")]
+    out.append("\n__all__ = [\"MODELS\", \"MEASUREMENTS\"]\n")
+    out.append("\nMODELS = " + pprint.pformat(table, sort_dicts=False, width=110) + "\n")
+    out.append("\nMEASUREMENTS = " + pprint.pformat(meas, sort_dicts=False, width=110) + "\n")
+    return "".join(out)
+
+
+def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
+    """{file name: source} for every generated module (deterministic).
+
+    ``models_dir`` / ``meas_dir``: folders of definitions other than the package's own (a test's toy
+    model, a user's model): rendered by the same emitter.
+    """
+    models = load_models(models_dir)
+    measurements = load_measurements(meas_dir)
     files = {"special.py": render_special()}
-    names = sorted(MODULES)
-    if jobs > 1:
+    files["se2.py"] = render_module(
+        "SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.",
+        "derive/lie/groups.py through derive/codegen/emitter.py", se2_kernels(), IMPORTS, PREAMBLE)
+    jobs_args = [(n, models_dir, meas_dir) for n in sorted(models)]
+    if jobs > 1 and len(jobs_args) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as ex:
-            for fname, src in ex.map(_render_one, names):
+            for fname, src in ex.map(_render_model, jobs_args):
                 files[fname] = src
     else:
-        for n in names:
-            fname, src = _render_one(n)
+        for a in jobs_args:
+            fname, src = _render_model(a)
             files[fname] = src
+    files["registry.py"] = render_registry(models, measurements)
     files["__init__.py"] = HEADER.format(
-        title="Numba kernels generated from derive/ (SymPy). Import the per-model modules.", source="derive/build.py"
+        title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.",
+        source="derive/codegen/build.py",
     )
     return dict(sorted(files.items()))
 
 
-def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2) -> list[str]:
+def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2, models_dir=None, meas_dir=None) -> list[str]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    files = render_all(jobs)
+    files = render_all(jobs, models_dir, meas_dir)
     for name, src in files.items():
         (outdir / name).write_text(src, encoding="utf-8")
     return list(files)

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
-from .special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
+from ..lie.special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
 
 __all__ = ["Kernel", "Printer", "render_kernel", "render_module", "HEADER"]
 
@@ -37,7 +37,7 @@ Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 class Printer:
     """A deliberately small printer: Add, Mul, Pow, numbers, symbols, a few math functions."""
 
-    FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.atan2: "math.atan2", sp.Abs: "abs"}
+    FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.atan2: "math.atan2", sp.Abs: "abs", sp.Max: "max"}
 
     def __init__(self, names: dict[sp.Symbol, str] | None = None):
         self.names = names or {}
@@ -200,25 +200,36 @@ def render_kernel(k: Kernel) -> str:
     tmp = sp.numbered_symbols("_t")
     angle_count = [0]
 
+    # angles already evaluated in an earlier stage: arg -> (base, arg code, {emitted names}); a later
+    # stage reuses their sin/cos/angle-function values instead of calling math.sin again
+    seen_angles: dict = {}
+
     def emit_stage(defs, is_output):
         exprs = [e for _, e in defs]
         repl = {}
         for arg, atoms in _angle_atoms(exprs):
-            if isinstance(arg, sp.Symbol):
-                base = _safe(arg.name)
-                arg_code = pr(arg)
+            if arg in seen_angles:
+                base, arg_code, done = seen_angles[arg]
             else:
-                base = f"_a{angle_count[0]}"
-                angle_count[0] += 1
-                body.append(f"{base} = {pr(arg)}")
-                arg_code = base
+                if isinstance(arg, sp.Symbol):
+                    base = _safe(arg.name)
+                    arg_code = pr(arg)
+                else:
+                    base = f"_a{angle_count[0]}"
+                    angle_count[0] += 1
+                    body.append(f"{base} = {pr(arg)}")
+                    arg_code = base
+                done = set()
+                seen_angles[arg] = (base, arg_code, done)
             s_sym, c_sym = sp.Symbol(f"_sin_{base}"), sp.Symbol(f"_cos_{base}")
             need_sc = any(isinstance(a, AngleFunction) for a in atoms)
             kinds = {type(a) for a in atoms}
-            if need_sc or sp.sin in kinds:
+            if (need_sc or sp.sin in kinds) and "sin" not in done:
                 body.append(f"{s_sym.name} = math.sin({arg_code})")
-            if need_sc or sp.cos in kinds:
+                done.add("sin")
+            if (need_sc or sp.cos in kinds) and "cos" not in done:
                 body.append(f"{c_sym.name} = math.cos({arg_code})")
+                done.add("cos")
             for atom in sorted(atoms, key=_sort_key):
                 if isinstance(atom, sp.sin):
                     repl[atom] = s_sym
@@ -227,7 +238,9 @@ def render_kernel(k: Kernel) -> str:
                 else:
                     fname = type(atom).__name__
                     fs = sp.Symbol(f"_{fname}_{base}")
-                    body.append(f"{fs.name} = {fname}({arg_code}, {s_sym.name}, {c_sym.name})")
+                    if fname not in done:
+                        body.append(f"{fs.name} = {fname}({arg_code}, {s_sym.name}, {c_sym.name})")
+                        done.add(fname)
                     repl[atom] = fs
         exprs = [e.xreplace(repl) for e in exprs]
         reps, reduced = sp.cse(exprs, symbols=tmp, order="canonical")

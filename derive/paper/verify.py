@@ -20,8 +20,8 @@ import time
 
 import sympy as sp
 
-from .paper import PRINTED, PrintedEquation
-from .special import to_exact
+from .transcription import PRINTED, PrintedEquation
+from ..lie.special import to_exact
 
 __all__ = ["KNOWN_ERRATA", "ERRATA_TABLE", "run_verify", "compare", "errata_table_markdown", "main"]
 

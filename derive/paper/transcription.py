@@ -34,9 +34,10 @@ from typing import Any, Callable
 
 import sympy as sp
 
-from .groups import SE2, Product, Rn
-from .special import to_exact
-from .models import EPS, SE2SE2, dt, dwna_G, omega, theta, vx, vy, x, y
+from ..lie.groups import SE2, Product, Rn
+from ..lie.special import to_exact
+from ..models.base import dt, dwna_G, omega, theta, vx, vy, x, y
+from ..models.se2se2 import EPS, SE2SE2
 
 __all__ = [
     "PrintedEquation",

@@ -1,4 +1,4 @@
-"""The paper's Monte Carlo study (Fig. 4): four filters on simulated SE(2)×SE(2) trajectories.
+"""The paper's Monte Carlo study (Fig. 4): every registry filter (or a chosen set) on simulated trajectories.
 
 Protocol (defaults; every value is an option and is written to meta.json):
 
@@ -10,9 +10,14 @@ Protocol (defaults; every value is an option and is written to meta.json):
   is shared by every σ_ω and every filter; the initial estimate is truth + δ,
   δ ~ N(0, diag(0.5², 0.5², 0.1², 0.5², 0.5², 0.1²)) in (x, y, θ, v_x, v_y, ω); each filter starts
   from its own coordinates of that estimate with P0 = J P0_phys Jᵀ (J evaluated at the estimate);
-* matched process noise: LG filters (0.1, 0.1, σ_ω); CTRV (0.1, σ_ω); CV 0.1; each optionally
-  multiplied by a per-filter scale (``noise_scale``).  For σ_ω = 0 the filters still get σ_ω = 0
-  (a valid, if overconfident, model);
+* matched process noise (each definition's ``matched_noise``): LG filters (0.1, 0.1, σ_ω); SE(2)×R² and
+  CTRV (0.1, σ_ω); CV 0.1; each optionally multiplied by a per-filter scale (``noise_scale``).  For
+  σ_ω = 0 the filters still get σ_ω = 0 (a valid, if overconfident, model);
+* measurements: ``position`` (z = (x, y) + N(0, 0.5² I)) or ``pose`` (Z = h(X)·exp(m), m ~
+  N(0, diag(0.5², 0.5², heading_std²)) in the tangent of SE(2)); with ``pose`` every filter that has a
+  heading gets the pose, the others (CV) its position part;
+* a filter that cannot represent the truth (SE(2)×SE(2) beyond |ω| = π, e.g. with the SE(2)×R³ truth and
+  a large w0) starts from the wrapped estimate and aliases; ``StudyResult.aliased`` counts those trajectories;
 * metric: per-trajectory position RMSE of the posterior over the 100 steps; per σ_ω the mean and std
   over trajectories, for the four filters and the raw measurements.
 """
@@ -26,14 +31,16 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from .batch import filter_batch
+from ..core.batch import filter_batch
+from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
-from .registry import MODELS
-from .simulate import simulate
+from ..core.registry import MODELS, get_model
+from .simulate import measurement_noise, simulate, truth_models
 
-__all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS"]
+__all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
 
-FILTERS = ("se2se2", "se2r3", "ctrv", "cv")
+FILTERS = tuple(MODELS)  # every registry model, the default filter set
+PAPER_FILTERS = ("se2se2", "se2r3", "ctrv", "cv")  # the filters of the paper's Fig. 4 (its claims name them)
 
 
 @dataclass
@@ -50,6 +57,9 @@ class StudyConfig:
     truth: str = "se2se2"
     seed: int = 2016
     noise_scale: dict = field(default_factory=lambda: {f: 1.0 for f in FILTERS})
+    filters: tuple = FILTERS
+    measurement: str = "position"
+    heading_std: float = 0.1
 
     def validate(self) -> None:
         if not (self.dt > 0 and math.isfinite(self.dt)):
@@ -58,12 +68,12 @@ class StudyConfig:
             raise ValueError(f"v0: expected two finite numbers (body velocity v_x, v_y in m/s), got {list(self.v0)}")
         if not math.isfinite(self.w0):
             raise ValueError(f"w0: must be a finite number, got {self.w0}")
-        # SE(2)xSE(2) represents only |ω| ≤ π (ω is the angle of T_d); keep the initial estimate inside too
-        if abs(self.w0) + 5 * self.init_std[5] > math.pi:
-            raise ValueError(
-                f"w0: |w0| + 5·(initial ω std) must stay below π = 3.1416 rad/s, the largest turn rate SE(2)xSE(2) can "
-                f"represent (ω is the angle of T_d); got w0 = {self.w0}"
-            )
+        if self.truth not in truth_models():
+            raise ValueError(f"truth: unknown truth model {self.truth!r}; choose one of {', '.join(truth_models())}")
+        truth = get_model(self.truth)
+        for i, bound in truth.bounds.items():
+            if abs((0.0, 0.0, 0.0, *self.v0, self.w0)[int(i)]) > bound:
+                raise ValueError(f"w0: not representable by the {self.truth} truth ({truth.bound_reason}); got w0 = {self.w0}")
         if self.seed < 0:
             raise ValueError(f"seed: must be a non-negative integer, got {self.seed}")
         if self.steps < 1:
@@ -78,8 +88,14 @@ class StudyConfig:
             raise ValueError(f"sigma_v: must be a non-negative number, got {self.sigma_v}")
         if any(s < 0 for s in self.init_std):
             raise ValueError("init_std: stds must be non-negative")
-        if self.truth not in ("se2se2", "se2r3"):
-            raise ValueError(f"truth: unknown truth model {self.truth!r}; choose se2se2 or se2r3")
+        if not self.filters:
+            raise ValueError("filters: choose at least one filter")
+        for f in self.filters:
+            get_model(f)
+        if self.measurement != "position":
+            get_model(self.truth).measurement(self.measurement)
+            if not (self.heading_std > 0 and math.isfinite(self.heading_std)):
+                raise ValueError(f"heading_std: must be a positive number, got {self.heading_std}")
         for k, v in self.noise_scale.items():
             if k not in FILTERS:
                 raise ValueError(f"noise scale: unknown filter {k!r}; choose one of {', '.join(FILTERS)}")
@@ -87,13 +103,16 @@ class StudyConfig:
                 raise ValueError(f"noise scale for {k}: must be positive, got {v}")
 
     def filter_noise(self, name: str, sigma_w: float):
-        """The matched process-noise stds of filter ``name`` at rotational noise σ_ω."""
+        """The matched process-noise stds of filter ``name`` at rotational noise σ_ω (times its scale)."""
         s = self.noise_scale.get(name, 1.0)
-        if name in ("se2se2", "se2r3"):
-            return (s * self.sigma_v, s * self.sigma_v, s * sigma_w)
-        if name == "ctrv":
-            return (s * self.sigma_v, s * sigma_w)
-        return (s * self.sigma_v,)
+        return tuple(s * v for v in get_model(name).matched_accel_std(self.sigma_v, sigma_w))
+
+    def filter_measurement(self, name: str) -> str:
+        """The measurement a filter gets: the study's, or position where the filter cannot take it (CV, pose)."""
+        return self.measurement if self.measurement in get_model(name).measurements else "position"
+
+    def meas_noise(self, measurement: str):
+        return measurement_noise(measurement, self.meas_std, self.heading_std)
 
 
 @dataclass
@@ -103,11 +122,16 @@ class StudyResult:
     rmse: dict  # name -> (S, B) position RMSE per trajectory ("measurements" included)
     wrapped: np.ndarray  # (S,) number of trajectories whose ω wrapped
     compute_seconds: float
+    aliased: dict = field(default_factory=dict)  # filter -> (S,) trajectories whose truth it cannot represent
+
+    @property
+    def filters(self) -> tuple:
+        return tuple(self.config.filters)
 
     def summary_rows(self):
         rows = []
         for i, s in enumerate(self.sigmas):
-            for name in (*FILTERS, "measurements"):
+            for name in (*self.filters, "measurements"):
                 r = self.rmse[name][i]
                 rows.append((float(s), name, float(r.mean()), float(r.std(ddof=1)), int(r.size)))
         return rows
@@ -133,45 +157,59 @@ def run_study(cfg: StudyConfig, progress: bool = False) -> StudyResult:
     cfg.validate()
     rng = np.random.default_rng(cfg.seed)
     B, K = cfg.trajectories, cfg.steps
+    truth = get_model(cfg.truth)
     # common random numbers, shared by every σ_ω and every filter
     u_proc = rng.standard_normal((B, K, 3))
     u_meas = rng.standard_normal((B, K, 2))
     u_init = rng.standard_normal((B, 6))
+    if cfg.measurement != "position":  # extra draws after the default ones: position studies are unchanged
+        u_meas = np.concatenate([u_meas, rng.standard_normal((B, K, get_model(cfg.truth).measurement(cfg.measurement).dim - 2))], axis=-1)
+    if len(truth.noise_inputs) > 3:
+        u_proc = np.concatenate([u_proc, rng.standard_normal((B, K, len(truth.noise_inputs) - 3))], axis=-1)
     truth0 = np.tile([0.0, 0.0, 0.0, cfg.v0[0], cfg.v0[1], cfg.w0], (B, 1))
     est0 = truth0 + u_init * np.asarray(cfg.init_std)
     P0_phys = np.diag(np.square(cfg.init_std))
     # each filter's initial state and covariance in its own coordinates
     inits = {}
-    for name in FILTERS:
-        k = MODELS[name].kernels
-        x0 = np.array([k.common_to_state(e) for e in est0])
-        P0 = np.array([J @ P0_phys @ J.T for J in (k.common_jacobian(e) for e in est0)])
-        P0 = 0.5 * (P0 + np.swapaxes(P0, 1, 2))
+    for name in cfg.filters:
+        spec = get_model(name)
+        e0 = est0.copy()
+        for i, bound in spec.bounds.items():  # a filter that cannot represent the estimate starts wrapped
+            e0[:, int(i)] = (e0[:, int(i)] + bound) % (2 * bound) - bound
+        x0 = state_from_common(name, e0)
+        P0 = covariance_from_common(name, e0, P0_phys)
         # a zero init std makes P0 singular: keep it positive definite with a tiny floor
         P0 += 1e-12 * np.eye(P0.shape[-1])
         inits[name] = (x0, P0)
 
     sigmas = np.asarray(cfg.sigmas, dtype=float)
     S = len(sigmas)
-    rmse = {name: np.empty((S, B)) for name in (*FILTERS, "measurements")}
+    rmse = {name: np.empty((S, B)) for name in (*cfg.filters, "measurements")}
     wrapped = np.zeros(S, dtype=int)
+    aliased = {name: np.zeros(S, dtype=int) for name in cfg.filters if get_model(name).bounds}
     t0 = time.perf_counter()
     for i, sw in enumerate(sigmas):
         sim = simulate(
-            truth0, dt=cfg.dt, steps=K, sigma_v=cfg.sigma_v, sigma_w=sw, meas_std=cfg.meas_std,
-            truth=cfg.truth, std_normal_process=u_proc, std_normal_meas=u_meas,
+            truth0, dt=cfg.dt, steps=K, sigma_v=cfg.sigma_v, sigma_w=sw, meas_std=cfg.meas_noise(cfg.measurement),
+            truth=cfg.truth, measurement=cfg.measurement, std_normal_process=u_proc, std_normal_meas=u_meas,
         )
         pos = sim.truth[:, 1:, :2]
         wrapped[i] = int(sim.wrapped.sum())
         rmse["measurements"][i] = position_rmse(sim.z, pos)
-        for name in FILTERS:
+        for name in aliased:
+            b = get_model(name).bounds
+            aliased[name][i] = int(np.any([np.abs(sim.truth[:, :, int(j)]) > v for j, v in b.items()], axis=(0, 2)).sum())
+        for name in cfg.filters:
             x0, P0 = inits[name]
+            meas = cfg.filter_measurement(name)
+            z = sim.z if meas == cfg.measurement else np.ascontiguousarray(sim.z[..., :2])
             est = filter_batch(
-                name, sim.z, dt=cfg.dt, accel_std=cfg.filter_noise(name, sw), meas_std=cfg.meas_std, x0=x0, P0=P0
+                name, z, dt=cfg.dt, accel_std=cfg.filter_noise(name, sw), meas_std=cfg.meas_noise(meas), x0=x0, P0=P0,
+                measurement=meas,
             )
             rmse[name][i] = position_rmse(est, pos)
         _progress(i, S, progress)
-    return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0)
+    return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0, aliased)
 
 
 # ------------------------------------------------------------------------------------ claims
@@ -196,6 +234,8 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     Thresholds: "close" = within ``close_tol`` (5 %) relative; "small σ_ω" = the lowest sixth of the
     σ_ω range, "large σ_ω" = the highest sixth.
     """
+    if not set(PAPER_FILTERS) <= set(res.filters):
+        return []  # the claims compare the paper's four filters
     s = res.sigmas
     m = {k: res.mean(k) for k in res.rmse}
     lg_best = np.minimum(m["se2se2"], m["se2r3"])
@@ -245,7 +285,7 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
         bool(S > 1 and ctrv_hi < ctrv_lo),
         f"CTRV gap to best LG: {ctrv_lo:+.1%} (small σ_ω) -> {ctrv_hi:+.1%} (large σ_ω)",
     ))
-    worst = np.max(np.vstack([m[f] for f in FILTERS]), axis=0)
+    worst = np.max(np.vstack([m[f] for f in PAPER_FILTERS]), axis=0)
     ratio = worst / m["measurements"]
     out.append(Claim(
         "every filter beats the raw measurements at every σ_ω",
@@ -259,4 +299,5 @@ def config_dict(cfg: StudyConfig) -> dict:
     d = asdict(cfg)
     d["v0"] = list(cfg.v0)
     d["init_std"] = list(cfg.init_std)
+    d["filters"] = list(cfg.filters)
     return d

@@ -40,6 +40,11 @@ class SE2:
     dim = 3
     matrix_size = 3
 
+    @staticmethod
+    def periodic_coordinates():
+        """Tangent coordinates in which exp is periodic (the rotation angle θ)."""
+        return (2,)
+
     # --- definitions (paper, Section "The SE(2) group") -----------------------------------
     @staticmethod
     def hat(xi) -> sp.Matrix:
@@ -169,6 +174,10 @@ class Rn:
         self.dim = n
         self.matrix_size = n + 1
 
+    def periodic_coordinates(self):
+        """None: exp is injective on Rⁿ."""
+        return ()
+
     def hat(self, v) -> sp.Matrix:
         n = self.dim
         M = sp.zeros(n + 1, n + 1)
@@ -217,6 +226,18 @@ class Product:
     def __init__(self, *factors):
         self.factors = [(_SE2Instance() if f is SE2 else f) for f in factors]
         self.dim = sum(f.dim for f in self.factors)
+
+    @property
+    def matrix_size(self):
+        return sum(f.matrix_size for f in self.factors)
+
+    def periodic_coordinates(self):
+        """The periodic tangent coordinates of every factor, offset to their place in the product."""
+        out, i = [], 0
+        for f in self.factors:
+            out.extend(i + k for k in f.periodic_coordinates())
+            i += f.dim
+        return tuple(out)
 
     def _split(self, xi):
         out, i = [], 0

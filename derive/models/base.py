@@ -1,0 +1,279 @@
+"""The definition type of a motion model: everything the emitter and the runtime know about a model.
+
+A motion model is one file ``derive/models/<name>.py`` holding one subclass of :class:`MotionModel`
+and ``MODEL = <Subclass>()``.  The subclass *declares* (class attributes and a few small methods);
+this base class *derives* everything else (Ω, Ω(μ·exp ε), 𝒞, F, Q, ℋ for each measurement, the
+exact motion, the Jacobian of the common coordinates) with no knowledge of any particular model.
+
+Conventions (every model)
+-------------------------
+* The state is X ∈ G, a matrix Lie group (SE(2), Rⁿ or a direct product, ``derive.lie.groups``).
+  Perturbations act on the right, X = μ·exp(ε^∧); P is the covariance of ε.
+* The tangent coordinates ε are ordered like the physical state (``physical``), e.g.
+  (x, y, θ, v_x, v_y, ω) for the paper's LG models; for a model on Rⁿ (the Euclidean CTRV, CV) ε is
+  simply the error of the physical state, so the LG-EKF *is* the EKF there.
+* Motion (eq:model): X_{k+1} = X_k·exp([Ω(X_k) + G n_k]^∧), n_k ~ N(0, diag(σ²)), σ the model's noise
+  parameters (``noise_names``, the user's ``accel_std``).  A Euclidean model x' = f(x) + G n has
+  Ω(x) = f(x) − x.
+* The internal state (``internal``) is the storage the kernels read and write in place; it may carry
+  (cos, sin) of angles (``carried``) so that a step needs few sincos.
+* The common physical coordinates c = (x, y, θ, v_x, v_y, ω) (body-frame velocity) are how models are
+  initialised alike and compared (``from_common``).
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import sympy as sp
+
+from ..lie.groups import SE2, Product, Rn
+from ..lie.limits import jacobian_at_zero
+from ..lie.special import to_exact
+
+__all__ = [
+    "MotionModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
+    "dwna_G", "rotation", "angle_of", "SE2", "Rn", "Product",
+]
+
+x, y, theta = sp.symbols("x y theta", real=True)
+vx, vy, omega = sp.symbols("v_x v_y omega", real=True)
+dt = sp.Symbol("dt", positive=True)
+#: the common physical coordinates c (body-frame velocity), shared by every model
+COMMON = (x, y, theta, vx, vy, omega)
+COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
+
+
+def dwna_G(n: int, T=dt) -> sp.Matrix:
+    """G = [T²/2 I_n; T I_n]: the discrete white-noise acceleration input matrix."""
+    return sp.Matrix.vstack(T**2 / 2 * sp.eye(n), T * sp.eye(n))
+
+
+def rotation(a) -> sp.Matrix:
+    """R(a) = [[cos a, −sin a], [sin a, cos a]]."""
+    return sp.Matrix([[sp.cos(a), -sp.sin(a)], [sp.sin(a), sp.cos(a)]])
+
+
+def angle_of(R: sp.Matrix):
+    """The angle a of a rotation matrix R = [[cos a, −sin a], [sin a, cos a]] (trigsimp'd)."""
+    c, s = sp.trigsimp(R[0, 0]), sp.trigsimp(R[1, 0])
+    if isinstance(c, sp.cos) and isinstance(s, sp.sin) and c.args == s.args:
+        return c.args[0]
+    return sp.atan2(s, c)
+
+
+class MotionModel:
+    """A motion model on a matrix Lie group, declared by a subclass (see the module docstring).
+
+    Declared by every definition
+    ----------------------------
+    display_name, description, color : how the model is shown (tables, figures)
+    group : the Lie group G
+    physical : the physical state symbols, also the order of the tangent coordinates and of P
+    internal : the internal state symbols (the kernels' storage layout)
+    noise_names : names of the process-noise stds (``accel_std``)
+    default_accel_std : defaults for tracking real data (``lgekf track``)
+    matched_noise : for each noise std, "v" or "w": the simulated truth's σ_v or σ_ω it matches
+        (the paper's Monte Carlo study gives every filter its matched noise)
+    angles : physical coordinates that are angles (wrapped to (−π, π] on output and in differences)
+    carried : (angle, cos symbol, sin symbol) carried in the internal state
+    bounds : {physical index: largest representable |value|}, with ``bound_reason``
+    mean(), internal_of(X), internal_from_physical(), physical_from_internal(), Omega_of(X),
+    noise_input(), position(X), heading(X), from_common(), world_velocity()
+    """
+
+    name: str = ""  # the definition file's stem, set by the loader
+    display_name: str = ""
+    description: str = ""
+    color: str = "C7"
+    group = None
+    physical: tuple = ()
+    internal: tuple = ()
+    noise_names: tuple = ()
+    default_accel_std: tuple = ()
+    matched_noise: tuple = ()
+    angles: tuple = ()
+    carried: tuple = ()
+    bounds: dict = {}
+    bound_reason: str = ""
+    names: tuple = ()
+
+    # ------------------------------------------------------------------ declared (abstract)
+    def mean(self) -> sp.Matrix:  # pragma: no cover - abstract
+        """μ as a group matrix, written in the physical symbols (cos/sin of carried angles allowed)."""
+        raise NotImplementedError
+
+    def internal_of(self, X: sp.Matrix) -> list:  # pragma: no cover - abstract
+        """The internal state read off a group matrix X."""
+        raise NotImplementedError
+
+    def internal_from_physical(self) -> list:  # pragma: no cover - abstract
+        """The internal state from the physical symbols."""
+        raise NotImplementedError
+
+    def physical_from_internal(self) -> list:  # pragma: no cover - abstract
+        """The physical state from the internal symbols (angles wrapped)."""
+        raise NotImplementedError
+
+    def Omega_of(self, X: sp.Matrix) -> sp.Matrix:  # pragma: no cover - abstract
+        """Ω(X), the tangent increment of one step of length ``dt`` (eq:motionG)."""
+        raise NotImplementedError
+
+    def noise_input(self) -> sp.Matrix:  # pragma: no cover - abstract
+        """G: how the noise n (one entry per noise std) enters the tangent increment, X exp(Ω + G n)."""
+        raise NotImplementedError
+
+    def noise_stds(self) -> list:
+        """The std of each entry of n (default: one noise std per entry, in order)."""
+        return list(self.noise_symbols)
+
+    def position(self, X: sp.Matrix) -> tuple:  # pragma: no cover - abstract
+        """(x, y) of the object in the world frame, read off X."""
+        raise NotImplementedError
+
+    def heading(self, X: sp.Matrix):
+        """(cos, sin) of the object's heading read off X, or None when the model has none."""
+        return None
+
+    def from_common(self) -> list:  # pragma: no cover - abstract
+        """The physical state from the common coordinates c = (x, y, θ, v_x, v_y, ω) (``COMMON``)."""
+        raise NotImplementedError
+
+    def world_velocity(self) -> sp.Matrix:  # pragma: no cover - abstract
+        """The world-frame velocity (2,) in the physical symbols."""
+        raise NotImplementedError
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def n(self) -> int:
+        """Dimension of the tangent space (= length of the physical state)."""
+        return len(self.physical)
+
+    @property
+    def physical_names(self) -> tuple:
+        """Names of the physical state entries (output columns); ``names`` overrides the symbols' names."""
+        return tuple(self.names) if self.names else tuple(_plain_name(s) for s in self.physical)
+
+    @cached_property
+    def noise_symbols(self) -> tuple:
+        return tuple(sp.Symbol(nm, nonnegative=True) for nm in self.noise_names)
+
+    @cached_property
+    def EPS(self) -> tuple:
+        """The tangent coordinates ε, named after the physical state."""
+        return tuple(sp.Symbol(f"epsilon_{_eps_name(s)}", real=True) for s in self.physical)
+
+    @cached_property
+    def carried_substitutions(self) -> dict:
+        """cos(a) → c, sin(a) → s for every carried angle (applied to every expression emitted)."""
+        out = {}
+        for a, c, s in self.carried:
+            out[sp.cos(a)] = c
+            out[sp.sin(a)] = s
+        return out
+
+    @cached_property
+    def carried_identities(self) -> dict:
+        """atan2(s, c) → a: the carried angle is the log of its own rotation, so this is exact."""
+        return {sp.atan2(s, c): a for a, c, s in self.carried}
+
+    def to_internal(self, e):
+        """An expression with the carried substitutions and identities applied."""
+        return sp.sympify(e).subs(self.carried_substitutions).xreplace(self.carried_identities)
+
+    @cached_property
+    def Omega(self) -> sp.Matrix:
+        """Ω(μ) (eq:motionG)."""
+        return self.Omega_of(self.mean())
+
+    @cached_property
+    def Omega_perturbed(self) -> sp.Matrix:
+        """Ω(μ·exp([ε]^∧)) in raw form (sin/cos divided by ε), as the paper prints eq:motionG."""
+        X = self.mean() * to_exact(self.group.exp(self.EPS))
+        return self.Omega_of(X).applyfunc(sp.expand)
+
+    @cached_property
+    def calC(self) -> sp.Matrix:
+        """𝒞 = ∂Ω(μ·exp ε)/∂ε at ε = 0 (eq:C), every singular entry through directional limits."""
+        self.limit_report_C = []
+        return jacobian_at_zero(self.Omega_perturbed, self.EPS, report=self.limit_report_C)
+
+    def F_of(self, C: sp.Matrix) -> sp.Matrix:
+        """F = Ad_G(exp(−Ω)) + Φ_G(Ω)·𝒞 for a given 𝒞 (paper, below eq:pred_cov)."""
+        G = self.group
+        return G.Ad(G.exp(-self.Omega)) + G.right_jacobian(self.Omega) * C
+
+    @cached_property
+    def F(self) -> sp.Matrix:
+        return self.F_of(self.calC)
+
+    @cached_property
+    def Q(self) -> sp.Matrix:
+        """Q = G diag(σ²) Gᵀ: covariance of the noise G n in the tangent increment (eq:motionG)."""
+        Gn = self.noise_input()
+        return Gn * sp.diag(*[s**2 for s in self.noise_stds()]) * Gn.T
+
+    def propagated(self, n) -> sp.Matrix:
+        """The exact motion μ·exp([Ω(μ) + G n]^∧) of eq:model for a noise sample n."""
+        return self.mean() * self.group.exp(self.Omega + self.noise_input() * sp.Matrix(n))
+
+    def measurement_error_for(self, meas) -> sp.Matrix:
+        """[log_G'(h(μ)⁻¹ h(μ·exp ε))]^∨ (eq:H_err) to first order in ε, raw form.
+
+        log_G'(I + E) = E + O(E²), so [h(μ)⁻¹ h(μ·exp ε) − I]^∨ has the same derivative at ε = 0 as the
+        log; for G' = Rⁿ the two are identical.
+        """
+        Gp = meas.group
+        X = self.mean() * to_exact(self.group.exp(self.EPS))
+        mu = self.mean()
+        E = Gp.inverse(meas.h(self, mu)) * meas.h(self, X) - sp.eye(Gp.matrix_size)
+        return Gp.vee(E).applyfunc(lambda v: sp.expand(sp.simplify(v)))
+
+    def calH_for(self, meas) -> sp.Matrix:
+        """ℋ = ∂/∂ε [log_G'(h(μ)⁻¹ h(μ·exp ε))]^∨ at ε = 0 (eq:calH), through directional limits."""
+        return jacobian_at_zero(self.measurement_error_for(meas), self.EPS)
+
+    @cached_property
+    def measurement_error(self) -> sp.Matrix:
+        """The paper's measurement (position, G' = R²): see ``measurement_error_for``."""
+        from ..measurements.position import MEASUREMENT
+
+        return self.measurement_error_for(MEASUREMENT)
+
+    @cached_property
+    def calH(self) -> sp.Matrix:
+        """ℋ of the paper's position measurement (eq:calH, eq:calH_model)."""
+        from ..measurements.position import MEASUREMENT
+
+        self.limit_report_H = []
+        return jacobian_at_zero(self.measurement_error, self.EPS, report=self.limit_report_H)
+
+    @cached_property
+    def mean_of_common(self) -> sp.Matrix:
+        """μ as a function of the common coordinates c (through ``from_common``)."""
+        return self.mean().subs(dict(zip(self.physical, self.from_common())), simultaneous=True)
+
+    @cached_property
+    def common_jacobian(self) -> sp.Matrix:
+        """∂ε/∂c at the mean: the tangent coordinates ε (X = μ·exp ε) w.r.t. the common coordinates c.
+
+        To first order log(μ⁻¹ X(c + d)) = [μ⁻¹ X(c + d) − I]^∨, so J = ∂/∂d of that at d = 0; P = J P_c Jᵀ.
+        """
+        d = sp.symbols(f"_d0:{len(COMMON)}", real=True)
+        mu = self.mean_of_common
+        Xd = mu.subs({c: c + di for c, di in zip(COMMON, d)}, simultaneous=True)
+        E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
+        J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
+        return J.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+
+    def periodic_tangent(self) -> tuple:
+        """Tangent coordinates that are rotation angles of SE(2) factors (exp is periodic in them)."""
+        return tuple(self.group.periodic_coordinates())
+
+
+def _plain_name(s) -> str:
+    return {"v_x": "vx", "v_y": "vy"}.get(s.name, s.name)
+
+
+def _eps_name(s) -> str:
+    return {"v_x": "vx", "v_y": "vy"}.get(s.name, s.name)

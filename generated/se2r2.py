@@ -1,0 +1,1065 @@
+"""LG-EKF on SE(2)xR^2 (pose + forward speed and turn rate, no side slip): model quantities, fused predict/update steps and loops.
+
+GENERATED FILE: DO NOT EDIT.
+Source: derive/models/se2r2.py (definition) through derive/codegen/emitter.py and derive/algebra.py
+Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
+"""
+import math
+
+import numba as nb
+import numpy as np
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle  # noqa: F401
+
+# fused steps use FMA contraction only ("contract"); every other IEEE rule holds
+FASTMATH = {"contract"}
+
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+
+
+@nb.njit(cache=True)
+def state_from_physical(xp):
+    """Internal state [x, y, c_theta, s_theta, v, omega] from the physical [x, y, theta, v, omega].
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v = xp[3]
+    omega = xp[4]
+    out = np.zeros(6)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = x
+    out[1] = y
+    out[2] = _cos_theta
+    out[3] = _sin_theta
+    out[4] = v
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def state_to_physical(s):
+    """Physical [x, y, theta, v, omega] (angles in (-π, π]) from the internal state.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    out = np.zeros(5)
+    out[0] = x
+    out[1] = y
+    out[2] = wrap_angle(math.atan2(s_theta, c_theta))
+    out[3] = v
+    out[4] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_into(s, out):
+    """Physical [x, y, theta, v, omega] from the internal state, written into ``out`` (no allocation).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    out[0] = x
+    out[1] = y
+    out[2] = wrap_angle(math.atan2(s_theta, c_theta))
+    out[3] = v
+    out[4] = omega
+
+
+@nb.njit(cache=True)
+def group_mean(s):
+    """The mean μ as a group matrix (block-diagonal for a product group).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    out = np.zeros((6, 6))
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[0, 2] = x
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+    out[1, 2] = y
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[3, 5] = v
+    out[4, 4] = 1.0
+    out[4, 5] = omega
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def motion_omega(s, dt):
+    """Ω(μ), the tangent increment of one step (eq:motionG).
+    """
+    v = s[4]
+    omega = s[5]
+    out = np.zeros(5)
+    out[0] = dt*v
+    out[2] = dt*omega
+    return out
+
+
+@nb.njit(cache=True)
+def calC(s, dt):
+    """𝒞 = ∂Ω(μ exp ε)/∂ε at ε = 0 (eq:C, eq:calCFinal).
+    """
+    out = np.zeros((5, 5))
+    out[0, 3] = dt
+    out[2, 4] = dt
+    return out
+
+
+@nb.njit(cache=True)
+def transition(s, dt):
+    """F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).
+    """
+    v = s[4]
+    omega = s[5]
+    out = np.zeros((5, 5))
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = (dt*dt)*v
+    out[0, 0] = _cos__a0
+    out[0, 1] = _sin__a0
+    out[0, 2] = _t0*v
+    out[0, 3] = _t1
+    out[0, 4] = _sinc2__a0*_t2
+    out[1, 0] = -_sin__a0
+    out[1, 1] = _cos__a0
+    out[1, 2] = _t1*v
+    out[1, 3] = -_t0
+    out[1, 4] = _cosc2__a0*_t2
+    out[2, 2] = 1.0
+    out[2, 4] = dt
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def process_noise(s, dt, sigma_a, sigma_alpha):
+    """Q = G diag(σ²) G^T: the noise n (sigma_a, sigma_alpha) of eq:motionG in the tangent.
+    """
+    out = np.zeros((5, 5))
+    _t0 = sigma_a*sigma_a
+    _t1 = (dt*dt*dt*dt)/4.0
+    _t2 = (dt*dt*dt)/2.0
+    _t3 = _t0*_t2
+    _t4 = sigma_alpha*sigma_alpha
+    _t5 = _t2*_t4
+    _t6 = dt*dt
+    out[0, 0] = _t0*_t1
+    out[0, 3] = _t3
+    out[2, 2] = _t1*_t4
+    out[2, 4] = _t5
+    out[3, 0] = _t3
+    out[3, 3] = _t0*_t6
+    out[4, 2] = _t5
+    out[4, 4] = _t4*_t6
+    return out
+
+
+@nb.njit(cache=True)
+def limit_angle_variance(p):
+    """Cap the std of the angle coordinates [2] of P at π by congruence scaling (see derive/codegen/emitter.py)."""
+    if p[9] > math.pi * math.pi:
+        f = math.pi / math.sqrt(p[9])
+        p[2] *= f
+        p[6] *= f
+        p[10] *= f
+        p[11] *= f
+        p[9] = math.pi * math.pi
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def predict(s, p, dt, sigma_a, sigma_alpha):
+    """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
+    P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
+    s: internal state [x, y, c_theta, s_theta, v, omega], p: packed covariance (15), dt > 0.
+    Then the std of the tangent angles is capped at π (limit_angle_variance; inactive while ≤ π).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v
+    _t2 = _sinc__a0*dt
+    _t3 = dt*dt
+    _t4 = _t3*v
+    _t5 = _t2*v
+    _t6 = _t3/2.0
+    _t7 = (dt*dt*dt)*v/2.0
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1
+    f03 = _t2
+    f04 = _sinc2__a0*_t4
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t5
+    f13 = -_t0
+    f14 = _cosc2__a0*_t4
+    g00 = _sinc__a0*_t6
+    g01 = _sinc2__a0*_t7
+    g10 = -(_cosc__a0*_t6)
+    g11 = _cosc2__a0*_t7
+    g21 = _t6
+    e00 = -(_t1*s_theta) + _t5*c_theta + x
+    e01 = _t1*c_theta + _t5*s_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t8 = sigma_a*sigma_a
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = _t8*g00
+    _t11 = _t9*g01
+    _t12 = _t9*g11
+    _t13 = dt*dt
+    p[0] = _t8*(g00*g00) + _t9*(g01*g01) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04
+    p[1] = _t10*g10 + _t11*g11 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04
+    p[2] = _t11*g21 + dt*m04 + m02
+    p[3] = _t10*dt + m03
+    p[4] = _t11*dt + m04
+    p[5] = _t8*(g10*g10) + _t9*(g11*g11) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14
+    p[6] = _t12*g21 + dt*m14 + m12
+    p[7] = _t8*dt*g10 + m13
+    p[8] = _t12*dt + m14
+    p[9] = _t9*(g21*g21) + dt*m24 + m22
+    p[10] = m23
+    p[11] = _t9*dt*g21 + m24
+    p[12] = _t13*_t8 + p33
+    p[13] = p34
+    p[14] = _t13*_t9 + p44
+    s[0] = e00
+    s[1] = e01
+    s[2] = e02
+    s[3] = e03
+    limit_angle_variance(p)
+
+
+@nb.njit(cache=True)
+def calH_pose(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for pose measurements.
+    """
+    out = np.zeros((3, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    return out
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """Fused update with a pose measurement (2-D pose z = (x, y, θ) in SE(2) with noise stds (r_x, r_y, r_θ) in its tangent (body frame)), in place.
+    z = (z_x, z_y, z_theta), noise stds (r_x, r_y, r_theta); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
+    (derive.lie.special.gain_damping; α = 1 in every regular step).
+    If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a0 = math.atan2(c_theta*math.sin(z_theta) - s_theta*math.cos(z_theta), c_theta*math.cos(z_theta) + s_theta*math.sin(z_theta))
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = -(c_theta*x) + c_theta*z_x - s_theta*y + s_theta*z_y
+    _t1 = -(c_theta*y) + c_theta*z_y + s_theta*x - s_theta*z_x
+    _t2 = math.atan2(-(_cos_z_theta*s_theta) + _sin_z_theta*c_theta, _cos_z_theta*c_theta + _sin_z_theta*s_theta)
+    _t3 = _t2/2.0
+    inn00 = _halfcot__a0*_t0 + _t1*_t3
+    inn10 = _halfcot__a0*_t1 - _t0*_t3
+    inn20 = _t2
+    S00 = p00 + r_x*r_x
+    S11 = p11 + r_y*r_y
+    S22 = p22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(p12*p12) - S11*(p02*p02) - S22*(p01*p01) + 2.0*p01*p02*p12)
+    Si00 = rdet*(S11*S22 - p12*p12)
+    Si01 = rdet*(-(S22*p01) + p02*p12)
+    Si02 = rdet*(-(S11*p02) + p01*p12)
+    Si11 = rdet*(S00*S22 - p02*p02)
+    Si12 = rdet*(-(S00*p12) + p01*p02)
+    Si22 = rdet*(S00*S11 - p01*p01)
+    _t4 = Si01*p01
+    _t5 = Si02*p02
+    _t6 = Si12*p12
+    _t7 = 2.0*inn00
+    k00 = Si00*p00 + _t4 + _t5
+    k01 = Si01*p00 + Si11*p01 + Si12*p02
+    k02 = Si02*p00 + Si12*p01 + Si22*p02
+    k10 = Si00*p01 + Si01*p11 + Si02*p12
+    k11 = Si11*p11 + _t4 + _t6
+    k12 = Si02*p01 + Si12*p11 + Si22*p12
+    k20 = Si00*p02 + Si01*p12 + Si02*p22
+    k21 = Si01*p02 + Si11*p12 + Si12*p22
+    k22 = Si22*p22 + _t5 + _t6
+    k30 = Si00*p03 + Si01*p13 + Si02*p23
+    k31 = Si01*p03 + Si11*p13 + Si12*p23
+    k32 = Si02*p03 + Si12*p13 + Si22*p23
+    k40 = Si00*p04 + Si01*p14 + Si02*p24
+    k41 = Si01*p04 + Si11*p14 + Si12*p24
+    k42 = Si02*p04 + Si12*p14 + Si22*p24
+    nis = Si00*(inn00*inn00) + Si01*_t7*inn10 + Si02*_t7*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t8 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t9 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t8*c_theta - _t9*s_theta + x
+    mu01 = _t8*s_theta + _t9*c_theta + y
+    mu02 = _cos_nu2*c_theta - _sin_nu2*s_theta
+    mu03 = _cos_nu2*s_theta + _sin_nu2*c_theta
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    a00 = -(alpha*k00) + 1.0
+    a01 = -(alpha*k01)
+    a02 = -(alpha*k02)
+    a10 = -(alpha*k10)
+    a11 = -(alpha*k11) + 1.0
+    a12 = -(alpha*k12)
+    a20 = -(alpha*k20)
+    a21 = -(alpha*k21)
+    a22 = -(alpha*k22) + 1.0
+    a30 = -(alpha*k30)
+    a31 = -(alpha*k31)
+    a32 = -(alpha*k32)
+    a40 = -(alpha*k40)
+    a41 = -(alpha*k41)
+    a42 = -(alpha*k42)
+    b00 = a00*p00 + a01*p01 + a02*p02
+    b01 = a00*p01 + a01*p11 + a02*p12
+    b02 = a00*p02 + a01*p12 + a02*p22
+    b03 = a00*p03 + a01*p13 + a02*p23
+    b04 = a00*p04 + a01*p14 + a02*p24
+    b10 = a10*p00 + a11*p01 + a12*p02
+    b11 = a10*p01 + a11*p11 + a12*p12
+    b12 = a10*p02 + a11*p12 + a12*p22
+    b13 = a10*p03 + a11*p13 + a12*p23
+    b14 = a10*p04 + a11*p14 + a12*p24
+    b20 = a20*p00 + a21*p01 + a22*p02
+    b21 = a20*p01 + a21*p11 + a22*p12
+    b22 = a20*p02 + a21*p12 + a22*p22
+    b23 = a20*p03 + a21*p13 + a22*p23
+    b24 = a20*p04 + a21*p14 + a22*p24
+    b30 = a30*p00 + a31*p01 + a32*p02 + p03
+    b31 = a30*p01 + a31*p11 + a32*p12 + p13
+    b32 = a30*p02 + a31*p12 + a32*p22 + p23
+    b33 = a30*p03 + a31*p13 + a32*p23 + p33
+    b34 = a30*p04 + a31*p14 + a32*p24 + p34
+    b40 = a40*p00 + a41*p01 + a42*p02 + p04
+    b41 = a40*p01 + a41*p11 + a42*p12 + p14
+    b42 = a40*p02 + a41*p12 + a42*p22 + p24
+    b44 = a40*p04 + a41*p14 + a42*p24 + p44
+    _t10 = alpha*alpha
+    _t11 = _t10*(r_x*r_x)
+    _t12 = _t10*(r_y*r_y)
+    _t13 = _t10*(r_theta*r_theta)
+    _t14 = _t11*k00
+    _t15 = _t12*k01
+    _t16 = _t13*k02
+    _t17 = _t11*k10
+    _t18 = _t12*k11
+    _t19 = _t13*k12
+    _t20 = _t11*k20
+    _t21 = _t12*k21
+    _t22 = _t13*k22
+    pj00 = _t11*(k00*k00) + _t12*(k01*k01) + _t13*(k02*k02) + a00*b00 + a01*b01 + a02*b02
+    pj01 = _t14*k10 + _t15*k11 + _t16*k12 + a10*b00 + a11*b01 + a12*b02
+    pj02 = _t14*k20 + _t15*k21 + _t16*k22 + a20*b00 + a21*b01 + a22*b02
+    pj03 = _t14*k30 + _t15*k31 + _t16*k32 + a30*b00 + a31*b01 + a32*b02 + b03
+    pj04 = _t14*k40 + _t15*k41 + _t16*k42 + a40*b00 + a41*b01 + a42*b02 + b04
+    pj11 = _t11*(k10*k10) + _t12*(k11*k11) + _t13*(k12*k12) + a10*b10 + a11*b11 + a12*b12
+    pj12 = _t17*k20 + _t18*k21 + _t19*k22 + a20*b10 + a21*b11 + a22*b12
+    pj13 = _t17*k30 + _t18*k31 + _t19*k32 + a30*b10 + a31*b11 + a32*b12 + b13
+    pj14 = _t17*k40 + _t18*k41 + _t19*k42 + a40*b10 + a41*b11 + a42*b12 + b14
+    pj22 = _t11*(k20*k20) + _t12*(k21*k21) + _t13*(k22*k22) + a20*b20 + a21*b21 + a22*b22
+    pj23 = _t20*k30 + _t21*k31 + _t22*k32 + a30*b20 + a31*b21 + a32*b22 + b23
+    pj24 = _t20*k40 + _t21*k41 + _t22*k42 + a40*b20 + a41*b21 + a42*b22 + b24
+    pj33 = _t11*(k30*k30) + _t12*(k31*k31) + _t13*(k32*k32) + a30*b30 + a31*b31 + a32*b32 + b33
+    pj34 = _t11*k30*k40 + _t12*k31*k41 + _t13*k32*k42 + a40*b30 + a41*b31 + a42*b32 + b34
+    pj44 = _t11*(k40*k40) + _t12*(k41*k41) + _t13*(k42*k42) + a40*b40 + a41*b41 + a42*b42 + b44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[6] = cp12
+    p[7] = cp13
+    p[8] = cp14
+    p[9] = pj22
+    p[10] = pj23
+    p[11] = pj24
+    p[12] = pj33
+    p[13] = pj34
+    p[14] = pj44
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    if not covariance_is_pd(p):
+        repair_pd(p)
+    return nis
+
+
+@nb.njit(cache=True)
+def measure_pose(s, m0, m1, m2):
+    """Simulated pose measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    out = np.zeros(3)
+    _sin_m2 = math.sin(m2)
+    _cos_m2 = math.cos(m2)
+    _cosc_m2 = cosc(m2, _sin_m2, _cos_m2)
+    _sinc_m2 = sinc(m2, _sin_m2, _cos_m2)
+    _t0 = -(_cosc_m2*m1) + _sinc_m2*m0
+    _t1 = _cosc_m2*m0 + _sinc_m2*m1
+    out[0] = _t0*c_theta - _t1*s_theta + x
+    out[1] = _t0*s_theta + _t1*c_theta + y
+    out[2] = math.atan2(_cos_m2*s_theta + _sin_m2*c_theta, _cos_m2*c_theta - _sin_m2*s_theta)
+    return out
+
+
+@nb.njit(cache=True)
+def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with pose measurements: z (K, 3), dts (K,), x0 (5,), p0 (15,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0], q[1])
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]) or np.isnan(z[k, 2]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(15):
+                out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 3) pose measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 5)
+    physical initial states; p0 (B, 15) packed initial covariances; q (2,) process-noise stds;
+    r (3,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 5), the
+    packed covariances into out_p (B, K, 15) when out_p.shape[1] == K (pass (B, 0, 15) to skip),
+    and the NIS into out_nis (B, K).
+    """
+    for b in nb.prange(z.shape[0]):
+        run_one_pose(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_pose(X, noise, out):
+    """Simulated pose measurements z = vector(h(X)·exp(m)) of every physical state X (N, 5),
+    noise samples m (N, 3) (already scaled), into out (N, 3)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_pose(s, noise[i, 0], noise[i, 1], noise[i, 2])
+        for j in range(3):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def calH_position(s):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    """
+    c_theta = s[2]
+    s_theta = s[3]
+    out = np.zeros((2, 5))
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+    return out
+
+
+@nb.njit(cache=True, fastmath=FASTMATH)
+def update_position(s, p, z_x, z_y, r):
+    """Fused update with a position measurement (2-D position z = (x, y) with isotropic noise std r (the paper's measurement)), in place.
+    z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
+    K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
+    P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
+    Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
+    (derive.lie.special.gain_damping; α = 1 in every regular step).
+    If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    hh01 = -s_theta
+    _t0 = c_theta*p01
+    hp00 = c_theta*p00 + hh01*p01
+    hp01 = _t0 + hh01*p11
+    hp02 = c_theta*p02 + hh01*p12
+    hp03 = c_theta*p03 + hh01*p13
+    hp04 = c_theta*p04 + hh01*p14
+    hp10 = _t0 + p00*s_theta
+    hp11 = c_theta*p11 + p01*s_theta
+    hp12 = c_theta*p12 + p02*s_theta
+    hp13 = c_theta*p13 + p03*s_theta
+    hp14 = c_theta*p14 + p04*s_theta
+    inn00 = -x + z_x
+    inn10 = -y + z_y
+    _t1 = r*r
+    S00 = _t1 + c_theta*hp00 + hh01*hp01
+    S01 = c_theta*hp01 + hp00*s_theta
+    S11 = _t1 + c_theta*hp11 + hp10*s_theta
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t2 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t3 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t2*c_theta - _t3*s_theta + x
+    mu01 = _t2*s_theta + _t3*c_theta + y
+    mu02 = _cos_nu2*c_theta - _sin_nu2*s_theta
+    mu03 = _cos_nu2*s_theta + _sin_nu2*c_theta
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    _t4 = alpha*c_theta
+    _t5 = alpha*s_theta
+    _t6 = alpha*hh01
+    a00 = -(_t4*k00) - _t5*k01 + 1.0
+    a01 = -(_t4*k01) - _t6*k00
+    a10 = -(_t4*k10) - _t5*k11
+    a11 = -(_t4*k11) - _t6*k10 + 1.0
+    a20 = -(_t4*k20) - _t5*k21
+    a21 = -(_t4*k21) - _t6*k20
+    a30 = -(_t4*k30) - _t5*k31
+    a31 = -(_t4*k31) - _t6*k30
+    a40 = -(_t4*k40) - _t5*k41
+    a41 = -(_t4*k41) - _t6*k40
+    b00 = a00*p00 + a01*p01
+    b01 = a00*p01 + a01*p11
+    b02 = a00*p02 + a01*p12
+    b03 = a00*p03 + a01*p13
+    b04 = a00*p04 + a01*p14
+    b10 = a10*p00 + a11*p01
+    b11 = a10*p01 + a11*p11
+    b12 = a10*p02 + a11*p12
+    b13 = a10*p03 + a11*p13
+    b14 = a10*p04 + a11*p14
+    b20 = a20*p00 + a21*p01 + p02
+    b21 = a20*p01 + a21*p11 + p12
+    b22 = a20*p02 + a21*p12 + p22
+    b23 = a20*p03 + a21*p13 + p23
+    b24 = a20*p04 + a21*p14 + p24
+    b30 = a30*p00 + a31*p01 + p03
+    b31 = a30*p01 + a31*p11 + p13
+    b33 = a30*p03 + a31*p13 + p33
+    b34 = a30*p04 + a31*p14 + p34
+    b40 = a40*p00 + a41*p01 + p04
+    b41 = a40*p01 + a41*p11 + p14
+    b44 = a40*p04 + a41*p14 + p44
+    _t7 = (alpha*alpha)*(r*r)
+    _t8 = _t7*k00
+    _t9 = _t7*k01
+    _t10 = _t7*k10
+    _t11 = _t7*k11
+    _t12 = _t7*k20
+    _t13 = _t7*k21
+    pj00 = _t7*(k00*k00) + _t7*(k01*k01) + a00*b00 + a01*b01
+    pj01 = _t8*k10 + _t9*k11 + a10*b00 + a11*b01
+    pj02 = _t8*k20 + _t9*k21 + a20*b00 + a21*b01 + b02
+    pj03 = _t8*k30 + _t9*k31 + a30*b00 + a31*b01 + b03
+    pj04 = _t8*k40 + _t9*k41 + a40*b00 + a41*b01 + b04
+    pj11 = _t7*(k10*k10) + _t7*(k11*k11) + a10*b10 + a11*b11
+    pj12 = _t10*k20 + _t11*k21 + a20*b10 + a21*b11 + b12
+    pj13 = _t10*k30 + _t11*k31 + a30*b10 + a31*b11 + b13
+    pj14 = _t10*k40 + _t11*k41 + a40*b10 + a41*b11 + b14
+    pj22 = _t7*(k20*k20) + _t7*(k21*k21) + a20*b20 + a21*b21 + b22
+    pj23 = _t12*k30 + _t13*k31 + a30*b20 + a31*b21 + b23
+    pj24 = _t12*k40 + _t13*k41 + a40*b20 + a41*b21 + b24
+    pj33 = _t7*(k30*k30) + _t7*(k31*k31) + a30*b30 + a31*b31 + b33
+    pj34 = _t7*k30*k40 + _t7*k31*k41 + a40*b30 + a41*b31 + b34
+    pj44 = _t7*(k40*k40) + _t7*(k41*k41) + a40*b40 + a41*b41 + b44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[6] = cp12
+    p[7] = cp13
+    p[8] = cp14
+    p[9] = pj22
+    p[10] = pj23
+    p[11] = pj24
+    p[12] = pj33
+    p[13] = pj34
+    p[14] = pj44
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    if not covariance_is_pd(p):
+        repair_pd(p)
+    return nis
+
+
+@nb.njit(cache=True)
+def measure_position(s, m0, m1):
+    """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
+    """
+    x = s[0]
+    y = s[1]
+    out = np.zeros(2)
+    out[0] = m0 + x
+    out[1] = m1 + y
+    return out
+
+
+@nb.njit(cache=True)
+def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with position measurements: z (K, 2), dts (K,), x0 (5,), p0 (15,).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    keep_p = out_p.shape[0] == K
+    for k in range(K):
+        predict(s, p, dts[k], q[0], q[1])
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            out_nis[k] = np.nan
+        else:
+            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+        physical_into(s, out_x[k])
+        if keep_p:
+            for i in range(15):
+                out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter B trajectories in parallel (numba prange), predict then update at every step.
+
+    z (B, K, 2) position measurements (a NaN row = missed detection); dts (B, K) step lengths; x0 (B, 5)
+    physical initial states; p0 (B, 15) packed initial covariances; q (2,) process-noise stds;
+    r (1,) measurement-noise stds. Writes the posterior physical states into out_x (B, K, 5), the
+    packed covariances into out_p (B, K, 15) when out_p.shape[1] == K (pass (B, 0, 15) to skip),
+    and the NIS into out_nis (B, K).
+    """
+    for b in nb.prange(z.shape[0]):
+        run_one_position(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+
+
+@nb.njit(cache=True)
+def measure_batch_position(X, noise, out):
+    """Simulated position measurements z = vector(h(X)·exp(m)) of every physical state X (N, 5),
+    noise samples m (N, 2) (already scaled), into out (N, 2)."""
+    for i in range(X.shape[0]):
+        s = state_from_physical(X[i])
+        z = measure_position(s, noise[i, 0], noise[i, 1])
+        for j in range(2):
+            out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def covariance_is_pd(p):
+    """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
+    p0_0 = p[0]
+    p0_1 = p[1]
+    p0_2 = p[2]
+    p0_3 = p[3]
+    p0_4 = p[4]
+    p1_1 = p[5]
+    p1_2 = p[6]
+    p1_3 = p[7]
+    p1_4 = p[8]
+    p2_2 = p[9]
+    p2_3 = p[10]
+    p2_4 = p[11]
+    p3_3 = p[12]
+    p3_4 = p[13]
+    p4_4 = p[14]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3, p4_4)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    r3 = 1.0 / d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
+    if not d4 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True)
+def repair_pd(p):
+    """Add the smallest diagonal jitter (1e-13 · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
+    scale = 0.0
+    for i in (0, 5, 9, 12, 14):
+        scale = max(scale, abs(p[i]))
+    delta = 1e-13 * scale
+    for _ in range(60):
+        if covariance_is_pd(p):
+            return
+        for i in (0, 5, 9, 12, 14):
+            p[i] += delta
+        delta *= 4.0
+
+
+@nb.njit(cache=True)
+def propagate(s, dt, n0, n1):
+    """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n, in place.
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    _a0 = (dt*dt)*n1/2.0 + dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _t0 = (dt*dt)*n0/2.0 + dt*v
+    _t1 = _t0*c_theta
+    _t2 = _t0*s_theta
+    xn00 = -(_cosc__a0*_t2) + _sinc__a0*_t1 + x
+    xn01 = _cosc__a0*_t1 + _sinc__a0*_t2 + y
+    xn02 = _cos__a0*c_theta - _sin__a0*s_theta
+    xn03 = _cos__a0*s_theta + _sin__a0*c_theta
+    xn04 = dt*n0 + v
+    xn05 = dt*n1 + omega
+    s[0] = xn00
+    s[1] = xn01
+    s[2] = xn02
+    s[3] = xn03
+    s[4] = xn04
+    s[5] = xn05
+
+
+@nb.njit(cache=True, parallel=True)
+def simulate_batch(x0, dts, noise, out_x):
+    """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
+
+    x0 (B, 5) physical initial states; dts (B, K) step lengths; noise (B, K, 2) samples of n (already
+    scaled by their stds); out_x (B, K + 1, 5) receives the physical states, out_x[:, 0] = x0.
+    """
+    B = x0.shape[0]
+    K = dts.shape[1]
+    for b in nb.prange(B):
+        s = state_from_physical(x0[b])
+        physical_into(s, out_x[b, 0])
+        for k in range(K):
+            propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1])
+            physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True)
+def world_velocity(x):
+    """World-frame velocity (2,) of a physical state x of this model.
+    """
+    theta = x[2]
+    v = x[3]
+    out = np.zeros(2)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = _cos_theta*v
+    out[1] = _sin_theta*v
+    return out
+
+
+@nb.njit(cache=True)
+def world_velocities(X, out):
+    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    for i in range(X.shape[0]):
+        v = world_velocity(X[i])
+        out[i, 0] = v[0]
+        out[i, 1] = v[1]
+
+
+@nb.njit(cache=True)
+def common_to_state(c):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
+    out = np.zeros(5)
+    out[0] = c0
+    out[1] = c1
+    out[2] = c2 + math.atan2(c4, c3)
+    out[3] = math.sqrt(c3*c3 + c4*c4)
+    out[4] = c5
+    return out
+
+
+@nb.njit(cache=True)
+def common_jacobian(c):
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    """
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    out = np.zeros((5, 6))
+    _a0 = c2 + math.atan2(c4, c3)
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _t0 = c3*c3 + c4*c4
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    out[0, 0] = _cos__a0
+    out[0, 1] = _sin__a0
+    out[1, 0] = -_sin__a0
+    out[1, 1] = _cos__a0
+    out[2, 2] = 1.0
+    out[2, 3] = -(_t1*c4)
+    out[2, 4] = _t1*c3
+    out[3, 3] = _t2*c3
+    out[3, 4] = _t2*c4
+    out[4, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def tangent_error(s, c):
+    """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
+    in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
+    out = np.zeros(5)
+    _a0 = c2 + math.atan2(c4, c3)
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _a1 = math.atan2(c_theta*math.sin(c2 + math.atan2(c4, c3)) - s_theta*math.cos(c2 + math.atan2(c4, c3)), c_theta*math.cos(c2 + math.atan2(c4, c3)) + s_theta*math.sin(c2 + math.atan2(c4, c3)))
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t0 = c0*c_theta + c1*s_theta - c_theta*x - s_theta*y
+    _t1 = -(c0*s_theta) + c1*c_theta - c_theta*y + s_theta*x
+    _t2 = math.atan2(-(_cos__a0*s_theta) + _sin__a0*c_theta, _cos__a0*c_theta + _sin__a0*s_theta)
+    _t3 = _t2/2.0
+    out[0] = _halfcot__a1*_t0 + _t1*_t3
+    out[1] = _halfcot__a1*_t1 - _t0*_t3
+    out[2] = wrap_angle(_t2)
+    out[3] = -v + math.sqrt(c3*c3 + c4*c4)
+    out[4] = c5 - omega
+    return out

@@ -1,0 +1,92 @@
+"""``filter_batch``: one model over many trajectories, entirely inside numba (prange over the batch)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .covariance import pack, unpack
+from .filters import measurement_std
+from .registry import get_model
+from .validate import as_float_array, positive_vector, spd_matrix
+
+__all__ = ["filter_batch", "step_lengths"]
+
+
+def step_lengths(dt, B: int, K: int) -> np.ndarray:
+    """dt as a (B, K) array: a scalar, one value per step (K,), or per trajectory and step (B, K)."""
+    a = as_float_array("dt", dt)
+    if a.ndim == 0:
+        a = np.full((B, K), float(a))
+    elif a.shape == (K,):
+        a = np.ascontiguousarray(np.broadcast_to(a, (B, K)))
+    elif a.shape != (B, K):
+        raise ValueError(f"dt: expected a number, shape ({K},) or ({B}, {K}), got {a.shape}")
+    if np.any(a <= 0):
+        raise ValueError("dt: every step length must be positive")
+    return a
+
+
+def measurements_array(z, m: int) -> np.ndarray:
+    """z as a contiguous (B, K, m) float array; NaN marks a missed detection, ±inf is rejected."""
+    try:
+        a = np.array(z, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"z: expected numbers, got {type(z).__name__}") from None
+    if a.ndim != 3 or a.shape[2] != m:
+        raise ValueError(f"z: expected shape (B, K, {m}), got {a.shape}")
+    if np.any(np.isinf(a)):
+        raise ValueError("z: contains infinite values (use NaN for a missed detection)")
+    return np.ascontiguousarray(a)
+
+
+def filter_batch(model, z, *, dt, accel_std, meas_std, x0, P0, measurement="position", return_cov=False, return_nis=False):
+    """Run ``model`` over a batch of measurement sequences.
+
+    Parameters
+    ----------
+    model : str
+        A registry model name ("se2se2", "se2r3", "se2r2", "ctrv", "cv", ...).
+    z : array_like, (B, K, m)
+        Measurements: (x, y) for ``measurement="position"``, (x, y, θ) for ``"pose"``. Step k is predicted
+        by dt then updated with z[:, k]; a row containing NaN is a missed detection (predict only, NIS NaN).
+    dt : float or array_like
+        Step length: a number, (K,) or (B, K).
+    accel_std, meas_std : array_like
+        As for the filter classes (``meas_std`` one number for position, three for pose).
+    x0 : array_like, (B, n)
+        Initial states in physical coordinates (the estimate at time 0, before z[:, 0]).
+    P0 : array_like, (n, n) or (B, n, n)
+        Initial covariances in the filter's coordinates.
+    measurement : {"position", "pose"}
+    return_cov, return_nis : bool
+        Also return the covariances (B, K, n, n) and the NIS of every update (B, K).
+
+    Returns
+    -------
+    states : ndarray, (B, K, n)
+        Posterior physical states; followed by the covariances and/or NIS when asked for.
+    """
+    spec = get_model(model)
+    n = spec.n
+    r = measurement_std(spec, measurement, meas_std)
+    m = spec.measurement(measurement).dim
+    z = measurements_array(z, m)
+    B, K = z.shape[:2]
+    dts = step_lengths(dt, B, K)
+    q = positive_vector("accel_std", accel_std, len(spec.noise_names))
+    x0 = np.ascontiguousarray(as_float_array("x0", x0, (B, n)))
+    spec.check_state("x0", x0)
+    P0 = spd_matrix("P0", P0, n, batch=True)
+    if P0.ndim == 3 and P0.shape[0] != B:
+        raise ValueError(f"P0: expected ({n}, {n}) or ({B}, {n}, {n}) for {B} trajectories, got {P0.shape}")
+    p0 = pack(np.broadcast_to(P0, (B, n, n)))
+    out_x = np.empty((B, K, n))
+    out_p = np.empty((B, K if return_cov else 0, spec.n_packed))
+    out_nis = np.empty((B, K))
+    getattr(spec.kernels, f"run_batch_{measurement}")(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+    result = [out_x]
+    if return_cov:
+        result.append(unpack(out_p, n))
+    if return_nis:
+        result.append(out_nis)
+    return result[0] if len(result) == 1 else tuple(result)

@@ -1,0 +1,141 @@
+"""Filters with one shape (FilterPy style): ``predict()``, ``update(z)``, ``x``, ``P``; one class per model.
+
+Every model's mathematics lives in its generated kernels (``lgekf.generated.<model>``); a filter here only
+validates its arguments, holds the internal state and the packed covariance, and calls the kernels.
+The classes are made from the registry (``SE2SE2Filter``, ``SE2R3Filter``, ``SE2R2Filter``, ``CTRVFilter``,
+``CVFilter``, ... one per model definition); ``Filter(model=...)`` and ``make_filter`` take the name.
+
+Conventions
+-----------
+* The state X lives on the model's Lie group; perturbations act on the right, X = μ·exp(ε^∧), and ``P``
+  is the covariance of ε, ordered like the physical state ``x`` (``state_names``). For the Euclidean
+  models (CTRV on R⁵, CV on R⁴) ε is the plain state error, so the filter is the textbook EKF/KF.
+* Physical states: SE(2)×SE(2), SE(2)×R³ ``[x, y, θ, v_x, v_y, ω]`` ((v_x, v_y) body-frame velocity);
+  SE(2)×R² ``[x, y, θ, v, ω]``; CTRV ``[x, y, ψ, v, ω]``; CV ``[x, y, v_x, v_y]`` (world frame).
+  In SE(2)×SE(2) ω is the angle of T_d's rotation and lives in [−π, π] rad/s.
+* ``accel_std``: the model's process-noise stds (``noise_names``): SE(2)×SE(2), SE(2)×R³ (σ_x, σ_y, σ_ω)
+  as n_k of the paper (Q = G diag(σ²) Gᵀ, G = [T²/2·I; T·I]); SE(2)×R² and CTRV (σ_a, σ_α) forward and
+  yaw acceleration; CV σ_a (isotropic).
+* ``measurement="position"`` (default): z = (x, y), ``meas_std`` one std r per axis.
+  ``measurement="pose"``: z = (x, y, θ) ∈ SE(2), Z = h(X)·exp(m), m ~ N(0, diag(σ_x², σ_y², σ_θ²)) in
+  the tangent of SE(2) (body frame), ``meas_std = (σ_x, σ_y, σ_θ)``; not for models without a heading (CV).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .covariance import pack, unpack
+from .registry import MODELS, ModelSpec, get_model
+from .validate import as_float_array, positive_scalar, positive_vector, spd_matrix
+
+__all__ = ["Filter", "make_filter", *[f"{name.upper()}Filter" for name in MODELS]]
+
+
+def measurement_std(spec: ModelSpec, measurement: str, meas_std) -> np.ndarray:
+    """``meas_std`` as the vector of the measurement's noise stds (one number for position)."""
+    meas = spec.measurement(measurement)
+    return positive_vector("meas_std", meas_std, len(meas.noise_names), allow_zero=False)
+
+
+class Filter:
+    """An LG-EKF (or EKF/KF for the Euclidean models) for one object, one step at a time.
+
+    Parameters
+    ----------
+    dt : float
+        Default step length in s (``predict()`` without an argument).
+    accel_std : array_like
+        Process-noise stds of the model (``noise_names``; see the module docstring).
+    meas_std : float or array_like
+        Measurement-noise std(s): one number for ``"position"``, (σ_x, σ_y, σ_θ) for ``"pose"``.
+    x0 : array_like
+        Initial state in physical coordinates (``state_names``).
+    P0 : array_like
+        Initial covariance (n × n, symmetric positive definite) in the filter's tangent coordinates;
+        see ``lgekf.covariance_from_common`` to build it from a covariance of the common coordinates.
+    measurement : {"position", "pose"}
+        The measurement model used by ``update``.
+    model : str, optional
+        The registry model (only for the generic ``Filter``; the per-model classes fix it).
+
+    Attributes
+    ----------
+    x : ndarray
+        The state in physical coordinates (a copy).
+    P : ndarray
+        The covariance in the filter's tangent coordinates (a copy).
+    nis : float
+        Normalised innovation squared of the last update (NaN before the first).
+    """
+
+    model = ""
+
+    def __init__(self, dt, accel_std, meas_std, x0, P0, *, measurement: str = "position", model: str | None = None):
+        spec = get_model(model if model is not None else self.model)
+        self._spec = spec
+        self._k = spec.kernels
+        self.measurement = measurement
+        self.dt = positive_scalar("dt", dt)
+        self.accel_std = positive_vector("accel_std", accel_std, len(spec.noise_names))
+        self.meas_std = measurement_std(spec, measurement, meas_std)
+        self._m = spec.measurement(measurement).dim
+        self._update = getattr(self._k, f"update_{measurement}")
+        x0 = as_float_array("x0", x0, (spec.n,))
+        spec.check_state("x0", x0)
+        P0 = spd_matrix("P0", P0, spec.n)
+        self._s = self._k.state_from_physical(x0)
+        self._p = pack(P0)
+        self.nis = float("nan")
+
+    @property
+    def state_names(self) -> tuple:
+        """Names of the physical state entries, also the order of P's coordinates."""
+        return self._spec.state_names
+
+    def predict(self, dt: float | None = None) -> None:
+        """Propagate the state by ``dt`` seconds (default: the filter's ``dt``), eq:pred_mu, eq:pred_cov."""
+        step = self.dt if dt is None else positive_scalar("dt", dt)
+        self._k.predict(self._s, self._p, step, *self.accel_std)
+
+    def update(self, z) -> float:
+        """Correct with one measurement z ((x, y) or (x, y, θ)); returns the NIS of the innovation."""
+        z = as_float_array("z", z, (self._m,))
+        self.nis = float(self._update(self._s, self._p, *z, *self.meas_std))
+        return self.nis
+
+    @property
+    def x(self) -> np.ndarray:
+        return np.asarray(self._k.state_to_physical(self._s))
+
+    @property
+    def P(self) -> np.ndarray:
+        return unpack(self._p, self._spec.n)
+
+    @property
+    def mean(self) -> np.ndarray:
+        """The group mean μ as a matrix (block-diagonal for a product group; [[I, x], [0, 1]] on Rⁿ)."""
+        return np.asarray(self._k.group_mean(self._s))
+
+    def __repr__(self) -> str:
+        xs = ", ".join(f"{n}={v:.4g}" for n, v in zip(self.state_names, self.x))
+        return f"{type(self).__name__}({xs})"
+
+
+def _model_class(spec: ModelSpec) -> type:
+    doc = (
+        f"{spec.display_name}: {spec.description}.\n\n"
+        f"State x = [{', '.join(spec.state_names)}]; accel_std = ({', '.join(spec.noise_names)}); "
+        f"measurements: {', '.join(spec.measurements)}.\n\n" + Filter.__doc__.split("\n\n", 1)[1]
+    )
+    return type(f"{spec.name.upper()}Filter", (Filter,), {"model": spec.name, "__doc__": doc, "__module__": __name__})
+
+
+_CLASSES = {name: _model_class(spec) for name, spec in MODELS.items()}
+globals().update({cls.__name__: cls for cls in _CLASSES.values()})
+
+
+def make_filter(model: str, **kwargs) -> Filter:
+    """The filter of a registry model by name, e.g. ``make_filter("se2r2", dt=0.1, ...)``."""
+    get_model(model)
+    return _CLASSES[model](**kwargs)

@@ -1,0 +1,110 @@
+"""The model registry, read from the generated model table (``lgekf.generated.registry``): no math here,
+and no model is known by name: adding a definition in ``derive/models/`` and running ``lgekf derive``
+is all it takes for a model to appear in every filter, command and table.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, field
+from types import ModuleType
+
+import numpy as np
+
+from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
+from ..generated.registry import MODELS as _TABLE
+
+__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "get_model", "get_measurement"]
+
+
+@dataclass(frozen=True)
+class MeasurementSpec:
+    """A measurement model: the measured vector (``z_names``) and its noise stds (``noise_names``)."""
+
+    name: str
+    description: str
+    z_names: tuple
+    noise_names: tuple
+    angles: tuple
+    dim: int
+
+
+@dataclass(frozen=True)
+class ModelSpec:
+    """One motion model as the runtime sees it (all fields from the generated table)."""
+
+    name: str
+    display_name: str
+    description: str
+    color: str
+    state_names: tuple  # physical state, also the order of P's coordinates
+    internal_names: tuple
+    noise_names: tuple  # the entries of accel_std
+    default_accel_std: tuple
+    matched_noise: tuple  # per noise std: "v" or "w" (the simulated truth's σ_v or σ_ω)
+    angles: tuple  # physical coordinates that are angles
+    periodic_tangent: tuple
+    bounds: dict
+    bound_reason: str
+    noise_inputs: tuple  # for each entry of the noise n, the index of its std in accel_std
+    measurements: tuple  # the measurement models this model supports
+    refused: dict = field(default_factory=dict)  # {measurement: why not}
+
+    @property
+    def kernels(self) -> ModuleType:
+        """The generated numba module of this model (imported on first use)."""
+        return importlib.import_module(f"lgekf.generated.{self.name}")
+
+    @property
+    def n(self) -> int:
+        return len(self.state_names)
+
+    @property
+    def n_packed(self) -> int:
+        return self.n * (self.n + 1) // 2
+
+    def check_state(self, name: str, x) -> None:
+        """Reject physical states the model cannot represent (ValueError naming ``name``).
+
+        E.g. SE(2)×SE(2): ω is the angle of T_d's rotation, so only |ω| ≤ π rad/s exists; a larger turn
+        rate would silently alias to ω − 2π (the bound and its reason come from the definition).
+        """
+        for i, bound in self.bounds.items():
+            w = np.asarray(x, dtype=float)[..., int(i)]
+            bad = np.abs(w) > bound * (1 + 1e-12)
+            if np.any(bad):
+                raise ValueError(
+                    f"{name}: {self.state_names[int(i)]} = {float(w[bad].flat[0]):.6g} is not representable in the "
+                    f"{self.name} model: {self.bound_reason}"
+                )
+
+    def measurement(self, name: str) -> MeasurementSpec:
+        """The measurement model ``name`` if this model supports it, else a ValueError saying why."""
+        meas = get_measurement(name)
+        if name not in self.measurements:
+            raise ValueError(f"measurement: {self.refused.get(name, f'{name} measurements do not fit the {self.name} model')}")
+        return meas
+
+    def matched_accel_std(self, sigma_v: float, sigma_w: float) -> tuple:
+        """The process-noise stds matching a truth with translational σ_v and rotational σ_ω noise."""
+        return tuple(sigma_v if k == "v" else sigma_w for k in self.matched_noise)
+
+
+MODELS: dict[str, ModelSpec] = {name: ModelSpec(name=name, **entry) for name, entry in _TABLE.items()}
+MEASUREMENTS: dict[str, MeasurementSpec] = {name: MeasurementSpec(name=name, **entry) for name, entry in _MEASUREMENTS.items()}
+
+
+def get_model(name: str) -> ModelSpec:
+    """The registered model ``name`` or a ValueError listing the choices."""
+    try:
+        return MODELS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"model: unknown model {name!r}; choose one of {', '.join(MODELS)}") from None
+
+
+def get_measurement(name: str) -> MeasurementSpec:
+    """The registered measurement model ``name`` or a ValueError listing the choices."""
+    try:
+        return MEASUREMENTS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(MEASUREMENTS)}") from None
