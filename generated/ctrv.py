@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
@@ -111,6 +111,32 @@ def motion_omega(s, dt):
     out[0] = _cos__a1*_t0
     out[1] = _sin__a1*_t0
     out[2] = dt*omega
+    return out
+
+
+@nb.njit(cache=True)
+def motion(s, dt):
+    """The internal state after one noise-free step, μ exp(Ω(μ)) (eq:pred_mu); x' = f(x) for a Euclidean model.
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    out = np.zeros(5)
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sinc__a0*dt*v
+    out[0] = _cos__a1*_t0 + x
+    out[1] = _sin__a1*_t0 + y
+    out[2] = dt*omega + psi
+    out[3] = v
+    out[4] = omega
     return out
 
 

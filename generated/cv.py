@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
 
 
 @nb.njit(cache=True)
@@ -92,6 +92,22 @@ def motion_omega(s, dt):
     out = np.zeros(4)
     out[0] = dt*w_x
     out[1] = dt*w_y
+    return out
+
+
+@nb.njit(cache=True)
+def motion(s, dt):
+    """The internal state after one noise-free step, μ exp(Ω(μ)) (eq:pred_mu); x' = f(x) for a Euclidean model.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    out = np.zeros(4)
+    out[0] = dt*w_x + x
+    out[1] = dt*w_y + y
+    out[2] = w_x
+    out[3] = w_y
     return out
 
 

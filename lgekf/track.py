@@ -22,9 +22,13 @@ The filter then runs predict(t_k - t_{k-1}) + update(z_k) for k = 2, 3, ... Outp
 measurement: row 0 holds z0 as position with the two-point velocity/heading and covariance P0 (nis empty
 = nan), row 1 the initial estimate (x0, P0) at t1 (nis nan), rows k >= 2 the filter's posterior.
 
-Process noise defaults (``DEFAULT_ACCEL_STD``, one table; see docs/track_evaluate.md):
-SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); CTRV (σ_a, σ_ω̇) = (0.5, 1.0);
-CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
+Process noise defaults (``default_accel_std`` of each model definition; see docs/track_evaluate.md):
+SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); SE(2)xR2, CTRV (σ_a, σ_α) =
+(0.5, 1.0); CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
+
+Measurements: ``position`` (x, y) or ``pose`` (x, y and the ``heading`` column as θ ∈ SE(2), noise
+(meas_std, meas_std, heading_std) in the tangent of SE(2)); a model without a heading (CV) is refused
+with pose, except under ``--model all`` where it gets the positions (said on stderr).
 """
 
 from __future__ import annotations
@@ -48,17 +52,11 @@ __all__ = [
     "initial_common", "initial_estimates", "track_arrays", "output_columns", "cmd_track",
 ]
 
-DEFAULT_ACCEL_STD = {
-    "se2se2": (0.5, 0.5, 1.0),
-    "se2r3": (0.5, 0.5, 1.0),
-    "ctrv": (0.5, 1.0),
-    "cv": (0.5,),
-}
+DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
 DEFAULT_MEAS_STD = 0.3
 DEFAULT_OMEGA_STD = 0.5
 DEFAULT_HEADING_STD = 0.1
 SIDESLIP_FRACTION = 0.1
-ANGLE_COORDS = {"se2se2": (2,), "se2r3": (2,), "ctrv": (2,), "cv": ()}
 
 ROWS_PER_CHUNK = 1 << 17
 
@@ -133,7 +131,8 @@ def initial_estimates(model, c, var):
     x0 = np.empty((B, spec.n))
     J = np.empty((B, spec.n, 6))
     cj = c.copy()
-    # the Jacobian of CTRV's ψ = θ + atan2(v_y, v_x) is singular at v = 0; evaluate it just off zero
+    # the Jacobian of a heading-of-motion coordinate (CTRV's ψ = θ + atan2(v_y, v_x)) is singular at v = 0;
+    # evaluate it just off zero
     tiny = 1e-9 * np.sqrt(var[:, 3])
     cj[:, 3] = np.where(np.abs(cj[:, 3]) < tiny, np.where(cj[:, 3] < 0, -tiny, tiny), cj[:, 3])
     for b in range(B):
@@ -141,7 +140,7 @@ def initial_estimates(model, c, var):
         J[b] = k.common_jacobian(cj[b])
     P0 = np.einsum("bij,bj,bkj->bik", J, var, J)
     P0 = 0.5 * (P0 + np.swapaxes(P0, 1, 2))
-    for a in ANGLE_COORDS[model]:
+    for a in spec.angles:
         big = P0[:, a, a] > math.pi**2
         if big.any():
             s = np.ones((int(big.sum()), spec.n))
@@ -170,16 +169,17 @@ def _length_batches(lengths, max_rows):
 @nb.njit(cache=True)
 def _gather(t, z, first, lens, K, zb, dts):
     """Padded batch inputs: object b's filter steps are rows first[b] .. first[b] + lens[b] - 1."""
+    m = zb.shape[2]
     for b in range(first.shape[0]):
         a = first[b]
         for k in range(K):
             if k < lens[b]:
-                zb[b, k, 0] = z[a + k, 0]
-                zb[b, k, 1] = z[a + k, 1]
+                for j in range(m):
+                    zb[b, k, j] = z[a + k, j]
                 dts[b, k] = t[a + k] - t[a + k - 1]
             else:  # padding after the object's end: never read back
-                zb[b, k, 0] = zb[b, k - 1, 0]
-                zb[b, k, 1] = zb[b, k - 1, 1]
+                for j in range(m):
+                    zb[b, k, j] = zb[b, k - 1, j]
                 dts[b, k] = 1.0
 
 
@@ -193,15 +193,17 @@ def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
             out_nis[a + k] = bn[b, k]
 
 
-def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None):
+def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
     """Track every object of sorted measurements; no Python per filter step.
 
     t (N,), z (N, 2) sorted by object (``starts`` (B + 1,) offsets; >= 2 rows and increasing t each).
     Returns states (N, n) in the model's physical coordinates, packed covariances (N, n(n+1)/2) in
     its filter coordinates, nis (N,) (nan for the first two rows of each object). ``x0``/``P0``
-    (B, n), (B, n, n) override the two-point initialisation.
+    (B, n), (B, n, n) override the two-point initialisation. ``measurement="pose"`` uses ``heading`` (N,)
+    as the measured angle (noise stds meas_std, meas_std, heading_std in the tangent of SE(2)).
     """
     spec = get_model(model)
+    meas = spec.measurement(measurement)
     kern = spec.kernels
     n, npk = spec.n, spec.n_packed
     t = np.ascontiguousarray(t, dtype=float)
@@ -212,7 +214,14 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
         x0, P0 = initial_estimates(model, c, var)
     p0 = pack(P0)
     q = cfg.q(model)
-    r = float(cfg.meas_std)
+    if measurement == "pose":
+        if heading is None:
+            raise ValueError("--measure pose: the input needs a heading column")
+        zm = np.ascontiguousarray(np.column_stack([z[:, :2], heading]))
+        r = np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
+    else:
+        zm = z
+        r = np.array([float(cfg.meas_std)])
     N = t.size
     out_x = np.empty((N, n))
     out_p = np.empty((N, npk))
@@ -229,13 +238,13 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
         K = int(Lb.max())
         first = np.ascontiguousarray(starts[objs] + 2)
         B = len(objs)
-        zb = np.empty((B, K, 2))
+        zb = np.empty((B, K, meas.dim))
         dts = np.empty((B, K))
-        _gather(t, z, first, Lb, K, zb, dts)
+        _gather(t, zm, first, Lb, K, zb, dts)
         bx = np.empty((B, K, n))
         bp = np.empty((B, K, npk))
         bn = np.empty((B, K))
-        kern.run_batch(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
+        getattr(kern, f"run_batch_{measurement}")(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
         _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
     return out_x, out_p, out_nis
 
@@ -301,7 +310,9 @@ def track_parser():
     ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
     ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
-                    help="process noise stds (se2se2/se2r3: σx,σy,σω; ctrv: σa,σω̇; cv: σa); repeatable MODEL=LIST")
+                    help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + "); repeatable MODEL=LIST")
+    ap.add_argument("--measure", default="position", choices=["position", "pose"],
+                    help="measurement model: position (x, y) or pose (x, y and the heading column as an SE(2) pose; noise meas-std, meas-std, heading-std)")
     ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
     ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
@@ -312,7 +323,7 @@ def track_parser():
     return ap
 
 
-def _write_model(fh, model, meas, starts, cfg, full_cov, digits):
+def _write_model(fh, model, meas, starts, cfg, full_cov, digits, measurement="position"):
     """Track and write one model's file in chunks of objects (bounded memory)."""
     spec = get_model(model)
     fh.write((",".join(output_columns(model, full_cov)) + "\n").encode())
@@ -326,7 +337,7 @@ def _write_model(fh, model, meas, starts, cfg, full_cov, digits):
         a, b = int(starts[o]), int(starts[o2])
         sub_starts = starts[o:o2 + 1] - a
         h = None if meas.heading is None else meas.heading[a:b]
-        x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h)
+        x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement)
         std = np.sqrt(np.maximum(p[:, diag], 0.0))
         parts = [x, std] + ([p] if full_cov else []) + [nis[:, None]]
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), digits))
@@ -346,12 +357,19 @@ def cmd_track(argv) -> int:
     if any(o.resolve() == a.input.resolve() for o in outs):
         raise ValueError(f"--output: {a.output} would overwrite the input file")
     t0 = time.perf_counter()
-    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading)
+    measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
+    if a.model != "all" and measure[a.model] is None:
+        MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
+    for m in models:
+        if measure[m] is None:
+            measure[m] = "position"
+            print(f"lgekf track: {m} has no heading: it gets the positions only", file=sys.stderr)
+    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose")
     meas, starts, _ = meas.grouped(min_length=2)
     t_read = time.perf_counter() - t0
     with AtomicFiles(outs) as files:
         for i, m in enumerate(models):
-            _write_model(files.open(i), m, meas, starts, cfg, a.full_cov, a.precision)
+            _write_model(files.open(i), m, meas, starts, cfg, a.full_cov, a.precision, measure[m])
         files.commit()
     if not a.quiet:
         wall = time.perf_counter() - t0

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import lgekf
-from lgekf.metrics import nees, position_rmse
-from lgekf.simulate import simulate
+from lgekf.experiments.metrics import nees, position_rmse
+from lgekf.experiments.simulate import simulate
 
 
 @pytest.mark.parametrize("model", ["se2se2", "se2r3"])
@@ -33,4 +33,4 @@ def test_nees_zero_for_exact_estimate():
     x = np.array([[1.0, -2.0, 0.4, 1.5, -0.2, 0.3]])
     for model in ("se2se2", "se2r3"):
         assert nees(model, x, np.eye(6)[None], x)[0] == pytest.approx(0.0, abs=1e-24)
-    assert nees("cv", lgekf.registry.MODELS["cv"].kernels.common_to_state(x[0])[None], np.eye(4)[None], x)[0] == pytest.approx(0, abs=1e-24)
+    assert nees("cv", lgekf.core.registry.MODELS["cv"].kernels.common_to_state(x[0])[None], np.eye(4)[None], x)[0] == pytest.approx(0, abs=1e-24)

@@ -16,8 +16,8 @@ import sympy as sp
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
-from lgekf.derive.groups import SE2
-from lgekf.derive.special import to_exact
+from lgekf.derive.lie.groups import SE2
+from lgekf.derive.lie.special import to_exact
 from lgekf.generated import se2 as g
 
 PI = math.pi

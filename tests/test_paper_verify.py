@@ -7,10 +7,11 @@ import io
 import pytest
 import sympy as sp
 
-from lgekf.derive import paper, verify
-from lgekf.derive.limits import limit_at_zero
-from lgekf.derive.models import EPS, dt, omega, vx, vy
-from lgekf.derive.verify import KNOWN_ERRATA, errata_table_markdown, run_verify
+from lgekf.derive.paper import transcription as paper, verify
+from lgekf.derive.lie.limits import limit_at_zero
+from lgekf.derive.models.base import dt, omega, vx, vy
+from lgekf.derive.models.se2se2 import EPS
+from lgekf.derive.paper.verify import KNOWN_ERRATA, errata_table_markdown, run_verify
 
 pytestmark = pytest.mark.slow
 

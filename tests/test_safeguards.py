@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from lgekf import SE2R3Filter, SE2SE2Filter
-from lgekf.covariance import pack, unpack
+from lgekf.core.covariance import pack, unpack
 from lgekf.generated import se2r3, se2se2
 
 

@@ -1,7 +1,7 @@
 """Accuracy of the generated kernels near θ = 0 (and up to ±π) against 50-digit references.
 
 Every kernel is compared with the *same* SymPy expression it was generated from (SE2.exp,
-SE2.right_jacobian, CTRV().f, ...), with exact (rational) inputs equal to the float inputs, the
+SE2.right_jacobian, CTRV's f, ...), with exact (rational) inputs equal to the float inputs, the
 angle functions evaluated by their ``_eval_evalf`` (a series near 0) at 50 digits.
 
 Requirement: |computed - true| <= 1e-13 * max(|true|, tiny) for every entry, i.e. relative error
@@ -20,13 +20,14 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from lgekf.derive import special as S
-from lgekf.derive.groups import SE2
-from lgekf.derive.models import CTRV
-from lgekf.derive.models import dt as DT
-from lgekf.derive.models import omega as OMEGA
-from lgekf.derive.models import x as X
-from lgekf.derive.models import y as Y
+from lgekf.derive.lie import special as S
+from lgekf.derive.lie.groups import SE2
+from lgekf.derive.models import ctrv as CTRV
+from lgekf.derive.models.ctrv import MODEL as CTRV_MODEL
+from lgekf.derive.models.base import dt as DT
+from lgekf.derive.models.base import omega as OMEGA
+from lgekf.derive.models.base import x as X
+from lgekf.derive.models.base import y as Y
 from lgekf.generated import ctrv as gctrv
 from lgekf.generated import se2 as gse2
 from lgekf.generated import special as gspecial
@@ -92,8 +93,8 @@ SE2_EXP = SE2.exp(XI)
 SE2_AD_EXP = SE2.Ad(SE2_EXP)
 SE2_PHI = SE2.right_jacobian(XI)
 SE2_PHI_INV = SE2.right_jacobian_inv(XI)
-_ctrv = CTRV()
-CTRV_F = _ctrv.f
+_ctrv = CTRV_MODEL
+CTRV_F = _ctrv.f(list(_ctrv.physical))
 CTRV_JAC = _ctrv.F
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from lgekf.study import FILTERS, StudyConfig, claims_check, run_study
+from lgekf.experiments.study import FILTERS, StudyConfig, claims_check, run_study
 
 LGEKF = str(Path(sys.executable).with_name("lgekf"))
 

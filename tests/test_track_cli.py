@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-from lgekf.batch import filter_batch
-from lgekf.covariance import unpack
-from lgekf.registry import MODELS
+from lgekf.core.batch import filter_batch
+from lgekf.core.covariance import unpack
+from lgekf.core.registry import MODELS
 from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
 
 

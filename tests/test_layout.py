@@ -1,0 +1,133 @@
+"""The architecture as a test: imports go one way between layers, there are no import cycles, the runtime
+never imports SymPy, and no module outside the definitions branches on a model's name.
+
+Runtime layers (lower may not import higher): generated (0) < core, io and the top-level helpers (1)
+< experiments (2) < apps (3) < cli (4).  derive/: lie (0) < models, measurements (1) < algebra (2)
+< codegen, paper (3).
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+RUNTIME_LAYERS = {"generated": 0, "core": 1, "io": 1, "experiments": 2, "apps": 3, "cli": 4}
+DERIVE_LAYERS = {"lie": 0, "models": 1, "measurements": 1, "algebra": 2, "codegen": 3, "paper": 3}
+
+
+def _modules(pkg_dir: Path, pkg: str):
+    for path in sorted(pkg_dir.rglob("*.py")):
+        rel = path.relative_to(pkg_dir).with_suffix("")
+        parts = [p for p in rel.parts if p != "__init__"]
+        yield ".".join([pkg, *parts]), path, path.name == "__init__.py"
+
+
+def _imports(name: str, path: Path, is_pkg: bool):
+    """Absolute names of the modules ``path`` imports (relative imports resolved)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    base = name.split(".") if is_pkg else name.split(".")[:-1]
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            out |= {a.name for a in node.names}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = base[: len(base) - node.level + 1]
+                mod = ".".join(anchor + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            out.add(mod)
+            out |= {f"{mod}.{a.name}" for a in node.names}
+    return out
+
+
+def _layer(name: str, table: dict, pkg: str):
+    parts = name.split(".")
+    if len(parts) < 2 or parts[0] != pkg.split(".")[0]:
+        return None
+    key = parts[len(pkg.split("."))] if len(parts) > len(pkg.split(".")) else None
+    return table.get(key, 1 if pkg == "lgekf" else None)
+
+
+def _runtime_graph():
+    mods = {}
+    for name, path, is_pkg in _modules(ROOT / "lgekf", "lgekf"):
+        mods[name] = (path, is_pkg)
+    for name, path, is_pkg in _modules(ROOT / "generated", "lgekf.generated"):
+        mods[name] = (path, is_pkg)
+    return mods
+
+
+def test_runtime_imports_go_one_way():
+    bad = []
+    for name, (path, is_pkg) in _runtime_graph().items():
+        if name in ("lgekf", "lgekf.__main__"):
+            continue
+        me = _layer(name, RUNTIME_LAYERS, "lgekf")
+        for imp in _imports(name, path, is_pkg):
+            if imp.startswith("lgekf.derive") and not name.startswith("lgekf.cli"):
+                bad.append(f"{name} imports {imp} (only the CLI may import derive/, lazily)")
+            if not imp.startswith("lgekf.") or imp.startswith("lgekf.derive"):
+                continue
+            other = _layer(imp, RUNTIME_LAYERS, "lgekf")
+            if other is not None and me is not None and other > me:
+                bad.append(f"{name} (layer {me}) imports {imp} (layer {other})")
+    assert not bad, "\n".join(bad)
+
+
+def test_no_import_cycles_in_the_runtime():
+    mods = _runtime_graph()
+    graph = {}
+    for name, (path, is_pkg) in mods.items():
+        graph[name] = {i for i in _imports(name, path, is_pkg) if i in mods and i != name and not name.startswith(i + ".")}
+    state, stack = {}, []
+
+    def visit(n):
+        state[n] = 1
+        stack.append(n)
+        for m in sorted(graph[n]):
+            if m == "lgekf" or n == "lgekf":
+                continue
+            if state.get(m) == 1:
+                raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m):] + [m]))
+            if not state.get(m):
+                visit(m)
+        stack.pop()
+        state[n] = 2
+
+    for n in sorted(graph):
+        if not state.get(n):
+            visit(n)
+
+
+def test_derive_imports_go_one_way():
+    bad = []
+    for name, path, is_pkg in _modules(ROOT / "derive", "lgekf.derive"):
+        me = _layer(name, DERIVE_LAYERS, "lgekf.derive")
+        for imp in _imports(name, path, is_pkg):
+            if imp.startswith("lgekf.") and not imp.startswith("lgekf.derive"):
+                bad.append(f"{name} imports the runtime ({imp})")
+            if not imp.startswith("lgekf.derive."):
+                continue
+            other = _layer(imp, DERIVE_LAYERS, "lgekf.derive")
+            if other is not None and me is not None and other > me and not (me == 1 and imp.endswith("position")):
+                bad.append(f"{name} (layer {me}) imports {imp} (layer {other})")
+    assert not bad, "\n".join(bad)
+
+
+MODEL_NAMES = ("se2se2", "se2r3", "se2r2", "ctrv", "cv")
+
+
+@pytest.mark.parametrize("folder", ["lgekf", "derive/codegen", "derive/algebra.py", "derive/lie"])
+def test_no_branch_on_a_model_name(folder):
+    """`if ... == "cv"`, `in ("se2se2", ...)`, `model.name ==` are model knowledge outside a definition."""
+    pat = re.compile(r"(==|!=|\bin)\s*\(?\s*[\"'](" + "|".join(MODEL_NAMES) + r")[\"']|\.name\s*==")
+    target = ROOT / folder
+    files = [target] if target.is_file() else sorted(target.rglob("*.py"))
+    hits = [f"{p.relative_to(ROOT)}:{i}: {line.strip()}" for p in files
+            for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pat.search(line)]
+    assert not hits, "\n".join(hits)
