@@ -11,7 +11,8 @@ import pytest
 from _cli import cli_command
 
 from lgekf.evaluate import (
-    FILTERS, Dataset, evaluate_dataset, load_dataset, mean_ci, run_filters, t_quantile, tune_split, world_velocity,
+    FILTERS, MIN_TRACKS_CI, Dataset, bootstrap_ci, data_root, evaluate_dataset, load_dataset, run_filters, t_quantile,
+    tune_split, world_velocity,
 )
 from lgekf.track import TrackConfig, track_arrays
 
@@ -27,8 +28,8 @@ def needs(rel):
 
 
 
-def evaluate(*args):
-    return subprocess.run([*cli_command(), "evaluate", *map(str, args)], capture_output=True, text=True)
+def evaluate(*args, cwd=None, env=None):
+    return subprocess.run([*cli_command(), "evaluate", *map(str, args)], capture_output=True, text=True, cwd=cwd, env=env)
 
 
 def test_t_quantile_against_scipy():
@@ -37,12 +38,49 @@ def test_t_quantile_against_scipy():
         assert t_quantile(0.975, nu) == pytest.approx(stats.t.ppf(0.975, nu), rel=2e-3 if nu > 2 else 1e-2)
 
 
-def test_mean_ci():
-    m, lo, hi = mean_ci([1.0, 2.0, 3.0, 4.0])
-    assert m == 2.5
-    half = t_quantile(0.975, 3) * np.std([1, 2, 3, 4], ddof=1) / 2
-    assert (lo, hi) == pytest.approx((2.5 - half, 2.5 + half))
-    assert np.isnan(mean_ci([1.0])[1])
+def test_bootstrap_ci_never_below_zero_where_the_t_interval_is():
+    stats = pytest.importorskip("scipy.stats")
+    x = np.array([0.21, 0.24, 0.22, 0.25, 2.9])  # four good tracks and a lost one
+    n = x.size
+    t_lo = x.mean() - stats.t.ppf(0.975, n - 1) * x.std(ddof=1) / np.sqrt(n)
+    assert t_lo < 0  # the case of the issue: a t-interval for an RMSE reaching below zero
+    m, lo, hi = bootstrap_ci(x)
+    assert m == pytest.approx(x.mean())
+    assert x.min() <= lo < m < hi <= x.max()
+
+
+def test_bootstrap_ci_agrees_with_the_t_interval_for_many_normal_values():
+    stats = pytest.importorskip("scipy.stats")
+    x = np.random.default_rng(3).normal(0.3, 0.05, 400)
+    half = stats.t.ppf(0.975, x.size - 1) * x.std(ddof=1) / np.sqrt(x.size)
+    m, lo, hi = bootstrap_ci(x)
+    assert lo == pytest.approx(x.mean() - half, abs=0.06 * half)
+    assert hi == pytest.approx(x.mean() + half, abs=0.06 * half)
+
+
+def test_bootstrap_ci_covers_the_true_mean():
+    """Coverage of the known mean exp(μ + σ²/2) of lognormal per-track RMSEs (skewed, like real ones)."""
+    rng = np.random.default_rng(11)
+    mu, sigma, reps = -1.2, 0.5, 400
+    true_mean = np.exp(mu + sigma**2 / 2)
+    # expected about 0.89 at n = 5 and 0.93 at n = 20 (3000 repetitions); the bounds are 3 binomial sd wide
+    for n, least in ((MIN_TRACKS_CI, 0.84), (20, 0.89)):
+        hits = 0
+        for r in range(reps):
+            _, lo, hi = bootstrap_ci(rng.lognormal(mu, sigma, n), resamples=2000, seed=r)
+            hits += lo <= true_mean <= hi
+        assert least <= hits / reps <= 0.99, (n, hits / reps)
+
+
+def test_bootstrap_ci_too_few_values_and_reproducible():
+    x = [0.3, 0.1, 0.2, 0.4]
+    assert len(x) < MIN_TRACKS_CI
+    m, lo, hi = bootstrap_ci(x)
+    assert m == pytest.approx(0.25) and np.isnan(lo) and np.isnan(hi)
+    assert all(np.isnan(bootstrap_ci([])))
+    y = [0.3, 0.1, 0.2, 0.4, 0.35, 0.5]
+    assert bootstrap_ci(y) == bootstrap_ci(y)  # fixed seed: reruns print the same intervals
+    assert bootstrap_ci(y) != bootstrap_ci(y, seed=1)
 
 
 def test_world_velocity_of_each_model():
@@ -92,7 +130,7 @@ def test_evaluate_synthetic_end_to_end(tmp_path):
     assert [x["filter"] for x in rows] == [*FILTERS, "measurements"]
     by = {x["filter"]: x for x in rows}
     for m in FILTERS:
-        assert float(by[m]["pos_ci_lo"]) <= float(by[m]["pos_rmse"]) <= float(by[m]["pos_ci_hi"])
+        assert 0 <= float(by[m]["pos_ci_lo"]) <= float(by[m]["pos_rmse"]) <= float(by[m]["pos_ci_hi"])
         assert float(by[m]["vel_rmse"]) > 0 and by[m]["tracks"] == "12" and by[m]["seeds"] == "2"
         assert float(by[m]["pos_median"]) < float(by["measurements"]["pos_median"])  # filtering helps
     # constant-turn truth: the turning models beat CV, which lags in the faster turns
@@ -175,6 +213,61 @@ def test_evaluate_pedestrian_file_and_errors(tmp_path):
         assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
         assert len(r.stderr.strip().splitlines()) == 1 and message in r.stderr, r.stderr
     assert not (tmp_path / "bad").exists()
+
+
+@pytest.mark.parametrize("n_tracks", [1, 2])
+def test_evaluate_says_when_there_are_too_few_tracks_for_an_interval(tmp_path, n_tracks):
+    data = write_synthetic(tmp_path / "few.csv", synthetic_tracks(n=n_tracks))
+    out = tmp_path / "ev"
+    r = evaluate(data, "--seeds", "2", "--out", out)
+    assert r.returncode == 0, r.stderr
+    label = f"n/a ({n_tracks} track{'s' if n_tracks > 1 else ''})"
+    table = [line for line in r.stdout.splitlines() if line.startswith("few ")]
+    assert len(table) == len(FILTERS) + 1
+    for line in table:
+        assert label in line and "nan" not in line and "[-" not in line, line
+    for line in table[:3]:  # the three filters compared with CV: position, paired difference, velocity
+        assert line.count(label) == 3, line
+    rows = list(csv.DictReader(open(out / "summary.csv")))
+    assert all(x["pos_ci_lo"] == "" and x["pos_ci_hi"] == "" and float(x["pos_rmse"]) > 0 for x in rows)
+    md = evaluate(data, "--seeds", "2", "--out", out, "--markdown", "--no-figure")
+    assert md.returncode == 0 and label in md.stdout and "nan" not in md.stdout
+
+
+def test_data_root_is_option_then_env_then_cwd_relative(monkeypatch, tmp_path):
+    monkeypatch.delenv("LGEKF_DATA", raising=False)
+    monkeypatch.chdir(tmp_path)
+    assert data_root().resolve() == (tmp_path.parent / "shared" / "data").resolve()
+    monkeypatch.setenv("LGEKF_DATA", str(tmp_path / "env"))
+    assert data_root() == tmp_path / "env"
+    assert data_root(tmp_path / "opt") == tmp_path / "opt"
+
+
+def test_evaluate_finds_presets_relative_to_the_working_directory(tmp_path):
+    """../shared/data next to the current folder, wherever lgekf is installed."""
+    folder = tmp_path / "shared" / "data" / "eth_ucy_trajectronpp"
+    folder.mkdir(parents=True)
+    (folder / "biwi_eth.txt").write_text("".join(f"{10 * k}\t{i}\t{0.5 * k}\t{1.0 * i + 0.02 * k * k}\n" for k in range(12) for i in range(1, 7)))
+    (tmp_path / "work").mkdir()
+    env = {k: v for k, v in os.environ.items() if k != "LGEKF_DATA"}
+    r = evaluate("eth", "--seeds", "1", "--no-figure", "--out", tmp_path / "ev", cwd=tmp_path / "work", env=env)
+    assert r.returncode == 0, r.stderr
+    assert "eth: 6 tracks used" in r.stderr
+
+
+def test_missing_dataset_names_its_source_and_how_to_point_at_it(tmp_path):
+    env = {k: v for k, v in os.environ.items() if k != "LGEKF_DATA"}
+    for args, env_extra, source in (
+        (["eth"], {}, "github.com/StanfordASL/Trajectron-plus-plus"),
+        (["kitti"], {"LGEKF_DATA": str(tmp_path / "nothing")}, "github.com/crowdbotp/OpenTraj"),
+        (["dut", "--data-root", tmp_path], {}, "github.com/dongfang-steven-yang/vci-dataset-dut"),
+    ):
+        r = evaluate(*args, "--out", tmp_path / "ev", cwd=tmp_path, env={**env, **env_extra})
+        assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+        assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+        assert source in r.stderr and "--data-root" in r.stderr and "$LGEKF_DATA" in r.stderr, r.stderr
+    assert "relative to the current folder" in evaluate("eth", cwd=tmp_path, env=env).stderr
+    assert not (tmp_path / "ev").exists()
 
 
 # ------------------------------------------------------------------ real data (skipped when absent)

@@ -84,7 +84,7 @@ def test_study_cli_writes_results(tmp_path):
         rows = list(csv.DictReader(f))
     assert list(rows[0]) == ["sigma_w", "filter", "mean_rmse", "std_rmse", "n"]
     assert {r["filter"] for r in rows} == {*FILTERS, "measurements"}
-    assert len(rows) == 2 * 5 and all(int(r["n"]) == 8 for r in rows)
+    assert len(rows) == 2 * (len(FILTERS) + 1) and all(int(r["n"]) == 8 for r in rows)
     with open(out / "rmse.csv") as f:
         assert sum(1 for _ in f) == 1 + 2 * 8 * 5
     meta = json.loads((out / "meta.json").read_text())

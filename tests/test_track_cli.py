@@ -138,7 +138,7 @@ def test_irregular_dt_equals_filter_batch(tmp_path, model):
     rows = "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist()))
     inp = write(tmp_path, "in.csv", "t,x,y\n" + rows)
     out = tmp_path / "o.csv"
-    q = {"se2se2": "0.3,0.4,0.9", "se2r3": "0.3,0.4,0.9", "ctrv": "0.3,0.9", "cv": "0.3"}[model]
+    q = ",".join(["0.3", "0.4", "0.9"][-len(MODELS[model].noise_names):] if len(MODELS[model].noise_names) > 1 else ["0.3"])
     r = run(inp, "-o", out, "--model", model, "--accel-std", q, "--meas-std", "0.15", "--precision", "17", "--full-cov")
     assert r.returncode == 0, r.stderr
     _, data = read_out(out)
