@@ -21,8 +21,9 @@ __all__ = ["STDIO", "is_stdio", "source_name", "open_input", "check_output_path"
 
 STDIO = "-"
 GZIP_MAGIC = b"\x1f\x8b"
-# zlib's default level: on track output about 5x smaller, level 9 is several times slower for ~3 % less
-GZIP_LEVEL = 6
+# level 1: track output (mostly 10-digit numbers) gets 2.1x smaller at ~0.4 s per 40 MB; zlib's default
+# level 6 takes 6x as long for 8 % less (measured on a 182 MB se2se2 track file)
+GZIP_LEVEL = 1
 
 
 class FileError(ValueError):

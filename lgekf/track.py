@@ -376,6 +376,8 @@ def _check_arguments(a, models):
         raise ValueError("--output -: --model all writes one file per model; give a file name")
     check_output_path(a.output)
     outs = [output_path(a.output, m, len(models) > 1) for m in models]
+    for o in outs:
+        check_output_path(o, option=None)
     if not is_stdio(a.input) and any(not is_stdio(o) and Path(o).resolve() == Path(a.input).resolve() for o in outs):
         raise ValueError(f"--output: {a.output} would overwrite the input file")
     return outs
