@@ -25,8 +25,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from dense_numpy import run_dense  # noqa: E402
 
-from lgekf.simulate import simulate  # noqa: E402
-from lgekf.study import StudyConfig, run_study  # noqa: E402
+from lgekf.experiments.simulate import simulate  # noqa: E402
+from lgekf.experiments.study import StudyConfig, run_study  # noqa: E402
 
 
 def main():

@@ -60,7 +60,7 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
 
     from lgekf.io import format_rows, label_bytes, read_csv
-    from lgekf.registry import MODELS
+    from lgekf.core.registry import MODELS
     from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
 
     tmp = Path(tempfile.mkdtemp(prefix="bench_track_")) if a.keep is None else a.keep

@@ -19,7 +19,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from dense_numpy import run_dense  # noqa: E402
 
-from lgekf.simulate import simulate  # noqa: E402
+from lgekf.experiments.simulate import simulate  # noqa: E402
 
 
 def main(n=30):

@@ -2,7 +2,7 @@
 
     .venv/bin/python benchmarks/study_protocols.py [--trajectories 100]
 
-Each row is one protocol (options of `lgekf study`), each column one claim of `lgekf.study.claims_check`
+Each row is one protocol (options of `lgekf study`), each column one claim of `lgekf.experiments.study.claims_check`
 (H = holds, . = does not hold).  Nothing is tuned per claim: the variants are fixed here, in advance.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import argparse
 
-from lgekf.study import FILTERS, StudyConfig, claims_check, run_study
+from lgekf.experiments.study import FILTERS, StudyConfig, claims_check, run_study
 
 SHORT = ["LG close", "LG best", "CV good small", "CV degrades", "CTRV weak small", "CTRV approaches", "all < meas"]
 

@@ -2,7 +2,7 @@
 
 300 trajectories of the SE(2)×SE(2) model (σ_ω = 0.5 rad/s²) are filtered at once, entirely in numba,
 by the SE(2)×SE(2) LG-EKF and by the CV Kalman filter. The normalised estimation error squared
-NEES = eᵀ P⁻¹ e (e in each filter's own coordinates, ``lgekf.metrics.nees``) of a consistent filter is
+NEES = eᵀ P⁻¹ e (e in each filter's own coordinates, ``lgekf.experiments.metrics.nees``) of a consistent filter is
 χ²-distributed with n degrees of freedom (n = state dimension): mean n, and 5 % of the values above the
 95 % quantile of χ²_n. The mean NIS of a consistent filter is 2.
 
@@ -17,8 +17,8 @@ Run: ``python examples/batch_monte_carlo_nees.py``
 import numpy as np
 
 from lgekf import filter_batch
-from lgekf.metrics import nees, position_rmse
-from lgekf.simulate import simulate
+from lgekf.experiments.metrics import nees, position_rmse
+from lgekf.experiments.simulate import simulate
 
 B, DT, STEPS, SIGMA_W, MEAS_STD = 300, 0.1, 60, 0.5, 0.5
 rng = np.random.default_rng(2016)

@@ -11,7 +11,7 @@ Run: ``python examples/track_turning_object.py``
 import numpy as np
 
 from lgekf import CTRVFilter, CVFilter, SE2R3Filter, SE2SE2Filter
-from lgekf.simulate import simulate
+from lgekf.experiments.simulate import simulate
 
 DT, STEPS, SIGMA_W, MEAS_STD = 0.1, 100, 1.0, 0.5
 

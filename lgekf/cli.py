@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import sys
 
@@ -40,6 +41,9 @@ def _cmd_derive(argv) -> int:
     # SymPy is imported only here (the runtime never needs it)
     from .derive.codegen.build import main as derive_main
 
+    if not {"-h", "--help"} & set(argv):
+        # derive is SymPy work (not numba, not cached): it takes this long on every run
+        print("lgekf derive: deriving with SymPy, about 15-60 s...", file=sys.stderr, flush=True)
     return derive_main(argv)
 
 
@@ -52,6 +56,15 @@ def _register(name, func, help_text):
     COMMANDS[name] = (func, help_text)
 
 
+def _silence_stdout():
+    """Point stdout at /dev/null so that Python's final flush does not fail again on the closed pipe."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     # late registration keeps `lgekf derive` free of numba start-up cost and vice versa
@@ -62,15 +75,24 @@ def main(argv=None) -> int:
         description="Tracking with the extended Kalman filter on matrix Lie groups (SE(2)xSE(2), SE(2)xR3) and CTRV/CV baselines.",
     )
     parser.add_argument("command", choices=sorted(COMMANDS), help="; ".join(f"{k}: {v[1]}" for k, v in sorted(COMMANDS.items())))
+    parser.add_argument("--version", action="store_true", help="print the version and exit")
     if not argv or argv[0] in ("-h", "--help"):
         parser.print_help()
         return 0 if argv else 2
+    if argv[0] == "--version":
+        from . import __version__
+
+        print(f"lgekf {__version__}")
+        return 0
     if argv[0] not in COMMANDS:
         print(f"lgekf: error: unknown command {argv[0]!r}; choose one of {', '.join(sorted(COMMANDS))}", file=sys.stderr)
         return 2
     func = COMMANDS[argv[0]][0]
     try:
         return int(func(argv[1:]) or 0)
+    except BrokenPipeError:
+        _silence_stdout()
+        return 141  # 128 + SIGPIPE: `lgekf track in.csv -o - | head`, the reader left; not worth a line
     except (UsageError, ValueError, OSError) as e:
         print(f"lgekf {argv[0]}: error: {e}", file=sys.stderr)
         return 2

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from .cli import COMMANDS, ArgumentParser, UsageError
 from .output import staged_directory, write_atomic
+from .progress import compile_notice
 
 __all__ = ["cmd_study", "cmd_figures"]
 
@@ -66,8 +67,8 @@ def study_parser():
                     help="measurement model: position (x, y) or pose (x, y, θ) in SE(2); filters without a heading (CV) get the position part")
     ap.add_argument("--heading-std", type=float, default=0.1, help="pose measurements: std of the heading noise in rad (default 0.1)")
     ap.add_argument(
-        "--noise-scale", action="append", default=[], metavar="FILTER=K",
-        help="multiply a filter's process-noise stds by K (repeatable), e.g. --noise-scale cv=10",
+        "--noise-scale", action="extend", nargs="+", default=[], metavar="FILTER=K",
+        help="multiply a filter's process-noise stds by K; several after one flag or the flag repeated, e.g. --noise-scale cv=30 ctrv=3",
     )
     ap.add_argument("--no-figure", action="store_true", help="skip study.png")
     ap.add_argument("--pdf", action="store_true", help="also write study.pdf")
@@ -122,7 +123,8 @@ def cmd_study(argv) -> int:
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
     t0 = time.perf_counter()
-    res = run_study(cfg, progress=not a.quiet and sys.stderr.isatty())
+    with compile_notice("lgekf study", enabled=not a.quiet):
+        res = run_study(cfg, progress=not a.quiet and sys.stderr.isatty())
     claims = claims_check(res)
     out = a.out
     buf = io.StringIO()
@@ -193,7 +195,7 @@ def cmd_figures(argv) -> int:
     ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default: figures/)")
     ap.add_argument("--pdf", action="store_true", help="also write PDF files")
     a = ap.parse_args(argv)
-    with staged_directory(a.out) as stage:
+    with staged_directory(a.out) as stage, compile_notice("lgekf figures"):
         written = banana_figure(stage / "fig2_banana.png", pdf=a.pdf)
         written += trajectories_figure(stage / "fig3_trajectories.png", pdf=a.pdf)
     for p in written:
@@ -215,7 +217,8 @@ def cmd_track(argv) -> int:
 def cmd_evaluate(argv) -> int:
     from .evaluate import cmd_evaluate as run
 
-    return run(argv)
+    with compile_notice("lgekf evaluate"):  # evaluate has no --quiet
+        return run(argv)
 
 
 COMMANDS["track"] = (cmd_track, "track the objects of a measurement file (CSV t,x,y[,id] or pedestrian format) with one or all filters")

@@ -5,13 +5,18 @@ Readers
 * ``read_csv(path)``: a CSV file with a header line; columns ``t, x, y`` (s, m, m; also accepted:
   ``time``/``timestamp`` for t), optional ``id`` (also ``track_id``, ``object_id``) for several objects
   whose rows may be interleaved, optional ``heading`` (rad; also ``yaw``), read only when asked.
-  Other columns are ignored. Blank lines are skipped.
+  Instead of ``x, y``: ``lat, lon`` in degrees (also ``latitude``, ``longitude``/``lng``/``long``),
+  projected to metres east/north of the first row's position (``lgekf.geo``; the origin is kept in
+  ``Measurements.origin``). Ids are text, compared exactly as written (surrounding spaces removed):
+  ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
+  or spaces) unless given. Other columns are ignored. Blank lines are skipped.
 * ``read_pedestrian(path, frame_dt)``: the ETH/UCY text format: whitespace separated ``frame id x y``,
   no header; t = frame * frame_dt, where ``frame_dt`` is the time per frame *unit* (ETH/UCY files step
   the frame number by 10 per sample: biwi_eth 10 frames = 0.6667 s -> frame_dt = 0.06667;
   hotel/zara/students 10 frames = 0.4 s -> frame_dt = 0.04).
 
-Both parse with ``numpy.loadtxt`` in chunks of lines (its C parser: about 0.3 s per 10⁶ rows); only
+Both read a path, ``-`` (stdin) or gzip data (``lgekf.files.open_input``) and parse with
+``numpy.loadtxt`` in chunks of lines (its C parser: about 0.3 s per 10⁶ rows); only
 when a chunk fails is it re-read line by line with the csv module to name the line, column and value.
 
 ``Measurements.grouped()`` sorts the rows by object (objects in order of first appearance, rows in file
@@ -21,26 +26,31 @@ Writer
 ------
 ``format_rows`` turns a label column and a float table into CSV bytes inside numba (``%.{p}g`` style,
 about 50 ns per number), so writing 10⁶ rows does not format numbers in Python.
-``AtomicFiles`` writes several files through temporary files that are renamed only when all of them
-are complete (all or nothing).
+``AtomicFiles`` (``lgekf.files``, re-exported here) writes several files through temporary files that
+are renamed only when all of them are complete (all or nothing).
 """
 
 from __future__ import annotations
 
 import csv
+import gzip
 import itertools
 import math
-import os
+import re
 import warnings
+import zlib
+from contextlib import contextmanager
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numba as nb
 import numpy as np
 
+from .files import AtomicFiles, open_input, source_name
+from .geo import to_local
+
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements",
-    "format_rows", "format_g", "AtomicFiles", "label_bytes",
+    "format_rows", "format_g", "AtomicFiles", "label_bytes", "parse_delimiter",
 ]
 
 CHUNK_LINES = 1 << 18
@@ -51,7 +61,12 @@ COLUMN_ALIASES = {
     "y": ("y",),
     "id": ("id", "track_id", "object_id"),
     "heading": ("heading", "yaw"),
+    "lat": ("lat", "latitude"),
+    "lon": ("lon", "lng", "long", "longitude"),
 }
+# separators tried on the header line, in this order (None: runs of spaces/tabs)
+AUTO_DELIMITERS = (",", ";", "\t", "|", None)
+DELIMITER_NAMES = {"tab": "\t", "\\t": "\t", "space": None, "whitespace": None, "comma": ",", "semicolon": ";"}
 
 
 class DataError(ValueError):
@@ -65,7 +80,8 @@ class Measurements:
     t (N,), z (N, 2), heading (N,) or None; obj (N,) object index per row, objects numbered in order of
     first appearance; labels[i] the text of object i's id (as written in the output);
     line (N,) the 1-based line number of each row in ``source`` (for error messages); extra: other
-    numeric columns asked for (name -> (N,)).
+    numeric columns asked for (name -> (N,)); origin: (lat0, lon0) in degrees when z was projected
+    from lat, lon columns (``lgekf.geo.to_local``), else None.
     """
 
     t: np.ndarray
@@ -76,6 +92,7 @@ class Measurements:
     line: np.ndarray
     source: str
     extra: dict = field(default_factory=dict)
+    origin: tuple | None = None
 
     @property
     def n_objects(self) -> int:
@@ -130,20 +147,34 @@ class Measurements:
                 )
         out = Measurements(
             t, self.z[order], None if self.heading is None else self.heading[order], obj, labels,
-            self.line[order], self.source, {k: v[order] for k, v in self.extra.items()},
+            self.line[order], self.source, {k: v[order] for k, v in self.extra.items()}, self.origin,
         )
         return out, starts, dropped
 
 
 # ----------------------------------------------------------------------------------- parsing
-def _open_text(path):
-    path = Path(path)
+@contextmanager
+def _reading(source):
+    """Turn decoding and decompression failures while reading into one-line DataErrors."""
     try:
-        return open(path, newline="", encoding="utf-8-sig")
-    except IsADirectoryError:
-        raise DataError(f"{path}: is a directory, expected a file") from None
-    except OSError as e:
-        raise DataError(f"{path}: cannot read ({e.strerror or e})") from None
+        yield
+    except UnicodeDecodeError:
+        raise DataError(f"{source}: not a text file (cannot decode as UTF-8)") from None
+    except (gzip.BadGzipFile, EOFError, zlib.error) as e:
+        raise DataError(f"{source}: damaged or truncated gzip data ({e})") from None
+
+
+def parse_delimiter(text):
+    """``--delimiter`` value: one character, or ``tab``, ``space`` (runs of whitespace), ``comma``,
+    ``semicolon``; None (not given) -> ``"auto"`` (found from the header line)."""
+    if text is None:
+        return "auto"
+    key = str(text)
+    if key.lower() in DELIMITER_NAMES:
+        return DELIMITER_NAMES[key.lower()]
+    if len(key) != 1 or key in '"\n\r':
+        raise DataError(f"--delimiter: expected one character or tab, space, comma, semicolon; got {text!r}")
+    return None if key == " " else key
 
 
 def _loadtxt(lines, delimiter, usecols, dtype=float):
@@ -151,14 +182,17 @@ def _loadtxt(lines, delimiter, usecols, dtype=float):
         warnings.simplefilter("ignore")  # "input contained no data"
         return np.loadtxt(
             lines, delimiter=delimiter, usecols=usecols, dtype=dtype, comments=None, ndmin=2 if dtype is float else 1,
-            quotechar='"' if delimiter == "," else None,
+            quotechar='"' if delimiter is not None else None,
         )
 
 
 def _split(line: str, delimiter):
-    if delimiter == ",":
-        return next(csv.reader([line]), [])
+    if delimiter is not None:
+        return next(csv.reader([line], delimiter=delimiter), [])
     return line.split()
+
+
+_DECIMAL_COMMA = re.compile(r"^[-+]?\d*,\d+$")
 
 
 def _diagnose(source, lines, first_line, delimiter, usecols, colnames, numeric):
@@ -179,7 +213,8 @@ def _diagnose(source, lines, first_line, delimiter, usecols, colnames, numeric):
                 float(v)
             except ValueError:
                 shown = v if v else "(empty)"
-                raise DataError(f"{where}: column {name!r}: {shown!r} is not a number") from None
+                hint = " (a decimal comma? write numbers with a decimal point)" if _DECIMAL_COMMA.match(v) else ""
+                raise DataError(f"{where}: column {name!r}: {shown!r} is not a number{hint}") from None
     return None
 
 
@@ -282,16 +317,53 @@ def _objects_from_texts(ids: np.ndarray):
     return rank[inv.ravel()], labels
 
 
-def _resolve_columns(source, header, want_heading):
+def _find_columns(header):
+    """{key: column index} for the known columns of a header (None if a key matches twice)."""
     names = [h.strip().lower() for h in header]
-    where = {}
+    where, twice = {}, {}
     for key, aliases in COLUMN_ALIASES.items():
         hits = [i for i, n in enumerate(names) if n in aliases]
         if len(hits) > 1:
-            raise DataError(f"{source}: header has more than one column for {key!r}: {', '.join(header[i].strip() for i in hits)}")
+            twice[key] = hits
         if hits:
             where[key] = hits[0]
-    missing = [k for k in ("t", "x", "y") if k not in where]
+    return where, twice
+
+
+def _usable(where) -> bool:
+    return "t" in where and (("x" in where and "y" in where) or ("lat" in where and "lon" in where))
+
+
+def _choose_delimiter(first: str, delimiter):
+    """The separator and header fields: ``delimiter`` if given, else the first of ``AUTO_DELIMITERS``
+    that splits the header into usable columns (',' when none does)."""
+    if delimiter != "auto":
+        return delimiter, _split(first, delimiter)
+    for d in AUTO_DELIMITERS:
+        header = _split(first, d)
+        if _usable(_find_columns(header)[0]):
+            return d, header
+    return ",", _split(first, ",")
+
+
+
+def _resolve_columns(source, header, want_heading, auto):
+    """{key: column index}; x, y when present, else lat, lon (degrees). Raises a DataError naming what is missing."""
+    where, twice = _find_columns(header)
+    for key, hits in twice.items():
+        if key in ("lat", "lon") and "x" in where and "y" in where:
+            continue  # not read
+        raise DataError(f"{source}: header has more than one column for {key!r}: {', '.join(header[i].strip() for i in hits)}")
+    if "x" in where and "y" in where:
+        where.pop("lat", None)
+        where.pop("lon", None)
+    elif "lat" in where and "lon" in where:
+        where.pop("x", None)
+        where.pop("y", None)
+    missing = [k for k in ("t",) if k not in where]
+    if not (("x" in where and "y" in where) or ("lat" in where and "lon" in where)):
+        pair = ("lat", "lon") if ("lat" in where or "lon" in where) and not ("x" in where or "y" in where) else ("x", "y")
+        missing += [k for k in pair if k not in where]
     if missing:
         shown = ", ".join(h.strip() for h in header) or "(nothing)"
         hint = ""
@@ -299,80 +371,106 @@ def _resolve_columns(source, header, want_heading):
             [float(h) for h in header if h.strip()]
             hint = " (the first line looks like data: the file needs a header line)"
         except ValueError:
-            pass
+            if auto and len(header) == 1 and re.search(r"[^\w\s]", header[0].strip()):
+                hint = " (if the columns are separated by something other than , ; tab | or spaces, give --delimiter)"
         raise DataError(
             f"{source}: missing column{'s' if len(missing) > 1 else ''} {', '.join(repr(m) for m in missing)}; "
-            f"the header has: {shown}{hint}; expected t, x, y and optionally id, heading"
+            f"the header has: {shown}{hint}; expected t, x, y (or t, lat, lon in degrees) and optionally id, heading"
         )
     if want_heading and "heading" not in where:
         raise DataError(f"{source}: --use-heading needs a 'heading' column (rad); the header has: {', '.join(h.strip() for h in header)}")
     return where
 
 
-def read_csv(path, use_heading: bool = False, extra=()) -> Measurements:
-    """Read a ``t, x, y[, id][, heading]`` CSV file with a header (see the module docstring).
+def _check_ids(source, ids, lines):
+    empty = ids == ""
+    if empty.any():
+        k = int(np.flatnonzero(empty)[0])
+        raise DataError(f"{source} line {int(lines[k])}: column 'id' is empty; every row needs an object id")
 
-    ``extra``: names of further numeric columns to read when the header has them (e.g. ``vx, vy``).
+
+def _check_degrees(source, cols, lines):
+    for name, lo, hi in (("lat", -90.0, 90.0), ("lon", -180.0, 360.0)):
+        a = cols[name]
+        bad = (a < lo) | (a > hi)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            raise DataError(f"{source} line {int(lines[k])}: column {name!r} is {float(a[k])!r}, not in [{lo:g}, {hi:g}] degrees")
+
+
+def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Measurements:
+    """Read a ``t, x, y[, id][, heading]`` (or ``t, lat, lon, ...``) file with a header line.
+
+    Parameters
+    ----------
+    path : str or Path
+        A file (plain or gzip-compressed) or ``-`` for stdin.
+    use_heading : bool
+        Read the ``heading`` column (an error when there is none).
+    extra : sequence of str
+        Further numeric columns to read when the header has them (e.g. ``vx, vy``), in ``Measurements.extra``.
+    delimiter : str or None, optional
+        The separator (None: runs of whitespace); ``"auto"`` (default) finds it from the header line.
+
+    Returns
+    -------
+    Measurements
+        In file order. Ids are the text of the ``id`` column (surrounding spaces removed), so
+        ``007`` and ``7`` are different objects; lat, lon are projected to metres (``origin`` set).
     """
-    source = str(path)
-    with _open_text(path) as f:
-        try:
-            first = f.readline()
-        except UnicodeDecodeError:
-            raise DataError(f"{source}: not a text file (cannot decode as UTF-8)") from None
+    source = source_name(path)
+    auto = delimiter == "auto"
+    with open_input(path, DataError) as f, _reading(source):
+        first = f.readline()
         if not first.strip():
             raise DataError(f"{source}: empty file; expected a header line with columns t, x, y (and optionally id)")
-        header = next(csv.reader([first]))
-        where = _resolve_columns(source, header, use_heading)
-        colnames = [k for k in ("t", "x", "y", "id", "heading") if k in where and (k != "heading" or use_heading)]
+        delim, header = _choose_delimiter(first.rstrip("\r\n"), delimiter)
+        where = _resolve_columns(source, header, use_heading, auto)
+        colnames = [k for k in ("t", "x", "y", "lat", "lon", "id", "heading") if k in where and (k != "heading" or use_heading)]
         usecols = [where[k] for k in colnames]
         lower = [h.strip().lower() for h in header]
         for name in extra:
             if name in lower and name not in colnames:
                 colnames.append(name)
                 usecols.append(lower.index(name))
-        start = f.tell()
-        str_cols = ()
-        try:
-            cols, lines = _read_chunks(source, f, 2, ",", usecols, colnames)
-        except DataError as e:
-            if "id" not in where or "column 'id'" not in str(e):
-                raise
-            # non-numeric ids: read them as text
-            f.seek(start)
-            str_cols = ("id",)
-            cols, lines = _read_chunks(source, f, 2, ",", usecols, colnames, str_cols)
-        except UnicodeDecodeError:
-            raise DataError(f"{source}: not a text file (cannot decode as UTF-8)") from None
+        str_cols = ("id",) if "id" in where else ()
+        cols, lines = _read_chunks(source, f, 2, delim, usecols, colnames, str_cols)
     if lines.size == 0:
         raise DataError(f"{source}: no measurements (the file has only a header line)")
-    _check_finite(source, cols, lines, [n for n in colnames if n not in str_cols and n != "id"])
-    if "id" in where:
-        if str_cols:
-            obj, labels = _objects_from_texts(cols["id"])
-        else:
-            _check_finite(source, cols, lines, ["id"])
-            obj, labels = _objects_from_numbers(cols["id"])
+    _check_finite(source, cols, lines, [n for n in colnames if n not in str_cols])
+    if str_cols:
+        _check_ids(source, cols["id"], lines)
+        obj, labels = _objects_from_texts(cols["id"])
     else:
         obj, labels = np.zeros(lines.size, dtype=np.int64), ["0"]
-    z = np.column_stack([cols["x"], cols["y"]])
+    origin = None
+    if "lat" in where:
+        _check_degrees(source, cols, lines)
+        origin = (float(cols["lat"][0]), float(cols["lon"][0]))
+        try:
+            x, y = to_local(cols["lat"], cols["lon"], *origin)
+        except ValueError as e:
+            raise DataError(f"{source} line {int(lines[0])}: {e}") from None
+        z = np.column_stack([x, y])
+    else:
+        z = np.column_stack([cols["x"], cols["y"]])
     ext = {n: cols[n] for n in extra if n in cols}
-    return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext)
+    return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin)
 
 
 def read_pedestrian(path, frame_dt: float) -> Measurements:
-    """Read the whitespace-separated ``frame id x y`` format (no header); t = frame * frame_dt."""
-    source = str(path)
+    """Read the whitespace-separated ``frame id x y`` format (no header); t = frame * frame_dt.
+
+    ``path`` may be ``-`` (stdin) or gzip-compressed. Ids are numbers here (``1`` and ``1.0`` are one object).
+    """
+    source = source_name(path)
     if frame_dt is None:
         raise DataError("--frame-dt: the pedestrian format needs the time per frame unit in seconds (e.g. 0.04 for 10 frames = 0.4 s)")
     if not (math.isfinite(frame_dt) and frame_dt > 0):
         raise DataError(f"--frame-dt: must be a positive number of seconds, got {frame_dt}")
     colnames = ["frame", "id", "x", "y"]
-    with _open_text(path) as f:
-        try:
-            cols, lines = _read_chunks(source, f, 1, None, [0, 1, 2, 3], colnames)
-        except UnicodeDecodeError:
-            raise DataError(f"{source}: not a text file (cannot decode as UTF-8)") from None
+    with open_input(path, DataError) as f, _reading(source):
+        cols, lines = _read_chunks(source, f, 1, None, [0, 1, 2, 3], colnames)
     if lines.size == 0:
         raise DataError(f"{source}: empty file; expected whitespace-separated lines 'frame id x y'")
     _check_finite(source, cols, lines, colnames)
@@ -381,12 +479,19 @@ def read_pedestrian(path, frame_dt: float) -> Measurements:
     return Measurements(cols["frame"] * frame_dt, z, None, obj, labels, lines, source)
 
 
-def read_measurements(path, fmt: str = "csv", frame_dt: float | None = None, use_heading: bool = False) -> Measurements:
+def read_measurements(path, fmt: str = "csv", frame_dt: float | None = None, use_heading: bool = False,
+                      delimiter="auto") -> Measurements:
+    """Read a measurement file: ``read_csv`` (``fmt="csv"``) or ``read_pedestrian`` (``"pedestrian"``).
+
+    ``delimiter``: a separator for CSV (default: found from the header); not allowed with the pedestrian format.
+    """
     if fmt == "csv":
-        return read_csv(path, use_heading=use_heading)
+        return read_csv(path, use_heading=use_heading, delimiter=delimiter)
     if fmt == "pedestrian":
         if use_heading:
             raise DataError("--use-heading: the pedestrian format has no heading column")
+        if delimiter != "auto":
+            raise DataError("--delimiter: only for CSV input (the pedestrian format is whitespace separated)")
         return read_pedestrian(path, frame_dt)
     raise DataError(f"--format: unknown format {fmt!r}; choose csv or pedestrian")
 
@@ -602,45 +707,3 @@ def format_g(values, digits: int) -> list:
         n = _put_g(buf, 0, float(v), int(digits), scratch)
         out.append(buf[:n].tobytes().decode())
     return out
-
-
-class AtomicFiles:
-    """Write several files all-or-nothing: each goes to a temporary file beside its target; ``commit()``
-    renames them all; leaving the ``with`` block without a commit (an error) deletes the temporaries."""
-
-    def __init__(self, paths):
-        self.paths = [Path(p) for p in paths]
-        self.tmps = [p.with_name(f".{p.name}.tmp{os.getpid()}") for p in self.paths]
-        self.handles = {}
-
-    def __enter__(self):
-        return self
-
-    def open(self, i):
-        p = self.paths[i]
-        if p.is_dir():
-            raise DataError(f"{p}: is a directory, expected an output file name")
-        if not p.parent.exists():
-            raise DataError(f"{p}: the output folder {p.parent} does not exist")
-        try:
-            fh = open(self.tmps[i], "wb")
-        except OSError as e:
-            raise DataError(f"{p}: cannot write ({e.strerror or e})") from None
-        self.handles[i] = fh
-        return fh
-
-    def commit(self):
-        for fh in self.handles.values():
-            fh.close()
-        for tmp, p in zip(self.tmps, self.paths):
-            if tmp.exists():
-                tmp.replace(p)
-
-    def __exit__(self, *exc):
-        for fh in self.handles.values():
-            if not fh.closed:
-                fh.close()
-        for tmp in self.tmps:
-            if tmp.exists():
-                tmp.unlink()
-        return False

@@ -44,8 +44,12 @@ import numpy as np
 
 from .cli import ArgumentParser
 from .core.covariance import pack, packed_diagonal
-from .io import AtomicFiles, format_rows, label_bytes, read_measurements
 from .core.registry import MODELS, get_model
+from .files import AtomicFiles, check_output_path, is_stdio
+from .geo import max_scale_error, to_latlon
+from .io import format_rows, label_bytes, parse_delimiter, read_measurements
+from .progress import compile_notice, progress_bar, stderr_is_terminal
+from .units import TIME_UNITS, to_seconds, unit_warnings
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
@@ -250,20 +254,33 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
 
 
 # ------------------------------------------------------------------------------------------ CLI
-def output_columns(model, full_cov=False):
+ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
+
+
+def output_columns(model, full_cov=False, origin=False):
+    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon].
+
+    ``origin``: the input had lat, lon columns; the last two columns then hold the origin (degrees) of
+    the east/north frame of x, y (``lgekf.geo``), the same on every row.
+    """
     spec = get_model(model)
     names = list(spec.state_names)
     cols = ["id", "t", *names, *(f"std_{s}" for s in names)]
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    return cols + ["nis"]
+    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else [])
 
 
-def output_path(out: Path, model: str, all_models: bool) -> Path:
-    if not all_models:
+def output_path(out, model: str, all_models: bool):
+    """The file of ``model``: ``out`` itself, or with ``--model all`` the model name inserted before the
+    suffix (``tracks.csv`` -> ``tracks_cv.csv``, ``tracks.csv.gz`` -> ``tracks_cv.csv.gz``)."""
+    if not all_models or is_stdio(out):
         return out
-    return out.with_name(f"{out.stem}_{model}{out.suffix}")
+    out = Path(out)
+    gz = out.name.endswith(".gz")
+    base = Path(out.name[:-3] if gz else out.name)
+    return out.with_name(f"{base.stem}_{model}{base.suffix}{'.gz' if gz else ''}")
 
 
 def parse_accel_std(items, models):
@@ -304,11 +321,17 @@ def track_parser():
         prog="lgekf track",
         description="Track every object of a measurement file with an LG-EKF (SE(2)xSE(2), SE(2)xR3), CTRV-EKF or CV-KF.",
     )
-    ap.add_argument("input", type=Path, help="measurements: CSV with header t,x,y[,id][,heading], or the pedestrian format")
-    ap.add_argument("-o", "--output", type=Path, required=True, help="output CSV (with --model all: one file per model, OUTPUT_<model>.csv)")
+    ap.add_argument("input", help="measurements: CSV with header t,x,y[,id][,heading] (or t,lat,lon,...), or the pedestrian format; "
+                    "- reads stdin; gzip input is recognised")
+    ap.add_argument("-o", "--output", required=True,
+                    help="output CSV; - writes to stdout; a name ending in .gz is gzip-compressed "
+                         "(with --model all: one file per model, OUTPUT_<model>.csv)")
     ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all"], help="filter (default se2se2)")
     ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
     ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
+    ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the CSV's t column, converted to seconds (default s)")
+    ap.add_argument("--delimiter", default=None, metavar="CHAR",
+                    help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
                     help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + "); repeatable MODEL=LIST")
     ap.add_argument("--measure", default="position", choices=["position", "pose"],
@@ -319,16 +342,20 @@ def track_parser():
     ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success")
+    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings about the data")
     return ap
 
 
-def _write_model(fh, model, meas, starts, cfg, full_cov, digits, measurement="position"):
-    """Track and write one model's file in chunks of objects (bounded memory)."""
+def _write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position"):
+    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk."""
     spec = get_model(model)
-    fh.write((",".join(output_columns(model, full_cov)) + "\n").encode())
+    origin = meas.origin is not None
+    fh.write((",".join(output_columns(model, full_cov, origin)) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
+    m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
+    col_digits = np.full(m + (2 if origin else 0), digits, dtype=np.int64)
+    col_digits[m:] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts the projection
     B = len(starts) - 1
     o = 0
     while o < B:
@@ -340,22 +367,47 @@ def _write_model(fh, model, meas, starts, cfg, full_cov, digits, measurement="po
         x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement)
         std = np.sqrt(np.maximum(p[:, diag], 0.0))
         parts = [x, std] + ([p] if full_cov else []) + [nis[:, None]]
-        fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), digits))
+        if origin:
+            parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+        fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
+        bar.update(b - a)
         o = o2
     return starts[-1]
+
+
+def _check_arguments(a, models):
+    """Every argument error before any reading or computing (one line each, exit 2)."""
+    if not 1 <= a.precision <= 17:
+        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
+    if a.format == "csv" and a.frame_dt is not None:
+        raise ValueError("--frame-dt: only used with --format pedestrian")
+    if a.format == "pedestrian" and a.time_unit != "s":
+        raise ValueError("--time-unit: only for CSV input (the pedestrian format's time is frame * --frame-dt seconds)")
+    if is_stdio(a.output) and len(models) > 1:
+        raise ValueError("--output -: --model all writes one file per model; give a file name")
+    check_output_path(a.output)
+    outs = [output_path(a.output, m, len(models) > 1) for m in models]
+    for o in outs:
+        check_output_path(o, option=None)
+    if not is_stdio(a.input) and any(not is_stdio(o) and Path(o).resolve() == Path(a.input).resolve() for o in outs):
+        raise ValueError(f"--output: {a.output} would overwrite the input file")
+    return outs
+
+
+def _frame_note(meas) -> str:
+    lat0, lon0 = meas.origin
+    lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
+    err = 100.0 * max_scale_error(lat, lat0)
+    return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
+            f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
 
 def cmd_track(argv) -> int:
     a = track_parser().parse_args(argv)
     models = list(MODELS) if a.model == "all" else [a.model]
-    if not 1 <= a.precision <= 17:
-        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
     cfg = TrackConfig(parse_accel_std(a.accel_std, models), a.meas_std, a.omega_std, a.heading_std).validate()
-    if a.format == "csv" and a.frame_dt is not None:
-        raise ValueError("--frame-dt: only used with --format pedestrian")
-    outs = [output_path(a.output, m, a.model == "all") for m in models]
-    if any(o.resolve() == a.input.resolve() for o in outs):
-        raise ValueError(f"--output: {a.output} would overwrite the input file")
+    outs = _check_arguments(a, models)
+    say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
     t0 = time.perf_counter()
     measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
     if a.model != "all" and measure[a.model] is None:
@@ -363,17 +415,28 @@ def cmd_track(argv) -> int:
     for m in models:
         if measure[m] is None:
             measure[m] = "position"
-            print(f"lgekf track: {m} has no heading: it gets the positions only", file=sys.stderr)
-    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose")
+            say(f"{m} has no heading: it gets the positions only")
+    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
     meas, starts, _ = meas.grouped(min_length=2)
+    meas.t = to_seconds(meas.t, a.time_unit)
     t_read = time.perf_counter() - t0
-    with AtomicFiles(outs) as files:
-        for i, m in enumerate(models):
-            _write_model(files.open(i), m, meas, starts, cfg, a.full_cov, a.precision, measure[m])
+    if meas.origin is not None:
+        say(_frame_note(meas))
+    for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None):
+        print(f"lgekf track: warning: {w}", file=sys.stderr)
+    total = meas.t.size * len(models)
+    show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
+    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
+        handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
+        with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
+            for fh, m in zip(handles, models):
+                _write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m])
         files.commit()
     if not a.quiet:
         wall = time.perf_counter() - t0
+        report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
         for m, o in zip(models, outs):
-            print(f"{o}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m})")
+            name = "<stdout>" if is_stdio(o) else o
+            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m})", file=report)
         print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
     return 0

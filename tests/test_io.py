@@ -1,9 +1,10 @@
-"""lgekf.io: readers (columns, ids, line numbers in errors), the numba number formatter, atomic writes."""
+"""lgekf.io and lgekf.files: readers (columns, ids as text, separators, lat/lon, gzip, stdin, line numbers in
+errors), the numba number formatter, atomic (and gzip) writes, output names."""
 
 import numpy as np
 import pytest
 
-from lgekf.io import AtomicFiles, DataError, format_g, format_rows, label_bytes, read_csv, read_pedestrian
+from lgekf.io import AtomicFiles, DataError, format_g, format_rows, label_bytes, parse_delimiter, read_csv, read_pedestrian
 
 
 def write(tmp_path, name, text):
@@ -145,3 +146,124 @@ def test_atomic_files_all_or_nothing(tmp_path):
         f.open(1).write(b"y")
         f.commit()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+
+
+# ------------------------------------------------------------------ ids, separators, lat/lon, gzip, stdin
+def test_ids_are_text_compared_as_written(tmp_path):
+    # numeric parsing merged 007 with 7 and, above 2**53, 9007199254740993 with 9007199254740992
+    text = ("id,t,x,y\n007,0,0,0\n7,0,50,0\n007,1,1,0\n7,1,51,0\n"
+            "9007199254740993,0,0,5\n9007199254740992,0,0,9\n9007199254740993,1,1,5\n9007199254740992,1,1,9\n")
+    m = read_csv(write(tmp_path, "a.csv", text))
+    assert m.labels == ["007", "7", "9007199254740993", "9007199254740992"]
+    np.testing.assert_array_equal(m.obj, [0, 1, 0, 1, 2, 3, 2, 3])
+    m = read_csv(write(tmp_path, "b.csv", "id,t,x,y\n1.0,0,0,0\n1,0,0,0\n 1.0 ,1,0,0\n"))
+    assert m.labels == ["1.0", "1"]  # surrounding spaces do not count, the text does
+    np.testing.assert_array_equal(m.obj, [0, 1, 0])
+
+
+def test_empty_id_is_an_error(tmp_path):
+    with pytest.raises(DataError, match=r"line 3: column 'id' is empty"):
+        read_csv(write(tmp_path, "a.csv", "id,t,x,y\n1,0,0,0\n,1,0,0\n"))
+
+
+@pytest.mark.parametrize("sep", [";", "\t", "|", "  "])
+def test_separator_found_from_the_header(tmp_path, sep):
+    text = sep.join(["t", "x", "y", "id"]) + "\n" + "\n".join(sep.join(r) for r in [["0", "1.5", "2", "a"], ["1", "2.5", "3", "a"]]) + "\n"
+    m = read_csv(write(tmp_path, "a.csv", text))
+    np.testing.assert_array_equal(m.z, [[1.5, 2], [2.5, 3]])
+    assert m.labels == ["a"]
+
+
+def test_given_delimiter_and_the_hint_when_none_fits(tmp_path):
+    p = write(tmp_path, "a.csv", "t:x:y\n0:1:2\n1:2:3\n")
+    with pytest.raises(DataError, match=r"the header has: t:x:y \(if the columns are separated by something other than .* give --delimiter\)"):
+        read_csv(p)
+    np.testing.assert_array_equal(read_csv(p, delimiter=parse_delimiter(":")).z, [[1, 2], [2, 3]])
+    assert parse_delimiter("tab") == "\t" and parse_delimiter("space") is None and parse_delimiter(None) == "auto"
+    with pytest.raises(DataError, match="--delimiter"):
+        parse_delimiter("::")
+
+
+def test_decimal_comma_gets_a_hint(tmp_path):
+    with pytest.raises(DataError, match=r"line 2: column 'x': '1,5' is not a number \(a decimal comma\?"):
+        read_csv(write(tmp_path, "a.csv", "t;x;y\n0;1,5;2\n"))
+
+
+def test_lat_lon_projected_about_the_first_row(tmp_path):
+    # metres per degree on WGS84 written out here (not taken from lgekf.geo), with the published
+    # a = 6378137 m and e² = 0.00669437999014: latitude π a (1 - e²) / (180 (1 - e² sin²φ)^1.5),
+    # longitude π a cos φ / (180 (1 - e² sin²φ)^0.5); at 45°: 111 131.8 m and 78 846.8 m (the tables' values)
+    a, e2, phi = 6378137.0, 0.00669437999014, np.radians(45.0)
+    per_lat = np.pi * a * (1 - e2) / (180 * (1 - e2 * np.sin(phi) ** 2) ** 1.5)
+    per_lon = np.pi * a * np.cos(phi) / (180 * (1 - e2 * np.sin(phi) ** 2) ** 0.5)
+    assert round(per_lat, 1) == 111131.8 and round(per_lon, 1) == 78846.8
+    text = "t,latitude,lon,id\n0,45.0,7.0,a\n1,45.001,7.0,a\n2,45.0,7.002,b\n3,45.0,7.0,b\n"
+    m = read_csv(write(tmp_path, "a.csv", text))
+    assert m.origin == (45.0, 7.0)
+    np.testing.assert_allclose(m.z[:, 1], [0, 0.001 * per_lat, 0, 0], rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(m.z[:, 0], [0, 0, 0.002 * per_lon, 0], rtol=1e-9, atol=1e-9)
+    both = read_csv(write(tmp_path, "b.csv", "t,x,y,lat,lon\n0,1,2,45,7\n"))  # x, y win when both are there
+    assert both.origin is None and both.z.tolist() == [[1, 2]]
+    with pytest.raises(DataError, match=r"line 3: column 'lat' is 91.0, not in \[-90, 90\] degrees"):
+        read_csv(write(tmp_path, "c.csv", "t,lat,lon\n0,45,7\n1,91,7\n"))
+    with pytest.raises(DataError, match="missing column 'lon'"):
+        read_csv(write(tmp_path, "d.csv", "t,lat,long_name\n0,45,7\n"))
+
+
+def test_gzip_input_recognised_by_content(tmp_path):
+    import gzip
+
+    text = "id,t,x,y\n1,0,0,0\n1,1,1,0\n"
+    for name in ("a.csv.gz", "a_gzip_named.csv"):
+        (tmp_path / name).write_bytes(gzip.compress(text.encode()))
+        m = read_csv(tmp_path / name)
+        np.testing.assert_array_equal(m.z, [[0, 0], [1, 0]])
+    (tmp_path / "p.txt.gz").write_bytes(gzip.compress(b"780 1 0 0\n790 1 1 0\n"))
+    assert read_pedestrian(tmp_path / "p.txt.gz", 0.04).t.tolist() == pytest.approx([31.2, 31.6])
+    (tmp_path / "cut.csv.gz").write_bytes(gzip.compress((text * 50).encode())[:-12])
+    with pytest.raises(DataError, match="cut.csv.gz: damaged or truncated gzip data"):
+        read_csv(tmp_path / "cut.csv.gz")
+
+
+@pytest.mark.parametrize("compress", [False, True])
+def test_dash_reads_stdin(monkeypatch, compress):
+    import gzip
+    import io
+    import sys
+
+    data = b"t,x,y\n0,0,0\n1,1,0\n"
+    raw = io.BufferedReader(io.BytesIO(gzip.compress(data) if compress else data))
+    monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(raw))
+    m = read_csv("-")
+    assert m.source == "<stdin>"
+    np.testing.assert_array_equal(m.z, [[0, 0], [1, 0]])
+    assert not raw.closed  # stdin is not closed by the reader
+
+
+def test_atomic_files_gzip_by_name_and_reproducible(tmp_path):
+    import gzip
+
+    payload = b"id,t\n" + b"a,1\n" * 1000
+    blobs = []
+    for k in range(2):
+        with AtomicFiles([tmp_path / "a.csv.gz", tmp_path / "b.csv"]) as f:
+            f.open(0).write(payload)
+            f.open(1).write(payload)
+            f.commit()
+        blobs.append((tmp_path / "a.csv.gz").read_bytes())
+    assert blobs[0][:2] == b"\x1f\x8b" and gzip.decompress(blobs[0]) == payload
+    assert blobs[0] == blobs[1]  # no time stamp in the gzip header
+    assert (tmp_path / "b.csv").read_bytes() == payload
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv.gz", "b.csv"]
+
+
+@pytest.mark.parametrize("name, message", [(".", "names a folder"), ("out/", "names a folder"), ("..", "names a folder"),
+                                           ("missing/x.csv", "the output folder missing does not exist")])
+def test_output_names_that_are_not_files(tmp_path, monkeypatch, name, message):
+    from lgekf.files import check_output_path
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match=message):
+        check_output_path(name)
+    with pytest.raises(ValueError, match="is an existing folder"):
+        check_output_path(str(tmp_path))

@@ -100,3 +100,14 @@ def test_figures_cli(tmp_path):
     for name in ("fig2_banana.png", "fig3_trajectories.png"):
         data = (tmp_path / name).read_bytes()
         assert data[:4] == b"\x89PNG" and len(data) > 10_000
+
+
+@pytest.mark.parametrize("args", [["--noise-scale", "cv=30", "ctrv=3"], ["--noise-scale", "cv=30", "--noise-scale", "ctrv=3"]])
+def test_noise_scale_several_values_after_one_flag_or_repeated(tmp_path, args):
+    # the README's `--noise-scale cv=30 ctrv=3` failed with "unrecognized arguments: ctrv=3"
+    out = tmp_path / "res"
+    r = subprocess.run([LGEKF, "study", *args, "--trajectories", "3", "--sigmas", "0,1", "--steps", "10", "--no-figure",
+                        "--quiet", "--out", str(out)], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    meta = json.loads((out / "meta.json").read_text())
+    assert meta["protocol"]["noise_scale"] == {"se2se2": 1.0, "se2r3": 1.0, "ctrv": 3.0, "cv": 30.0}

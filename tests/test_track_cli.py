@@ -231,3 +231,181 @@ def test_stationary_start_is_finite(tmp_path):
         np.linalg.cholesky(P0[0])
         if model != "cv":
             assert P0[0, 2, 2] <= math.pi**2 * (1 + 1e-12)
+
+
+# ------------------------------------------------------------------ issue #9: a user's first hour
+BAD_CASES_9 = {
+    "output_dot": (GOOD, ["-o", "."], "--output .: names a folder; give a file name"),
+    "output_slash": (GOOD, ["-o", "sub/"], "--output sub/: names a folder"),
+    "all_to_stdout": (GOOD, ["-o", "-", "--model", "all"], "--model all writes one file per model"),
+    "time_unit_unknown": (GOOD, ["--time-unit", "min"], "invalid choice: 'min'"),
+    "time_unit_pedestrian": ("780 1 0 0\n790 1 1 0\n", ["--format", "pedestrian", "--frame-dt", "0.04", "--time-unit", "ms"],
+                             "--time-unit: only for CSV input"),
+    "delimiter_two_chars": (GOOD, ["--delimiter", "ab"], "--delimiter: expected one character"),
+    "no_separator_fits": ("t:x:y\n0:0:0\n1:1:0\n", [], "give --delimiter"),
+    "empty_id": ("id,t,x,y\n1,0,0,0\n,0.1,0,0\n", [], "line 3: column 'id' is empty"),
+    "latitude_out_of_range": ("t,lat,lon\n0,45,7\n1,145,7\n", [], "column 'lat' is 145.0"),
+    "gzip_truncated": (None, [], "damaged or truncated gzip data"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_CASES_9))
+def test_bad_input_9_one_line_exit_2_no_output(tmp_path, case):
+    import gzip
+
+    text, extra, message = BAD_CASES_9[case]
+    inp = tmp_path / "in.csv"
+    if text is None:
+        inp.write_bytes(gzip.compress(GOOD.encode() * 20)[:-10])
+    else:
+        inp.write_text(text)
+    args = extra if "-o" in extra else ["-o", tmp_path / "out.csv", *extra]
+    r = run(inp, *args, cwd=tmp_path)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1, r.stderr
+    assert lines[0].startswith("lgekf track: error: ") and message in lines[0], lines[0]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv"]
+
+
+def _rows(text):
+    lines = text.strip().splitlines()
+    return lines[0].split(","), [ln.split(",") for ln in lines[1:]]
+
+
+def test_ids_007_and_7_are_two_objects(tmp_path):
+    # before: ids were numbers, 007 == 7, and the merged track jumped 50 m between consecutive rows
+    t = (0.1 * np.arange(6)).tolist()
+    rows = []
+    for k, tt in enumerate(t):
+        rows.append(f"007,{tt!r},{1.0 * k},0")
+        rows.append(f"7,{tt!r},{50.0 + 1.0 * k},0")
+    rows += [f"9007199254740993,{tt!r},{k},5" for k, tt in enumerate(t)] + [f"9007199254740992,{tt!r},{k},-5" for k, tt in enumerate(t)]
+    out = tmp_path / "o.csv"
+    r = run(write(tmp_path, "in.csv", "id,t,x,y\n" + "\n".join(rows) + "\n"), "-o", out, "--model", "cv")
+    assert r.returncode == 0, r.stderr
+    assert "4 objects" in r.stdout
+    _, data = read_out(out)
+    assert list(dict.fromkeys(data[:, 0])) == ["007", "7", "9007199254740993", "9007199254740992"]
+    for lab, x0, y in (("007", 0.0, 0.0), ("7", 50.0, 0.0), ("9007199254740993", 0.0, 5.0), ("9007199254740992", 0.0, -5.0)):
+        mine = data[data[:, 0] == lab, 1:].astype(float)
+        np.testing.assert_allclose(mine[:, 1], x0 + np.arange(6), atol=1e-6)  # a straight line, no jump
+        np.testing.assert_allclose(mine[:, 2], y, atol=1e-6)
+
+
+def test_time_unit_ms_equals_seconds_and_warnings(tmp_path):
+    t = np.cumsum(np.full(20, 0.1))
+    z = np.column_stack([1.5 * t, 0.2 * t])
+    body = "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist()))
+    body_ms = "".join(f"{round(a * 1000)},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist()))
+    r_s = run(write(tmp_path, "s.csv", "t,x,y\n" + body), "-o", tmp_path / "s_out.csv")
+    assert r_s.returncode == 0 and "warning" not in r_s.stderr, r_s.stderr
+    r_plain = run(write(tmp_path, "ms.csv", "t,x,y\n" + body_ms), "-o", tmp_path / "plain.csv", "--quiet")
+    warn = [ln for ln in r_plain.stderr.splitlines() if "warning" in ln]
+    assert r_plain.returncode == 0 and len(warn) == 1, r_plain.stderr  # shown even with --quiet
+    assert warn[0].startswith("lgekf track: warning: the median time step is 100 s") and "--time-unit ms" in warn[0]
+    r_ms = run(tmp_path / "ms.csv", "-o", tmp_path / "ms_out.csv", "--time-unit", "ms")
+    assert r_ms.returncode == 0 and "warning" not in r_ms.stderr, r_ms.stderr
+    _, a = read_out(tmp_path / "s_out.csv")
+    _, b = read_out(tmp_path / "ms_out.csv")
+    np.testing.assert_allclose(b[:, 1].astype(float), t, rtol=1e-12)  # written in seconds
+    np.testing.assert_allclose(b[:, 2:].astype(float), a[:, 2:].astype(float), rtol=1e-8, atol=1e-10)
+
+
+def test_degrees_in_x_y_and_huge_speeds_warn(tmp_path):
+    t = 0.1 * np.arange(10)
+    deg = "t,x,y\n" + "".join(f"{a!r},{11.5 + 1.3e-5 * a!r},48.1\n" for a in t.tolist())
+    r = run(write(tmp_path, "deg.csv", deg), "-o", tmp_path / "o.csv")
+    assert r.returncode == 0 and "lgekf track: warning: the median speed is" in r.stderr and "lon, lat" in r.stderr, r.stderr
+    fast = "t,x,y\n" + "".join(f"{a!r},{3e6 * a!r},0\n" for a in t.tolist())
+    r = run(write(tmp_path, "fast.csv", fast), "-o", tmp_path / "o.csv")
+    assert r.returncode == 0 and "warning: the median speed is 3e+06 m/s" in r.stderr, r.stderr
+
+
+def test_lat_lon_input_gives_metres_and_the_origin(tmp_path):
+    # a straight walk north-east at 45° N; metres per degree written out here (see test_io) from WGS84's a, e²
+    a, e2, phi = 6378137.0, 0.00669437999014, np.radians(45.0)
+    per_lat = np.pi * a * (1 - e2) / (180 * (1 - e2 * np.sin(phi) ** 2) ** 1.5)
+    per_lon = np.pi * a * np.cos(phi) / (180 * (1 - e2 * np.sin(phi) ** 2) ** 0.5)
+    t = 0.5 * np.arange(12)
+    lat = 45.0 + 1e-5 * t
+    lon = 7.25 + 1e-5 * t
+    text = "t,lat,lon\n" + "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), lat.tolist(), lon.tolist()))
+    out = tmp_path / "o.csv"
+    r = run(write(tmp_path, "ll.csv", text), "-o", out, "--model", "cv", "--precision", "17")
+    assert r.returncode == 0, r.stderr
+    note = [ln for ln in r.stderr.splitlines() if "projected" in ln]
+    assert len(note) == 1 and "(45.0, 7.25)" in note[0] and "origin_lat, origin_lon" in note[0], r.stderr
+    header, data = read_out(out)
+    assert header[-2:] == ["origin_lat", "origin_lon"] and header[-3] == "nis"
+    vals = data[:, 1:].astype(float)
+    np.testing.assert_array_equal(vals[:, -2:], [[45.0, 7.25]] * len(t))
+    np.testing.assert_allclose(vals[:, 1], 1e-5 * t * per_lon, atol=1e-6)  # x east, m (noise-free line: filter = truth)
+    np.testing.assert_allclose(vals[:, 2], 1e-5 * t * per_lat, atol=1e-6)
+    r = run(tmp_path / "ll.csv", "-o", tmp_path / "q.csv", "--quiet")
+    assert r.returncode == 0 and r.stderr == "" and r.stdout == ""
+
+
+def test_gzip_output_and_input(tmp_path):
+    import gzip
+
+    inp = write(tmp_path, "in.csv", GOOD)
+    assert run(inp, "-o", tmp_path / "plain.csv", "--model", "all").returncode == 0
+    r = run(inp, "-o", tmp_path / "z.csv.gz", "--model", "all")
+    assert r.returncode == 0, r.stderr
+    for m in MODELS:
+        blob = (tmp_path / f"z_{m}.csv.gz").read_bytes()
+        assert blob[:2] == b"\x1f\x8b"
+        assert gzip.decompress(blob) == (tmp_path / f"plain_{m}.csv").read_bytes()
+    assert not (tmp_path / "z.csv.gz").exists() and not list(tmp_path.glob("*.csv_*"))
+    (tmp_path / "in.csv.gz").write_bytes(gzip.compress(GOOD.encode()))
+    r = run(tmp_path / "in.csv.gz", "-o", tmp_path / "from_gz.csv", "--model", "cv")
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "from_gz.csv").read_bytes() == (tmp_path / "plain_cv.csv").read_bytes()
+
+
+def test_dash_is_stdin_and_stdout(tmp_path):
+    inp = write(tmp_path, "in.csv", GOOD)
+    assert run(inp, "-o", tmp_path / "file.csv", "--model", "ctrv").returncode == 0
+    r = subprocess.run([*cli_command(), "track", "-", "-o", "-", "--model", "ctrv"], input=GOOD, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == (tmp_path / "file.csv").read_text()  # only the data on stdout
+    assert "<stdout>: 4 rows" in r.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["file.csv", "in.csv"]
+
+
+def test_closed_stdout_is_not_an_error(tmp_path):
+    t = 0.1 * np.arange(3000)
+    inp = write(tmp_path, "in.csv", "t,x,y\n" + "".join(f"{a!r},{a!r},0\n" for a in t.tolist()))
+    p = subprocess.Popen([*cli_command(), "track", str(inp), "-o", "-", "--model", "cv"], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert p.stdout.readline().startswith(b"id,t,")
+    p.stdout.close()  # like `| head -1`
+    err = p.stderr.read().decode()
+    assert p.wait() == 141 and "Traceback" not in err and "error" not in err, err
+
+
+@pytest.mark.parametrize("sep, extra", [(";", []), ("\t", []), (":", ["--delimiter", ":"]), (" ", ["--delimiter", "space"])])
+def test_separators(tmp_path, sep, extra):
+    inp = write(tmp_path, "in.csv", GOOD)
+    assert run(inp, "-o", tmp_path / "ref.csv", "--model", "cv").returncode == 0
+    other = write(tmp_path, "other.txt", GOOD.replace(",", sep))
+    r = run(other, "-o", tmp_path / "o.csv", "--model", "cv", *extra)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "o.csv").read_bytes() == (tmp_path / "ref.csv").read_bytes()
+
+
+def test_version():
+    from importlib.metadata import version
+
+    r = subprocess.run([*cli_command(), "--version"], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout == f"lgekf {version('lgekf')}\n"
+
+
+def test_output_path_for_model_all():
+    from pathlib import Path
+
+    from lgekf.track import output_path
+
+    assert output_path(Path("d/tracks.csv"), "cv", True) == Path("d/tracks_cv.csv")
+    assert output_path(Path("d/tracks.csv.gz"), "cv", True) == Path("d/tracks_cv.csv.gz")
+    assert output_path(Path("tracks"), "ctrv", True) == Path("tracks_ctrv")
+    assert output_path("-", "cv", False) == "-"

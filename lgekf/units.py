@@ -1,0 +1,81 @@
+"""Units of a measurement file: the time unit (``--time-unit``) and a plausibility check.
+
+The filters work in seconds and metres. A file in other units is accepted silently by the parser, so
+``unit_warnings`` looks at the median time step and the median speed between consecutive measurements
+of the same object and returns one line per implausible value, saying what to do:
+
+* median step ≥ ``MAX_PLAUSIBLE_DT`` (10 s): probably milli-, micro- or nanoseconds (the unit that
+  brings the step between 1 ms and 10 s is suggested) — or genuinely slow sampling, then ignore it;
+* median speed > ``MAX_PLAUSIBLE_SPEED`` (300 m/s, faster than an airliner): x, y not in metres or t not
+  in seconds;
+* median speed below 1 mm/s with every x, y within ±180: x, y are probably degrees (a lat, lon pair
+  moves about 1e-5 "units" per second at walking speed); such files need ``lat, lon`` columns.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings"]
+
+TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
+UNIT_NAMES = {"s": "seconds", "ms": "milliseconds", "us": "microseconds", "ns": "nanoseconds"}
+MAX_PLAUSIBLE_DT = 10.0
+MAX_PLAUSIBLE_SPEED = 300.0
+MIN_DEGREE_LIKE_SPEED = 1e-3
+
+
+def to_seconds(t: np.ndarray, unit: str) -> np.ndarray:
+    """``t`` in ``unit`` (a key of ``TIME_UNITS``) converted to seconds (a new array unless unit is s)."""
+    if unit not in TIME_UNITS:
+        raise ValueError(f"--time-unit: unknown unit {unit!r}; choose one of {', '.join(TIME_UNITS)}")
+    return t if unit == "s" else t * TIME_UNITS[unit]
+
+
+def _steps(t, z, starts):
+    """dt and distance of every consecutive pair of rows of the same object (rows sorted by object)."""
+    dt = np.diff(t)
+    dist = np.hypot(*np.diff(z, axis=0).T)
+    keep = np.ones(dt.size, dtype=bool)
+    keep[np.asarray(starts[1:-1], dtype=np.int64) - 1] = False  # pairs across two objects
+    return dt[keep], dist[keep]
+
+
+def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False) -> list[str]:
+    """Lines (without a prefix) describing implausible units, empty when all looks like s and m.
+
+    Parameters
+    ----------
+    t : ndarray (N,)
+        Times in seconds, sorted by object, increasing within each.
+    z : ndarray (N, 2)
+        Positions.
+    starts : ndarray (B + 1,)
+        Row offsets of the objects.
+    time_unit : str
+        The ``--time-unit`` given (named in the advice).
+    projected : bool
+        True when z was projected from lat, lon (then the degree hint is not given).
+    """
+    dt, dist = _steps(np.asarray(t, float), np.asarray(z, float), starts)
+    if dt.size == 0:
+        return []
+    out = []
+    med_dt = float(np.median(dt))
+    dt_flagged = med_dt >= MAX_PLAUSIBLE_DT
+    if dt_flagged:
+        scale = TIME_UNITS[time_unit]
+        fits = [u for u, f in TIME_UNITS.items() if f < scale and 1e-3 <= med_dt * f / scale <= MAX_PLAUSIBLE_DT]
+        advice = (f"if t is in {UNIT_NAMES[fits[0]]}, add --time-unit {fits[0]}" if fits
+                  else "check the unit of t (--time-unit s|ms|us|ns)")
+        out.append(f"the median time step is {med_dt:.4g} s: {advice} (ignore this if the sampling really is that slow)")
+    speed = dist / dt
+    med_v = float(np.median(speed))
+    if med_v > MAX_PLAUSIBLE_SPEED:
+        out.append(f"the median speed is {med_v:.3g} m/s: x, y should be metres and t seconds "
+                   "(degrees go in lat, lon columns; see --time-unit for t)")
+    elif (0.0 < med_v < MIN_DEGREE_LIKE_SPEED and not projected and not dt_flagged
+          and np.abs(np.asarray(z)).max() <= 180.0):
+        out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
+                   "name the columns lon, lat instead (they are then projected to metres)")
+    return out

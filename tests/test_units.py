@@ -1,0 +1,52 @@
+"""lgekf.units: --time-unit conversion and the warnings about implausible units."""
+
+import numpy as np
+import pytest
+
+from lgekf.units import to_seconds, unit_warnings
+
+
+def _line(n=20, dt=0.1, speed=1.5, start=(0.0, 0.0)):
+    t = dt * np.arange(n)
+    z = np.column_stack([start[0] + speed * t, np.full(n, start[1])])
+    return t, z, np.array([0, n])
+
+
+def test_to_seconds():
+    t = np.array([0.0, 100.0, 250.0])
+    np.testing.assert_allclose(to_seconds(t, "ms"), [0.0, 0.1, 0.25])
+    np.testing.assert_allclose(to_seconds(t, "us"), [0.0, 1e-4, 2.5e-4])
+    np.testing.assert_allclose(to_seconds(t, "ns"), [0.0, 1e-7, 2.5e-7])
+    assert to_seconds(t, "s") is t
+    with pytest.raises(ValueError, match="--time-unit"):
+        to_seconds(t, "min")
+
+
+def test_plausible_data_has_no_warning():
+    for speed in (0.0, 1.5, 30.0):  # standing, walking, driving
+        assert unit_warnings(*_line(speed=speed, start=(500.0, 200.0))) == []
+
+
+@pytest.mark.parametrize("factor, unit", [(1e3, "ms"), (1e6, "us"), (1e9, "ns")])
+def test_time_step_suggests_the_unit(factor, unit):
+    t, z, starts = _line(dt=0.1)
+    (w,) = unit_warnings(t * factor, z, starts)
+    assert f"--time-unit {unit}" in w and "median time step" in w
+
+
+def test_speeds_of_degrees_and_of_wrong_scales():
+    t, z, starts = _line(speed=1.5)
+    (w,) = unit_warnings(t, z * 2e6, starts)  # 3e6 m/s
+    assert "median speed is 3e+06 m/s" in w
+    deg = np.column_stack([11.5 + 1.3e-5 * t, 48.1 + 0 * t])  # walking, written in degrees
+    (w,) = unit_warnings(t, deg, starts)
+    assert "lon, lat" in w
+    assert unit_warnings(t, deg, starts, projected=True) == []
+
+
+def test_steps_across_objects_do_not_count():
+    # two objects far apart, one row after the other: the jump between them is no step of either
+    t1, z1, _ = _line(n=10)
+    t2, z2, _ = _line(n=10, start=(1e7, 0.0))
+    t, z = np.concatenate([t1, t2]), np.concatenate([z1, z2])
+    assert unit_warnings(t, z, np.array([0, 10, 20])) == []
