@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import importlib
 
-__version__ = "0.2.0.dev0"
+__version__ = "0.1.0"
 
 _PUBLIC = {
     "filter_batch": "lgekf.core.batch",
