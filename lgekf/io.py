@@ -165,8 +165,19 @@ def _reading(source):
 
 
 def parse_delimiter(text):
-    """``--delimiter`` value: one character, or ``tab``, ``space`` (runs of whitespace), ``comma``,
-    ``semicolon``; None (not given) -> ``"auto"`` (found from the header line)."""
+    """The separator of a ``--delimiter`` value.
+
+    Parameters
+    ----------
+    text : str or None
+        One character, or ``tab``, ``space`` (runs of whitespace), ``comma``, ``semicolon``; None when
+        the option was not given.
+
+    Returns
+    -------
+    str or None
+        The character, None for whitespace, or ``"auto"`` (found from the header line) for None.
+    """
     if text is None:
         return "auto"
     key = str(text)
@@ -461,7 +472,17 @@ def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Mea
 def read_pedestrian(path, frame_dt: float) -> Measurements:
     """Read the whitespace-separated ``frame id x y`` format (no header); t = frame * frame_dt.
 
-    ``path`` may be ``-`` (stdin) or gzip-compressed. Ids are numbers here (``1`` and ``1.0`` are one object).
+    Parameters
+    ----------
+    path : str or Path
+        A file (plain or gzip-compressed) or ``-`` for stdin.
+    frame_dt : float
+        Seconds per frame unit.
+
+    Returns
+    -------
+    Measurements
+        Ids are numbers in this format (``1`` and ``1.0`` are one object).
     """
     source = source_name(path)
     if frame_dt is None:
@@ -481,9 +502,24 @@ def read_pedestrian(path, frame_dt: float) -> Measurements:
 
 def read_measurements(path, fmt: str = "csv", frame_dt: float | None = None, use_heading: bool = False,
                       delimiter="auto") -> Measurements:
-    """Read a measurement file: ``read_csv`` (``fmt="csv"``) or ``read_pedestrian`` (``"pedestrian"``).
+    """Read a measurement file with ``read_csv`` or ``read_pedestrian``.
 
-    ``delimiter``: a separator for CSV (default: found from the header); not allowed with the pedestrian format.
+    Parameters
+    ----------
+    path : str or Path
+        A file or ``-`` (stdin).
+    fmt : str
+        ``"csv"`` or ``"pedestrian"``.
+    frame_dt : float, optional
+        Pedestrian format: seconds per frame unit.
+    use_heading : bool
+        CSV: read the heading column.
+    delimiter : str or None, optional
+        CSV separator (``"auto"``: found from the header); an error with the pedestrian format.
+
+    Returns
+    -------
+    Measurements
     """
     if fmt == "csv":
         return read_csv(path, use_heading=use_heading, delimiter=delimiter)

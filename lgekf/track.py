@@ -395,6 +395,7 @@ def _check_arguments(a, models):
 
 
 def _frame_note(meas) -> str:
+    """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
     lat0, lon0 = meas.origin
     lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
     err = 100.0 * max_scale_error(lat, lat0)
@@ -422,7 +423,7 @@ def cmd_track(argv) -> int:
     t_read = time.perf_counter() - t0
     if meas.origin is not None:
         say(_frame_note(meas))
-    for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None):
+    for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
     total = meas.t.size * len(models)
     show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK

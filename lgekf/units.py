@@ -26,7 +26,20 @@ MIN_DEGREE_LIKE_SPEED = 1e-3
 
 
 def to_seconds(t: np.ndarray, unit: str) -> np.ndarray:
-    """``t`` in ``unit`` (a key of ``TIME_UNITS``) converted to seconds (a new array unless unit is s)."""
+    """Times converted to seconds.
+
+    Parameters
+    ----------
+    t : ndarray
+        Times in ``unit``.
+    unit : str
+        A key of ``TIME_UNITS`` (s, ms, us, ns).
+
+    Returns
+    -------
+    ndarray
+        ``t`` itself for seconds, else a new array.
+    """
     if unit not in TIME_UNITS:
         raise ValueError(f"--time-unit: unknown unit {unit!r}; choose one of {', '.join(TIME_UNITS)}")
     return t if unit == "s" else t * TIME_UNITS[unit]
@@ -41,7 +54,7 @@ def _steps(t, z, starts):
     return dt[keep], dist[keep]
 
 
-def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False) -> list[str]:
+def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, fmt: str = "csv") -> list[str]:
     """Lines (without a prefix) describing implausible units, empty when all looks like s and m.
 
     Parameters
@@ -56,6 +69,14 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False) -
         The ``--time-unit`` given (named in the advice).
     projected : bool
         True when z was projected from lat, lon (then the degree hint is not given).
+    fmt : str
+        ``"csv"`` or ``"pedestrian"`` (whose time comes from ``--frame-dt`` and which has no column names:
+        the advice is adapted).
+
+    Returns
+    -------
+    list of str
+        At most one line about the time step and one about the speed.
     """
     dt, dist = _steps(np.asarray(t, float), np.asarray(z, float), starts)
     if dt.size == 0:
@@ -66,15 +87,18 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False) -
     if dt_flagged:
         scale = TIME_UNITS[time_unit]
         fits = [u for u, f in TIME_UNITS.items() if f < scale and 1e-3 <= med_dt * f / scale <= MAX_PLAUSIBLE_DT]
-        advice = (f"if t is in {UNIT_NAMES[fits[0]]}, add --time-unit {fits[0]}" if fits
-                  else "check the unit of t (--time-unit s|ms|us|ns)")
+        if fmt == "pedestrian":
+            advice = "check --frame-dt (seconds per frame unit: 0.04 for ETH/UCY's 10 frames = 0.4 s)"
+        else:
+            advice = (f"if t is in {UNIT_NAMES[fits[0]]}, add --time-unit {fits[0]}" if fits
+                      else "check the unit of t (--time-unit s|ms|us|ns)")
         out.append(f"the median time step is {med_dt:.4g} s: {advice} (ignore this if the sampling really is that slow)")
     speed = dist / dt
     med_v = float(np.median(speed))
     if med_v > MAX_PLAUSIBLE_SPEED:
-        out.append(f"the median speed is {med_v:.3g} m/s: x, y should be metres and t seconds "
-                   "(degrees go in lat, lon columns; see --time-unit for t)")
-    elif (0.0 < med_v < MIN_DEGREE_LIKE_SPEED and not projected and not dt_flagged
+        hint = "see --frame-dt" if fmt == "pedestrian" else "degrees go in lat, lon columns; see --time-unit for t"
+        out.append(f"the median speed is {med_v:.3g} m/s: x, y should be metres and t seconds ({hint})")
+    elif (0.0 < med_v < MIN_DEGREE_LIKE_SPEED and fmt == "csv" and not projected and not dt_flagged
           and np.abs(np.asarray(z)).max() <= 180.0):
         out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
                    "name the columns lon, lat instead (they are then projected to metres)")

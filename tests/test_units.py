@@ -50,3 +50,11 @@ def test_steps_across_objects_do_not_count():
     t2, z2, _ = _line(n=10, start=(1e7, 0.0))
     t, z = np.concatenate([t1, t2]), np.concatenate([z1, z2])
     assert unit_warnings(t, z, np.array([0, 10, 20])) == []
+
+
+def test_pedestrian_format_gets_frame_dt_advice():
+    t, z, starts = _line(dt=0.4)
+    (w,) = unit_warnings(t * 25, z, starts, fmt="pedestrian")  # --frame-dt 1 instead of 0.04
+    assert "--frame-dt" in w and "--time-unit" not in w
+    deg = np.column_stack([11.5 + 1.3e-5 * t, 48.1 + 0 * t])
+    assert unit_warnings(t, deg, starts, fmt="pedestrian") == []  # no columns to rename there

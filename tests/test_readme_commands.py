@@ -1,0 +1,169 @@
+"""Every `lgekf ...` command the README shows runs and exits with status 0 — on small inputs.
+
+The commands are collected from the README's code blocks and inline code (``lgekf ...``), plus the
+`lgekf study` options in the table of the study section (``--noise-scale cv=30 ctrv=3`` and others,
+run as ``lgekf study OPTIONS``). The README's first block (setup, the full study, the test suite) is
+what CI runs (`.ci/run`) and is left out. ``README_TO_RUN`` maps each collected command to what is run;
+when the README gains a command the test fails until it is added there. Substitutions, all for size:
+
+* synopses (``[...]``, ``{a,b,...}``, ``INPUT.csv``, ``DATASET...``) and bare mentions (``lgekf track``)
+  become concrete commands (one per model for ``{se2se2,...}``, each option of ``[--check | --verify]``);
+* every ``lgekf study`` gets ``--trajectories 3 --sigmas 0,1 --steps 10`` where it does not set them;
+* every ``lgekf evaluate`` reads a stand-in data folder (``$LGEKF_DATA``: the presets' file layout
+  with a few synthetic tracks each, built below) and gets ``--seeds 1``;
+* ``lgekf derive`` (which rewrites the package's ``generated/``) gets ``--out`` a temporary folder;
+* the files the commands name (``detections.csv``, ``biwi_eth.txt``, ``phone.csv.gz``) are small
+  synthetic stand-ins written into the temporary working folder.
+
+The ``lgekf derive`` runs are SymPy work (30-45 s each on 2 cores) and are marked slow.
+"""
+
+from __future__ import annotations
+
+import gzip
+import os
+import re
+import shlex
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from _cli import cli_command
+
+README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+MODELS = ("se2se2", "se2r3", "ctrv", "cv")
+
+
+def readme_commands() -> list[str]:
+    """The `lgekf ...` commands of the README (first block excluded), in order, without duplicates."""
+    first = re.search(r"```\n(.*?)```", README, re.S)
+    text = README[:first.start()] + README[first.end():]
+    cmds = []
+    for block in re.finditer(r"```[^\n]*\n(.*?)```", text, re.S):
+        cmds += [re.sub(r"\s+#.*$", "", ln).strip() for ln in block.group(1).splitlines() if ln.startswith("lgekf ")]
+    prose = re.sub(r"```.*?```", "", text, flags=re.S)
+    cmds += [" ".join(m.group(1).split()) for m in re.finditer(r"`(lgekf(?: [^`]*)?)`", prose)]
+    study = re.search(r"\n## The Monte Carlo study.*?(?=\n## )", prose, re.S).group(0)
+    cmds += ["lgekf study " + m.group(1) for m in re.finditer(r"^\| `(--[^`]*)` \|", study, re.M)]
+    return list(dict.fromkeys(cmds))
+
+
+STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [--dt T] [--steps K] [--v0 vx,vy] [--w0 w] "
+                  "[--truth se2se2|se2r3] [--noise-scale cv=10 ...] [--out results/] [--quiet]")
+
+# README command -> the commands run for it (None: run as written)
+README_TO_RUN = {
+    "lgekf track detections.csv -o tracks.csv --model se2se2": None,
+    "lgekf track biwi_eth.txt --format pedestrian --frame-dt 0.06667 -o eth.csv --model all": None,
+    "lgekf track phone.csv.gz --time-unit ms -o phone_tracks.csv.gz": None,
+    "lgekf track - -o - --model cv < detections.csv > tracks_cv.csv": None,
+    STUDY_SYNOPSIS: ["lgekf study --trajectories 3 --sigmas 0:3:2 --seed 1 --dt 0.1 --steps 10 --v0 3,0 --w0 0 "
+                     "--truth se2r3 --noise-scale cv=10 ctrv=3 --out results/ --quiet"],
+    "lgekf figures [--out figures/] [--pdf]": ["lgekf figures --out figures/ --pdf"],
+    "lgekf track INPUT.csv --model {se2se2,se2r3,ctrv,cv,all} -o OUTPUT.csv":
+        [f"lgekf track detections.csv --model {m} -o out_{m}.csv" for m in (*MODELS, "all")],
+    "lgekf evaluate DATASET...": ["lgekf evaluate hotel detections.csv --out evaluation_mine/"],
+    "lgekf derive [--check | --verify]": ["lgekf derive --check", "lgekf derive --verify"],
+    "lgekf --version": None,
+    "lgekf derive": ["lgekf derive"],
+    "lgekf derive --verify": None,
+    "lgekf derive --check": None,
+    "lgekf study": None,
+    "lgekf figures": None,
+    "lgekf track": ["lgekf track detections.csv -o tracks.csv"],
+    "lgekf evaluate": ["lgekf evaluate ethucy kitti cyclists dut"],
+    "lgekf evaluate ethucy kitti cyclists dut [--tune]": ["lgekf evaluate ethucy kitti cyclists dut",
+                                                         "lgekf evaluate ethucy kitti cyclists dut --tune"],
+    "lgekf study --noise-scale cv=30": None,
+    "lgekf study --noise-scale cv=30 ctrv=3": None,
+    "lgekf study --truth se2r3 --noise-scale cv=30": None,
+    "lgekf study --dt 0.5 --steps 20 --noise-scale cv=30 ctrv=3": None,
+    "lgekf study --v0 1,0 --noise-scale cv=30": None,
+}
+
+
+def reduce(cmd: str) -> str:
+    """The size reductions of the module docstring."""
+    words = cmd.split()
+    if words[1] == "study":
+        for flag, value in (("--trajectories", "3"), ("--sigmas", "0,1"), ("--steps", "10")):
+            if flag not in words:
+                cmd += f" {flag} {value}"
+    elif words[1] == "evaluate" and "--seeds" not in words:
+        cmd += " --seeds 1"
+    elif words[1] == "derive" and "--check" not in words and "--verify" not in words:
+        cmd += " --out generated_copy"
+    return cmd
+
+
+def to_run() -> list[str]:
+    out = []
+    for readme, runs in README_TO_RUN.items():
+        out += [reduce(c) for c in (runs or [readme])]
+    return list(dict.fromkeys(out))
+
+
+def test_every_readme_command_is_covered():
+    assert set(readme_commands()) == set(README_TO_RUN)
+
+
+# ------------------------------------------------------------------------------ small stand-in inputs
+def _tracks(n_obj, n, dt=0.4, seed=0):
+    """n_obj gently turning synthetic tracks of n samples: (id, k, x, y)."""
+    rng = np.random.default_rng(seed)
+    rows = []
+    for i in range(n_obj):
+        th = rng.uniform(-np.pi, np.pi) + 0.05 * np.arange(n)
+        x = rng.uniform(-5, 5) + np.cumsum(1.2 * dt * np.cos(th))
+        y = rng.uniform(-5, 5) + np.cumsum(1.2 * dt * np.sin(th))
+        rows += [(i + 1, k, x[k], y[k]) for k in range(n)]
+    return rows
+
+
+def _data_root(root: Path):
+    """The presets' layout (lgekf.evaluate.PRESETS) with a few synthetic tracks per dataset."""
+    ped = root / "eth_ucy_trajectronpp"
+    ped.mkdir(parents=True)
+    for j, name in enumerate(("biwi_eth", "biwi_hotel", "crowds_zara01", "crowds_zara02", "students001", "students003")):
+        (ped / f"{name}.txt").write_text("".join(f"{10 * k}\t{i}.0\t{x:.3f}\t{y:.3f}\n" for i, k, x, y in _tracks(6, 10, seed=j)))
+    kitti = root / "kitti_oxts"
+    kitti.mkdir()
+    for s in range(4):
+        a = np.zeros((12, 30))
+        a[:, 0] = 49.0 + 1e-5 * np.arange(12) * (s + 1)
+        a[:, 1] = 8.4 + 1e-5 * np.arange(12)
+        a[:, 6], a[:, 7] = 1.0, 0.7
+        np.savetxt(kitti / f"{s:04d}.txt", a)
+    cyc = root / "vru_cyclists_moving"
+    cyc.mkdir()
+    for s in range(4):
+        (cyc / f"{s + 1}.csv").write_text(",timestamp,x,y\n" + "".join(
+            f"{k},{0.08 * k:.2f},{x:.3f},{y:.3f}\n" for _, k, x, y in _tracks(1, 12, 0.08, seed=10 + s)))
+    dut = root / "dut_vehicles" / "raw"
+    dut.mkdir(parents=True)
+    (dut / "clip_ratio_pixel2meter.txt").write_text("10.0\n")
+    (dut / "clip_traj_veh.csv").write_text("id,x_c,y_c,frame\n" + "".join(
+        f"{i},{10 * x:.2f},{10 * y:.2f},{k}\n" for i, k, x, y in _tracks(5, 12, 1 / 23.98, seed=20)))
+
+
+@pytest.fixture(scope="module")
+def workdir(tmp_path_factory):
+    d = tmp_path_factory.mktemp("readme")
+    (d / "detections.csv").write_text("t,x,y,id\n" + "".join(
+        f"{0.4 * k:.1f},{x:.3f},{y:.3f},{i}\n" for i, k, x, y in _tracks(3, 12)))
+    (d / "biwi_eth.txt").write_text("".join(f"{10 * k}\t{i}.0\t{x:.3f}\t{y:.3f}\n" for i, k, x, y in _tracks(3, 10, 0.6667)))
+    lat0, lon0 = 48.137, 11.575
+    phone = "t,lat,lon\n" + "".join(f"{1000 * k},{lat0 + 1e-5 * y:.8f},{lon0 + 1e-5 * x:.8f}\n" for _, k, x, y in _tracks(1, 12, 1.0))
+    (d / "phone.csv.gz").write_bytes(gzip.compress(phone.encode()))
+    _data_root(d / "data")
+    return d
+
+
+@pytest.mark.parametrize("cmd", [pytest.param(c, marks=pytest.mark.slow) if c.split()[1] == "derive" else c for c in to_run()])
+def test_readme_command_runs(workdir, cmd):
+    script = f"lgekf() {{ {shlex.join(cli_command())} \"$@\"; }}\n{cmd}\n"
+    env = dict(os.environ, LGEKF_DATA=str(workdir / "data"), MPLBACKEND="Agg")
+    r = subprocess.run(["bash", "-c", script], cwd=workdir, env=env, capture_output=True, text=True)
+    assert r.returncode == 0, f"{cmd}\n{r.stdout[-2000:]}\n{r.stderr[-3000:]}"
+    assert "Traceback" not in r.stderr
