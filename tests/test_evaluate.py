@@ -11,8 +11,8 @@ import pytest
 from _cli import cli_command
 
 from lgekf.evaluate import (
-    FILTERS, MIN_TRACKS_CI, Dataset, bootstrap_ci, data_root, evaluate_dataset, format_table, load_dataset,
-    markdown_table, run_filters, t_quantile, tune_split, world_velocity,
+    FILTERS, MIN_TRACKS_CI, Dataset, bootstrap_ci, data_root, evaluate_dataset, evaluation_figure, format_table,
+    load_dataset, markdown_table, run_filters, t_quantile, tune_split, world_velocity,
 )
 from lgekf.track import TrackConfig, track_arrays
 
@@ -244,6 +244,22 @@ def test_tables_give_intervals_from_five_tracks_on():
     for r in rows:
         assert 0 <= r["pos_ci_lo"] <= r["pos_rmse"] <= r["pos_ci_hi"]
     assert "n/a" not in format_table(rows)
+
+
+def test_evaluation_figure_of_one_dataset_keeps_title_and_legend_inside(monkeypatch, tmp_path):
+    import matplotlib.pyplot as plt
+
+    rows = evaluate_dataset(_synthetic_dataset(2), seeds=1)[0].summary()
+    monkeypatch.setattr(plt, "close", lambda fig: None)  # keep the figure to inspect it
+    evaluation_figure(rows, tmp_path / "e.png", "default")
+    fig = plt.gcf()
+    fig.canvas.draw()
+    box = fig.bbox
+    for artist in (fig._suptitle, *fig.legends):
+        ext = artist.get_window_extent()
+        assert box.x0 <= ext.x0 and ext.x1 <= box.x1 and ext.y1 <= box.y1, (artist, ext, box)
+    monkeypatch.undo()
+    plt.close(fig)
 
 
 def test_evaluate_cli_with_two_tracks_prints_no_negative_or_nan_bound(tmp_path):
