@@ -597,7 +597,8 @@ def evaluation_figure(rows, path: Path, noise: str):
     names = [*FILTERS, "measurements"]
     panels = [("pos", datasets, "m")] + ([("vel", vel_sets, "m/s")] if vel_sets else [])
     widths = [len(d) + 0.6 for _, d, _ in panels]
-    fig, axes = plt.subplots(1, len(panels), figsize=(1.0 * sum(widths) + 1.5, 4.4), squeeze=False,
+    # at least 7 in wide: the legend and the two-line title must fit even for a single dataset
+    fig, axes = plt.subplots(1, len(panels), figsize=(max(1.0 * sum(widths) + 1.5, 7.0), 4.6), squeeze=False,
                              gridspec_kw={"width_ratios": widths})
     colors = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "0.7"}
     for ax, (key, sets, unit) in zip(axes[0], panels):
@@ -620,10 +621,10 @@ def evaluation_figure(rows, path: Path, noise: str):
         ax.set_ylabel(f"{'position' if key == 'pos' else 'velocity'} RMSE ({unit})")
         ax.grid(axis="y", alpha=0.3)
     handles, labels = axes[0][0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="upper center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, 0.93), frameon=False)
-    fig.suptitle(f"Tracking error on real trajectories ({noise} process noise; bars: mean over tracks, "
-                 f"95 % bootstrap CI, none with fewer than {MIN_TRACKS_CI} tracks)", fontsize=10)
-    fig.tight_layout(rect=(0, 0, 1, 0.88))
+    fig.legend(handles, labels, loc="upper center", ncol=len(names), fontsize=8, bbox_to_anchor=(0.5, 0.90), frameon=False)
+    fig.suptitle(f"Tracking error on real trajectories ({noise} process noise)\nbars: mean over tracks; whiskers: "
+                 f"95 % bootstrap CI (none with fewer than {MIN_TRACKS_CI} tracks)", fontsize=10)
+    fig.tight_layout(rect=(0, 0, 1, 0.84))
     try:
         fig.savefig(Path(path), dpi=120)
     finally:

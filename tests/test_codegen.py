@@ -33,6 +33,7 @@ def _run(code_or_args, env_extra=None, timeout=600):
 
 
 # ------------------------------------------------------------------ freshness
+@pytest.mark.slow
 def test_derive_check_passes():
     """`lgekf derive --check`: generated/ equals a fresh regeneration (exit status 0)."""
     r = _run(["-m", "lgekf.derive.codegen.build", "--check"])
@@ -40,6 +41,7 @@ def test_derive_check_passes():
     assert "up to date" in r.stdout
 
 
+@pytest.mark.slow
 def test_check_detects_stale_and_extra_files(tmp_path):
     from lgekf.derive.codegen.build import check
 

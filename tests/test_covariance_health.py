@@ -20,6 +20,8 @@ from scipy.signal import lfilter
 
 from lgekf import SE2R3Filter, SE2SE2Filter, filter_batch
 
+pytestmark = pytest.mark.slow  # long runs (10⁵ steps each, about 10 s for the module on 2 cores)
+
 K = 100_000
 MODELS = ("se2se2", "se2r3", "ctrv", "cv")
 

@@ -11,8 +11,8 @@ import pytest
 from _cli import cli_command
 
 from lgekf.evaluate import (
-    FILTERS, MIN_TRACKS_CI, Dataset, bootstrap_ci, data_root, evaluate_dataset, load_dataset, run_filters, t_quantile,
-    tune_split, world_velocity,
+    FILTERS, MIN_TRACKS_CI, Dataset, bootstrap_ci, data_root, evaluate_dataset, evaluation_figure, format_table,
+    load_dataset, markdown_table, run_filters, t_quantile, tune_split, world_velocity,
 )
 from lgekf.track import TrackConfig, track_arrays
 
@@ -143,6 +143,7 @@ def test_evaluate_synthetic_end_to_end(tmp_path):
     assert "pos RMSE" in r.stdout and "se2r3" in r.stdout
 
 
+@pytest.mark.slow
 def test_evaluate_tune_uses_only_the_tuning_split(tmp_path):
     data = write_synthetic(tmp_path / "synth.csv", synthetic_tracks(n=10))
     out = tmp_path / "ev"
@@ -165,6 +166,7 @@ def test_evaluate_tune_uses_only_the_tuning_split(tmp_path):
         assert stages == ({"1"} if m == "cv" else {"1", "2", "3"})
 
 
+@pytest.mark.slow
 def test_tuning_never_sees_the_evaluation_tracks():
     rows = synthetic_tracks(n=10, K=20)
     t = np.array([r[1] for r in rows])
@@ -195,6 +197,7 @@ def test_run_filters_uses_common_noise_and_track_arrays():
     assert res["se2r3"][0][0, 1] == pytest.approx(e)
 
 
+@pytest.mark.slow
 def test_evaluate_pedestrian_file_and_errors(tmp_path):
     text = "".join(f"{10 * k}\t{i}\t{0.5 * k}\t{1.0 * i + 0.02 * k * k}\n" for k in range(12) for i in range(1, 5))
     data = tmp_path / "ped.txt"
@@ -215,23 +218,61 @@ def test_evaluate_pedestrian_file_and_errors(tmp_path):
     assert not (tmp_path / "bad").exists()
 
 
+def _synthetic_dataset(n_tracks, K=40):
+    rows = synthetic_tracks(n=n_tracks, K=K)
+    return Dataset("few", np.array([r[1] for r in rows]), np.array([[r[2], r[3]] for r in rows]),
+                   np.array([[r[4], r[5]] for r in rows]), np.arange(0, K * n_tracks + 1, K),
+                   [str(i) for i in range(n_tracks)])
+
+
 @pytest.mark.parametrize("n_tracks", [1, 2])
-def test_evaluate_says_when_there_are_too_few_tracks_for_an_interval(tmp_path, n_tracks):
-    data = write_synthetic(tmp_path / "few.csv", synthetic_tracks(n=n_tracks))
+def test_tables_say_when_there_are_too_few_tracks_for_an_interval(n_tracks):
+    rows = evaluate_dataset(_synthetic_dataset(n_tracks), seeds=2)[0].summary()
+    label = f"n/a ({n_tracks} track{'s' if n_tracks > 1 else ''})"
+    for table in (format_table(rows), markdown_table(rows)):
+        lines = [line for line in table.splitlines() if "few" in line]
+        assert len(lines) == len(FILTERS) + 1
+        for line in lines:
+            assert label in line and "nan" not in line and "[-" not in line, line
+        for line in lines[:3]:  # the filters compared with CV: position, paired difference, velocity
+            assert line.count(label) == 3, line
+    assert all(np.isnan(r["pos_ci_lo"]) and np.isnan(r["pos_ci_hi"]) and r["pos_rmse"] > 0 for r in rows)
+
+
+def test_tables_give_intervals_from_five_tracks_on():
+    rows = evaluate_dataset(_synthetic_dataset(MIN_TRACKS_CI), seeds=1)[0].summary()
+    for r in rows:
+        assert 0 <= r["pos_ci_lo"] <= r["pos_rmse"] <= r["pos_ci_hi"]
+    assert "n/a" not in format_table(rows)
+
+
+def test_evaluation_figure_of_one_dataset_keeps_title_and_legend_inside(monkeypatch, tmp_path):
+    import matplotlib.pyplot as plt
+
+    rows = evaluate_dataset(_synthetic_dataset(2), seeds=1)[0].summary()
+    monkeypatch.setattr(plt, "close", lambda fig: None)  # keep the figure to inspect it
+    evaluation_figure(rows, tmp_path / "e.png", "default")
+    fig = plt.gcf()
+    fig.canvas.draw()
+    box = fig.bbox
+    for artist in (fig._suptitle, *fig.legends):
+        ext = artist.get_window_extent()
+        assert box.x0 <= ext.x0 and ext.x1 <= box.x1 and ext.y1 <= box.y1, (artist, ext, box)
+    monkeypatch.undo()
+    plt.close(fig)
+
+
+def test_evaluate_cli_with_two_tracks_prints_no_negative_or_nan_bound(tmp_path):
+    data = write_synthetic(tmp_path / "few.csv", synthetic_tracks(n=2))
     out = tmp_path / "ev"
     r = evaluate(data, "--seeds", "2", "--out", out)
     assert r.returncode == 0, r.stderr
-    label = f"n/a ({n_tracks} track{'s' if n_tracks > 1 else ''})"
     table = [line for line in r.stdout.splitlines() if line.startswith("few ")]
     assert len(table) == len(FILTERS) + 1
-    for line in table:
-        assert label in line and "nan" not in line and "[-" not in line, line
-    for line in table[:3]:  # the three filters compared with CV: position, paired difference, velocity
-        assert line.count(label) == 3, line
+    assert all("n/a (2 tracks)" in line and "nan" not in line and "[-" not in line for line in table)
     rows = list(csv.DictReader(open(out / "summary.csv")))
     assert all(x["pos_ci_lo"] == "" and x["pos_ci_hi"] == "" and float(x["pos_rmse"]) > 0 for x in rows)
-    md = evaluate(data, "--seeds", "2", "--out", out, "--markdown", "--no-figure")
-    assert md.returncode == 0 and label in md.stdout and "nan" not in md.stdout
+    assert (out / "evaluation.png").stat().st_size > 1000
 
 
 def test_data_root_is_option_then_env_then_cwd_relative(monkeypatch, tmp_path):
@@ -266,7 +307,8 @@ def test_missing_dataset_names_its_source_and_how_to_point_at_it(tmp_path):
         assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
         assert len(r.stderr.strip().splitlines()) == 1, r.stderr
         assert source in r.stderr and "--data-root" in r.stderr and "$LGEKF_DATA" in r.stderr, r.stderr
-    assert "relative to the current folder" in evaluate("eth", cwd=tmp_path, env=env).stderr
+        if not env_extra and "--data-root" not in args:
+            assert f"relative to the current folder {tmp_path}" in r.stderr, r.stderr
     assert not (tmp_path / "ev").exists()
 
 

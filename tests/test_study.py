@@ -94,6 +94,7 @@ def test_study_cli_writes_results(tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
 
 
+@pytest.mark.slow
 def test_figures_cli(tmp_path):
     r = subprocess.run([LGEKF, "figures", "--out", str(tmp_path)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
