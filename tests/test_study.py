@@ -86,7 +86,7 @@ def test_study_cli_writes_results(tmp_path):
     assert {r["filter"] for r in rows} == {*FILTERS, "measurements"}
     assert len(rows) == 2 * (len(FILTERS) + 1) and all(int(r["n"]) == 8 for r in rows)
     with open(out / "rmse.csv") as f:
-        assert sum(1 for _ in f) == 1 + 2 * 8 * 5
+        assert sum(1 for _ in f) == 1 + 2 * 8 * (len(FILTERS) + 1)
     meta = json.loads((out / "meta.json").read_text())
     assert meta["protocol"]["seed"] == 3 and meta["protocol"]["sigmas"] == [0.0, 3.0]
     assert {"versions", "wall_seconds", "claims", "wrapped_trajectories_per_sigma"} <= set(meta)
@@ -111,4 +111,4 @@ def test_noise_scale_several_values_after_one_flag_or_repeated(tmp_path, args):
                         "--quiet", "--out", str(out)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     meta = json.loads((out / "meta.json").read_text())
-    assert meta["protocol"]["noise_scale"] == {"se2se2": 1.0, "se2r3": 1.0, "ctrv": 3.0, "cv": 30.0}
+    assert meta["protocol"]["noise_scale"] == {**{f: 1.0 for f in FILTERS}, "ctrv": 3.0, "cv": 30.0}
