@@ -26,7 +26,7 @@ import numpy as np
 
 
 def generate(path: Path, objects: int, steps: int, seed: int = 0) -> None:
-    from lgekf.io import format_rows, label_bytes
+    from lgekf.io.formatting import format_rows, label_bytes
 
     rng = np.random.default_rng(seed)
     dt = rng.uniform(0.07, 0.13, (objects, steps))
@@ -59,9 +59,10 @@ def main(argv=None) -> int:
     ap.add_argument("--keep", type=Path, default=None, help="write the files here and keep them")
     a = ap.parse_args(argv)
 
-    from lgekf.io import format_rows, label_bytes, read_csv
+    from lgekf.io.formatting import format_rows, label_bytes
+    from lgekf.io.readers import read_csv
     from lgekf.core.registry import MODELS
-    from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
+    from lgekf.apps.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
 
     tmp = Path(tempfile.mkdtemp(prefix="bench_track_")) if a.keep is None else a.keep
     tmp.mkdir(parents=True, exist_ok=True)

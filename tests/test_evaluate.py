@@ -10,11 +10,13 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-from lgekf.evaluate import (
-    FILTERS, MIN_TRACKS_CI, TURNING, Dataset, bootstrap_ci, data_root, evaluate_dataset, evaluation_figure, format_table,
-    load_dataset, markdown_table, run_filters, t_quantile, tune_split, world_velocity,
+from lgekf.apps.evaluate import (
+    FILTERS, TURNING, evaluate_dataset, evaluation_figure, format_table, markdown_table, run_filters, tune_split,
+    world_velocity,
 )
-from lgekf.track import TrackConfig, track_arrays
+from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_quantile
+from lgekf.io.datasets import Dataset, data_root, load_dataset
+from lgekf.apps.track import TrackConfig, track_arrays
 
 DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[1].parent / "shared" / "data")
 
@@ -189,7 +191,7 @@ def test_run_filters_uses_common_noise_and_track_arrays():
     ds = Dataset("s", t, p, None, np.array([0, 15, 30, 45]), ["0", "1", "2"])
     cfg = TrackConfig()
     res = run_filters(ds, cfg, [4], 0)
-    from lgekf.evaluate import _seed_rng
+    from lgekf.apps.evaluate import _seed_rng
 
     z = ds.p + cfg.meas_std * _seed_rng(4, 0, "s").standard_normal(ds.p.shape)
     x, _, _ = track_arrays("se2r3", t, z, ds.starts, cfg)

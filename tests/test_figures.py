@@ -1,4 +1,4 @@
-"""Fig. 1/2 and Fig. 3 (`lgekf.figures`): the density regions drawn, the claims of the Fig. 1/2 caption,
+"""Fig. 1/2 and Fig. 3 (`lgekf.experiments.figures`): the density regions drawn, the claims of the Fig. 1/2 caption,
 and Fig. 3's panels fitted to their own data."""
 
 import math
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from lgekf import figures
-from lgekf.figures import BANANA_CAPTION, banana_panel, highest_density_region
+from lgekf.experiments.figures import BANANA_CAPTION, banana_panel, highest_density_region
 
 
 def test_highest_density_region_of_a_standard_normal():

@@ -1,11 +1,11 @@
-"""lgekf.geo: the local east/north frame of lat/lon input (exact inverse, accuracy as documented)."""
+"""lgekf.io.geo: the local east/north frame of lat/lon input (exact inverse, accuracy as documented)."""
 
 import math
 
 import numpy as np
 import pytest
 
-from lgekf.geo import max_scale_error, to_latlon, to_local
+from lgekf.io.geo import max_scale_error, to_latlon, to_local
 
 
 def _haversine(lat1, lon1, lat2, lon2, R=6371008.8):

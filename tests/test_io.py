@@ -4,7 +4,9 @@ errors), the numba number formatter, atomic (and gzip) writes, output names."""
 import numpy as np
 import pytest
 
-from lgekf.io import AtomicFiles, DataError, format_g, format_rows, label_bytes, parse_delimiter, read_csv, read_pedestrian
+from lgekf.io.files import AtomicFiles
+from lgekf.io.formatting import format_g, format_rows, label_bytes
+from lgekf.io.readers import DataError, parse_delimiter, read_csv, read_pedestrian
 
 
 def write(tmp_path, name, text):
@@ -32,7 +34,7 @@ def test_csv_ids_numeric_and_text_in_order_of_first_appearance(tmp_path):
 
 
 def test_text_ids_after_the_first_chunk(tmp_path, monkeypatch):
-    import lgekf.io as lio
+    import lgekf.io.readers as lio
 
     monkeypatch.setattr(lio, "CHUNK_LINES", 2)
     m = read_csv(write(tmp_path, "a.csv", "id,t,x,y\n1,0,0,0\n1,1,0,0\nbob,0,0,0\nbob,1,0,0\n"))
@@ -190,7 +192,7 @@ def test_decimal_comma_gets_a_hint(tmp_path):
 
 
 def test_lat_lon_projected_about_the_first_row(tmp_path):
-    # metres per degree on WGS84 written out here (not taken from lgekf.geo), with the published
+    # metres per degree on WGS84 written out here (not taken from lgekf.io.geo), with the published
     # a = 6378137 m and e² = 0.00669437999014: latitude π a (1 - e²) / (180 (1 - e² sin²φ)^1.5),
     # longitude π a cos φ / (180 (1 - e² sin²φ)^0.5); at 45°: 111 131.8 m and 78 846.8 m (the tables' values)
     a, e2, phi = 6378137.0, 0.00669437999014, np.radians(45.0)
@@ -260,7 +262,7 @@ def test_atomic_files_gzip_by_name_and_reproducible(tmp_path):
 @pytest.mark.parametrize("name, message", [(".", "names a folder"), ("out/", "names a folder"), ("..", "names a folder"),
                                            ("missing/x.csv", "the output folder missing does not exist")])
 def test_output_names_that_are_not_files(tmp_path, monkeypatch, name, message):
-    from lgekf.files import check_output_path
+    from lgekf.io.files import check_output_path
 
     monkeypatch.chdir(tmp_path)
     with pytest.raises(ValueError, match=message):

@@ -1,4 +1,4 @@
-"""lgekf.progress: the compile notice (cold numba cache only) and the tqdm bars (terminal only, not --quiet)."""
+"""lgekf.cli.progress: the compile notice (cold numba cache only) and the tqdm bars (terminal only, not --quiet)."""
 
 import io
 import os
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-from lgekf.progress import COMPILE_NOTICE, compile_notice, progress_bar
+from lgekf.cli.progress import COMPILE_NOTICE, compile_notice, progress_bar
 
 
 class _Terminal(io.StringIO):
@@ -79,7 +79,7 @@ def test_progress_bar_on_and_off():
 
 @pytest.mark.parametrize("terminal, quiet, expect_bar", [(True, False, True), (True, True, False), (False, False, False)])
 def test_track_bar_only_on_a_terminal_and_not_quiet(tmp_path, monkeypatch, terminal, quiet, expect_bar):
-    import lgekf.track as track
+    import lgekf.cli.track as track
 
     monkeypatch.setattr(track, "ROWS_PER_CHUNK", 8)  # "a large file": more rows than one chunk
     t = 0.1 * np.arange(40)

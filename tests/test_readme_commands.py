@@ -122,7 +122,7 @@ def _tracks(n_obj, n, dt=0.4, seed=0):
 
 
 def _data_root(root: Path):
-    """The presets' layout (lgekf.evaluate.PRESETS) with a few synthetic tracks per dataset."""
+    """The presets' layout (lgekf.io.datasets.PRESETS) with a few synthetic tracks per dataset."""
     ped = root / "eth_ucy_trajectronpp"
     ped.mkdir(parents=True)
     for j, name in enumerate(("biwi_eth", "biwi_hotel", "crowds_zara01", "crowds_zara02", "students001", "students003")):

@@ -12,7 +12,7 @@ from _cli import cli_command
 from lgekf.core.batch import filter_batch
 from lgekf.core.covariance import unpack
 from lgekf.core.registry import MODELS
-from lgekf.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
+from lgekf.apps.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
 
 
 
@@ -403,7 +403,7 @@ def test_version():
 def test_output_path_for_model_all():
     from pathlib import Path
 
-    from lgekf.track import output_path
+    from lgekf.apps.track import output_path
 
     assert output_path(Path("d/tracks.csv"), "cv", True) == Path("d/tracks_cv.csv")
     assert output_path(Path("d/tracks.csv.gz"), "cv", True) == Path("d/tracks_cv.csv.gz")

@@ -1,9 +1,9 @@
-"""lgekf.units: --time-unit conversion and the warnings about implausible units."""
+"""lgekf.io.units: --time-unit conversion and the warnings about implausible units."""
 
 import numpy as np
 import pytest
 
-from lgekf.units import to_seconds, unit_warnings
+from lgekf.io.units import to_seconds, unit_warnings
 
 
 def _line(n=20, dt=0.1, speed=1.5, start=(0.0, 0.0)):

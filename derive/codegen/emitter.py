@@ -354,7 +354,6 @@ def model_kernels(model, measurements: dict) -> list:
         ks.extend(_measurement_kernels(model, meas, P, pin, sin_))
     ks.extend(pd_check_kernels(n))
     # ---- exact motion for simulation
-    q = len(model.noise_names)
     nn = sp.symbols(f"n0:{len(model.noise_stds())}", real=True)
     new = {i: e for i, e in enumerate(model.internal_of(model.propagated(nn).applyfunc(sub)))}
     new = {i: model.to_internal(e) for i, e in new.items() if model.to_internal(e) != model.internal[i]}

@@ -243,8 +243,6 @@ class MotionModel:
     @cached_property
     def calH(self) -> sp.Matrix:
         """ℋ of the paper's position measurement (eq:calH, eq:calH_model)."""
-        from ..measurements.position import MEASUREMENT
-
         self.limit_report_H = []
         return jacobian_at_zero(self.measurement_error, self.EPS, report=self.limit_report_H)
 

@@ -37,23 +37,19 @@ class ArgumentParser(argparse.ArgumentParser):
         return super().parse_known_args(merged, namespace)
 
 
-def _cmd_derive(argv) -> int:
-    # SymPy is imported only here (the runtime never needs it)
-    from .derive.codegen.build import main as derive_main
-
-    if not {"-h", "--help"} & set(argv):
-        # derive is SymPy work (not numba, not cached): it takes this long on every run
-        print("lgekf derive: deriving with SymPy, about 15-60 s...", file=sys.stderr, flush=True)
-    return derive_main(argv)
-
-
+# name -> (module, function, help); the module is imported only when its command runs, so that
+# `lgekf derive` does not pay numba's start-up and the runtime commands never import SymPy
 COMMANDS = {
-    "derive": (_cmd_derive, "derive the model ingredients with SymPy and regenerate the numba kernels (--check, --verify)"),
+    "study": ("lgekf.cli.study", "cmd_study",
+              "run the paper's Monte Carlo study (main job): results/summary.csv, rmse.csv, meta.json, study.png"),
+    "figures": ("lgekf.cli.figures", "cmd_figures", "reproduce Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example trajectories)"),
+    "track": ("lgekf.cli.track", "cmd_track",
+              "track the objects of a measurement file (CSV t,x,y[,id] or pedestrian format) with one or all filters"),
+    "evaluate": ("lgekf.cli.evaluate", "cmd_evaluate",
+                 "evaluate every filter on real ground-truth trajectories (ETH/UCY, KITTI, cyclists, DUT or your CSV)"),
+    "derive": ("lgekf.cli.derive", "cmd_derive",
+               "derive the model ingredients with SymPy and regenerate the numba kernels (--check, --verify)"),
 }
-
-
-def _register(name, func, help_text):
-    COMMANDS[name] = (func, help_text)
 
 
 def _silence_stdout():
@@ -67,27 +63,28 @@ def _silence_stdout():
 
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
-    # late registration keeps `lgekf derive` free of numba start-up cost and vice versa
-    from . import commands  # noqa: F401  (registers study, figures, track, evaluate)
 
     parser = argparse.ArgumentParser(
         prog="lgekf",
         description="Tracking with the extended Kalman filter on matrix Lie groups (SE(2)xSE(2), SE(2)xR3) and CTRV/CV baselines.",
     )
-    parser.add_argument("command", choices=sorted(COMMANDS), help="; ".join(f"{k}: {v[1]}" for k, v in sorted(COMMANDS.items())))
+    parser.add_argument("command", choices=sorted(COMMANDS), help="; ".join(f"{k}: {v[2]}" for k, v in sorted(COMMANDS.items())))
     parser.add_argument("--version", action="store_true", help="print the version and exit")
     if not argv or argv[0] in ("-h", "--help"):
         parser.print_help()
         return 0 if argv else 2
     if argv[0] == "--version":
-        from . import __version__
+        from .. import __version__
 
         print(f"lgekf {__version__}")
         return 0
     if argv[0] not in COMMANDS:
         print(f"lgekf: error: unknown command {argv[0]!r}; choose one of {', '.join(sorted(COMMANDS))}", file=sys.stderr)
         return 2
-    func = COMMANDS[argv[0]][0]
+    import importlib
+
+    module, name, _ = COMMANDS[argv[0]]
+    func = getattr(importlib.import_module(module), name)
     try:
         return int(func(argv[1:]) or 0)
     except BrokenPipeError:
@@ -99,9 +96,3 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("lgekf: interrupted", file=sys.stderr)
         return 130
-
-
-if __name__ == "__main__":  # `python -m lgekf.cli`: use the package's module, where commands register
-    from lgekf.cli import main as _main
-
-    sys.exit(_main())

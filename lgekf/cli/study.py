@@ -1,4 +1,4 @@
-"""The runtime subcommands of the CLI: study, figures (and track, evaluate once registered)."""
+"""`lgekf study`: the paper's Monte Carlo study (Fig. 4) with its claims check."""
 
 from __future__ import annotations
 
@@ -10,11 +10,11 @@ import sys
 import time
 from pathlib import Path
 
-from .cli import COMMANDS, ArgumentParser, UsageError
-from .output import staged_directory, write_atomic
+from ..io.output import staged_directory, write_atomic
+from . import ArgumentParser, UsageError
 from .progress import compile_notice
 
-__all__ = ["cmd_study", "cmd_figures"]
+__all__ = ["cmd_study", "study_parser", "format_table"]
 
 
 def _floats(name, text, n=None):
@@ -57,8 +57,8 @@ def study_parser():
     ap.add_argument("--w0", type=float, default=0.0, help="initial angular velocity in rad/s (default 0)")
     ap.add_argument("--sigma-v", type=float, default=0.1, help="std of n_x, n_y (default 0.1)")
     ap.add_argument("--meas-std", type=float, default=0.5, help="measurement noise std per axis in m (default 0.5)")
-    from .experiments.simulate import truth_models
-    from .core.registry import MEASUREMENTS, MODELS
+    from ..experiments.simulate import truth_models
+    from ..core.registry import MEASUREMENTS, MODELS
 
     ap.add_argument("--truth", default="se2se2", choices=list(truth_models()), help="truth motion model (default se2se2)")
     ap.add_argument("--filters", default=",".join(MODELS), metavar="LIST",
@@ -77,7 +77,7 @@ def study_parser():
 
 
 def config_from_args(a):
-    from .experiments.study import FILTERS, StudyConfig
+    from ..experiments.study import FILTERS, StudyConfig
 
     scale = {f: 1.0 for f in FILTERS}
     for item in a.noise_scale:
@@ -98,7 +98,7 @@ def config_from_args(a):
 
 
 def _filter_list(text):
-    from .core.registry import MODELS
+    from ..core.registry import MODELS
 
     names = [v.strip() for v in str(text).split(",") if v.strip()]
     bad = [v for v in names if v not in MODELS]
@@ -117,8 +117,8 @@ def format_table(res) -> str:
 
 
 def cmd_study(argv) -> int:
-    from . import __version__
-    from .experiments.study import claims_check, config_dict, run_study
+    from .. import __version__
+    from ..experiments.study import claims_check, config_dict, run_study
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
@@ -163,7 +163,7 @@ def cmd_study(argv) -> int:
         write_atomic(stage / "summary.csv", summary)
         write_atomic(stage / "rmse.csv", rmse_csv)
         if not a.no_figure:
-            from .figures import study_figure
+            from ..experiments.figures import study_figure
 
             study_figure(res, stage / "study.png", pdf=a.pdf)
         meta["wall_seconds"] = round(time.perf_counter() - t0, 3)
@@ -186,40 +186,3 @@ def cmd_study(argv) -> int:
     print(f"\nwrote {out}/summary.csv, rmse.csv, meta.json{'' if a.no_figure else ', study.png'}  "
           f"(compute {res.compute_seconds:.2f} s, wall {meta['wall_seconds']:.2f} s)")
     return 0
-
-
-def cmd_figures(argv) -> int:
-    from .figures import banana_figure, trajectories_figure
-
-    ap = ArgumentParser(prog="lgekf figures", description="Reproduce the paper's Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example tracks).")
-    ap.add_argument("--out", type=Path, default=Path("figures"), help="output folder (default: figures/)")
-    ap.add_argument("--pdf", action="store_true", help="also write PDF files")
-    a = ap.parse_args(argv)
-    with staged_directory(a.out) as stage, compile_notice("lgekf figures"):
-        written = banana_figure(stage / "fig2_banana.png", pdf=a.pdf)
-        written += trajectories_figure(stage / "fig3_trajectories.png", pdf=a.pdf)
-    for p in written:
-        print(a.out / p.name)
-    print("Fig. 4 is written by `lgekf study` (study.png)")
-    return 0
-
-
-COMMANDS["study"] = (cmd_study, "run the paper's Monte Carlo study (main job): results/summary.csv, rmse.csv, meta.json, study.png")
-COMMANDS["figures"] = (cmd_figures, "reproduce Fig. 1/2 (banana-shaped uncertainty) and Fig. 3 (example trajectories)")
-
-
-def cmd_track(argv) -> int:
-    from .track import cmd_track as run  # imported on use, like the other commands
-
-    return run(argv)
-
-
-def cmd_evaluate(argv) -> int:
-    from .evaluate import cmd_evaluate as run
-
-    with compile_notice("lgekf evaluate"):  # evaluate has no --quiet
-        return run(argv)
-
-
-COMMANDS["track"] = (cmd_track, "track the objects of a measurement file (CSV t,x,y[,id] or pedestrian format) with one or all filters")
-COMMANDS["evaluate"] = (cmd_evaluate, "evaluate the four trackers on real ground-truth trajectories (ETH/UCY, KITTI, cyclists, DUT or your CSV)")

@@ -34,26 +34,20 @@ with pose, except under ``--model all`` where it gets the positions (said on std
 from __future__ import annotations
 
 import math
-import sys
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numba as nb
 import numpy as np
 
-from .cli import ArgumentParser
-from .core.covariance import pack, packed_diagonal
-from .core.registry import MODELS, get_model
-from .files import AtomicFiles, check_output_path, is_stdio
-from .geo import max_scale_error, to_latlon
-from .io import format_rows, label_bytes, parse_delimiter, read_measurements
-from .progress import compile_notice, progress_bar, stderr_is_terminal
-from .units import TIME_UNITS, to_seconds, unit_warnings
+from ..core.covariance import pack, packed_diagonal
+from ..core.registry import MODELS, get_model
+from ..io.files import is_stdio
+from ..io.formatting import format_rows, label_bytes
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
-    "initial_common", "initial_estimates", "track_arrays", "output_columns", "cmd_track",
+    "initial_common", "initial_estimates", "track_arrays", "output_columns", "output_path", "write_model",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -283,70 +277,7 @@ def output_path(out, model: str, all_models: bool):
     return out.with_name(f"{base.stem}_{model}{base.suffix}{'.gz' if gz else ''}")
 
 
-def parse_accel_std(items, models):
-    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable)."""
-    table = {m: DEFAULT_ACCEL_STD[m] for m in models}
-    for item in items:
-        if "=" in item:
-            name, text = item.split("=", 1)
-            name = name.strip()
-            if name not in MODELS:
-                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(MODELS)}")
-            targets = [name]
-        else:
-            if len(models) > 1:
-                raise ValueError("--accel-std: with --model all give one MODEL=LIST per model, e.g. --accel-std cv=0.8")
-            targets, text = list(models), item
-        try:
-            vals = tuple(float(v) for v in text.split(","))
-        except ValueError:
-            raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
-        for m in targets:
-            need = len(MODELS[m].noise_names)
-            if len(vals) != need:
-                raise ValueError(
-                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(MODELS[m].noise_names)}), got {len(vals)}"
-                )
-            if any((not math.isfinite(v)) or v < 0 for v in vals):
-                raise ValueError(f"--accel-std: noise stds must be non-negative numbers, got {text!r}")
-            if m in table:
-                table[m] = vals
-    return table
-
-
-
-
-def track_parser():
-    ap = ArgumentParser(
-        prog="lgekf track",
-        description="Track every object of a measurement file with an LG-EKF (SE(2)xSE(2), SE(2)xR3), CTRV-EKF or CV-KF.",
-    )
-    ap.add_argument("input", help="measurements: CSV with header t,x,y[,id][,heading] (or t,lat,lon,...), or the pedestrian format; "
-                    "- reads stdin; gzip input is recognised")
-    ap.add_argument("-o", "--output", required=True,
-                    help="output CSV; - writes to stdout; a name ending in .gz is gzip-compressed "
-                         "(with --model all: one file per model, OUTPUT_<model>.csv)")
-    ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all"], help="filter (default se2se2)")
-    ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
-    ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
-    ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the CSV's t column, converted to seconds (default s)")
-    ap.add_argument("--delimiter", default=None, metavar="CHAR",
-                    help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
-    ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
-                    help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + "); repeatable MODEL=LIST")
-    ap.add_argument("--measure", default="position", choices=["position", "pose"],
-                    help="measurement model: position (x, y) or pose (x, y and the heading column as an SE(2) pose; noise meas-std, meas-std, heading-std)")
-    ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
-    ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
-    ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
-    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
-    ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
-    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings about the data")
-    return ap
-
-
-def _write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position"):
+def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position"):
     """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk."""
     spec = get_model(model)
     origin = meas.origin is not None
@@ -373,71 +304,3 @@ def _write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measuremen
         bar.update(b - a)
         o = o2
     return starts[-1]
-
-
-def _check_arguments(a, models):
-    """Every argument error before any reading or computing (one line each, exit 2)."""
-    if not 1 <= a.precision <= 17:
-        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
-    if a.format == "csv" and a.frame_dt is not None:
-        raise ValueError("--frame-dt: only used with --format pedestrian")
-    if a.format == "pedestrian" and a.time_unit != "s":
-        raise ValueError("--time-unit: only for CSV input (the pedestrian format's time is frame * --frame-dt seconds)")
-    if is_stdio(a.output) and len(models) > 1:
-        raise ValueError("--output -: --model all writes one file per model; give a file name")
-    check_output_path(a.output)
-    outs = [output_path(a.output, m, len(models) > 1) for m in models]
-    for o in outs:
-        check_output_path(o, option=None)
-    if not is_stdio(a.input) and any(not is_stdio(o) and Path(o).resolve() == Path(a.input).resolve() for o in outs):
-        raise ValueError(f"--output: {a.output} would overwrite the input file")
-    return outs
-
-
-def _frame_note(meas) -> str:
-    """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
-    lat0, lon0 = meas.origin
-    lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
-    err = 100.0 * max_scale_error(lat, lat0)
-    return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
-            f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
-
-
-def cmd_track(argv) -> int:
-    a = track_parser().parse_args(argv)
-    models = list(MODELS) if a.model == "all" else [a.model]
-    cfg = TrackConfig(parse_accel_std(a.accel_std, models), a.meas_std, a.omega_std, a.heading_std).validate()
-    outs = _check_arguments(a, models)
-    say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
-    t0 = time.perf_counter()
-    measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
-    if a.model != "all" and measure[a.model] is None:
-        MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
-    for m in models:
-        if measure[m] is None:
-            measure[m] = "position"
-            say(f"{m} has no heading: it gets the positions only")
-    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
-    meas, starts, _ = meas.grouped(min_length=2)
-    meas.t = to_seconds(meas.t, a.time_unit)
-    t_read = time.perf_counter() - t0
-    if meas.origin is not None:
-        say(_frame_note(meas))
-    for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
-        print(f"lgekf track: warning: {w}", file=sys.stderr)
-    total = meas.t.size * len(models)
-    show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
-    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
-        handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
-        with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
-            for fh, m in zip(handles, models):
-                _write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m])
-        files.commit()
-    if not a.quiet:
-        wall = time.perf_counter() - t0
-        report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
-        for m, o in zip(models, outs):
-            name = "<stdout>" if is_stdio(o) else o
-            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m})", file=report)
-        print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
-    return 0

@@ -1,4 +1,4 @@
-"""Reading measurement files and writing track files, fast and with one clear error per bad input.
+"""Reading measurement files, fast and with one clear error per bad input.
 
 Readers
 -------
@@ -6,7 +6,7 @@ Readers
   ``time``/``timestamp`` for t), optional ``id`` (also ``track_id``, ``object_id``) for several objects
   whose rows may be interleaved, optional ``heading`` (rad; also ``yaw``), read only when asked.
   Instead of ``x, y``: ``lat, lon`` in degrees (also ``latitude``, ``longitude``/``lng``/``long``),
-  projected to metres east/north of the first row's position (``lgekf.geo``; the origin is kept in
+  projected to metres east/north of the first row's position (``lgekf.io.geo``; the origin is kept in
   ``Measurements.origin``). Ids are text, compared exactly as written (surrounding spaces removed):
   ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
   or spaces) unless given. Other columns are ignored. Blank lines are skipped.
@@ -15,19 +15,14 @@ Readers
   the frame number by 10 per sample: biwi_eth 10 frames = 0.6667 s -> frame_dt = 0.06667;
   hotel/zara/students 10 frames = 0.4 s -> frame_dt = 0.04).
 
-Both read a path, ``-`` (stdin) or gzip data (``lgekf.files.open_input``) and parse with
+Both read a path, ``-`` (stdin) or gzip data (``lgekf.io.files.open_input``) and parse with
 ``numpy.loadtxt`` in chunks of lines (its C parser: about 0.3 s per 10⁶ rows); only
 when a chunk fails is it re-read line by line with the csv module to name the line, column and value.
 
 ``Measurements.grouped()`` sorts the rows by object (objects in order of first appearance, rows in file
 order) and checks that every object has at least two measurements and strictly increasing times.
 
-Writer
-------
-``format_rows`` turns a label column and a float table into CSV bytes inside numba (``%.{p}g`` style,
-about 50 ns per number), so writing 10⁶ rows does not format numbers in Python.
-``AtomicFiles`` (``lgekf.files``, re-exported here) writes several files through temporary files that
-are renamed only when all of them are complete (all or nothing).
+Writing: ``lgekf.io.formatting`` (numbers in numba) and ``lgekf.io.files`` (atomic output).
 """
 
 from __future__ import annotations
@@ -42,15 +37,13 @@ import zlib
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
-import numba as nb
 import numpy as np
 
-from .files import AtomicFiles, open_input, source_name
+from .files import open_input, source_name
 from .geo import to_local
 
 __all__ = [
-    "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements",
-    "format_rows", "format_g", "AtomicFiles", "label_bytes", "parse_delimiter",
+    "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
 ]
 
 CHUNK_LINES = 1 << 18
@@ -533,213 +526,3 @@ def read_measurements(path, fmt: str = "csv", frame_dt: float | None = None, use
 
 
 # ----------------------------------------------------------------------------------- writing
-@nb.njit(cache=True)
-def _two_prod(a, b):
-    """a*b = p + e exactly (Dekker's split; no FMA needed)."""
-    p = a * b
-    c = 134217729.0 * a
-    ah = c - (c - a)
-    al = a - ah
-    c = 134217729.0 * b
-    bh = c - (c - b)
-    bl = b - bh
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, e
-
-
-@nb.njit(cache=True)
-def _round_scaled(a, k):
-    """round(a * 10^k) as an int64 (a > 0), ties to even.
-
-    For |k| <= 22 (10^|k| exact) the product or quotient is carried in double-double, so the result is
-    the correctly rounded one except in rare near-ties; beyond, a few ulp of error remain.
-    """
-    while k > 22:
-        a *= 1e22
-        k -= 22
-    while k < -22:
-        a /= 1e22
-        k += 22
-    if k >= 0:
-        hi, lo = _two_prod(a, 10.0**k)
-    else:
-        d = 10.0 ** (-k)
-        hi = a / d
-        p, e = _two_prod(hi, d)
-        lo = ((a - p) - e) / d
-    f = math.floor(hi)
-    frac = (hi - f) + lo
-    g = math.floor(frac)
-    frac -= g
-    q = np.int64(f) + np.int64(g)
-    if frac > 0.5 or (frac == 0.5 and q % 2 == 1):
-        q += 1
-    return q
-
-
-_POW10 = np.array([10**i for i in range(19)], dtype=np.int64)
-_PAIRS = np.frombuffer(b"".join(b"%02d" % i for i in range(100)), dtype=np.uint8).copy()
-
-
-@nb.njit(cache=True)
-def _put_str(buf, pos, s):
-    for i in range(len(s)):
-        buf[pos + i] = ord(s[i])
-    return pos + len(s)
-
-
-@nb.njit(cache=True)
-def _put_g(buf, pos, v, p, digits):
-    """Write ``'%.{p}g' % v`` (1 <= p <= 17) into buf at pos; return the new position.
-
-    Digits are round(|v|·10^(p-1-e)) computed in double-double: when |p-1-e| <= 22 (p = 17: |v| in
-    [1e-6, 1e38]; p = 10: [1e-13, 1e31]) this is Python's correctly rounded output except in rare
-    near-ties; outside, the last of 16-17 digits can be off by one unit. -0.0 is written as 0.
-    """
-    if v != v:
-        return _put_str(buf, pos, "nan")
-    if v == 0.0:
-        buf[pos] = 48
-        return pos + 1
-    if v < 0.0:
-        buf[pos] = 45  # '-'
-        pos += 1
-        v = -v
-    if v == np.inf:
-        return _put_str(buf, pos, "inf")
-    e = int(math.floor(math.log10(v)))
-    top = _POW10[p]
-    q = _round_scaled(v, p - 1 - e)
-    if q >= top:
-        e += 1
-        q = _round_scaled(v, p - 1 - e)
-    elif q < top // 10:
-        e -= 1
-        q = _round_scaled(v, p - 1 - e)
-    if q >= top:  # rounding carried into a new digit (e.g. 9.9999 -> 10.000)
-        q = top // 10
-        e += 1
-    u = np.uint64(q)
-    hundred = np.uint64(100)
-    i = p
-    while i >= 2:  # two digits per division
-        r = u % hundred
-        u = u // hundred
-        digits[i - 1] = _PAIRS[2 * r + 1]
-        digits[i - 2] = _PAIRS[2 * r]
-        i -= 2
-    if i == 1:
-        digits[0] = 48 + u
-    nz = p
-    while nz > 1 and digits[nz - 1] == 48:
-        nz -= 1
-    if -4 <= e < p:
-        if e >= 0:
-            for i in range(e + 1):
-                buf[pos] = digits[i] if i < nz else 48
-                pos += 1
-            if nz > e + 1:
-                buf[pos] = 46
-                pos += 1
-                for i in range(e + 1, nz):
-                    buf[pos] = digits[i]
-                    pos += 1
-        else:
-            buf[pos] = 48
-            buf[pos + 1] = 46
-            pos += 2
-            for i in range(-e - 1):
-                buf[pos] = 48
-                pos += 1
-            for i in range(nz):
-                buf[pos] = digits[i]
-                pos += 1
-    else:
-        buf[pos] = digits[0]
-        pos += 1
-        if nz > 1:
-            buf[pos] = 46
-            pos += 1
-            for i in range(1, nz):
-                buf[pos] = digits[i]
-                pos += 1
-        buf[pos] = 101  # 'e'
-        pos += 1
-        if e < 0:
-            buf[pos] = 45
-            e = -e
-        else:
-            buf[pos] = 43
-        pos += 1
-        if e >= 100:
-            buf[pos] = 48 + e // 100
-            pos += 1
-        buf[pos] = 48 + (e // 10) % 10
-        buf[pos + 1] = 48 + e % 10
-        pos += 2
-    return pos
-
-
-@nb.njit(cache=True)
-def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
-    n, m = vals.shape
-    maxlab = 0
-    for i in range(len(lab_off) - 1):
-        maxlab = max(maxlab, lab_off[i + 1] - lab_off[i])
-    buf = np.empty(n * (maxlab + 2 + 25 * (m + 1)), dtype=np.uint8)
-    scratch = np.empty(20, dtype=np.uint8)
-    pos = 0
-    for i in range(n):
-        o = row_lab[i]
-        for j in range(lab_off[o], lab_off[o + 1]):
-            buf[pos] = lab_bytes[j]
-            pos += 1
-        buf[pos] = 44
-        pos = _put_g(buf, pos + 1, t[i], t_digits, scratch)
-        for j in range(m):
-            buf[pos] = 44
-            pos = _put_g(buf, pos + 1, vals[i, j], digits[j], scratch)
-        buf[pos] = 10
-        pos += 1
-    return buf[:pos]
-
-
-def label_bytes(labels):
-    """Concatenated UTF-8 bytes of CSV-quoted labels and their offsets (for ``format_rows``)."""
-    enc = []
-    for lab in labels:
-        s = str(lab)
-        if any(c in s for c in ',"\n\r') or s != s.strip():
-            s = '"' + s.replace('"', '""') + '"'
-        enc.append(s.encode("utf-8"))
-    off = np.zeros(len(enc) + 1, dtype=np.int64)
-    np.cumsum([len(b) for b in enc], out=off[1:])
-    return np.frombuffer(b"".join(enc), dtype=np.uint8).copy(), off
-
-
-def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
-    """CSV lines ``label,t,v_0,...,v_{m-1}`` for every row.
-
-    lab: the result of ``label_bytes(labels)``; row_label (N,) index into the labels; t (N,);
-    values (N, m); digits: significant digits per value column (an int or (m,)), 1..17.
-    """
-    values = np.ascontiguousarray(values, dtype=float)
-    if values.ndim != 2:
-        raise ValueError("values: expected a 2-D array")
-    d = np.broadcast_to(np.asarray(digits, dtype=np.int64), (values.shape[1],)).copy()
-    if np.any(d < 1) or np.any(d > 17) or not 1 <= t_digits <= 17:
-        raise ValueError("digits: must be between 1 and 17")
-    out = _format_rows(lab[0], lab[1], np.ascontiguousarray(row_label, dtype=np.int64),
-                       np.ascontiguousarray(t, dtype=float), int(t_digits), values, d)
-    return out.tobytes()
-
-
-def format_g(values, digits: int) -> list:
-    """The strings ``format_rows`` writes for each value (for tests and small tables)."""
-    out = []
-    buf = np.empty(32, dtype=np.uint8)
-    scratch = np.empty(20, dtype=np.uint8)
-    for v in np.asarray(values, dtype=float).ravel():
-        n = _put_g(buf, 0, float(v), int(digits), scratch)
-        out.append(buf[:n].tobytes().decode())
-    return out

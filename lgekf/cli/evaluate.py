@@ -1,0 +1,122 @@
+"""`lgekf evaluate`: every filter on real ground-truth trajectories (``lgekf.apps.evaluate``), tables and figure
+into an all-or-nothing output folder."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..apps.evaluate import (
+    FILTERS, SUMMARY_FIELDS, TUNE_RATIOS, TUNE_SCALES, _csv_text, _fmt, evaluate_dataset, evaluation_figure, format_table,
+    markdown_table,
+)
+from ..apps.track import DEFAULT_ACCEL_STD
+from ..experiments.statistics import BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED, MIN_TRACKS_CI
+from ..io.datasets import GROUPS, PRESETS, load_dataset
+from ..io.output import staged_directory, write_atomic
+from . import ArgumentParser
+from .progress import compile_notice
+
+__all__ = ["cmd_evaluate", "evaluate_parser"]
+
+
+def evaluate_parser():
+    ap = ArgumentParser(prog="lgekf evaluate", description="Evaluate the four trackers on real ground-truth trajectories with added position noise.")
+    ap.add_argument("datasets", nargs="+", metavar="DATASET",
+                    help=f"preset ({', '.join([*PRESETS, *GROUPS])}) or a file (--format csv | pedestrian --frame-dt S)")
+    ap.add_argument("--format", choices=["csv", "pedestrian"], default=None, help="format of DATASET files (default: csv for *.csv)")
+    ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit")
+    ap.add_argument("--data-root", default=None, help="folder of the presets (default: $LGEKF_DATA, else ../shared/data relative to the current folder)")
+    ap.add_argument("--meas-std", type=float, default=0.3, help="std of the added position noise per axis, m (default 0.3)")
+    ap.add_argument("--seeds", type=int, default=5, help="noise draws per track (default 5)")
+    ap.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
+    ap.add_argument("--min-length", type=int, default=5, help="skip tracks with fewer samples (default 5)")
+    ap.add_argument("--tune", action="store_true",
+                    help="grid-search the process noise (scale k, turn-rate ratio ρ) per filter on the first 30 %% of tracks; evaluate on the rest")
+    ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
+    ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
+    ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    return ap
+
+
+def cmd_evaluate(argv) -> int:
+    with compile_notice("lgekf evaluate"):  # evaluate has no --quiet
+        return _evaluate(argv)
+
+
+def _evaluate(argv) -> int:
+
+    a = evaluate_parser().parse_args(argv)
+    if not (math.isfinite(a.meas_std) and a.meas_std > 0):
+        raise ValueError(f"--meas-std: must be a positive number, got {a.meas_std}")
+    if a.seeds < 1:
+        raise ValueError(f"--seeds: must be at least 1, got {a.seeds}")
+    if a.min_length < 3:
+        raise ValueError(f"--min-length: must be at least 3 (two samples initialise the filter), got {a.min_length}")
+    names = []
+    for d in a.datasets:
+        names += GROUPS.get(d, [d])
+    t0 = time.perf_counter()
+    datasets = [load_dataset(d, root=a.data_root, fmt=a.format, frame_dt=a.frame_dt, min_length=a.min_length) for d in names]
+    if len({d.name for d in datasets}) != len(datasets):
+        raise ValueError("datasets: the same dataset (name) is given twice")
+    rows, tuning, per_track = [], [], []
+    for ds in datasets:
+        for res in evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune):
+            rows += res.summary()
+            if res.noise == "tuned":
+                tuning += [{"dataset": ds.name, "filter": m, "stage": st, "scale": k, "turn_ratio": rho, "tune_pos_rmse": sc,
+                            "chosen": False, "tune_tracks": res.n_tune_tracks} for m, st, k, rho, sc in res.tuning]
+                for m in FILTERS:  # mark the first row that reached the chosen value
+                    mine = [r for r in tuning if r["dataset"] == ds.name and r["filter"] == m]
+                    min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
+            for m, (pos, vel) in res.rmse.items():
+                for si in range(pos.shape[0]):
+                    for j, lab in enumerate(res.dataset.labels):
+                        per_track.append([ds.name, res.noise, lab, a.seed + si, m, pos[si, j], np.nan if vel is None else vel[si, j]])
+    if a.tune:  # the tuned rows and the measurements once; the default rows on the same split for reference
+        seen = set()
+        rows = [r for r in rows if not (r["filter"] == "measurements" and (r["dataset"] in seen or seen.add(r["dataset"])))]
+    out = a.out
+    with staged_directory(out) as stage:
+        write_atomic(stage / "summary.csv", _csv_text(SUMMARY_FIELDS, rows))
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["dataset", "noise", "track", "seed", "filter", "pos_rmse", "vel_rmse"])
+        for r in per_track:
+            w.writerow(r[:5] + [_fmt(float(r[5]), 6), _fmt(float(r[6]), 6)])
+        write_atomic(stage / "per_track.csv", buf.getvalue())
+        if tuning:
+            write_atomic(stage / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
+        meta = {
+            "datasets": {d.name: {"description": d.description, "tracks": d.n_tracks, "skipped_short": d.skipped,
+                                  "samples": int(d.t.size), "velocity_truth": d.v is not None} for d in datasets},
+            "meas_std": a.meas_std, "seeds": a.seeds, "first_seed": a.seed, "min_length": a.min_length, "tune": a.tune,
+            "tune_scales": list(TUNE_SCALES) if a.tune else None, "tune_turn_ratios": list(TUNE_RATIOS) if a.tune else None, "tune_split": "first 30 % of tracks" if a.tune else None,
+            "default_accel_std": {m: list(v) for m, v in DEFAULT_ACCEL_STD.items()},
+            "ci": (f"mean over tracks of the seed-averaged per-track RMSE; 95 % expanded percentile bootstrap interval over "
+                   f"tracks ({BOOTSTRAP_RESAMPLES} resamples, seed {BOOTSTRAP_SEED}); none with fewer than {MIN_TRACKS_CI} tracks"),
+            "seconds": round(time.perf_counter() - t0, 2),
+        }
+        write_atomic(stage / "meta.json", json.dumps(meta, indent=2) + "\n")
+        if not a.no_figure:
+            evaluation_figure(rows, stage / "evaluation.png", "tuned" if a.tune else "default")
+    print(markdown_table(rows) if a.markdown else format_table(rows))
+    print(f"95 % intervals: expanded percentile bootstrap over tracks ({BOOTSTRAP_RESAMPLES} resamples, fixed seed); "
+          f"n/a with fewer than {MIN_TRACKS_CI} tracks", file=sys.stderr)
+    for d in datasets:
+        print(f"{d.name}: {d.n_tracks} tracks used, {d.skipped} shorter than {a.min_length} skipped ({d.description})", file=sys.stderr)
+    if a.tune:
+        for r in rows:
+            if r["noise"] == "tuned":
+                print(f"tuned {r['dataset']} {r['filter']}: k = {r['scale']:.3g}, ρ = {r['turn_ratio']:.3g} -> accel_std {r['accel_std']}", file=sys.stderr)
+    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}, meta.json"
+          f"{'' if a.no_figure else ', evaluation.png'} ({meta['seconds']:.1f} s)", file=sys.stderr)
+    return 0
