@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from lgekf import figures
+from lgekf.experiments import figures
 from lgekf.experiments.figures import BANANA_CAPTION, banana_panel, highest_density_region
 
 

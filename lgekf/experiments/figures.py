@@ -7,10 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .core.filters import SE2SE2Filter
-from .core.registry import MODELS
-from .generated import se2
-from .experiments.simulate import simulate
+from ..core.filters import SE2SE2Filter
+from ..core.registry import MODELS
+from ..generated import se2
+from .simulate import simulate
 
 __all__ = [
     "study_figure", "banana_figure", "banana_panel", "highest_density_region", "trajectories_figure", "COLORS", "LABELS",
@@ -277,7 +277,7 @@ def trajectories_figure(path, pdf: bool = False, sigmas=(0.01, 0.1, 1.0), seed: 
     are long and flat). With several σ_ω the last (most turning) track gets the right column and the
     others are stacked on the left.
     """
-    from .core.batch import filter_batch
+    from ..core.batch import filter_batch
 
     plt = _plt()
     rng = np.random.default_rng(seed)
