@@ -12,7 +12,7 @@ when the README gains a command the test fails until it is added there. Substitu
 * every ``lgekf evaluate`` reads a stand-in data folder (``$LGEKF_DATA``: the presets' file layout
   with a few synthetic tracks each, built below) and gets ``--seeds 1``;
 * ``lgekf derive`` (which rewrites the package's ``generated/``) gets ``--out`` a temporary folder;
-* the files the commands name (``detections.csv``, ``biwi_eth.txt``, ``phone.csv.gz``) are small
+* the files the commands name (``detections.csv``, ``poses.csv``, ``biwi_eth.txt``, ``phone.csv.gz``) are small
   synthetic stand-ins written into the temporary working folder.
 
 The ``lgekf derive`` runs are SymPy work (30-45 s each on 2 cores) and are marked slow.
@@ -50,7 +50,8 @@ def readme_commands() -> list[str]:
 
 
 STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [--dt T] [--steps K] [--v0 vx,vy] [--w0 w] "
-                  "[--truth se2se2|se2r3] [--noise-scale cv=10 ...] [--out results/] [--quiet]")
+                  "[--truth se2se2|se2r3] [--filters se2se2,se2r3,se2r2,ctrv,cv] [--measure position|pose] [--heading-std S] "
+                  "[--noise-scale cv=10 ...] [--out results/] [--quiet]")
 
 # README command -> the commands run for it (None: run as written)
 README_TO_RUN = {
@@ -59,10 +60,14 @@ README_TO_RUN = {
     "lgekf track phone.csv.gz --time-unit ms -o phone_tracks.csv.gz": None,
     "lgekf track - -o - --model cv < detections.csv > tracks_cv.csv": None,
     STUDY_SYNOPSIS: ["lgekf study --trajectories 3 --sigmas 0:3:2 --seed 1 --dt 0.1 --steps 10 --v0 3,0 --w0 0 "
-                     "--truth se2r3 --noise-scale cv=10 ctrv=3 --out results/ --quiet"],
+                     "--truth se2r3 --filters se2se2,se2r2,cv --measure pose --heading-std 0.1 --noise-scale cv=10 ctrv=3 "
+                     "--out results/ --quiet"],
     "lgekf figures [--out figures/] [--pdf]": ["lgekf figures --out figures/ --pdf"],
-    "lgekf track INPUT.csv --model {se2se2,se2r3,ctrv,cv,all} -o OUTPUT.csv":
-        [f"lgekf track detections.csv --model {m} -o out_{m}.csv" for m in (*MODELS, "all")],
+    "lgekf track INPUT.csv --model {se2se2,se2r3,se2r2,ctrv,cv,all} [--measure position|pose] -o OUTPUT.csv":
+        [f"lgekf track detections.csv --model {m} -o out_{m}.csv" for m in (*MODELS, "all")]
+        + ["lgekf track poses.csv --model all --measure pose -o out_pose.csv"],
+    "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv": None,
+    "lgekf study --measure pose --heading-std 0.1": None,
     "lgekf evaluate DATASET...": ["lgekf evaluate hotel detections.csv --out evaluation_mine/"],
     "lgekf derive [--check | --verify]": ["lgekf derive --check", "lgekf derive --verify"],
     "lgekf --version": None,
@@ -152,6 +157,8 @@ def workdir(tmp_path_factory):
     d = tmp_path_factory.mktemp("readme")
     (d / "detections.csv").write_text("t,x,y,id\n" + "".join(
         f"{0.4 * k:.1f},{x:.3f},{y:.3f},{i}\n" for i, k, x, y in _tracks(3, 12)))
+    (d / "poses.csv").write_text("t,x,y,heading,id\n" + "".join(  # a heading column for --measure pose
+        f"{0.4 * k:.1f},{x:.3f},{y:.3f},{0.05 * k:.3f},{i}\n" for i, k, x, y in _tracks(3, 12)))
     (d / "biwi_eth.txt").write_text("".join(f"{10 * k}\t{i}.0\t{x:.3f}\t{y:.3f}\n" for i, k, x, y in _tracks(3, 10, 0.6667)))
     lat0, lon0 = 48.137, 11.575
     phone = "t,lat,lon\n" + "".join(f"{1000 * k},{lat0 + 1e-5 * y:.8f},{lon0 + 1e-5 * x:.8f}\n" for _, k, x, y in _tracks(1, 12, 1.0))

@@ -206,7 +206,7 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     if a.verify:
-        from .verify import run_verify
+        from ..paper.verify import run_verify
 
         rc = run_verify()
         print(f"verify: {time.perf_counter() - t0:.1f} s")

@@ -1,10 +1,10 @@
-"""Evaluate the four trackers on real ground-truth trajectories (`lgekf evaluate`).
+"""Evaluate every registry filter on real ground-truth trajectories (`lgekf evaluate`).
 
 Protocol
 --------
 * Every track of a dataset with at least ``min_length`` samples (default 5) is used; shorter ones are
   skipped and counted. Ground-truth positions get i.i.d. N(0, meas_std²) noise per axis (default
-  0.3 m), one draw per seed (default 5 seeds); the same noisy measurements go to all four filters.
+  0.3 m), one draw per seed (default 5 seeds); the same noisy measurements go to every filter.
 * Each filter is initialised from the first two noisy measurements (``lgekf.track``) and run over the
   rest with each step's own dt; its measurement std is the true ``meas_std``.
 * Metric per track, seed and filter: RMSE over the filtered steps (rows k >= 2) of the position error

@@ -1,4 +1,4 @@
-"""Track objects in a measurement file with any of the four filters (`lgekf track`).
+"""Track objects in a measurement file with any registry model (`lgekf track`).
 
 Initialisation (per object, from its first two measurements z0 at t0 and z1 at t1, Δ = t1 - t0)
 ---------------------------------------------------------------------------------------------

@@ -22,13 +22,13 @@ from ..experiments.statistics import BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED, MIN_TR
 from ..io.datasets import GROUPS, PRESETS, load_dataset
 from ..io.output import staged_directory, write_atomic
 from . import ArgumentParser
-from .progress import compile_notice
+from .progress import compile_notice, progress_bar, stderr_is_terminal
 
 __all__ = ["cmd_evaluate", "evaluate_parser"]
 
 
 def evaluate_parser():
-    ap = ArgumentParser(prog="lgekf evaluate", description="Evaluate the four trackers on real ground-truth trajectories with added position noise.")
+    ap = ArgumentParser(prog="lgekf evaluate", description="Evaluate every registry filter on real ground-truth trajectories with added position noise.")
     ap.add_argument("datasets", nargs="+", metavar="DATASET",
                     help=f"preset ({', '.join([*PRESETS, *GROUPS])}) or a file (--format csv | pedestrian --frame-dt S)")
     ap.add_argument("--format", choices=["csv", "pedestrian"], default=None, help="format of DATASET files (default: csv for *.csv)")
@@ -43,17 +43,17 @@ def evaluate_parser():
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
+    ap.add_argument("--quiet", action="store_true", help="print only the output folder (no notes, progress or table)")
     return ap
 
 
 def cmd_evaluate(argv) -> int:
-    with compile_notice("lgekf evaluate"):  # evaluate has no --quiet
-        return _evaluate(argv)
-
-
-def _evaluate(argv) -> int:
-
     a = evaluate_parser().parse_args(argv)
+    with compile_notice("lgekf evaluate", enabled=not a.quiet):
+        return _evaluate(a)
+
+
+def _evaluate(a) -> int:
     if not (math.isfinite(a.meas_std) and a.meas_std > 0):
         raise ValueError(f"--meas-std: must be a positive number, got {a.meas_std}")
     if a.seeds < 1:
@@ -68,8 +68,13 @@ def _evaluate(argv) -> int:
     if len({d.name for d in datasets}) != len(datasets):
         raise ValueError("datasets: the same dataset (name) is given twice")
     rows, tuning, per_track = [], [], []
+    steps = 1 + (2 * len(TUNE_SCALES) + len(TUNE_RATIOS) if a.tune else 0)  # runs per dataset (tuning grid + evaluation)
+    bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
-        for res in evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune):
+        results = evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune,
+                                   progress=lambda stage: bar.update(1))
+        bar.update(1)
+        for res in results:
             rows += res.summary()
             if res.noise == "tuned":
                 tuning += [{"dataset": ds.name, "filter": m, "stage": st, "scale": k, "turn_ratio": rho, "tune_pos_rmse": sc,
@@ -108,6 +113,10 @@ def _evaluate(argv) -> int:
         write_atomic(stage / "meta.json", json.dumps(meta, indent=2) + "\n")
         if not a.no_figure:
             evaluation_figure(rows, stage / "evaluation.png", "tuned" if a.tune else "default")
+    bar.close()
+    if a.quiet:
+        print(out)
+        return 0
     print(markdown_table(rows) if a.markdown else format_table(rows))
     print(f"95 % intervals: expanded percentile bootstrap over tracks ({BOOTSTRAP_RESAMPLES} resamples, fixed seed); "
           f"n/a with fewer than {MIN_TRACKS_CI} tracks", file=sys.stderr)

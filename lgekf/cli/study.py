@@ -6,13 +6,12 @@ import csv
 import io
 import json
 import platform
-import sys
 import time
 from pathlib import Path
 
 from ..io.output import staged_directory, write_atomic
 from . import ArgumentParser, UsageError
-from .progress import compile_notice
+from .progress import compile_notice, progress_bar, stderr_is_terminal
 
 __all__ = ["cmd_study", "study_parser", "format_table"]
 
@@ -124,7 +123,8 @@ def cmd_study(argv) -> int:
     cfg = config_from_args(a)
     t0 = time.perf_counter()
     with compile_notice("lgekf study", enabled=not a.quiet):
-        res = run_study(cfg, progress=not a.quiet and sys.stderr.isatty())
+        with progress_bar(len(cfg.sigmas), "lgekf study", not a.quiet and stderr_is_terminal(), unit="σ_ω") as bar:
+            res = run_study(cfg, progress=lambda done, total: bar.update(1))
     claims = claims_check(res)
     out = a.out
     buf = io.StringIO()

@@ -19,13 +19,12 @@ Protocol (defaults; every value is an option and is written to meta.json):
 * a filter that cannot represent the truth (SE(2)×SE(2) beyond |ω| = π, e.g. with the SE(2)×R³ truth and
   a large w0) starts from the wrapped estimate and aliases; ``StudyResult.aliased`` counts those trajectories;
 * metric: per-trajectory position RMSE of the posterior over the 100 steps; per σ_ω the mean and std
-  over trajectories, for the four filters and the raw measurements.
+  over trajectories, for every filter of the set and the raw measurements.
 """
 
 from __future__ import annotations
 
 import math
-import sys
 import time
 from dataclasses import asdict, dataclass, field
 
@@ -143,17 +142,12 @@ class StudyResult:
         return self.rmse[name].std(axis=1, ddof=1)
 
 
-def _progress(i, n, enabled):
-    if enabled:
-        bar = "#" * (20 * (i + 1) // n)
-        sys.stderr.write(f"\rstudy [{bar:<20}] {i + 1}/{n} σ_ω values")
-        if i + 1 == n:
-            sys.stderr.write("\n")
-        sys.stderr.flush()
+def run_study(cfg: StudyConfig, progress=None) -> StudyResult:
+    """Run the whole protocol; the same config (seed included) gives the same numbers.
 
-
-def run_study(cfg: StudyConfig, progress: bool = False) -> StudyResult:
-    """Run the whole protocol; the same config (seed included) gives the same numbers."""
+    ``progress``: None, or a callable ``progress(done, total)`` called after each σ_ω value (the CLI
+    passes a tqdm bar's update).
+    """
     cfg.validate()
     rng = np.random.default_rng(cfg.seed)
     B, K = cfg.trajectories, cfg.steps
@@ -208,7 +202,8 @@ def run_study(cfg: StudyConfig, progress: bool = False) -> StudyResult:
                 measurement=meas,
             )
             rmse[name][i] = position_rmse(est, pos)
-        _progress(i, S, progress)
+        if progress is not None:
+            progress(i + 1, S)
     return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0, aliased)
 
 
