@@ -1,4 +1,4 @@
-"""Speed of the four trackers, measured in one run (ratios are only meaningful within one run).
+"""Speed of every registry model, measured in one run (ratios are only meaningful within one run).
 
     .venv/bin/python benchmarks/bench_filters.py [--quick]
 
@@ -26,12 +26,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import lgekf  # noqa: E402
 from dense_numpy import run_dense  # noqa: E402
 
-MODELS = {
-    "se2se2": ((0.1, 0.1, 1.0), [0, 0, 0, 3, 0, 0.1]),
-    "se2r3": ((0.1, 0.1, 1.0), [0, 0, 0, 3, 0, 0.1]),
-    "ctrv": ((0.1, 1.0), [0, 0, 0, 3, 0.1]),
-    "cv": (0.5, [0, 0, 3, 0]),
-}
+# every registry model: its default noise, started at the same common state (3 m/s, ω = 0.1)
+MODELS = {name: (spec.default_accel_std, lgekf.state_from_common(name, [0, 0, 0, 3, 0, 0.1]).tolist())
+          for name, spec in lgekf.MODELS.items()}
 
 
 def best_of(fn, repeat=3):
@@ -161,8 +158,9 @@ import time, numpy as np
 t0 = time.perf_counter()
 import lgekf
 t1 = time.perf_counter()
-for m, n, q in (("se2se2", 6, (0.1, 0.1, 1.0)), ("se2r3", 6, (0.1, 0.1, 1.0)), ("ctrv", 5, (0.1, 1.0)), ("cv", 4, 0.1)):
-    lgekf.filter_batch(m, np.zeros((2, 3, 2)), dt=0.1, accel_std=q, meas_std=0.5, x0=np.ones((2, n)), P0=np.eye(n))
+for m, spec in lgekf.MODELS.items():
+    lgekf.filter_batch(m, np.zeros((2, 3, 2)), dt=0.1, accel_std=spec.default_accel_std, meas_std=0.5, x0=np.ones((2, spec.n)),
+                       P0=np.eye(spec.n))
 t2 = time.perf_counter()
 print(f"{t1 - t0:.3f} {t2 - t1:.3f}")
 """
@@ -210,7 +208,7 @@ def main():
     else:
         print("FilterPy not installed: no FilterPy comparison")
     (imp0, jit0), (imp1, jit1) = jit_cost()
-    print(f"\nJIT, first call of all four models in a fresh process: empty cache {jit0:.2f} s, warm cache {jit1:.2f} s"
+    print(f"\nJIT, first call of every model in a fresh process: empty cache {jit0:.2f} s, warm cache {jit1:.2f} s"
           f" (import lgekf {imp0:.2f} s / {imp1:.2f} s)")
 
 

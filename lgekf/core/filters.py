@@ -77,8 +77,8 @@ class Filter:
         self._k = spec.kernels
         self.measurement = measurement
         self.dt = positive_scalar("dt", dt)
-        self.accel_std = positive_vector("accel_std", accel_std, len(spec.noise_names))
-        self.meas_std = measurement_std(spec, measurement, meas_std)
+        self.accel_std = accel_std
+        self.meas_std = meas_std
         self._m = spec.measurement(measurement).dim
         self._update = getattr(self._k, f"update_{measurement}")
         x0 = as_float_array("x0", x0, (spec.n,))
@@ -89,6 +89,25 @@ class Filter:
         self.nis = float("nan")
 
     @property
+    def accel_std(self) -> np.ndarray:
+        """Process-noise stds (``noise_names``); settable between steps."""
+        return np.array(self._q)
+
+    @accel_std.setter
+    def accel_std(self, value):
+        # kept as Python floats: the cheapest arguments for numba's dispatcher
+        self._q = tuple(float(v) for v in positive_vector("accel_std", value, len(self._spec.noise_names)))
+
+    @property
+    def meas_std(self) -> np.ndarray:
+        """Measurement-noise stds (one for position, three for pose); settable between steps."""
+        return np.array(self._r)
+
+    @meas_std.setter
+    def meas_std(self, value):
+        self._r = tuple(float(v) for v in measurement_std(self._spec, self.measurement, value))
+
+    @property
     def state_names(self) -> tuple:
         """Names of the physical state entries, also the order of P's coordinates."""
         return self._spec.state_names
@@ -96,12 +115,12 @@ class Filter:
     def predict(self, dt: float | None = None) -> None:
         """Propagate the state by ``dt`` seconds (default: the filter's ``dt``), eq:pred_mu, eq:pred_cov."""
         step = self.dt if dt is None else positive_scalar("dt", dt)
-        self._k.predict(self._s, self._p, step, *self.accel_std)
+        self._k.predict(self._s, self._p, step, *self._q)
 
     def update(self, z) -> float:
         """Correct with one measurement z ((x, y) or (x, y, θ)); returns the NIS of the innovation."""
         z = as_float_array("z", z, (self._m,))
-        self.nis = float(self._update(self._s, self._p, *z, *self.meas_std))
+        self.nis = float(self._update(self._s, self._p, *z.tolist(), *self._r))
         return self.nis
 
     @property
