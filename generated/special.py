@@ -1,7 +1,7 @@
 """Angle functions with removable singularities, Taylor-safe near 0.
 
 GENERATED FILE: DO NOT EDIT.
-Source: derive/special.py
+Source: derive/lie/special.py
 Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 """
 import math

@@ -1,4 +1,4 @@
-"""SE(2): property tests of the generated numba kernels and symbolic checks of derive/groups.py.
+"""SE(2): property tests of the generated numba kernels and symbolic checks of derive/lie/groups.py.
 
 Conventions: tangent order (x, y, θ); X = μ·exp(ε); Φ = right_jacobian with
 log(exp(-v) exp(v + δ)) = Φ(v) δ + O(δ²).
@@ -225,7 +225,7 @@ def test_right_jacobian_is_the_derivative_of_exp(v):
     np.testing.assert_allclose(g.right_jacobian(v), J, rtol=0, atol=1e-7 * scale(v) ** 2)
 
 
-# ------------------------------------------------------------------ symbolic (derive/groups.py)
+# ------------------------------------------------------------------ symbolic (derive/lie/groups.py)
 x, y, th = sp.symbols("x y theta", real=True)
 XI = [x, y, th]
 

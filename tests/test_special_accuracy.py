@@ -193,7 +193,7 @@ _BELOW = [1 - 1e-9] + [1 - k * 1e-3 / 63 for k in range(1, 64)]
 def test_threshold_taylor_and_closed_form_agree(f):
     """Just below tau the kernel's Taylor branch and the closed form `stable` agree to 1e-15 relative.
 
-    derive/special.py: "tau is the smallest angle above which the float64 closed form stays within
+    derive/lie/special.py: "tau is the smallest angle above which the float64 closed form stays within
     a few ulp of a 50-digit mpmath reference, and the Taylor order is the smallest whose truncation
     error at tau is below 1e-17 relative".  If the two branches differ by more than ~4.5 ulp just
     below tau, one of them is inaccurate at the switch (the error columns say which).

@@ -36,7 +36,7 @@ def _horner(coeffs, var="x2"):
 
 
 def render_special() -> str:
-    out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/special.py")]
+    out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/lie/special.py")]
     out.append("import math\n\nimport numba as nb\n")
     names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "gain_damping"]
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")

@@ -11,7 +11,7 @@ SymPy ``Function`` here with
 * a cancellation-free closed form used away from 0 (checked equal to the definition), and
 * a threshold ``tau``: below ``|x| < tau`` the generated kernel evaluates the Taylor polynomial.
 
-The thresholds were chosen by measurement (``python -m lgekf.derive.thresholds``): ``tau`` is
+The thresholds were chosen by measurement (``python -m lgekf.derive.lie.thresholds``): ``tau`` is
 (rounded up from) the smallest angle above which the float64 closed form stays within 4 ulp of a
 50-digit mpmath reference (measured: sinc2 0.70, dsinc 0.66, halfcot1 0.96 but up to 7 ulp until 1.4,
 so 1.5 is used; the others are exact

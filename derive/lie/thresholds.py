@@ -1,4 +1,4 @@
-"""Measure where each angle function's closed form is accurate: `python -m lgekf.derive.thresholds`.
+"""Measure where each angle function's closed form is accurate: `python -m lgekf.derive.lie.thresholds`.
 
 For every function of derive.special, on a log-spaced grid of angles in [1e-6, 3] (both signs), the
 float64 closed form (its ``stable`` source, with math.sin/cos) is compared with the definition evaluated
@@ -8,7 +8,7 @@ in 50-digit mpmath.  Reported per function:
 * ``order``: the smallest Taylor degree whose truncation error at that tau is below 1e-17 relative
   (measured, by evaluating the polynomial in mpmath against the definition).
 
-The values recorded in derive/special.py were chosen from this output (rounded up to simple numbers);
+The values recorded in derive/lie/special.py were chosen from this output (rounded up to simple numbers);
 tests/test_special_accuracy.py checks both sides of every threshold.
 """
 
