@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .covariance import pack, unpack
 from .filters import measurement_std
@@ -39,7 +40,9 @@ def measurements_array(z, m: int) -> np.ndarray:
     return np.ascontiguousarray(a)
 
 
-def filter_batch(model, z, *, dt, accel_std, meas_std, x0, P0, measurement="position", return_cov=False, return_nis=False):
+def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: ArrayLike, meas_std: float | ArrayLike,
+                 x0: ArrayLike, P0: ArrayLike, measurement: str = "position", return_cov: bool = False,
+                 return_nis: bool = False) -> np.ndarray | tuple[np.ndarray, ...]:
     """Run ``model`` over a batch of measurement sequences.
 
     Parameters

@@ -4,6 +4,7 @@ every model's state and covariance are made from them (what ``lgekf track`` and 
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .registry import get_model
 from .validate import as_float_array
@@ -11,8 +12,19 @@ from .validate import as_float_array
 __all__ = ["state_from_common", "covariance_from_common"]
 
 
-def state_from_common(model: str, c) -> np.ndarray:
+def state_from_common(model: str, c: ArrayLike) -> np.ndarray:
     """The physical state of ``model`` for common coordinates c (6,) or (B, 6).
+
+    Parameters
+    ----------
+    model : str
+        A registry model.
+    c : array_like, (6,) or (B, 6)
+        Common coordinates (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+
+    Returns
+    -------
+    ndarray, (n,) or (B, n)
 
     Examples
     --------
@@ -28,10 +40,32 @@ def state_from_common(model: str, c) -> np.ndarray:
     return out.reshape(c.shape[:-1] + (spec.n,))
 
 
-def covariance_from_common(model: str, c, P_common) -> np.ndarray:
-    """P0 in the filter's coordinates from a covariance of the common coordinates: P = J P_c Jᵀ, J the
-    (generated) Jacobian of the filter's tangent coordinates w.r.t. c at c. c (6,) or (B, 6); P_common
-    (6, 6) or (B, 6, 6). Symmetrised; singular where the model's coordinates are (CTRV, SE(2)×R² at v = 0)."""
+def covariance_from_common(model: str, c: ArrayLike, P_common: ArrayLike) -> np.ndarray:
+    """P0 in the filter's coordinates from a covariance of the common coordinates.
+
+    P = J P_c Jᵀ with J the (generated) Jacobian of the filter's tangent coordinates ε (X = μ·exp ε) with
+    respect to c = (x, y, θ, v_x, v_y, ω) at c. This is what ``lgekf track`` and the study do inside.
+
+    Parameters
+    ----------
+    model : str
+        A registry model.
+    c : array_like, (6,) or (B, 6)
+        Common coordinates of the estimate.
+    P_common : array_like, (6, 6) or (B, 6, 6)
+        Their covariance.
+
+    Returns
+    -------
+    ndarray, (n, n) or (B, n, n)
+        Symmetrised. Singular where the model's coordinates are (CTRV's ψ, SE(2)×R²'s θ at v = 0).
+
+    Examples
+    --------
+    >>> P = covariance_from_common("se2se2", [0, 0, 0, 3, 0, 0], np.diag([1, 1, 0.01, 1, 1, 0.01]))
+    >>> bool(np.allclose(P, np.diag([1, 1, 0.01, 1, 1, 0.01])))
+    True
+    """
     spec = get_model(model)
     c = as_float_array("c", c)
     Pc = as_float_array("P_common", P_common)

@@ -24,6 +24,7 @@ Conventions
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .covariance import pack, unpack
 from .registry import MODELS, ModelSpec, get_model
@@ -71,7 +72,8 @@ class Filter:
 
     model = ""
 
-    def __init__(self, dt, accel_std, meas_std, x0, P0, *, measurement: str = "position", model: str | None = None):
+    def __init__(self, dt: float, accel_std: ArrayLike, meas_std: float | ArrayLike, x0: ArrayLike, P0: ArrayLike, *,
+                 measurement: str = "position", model: str | None = None):
         spec = get_model(model if model is not None else self.model)
         self._spec = spec
         self._k = spec.kernels
@@ -117,7 +119,7 @@ class Filter:
         step = self.dt if dt is None else positive_scalar("dt", dt)
         self._k.predict(self._s, self._p, step, *self._q)
 
-    def update(self, z) -> float:
+    def update(self, z: ArrayLike) -> float:
         """Correct with one measurement z ((x, y) or (x, y, θ)); returns the NIS of the innovation."""
         z = as_float_array("z", z, (self._m,))
         self.nis = float(self._update(self._s, self._p, *z.tolist(), *self._r))
@@ -155,6 +157,24 @@ globals().update({cls.__name__: cls for cls in _CLASSES.values()})
 
 
 def make_filter(model: str, **kwargs) -> Filter:
-    """The filter of a registry model by name, e.g. ``make_filter("se2r2", dt=0.1, ...)``."""
+    """The filter class of a registry model, by name.
+
+    Parameters
+    ----------
+    model : str
+        A registry model ("se2se2", "se2r3", "se2r2", "ctrv", "cv", ...).
+    **kwargs
+        The arguments of :class:`Filter` (dt, accel_std, meas_std, x0, P0, measurement).
+
+    Returns
+    -------
+    Filter
+        An instance of the model's class, e.g. ``SE2R2Filter``.
+
+    Examples
+    --------
+    >>> f = make_filter("cv", dt=0.1, accel_std=0.5, meas_std=0.3, x0=[0, 0, 1, 0], P0=np.eye(4))
+    >>> f.predict(); nis = f.update([0.1, 0.0])
+    """
     get_model(model)
     return _CLASSES[model](**kwargs)

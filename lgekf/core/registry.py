@@ -95,7 +95,23 @@ MEASUREMENTS: dict[str, MeasurementSpec] = {name: MeasurementSpec(name=name, **e
 
 
 def get_model(name: str) -> ModelSpec:
-    """The registered model ``name`` or a ValueError listing the choices."""
+    """The registered model ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A model name: the stem of its definition file in ``derive/models/``.
+
+    Returns
+    -------
+    ModelSpec
+        Its entry of the generated model table (state and noise names, measurements, kernels, ...).
+
+    Raises
+    ------
+    ValueError
+        For an unknown name, listing the registered ones.
+    """
     try:
         return MODELS[name]
     except (KeyError, TypeError):
