@@ -112,3 +112,16 @@ def test_noise_scale_several_values_after_one_flag_or_repeated(tmp_path, args):
     assert r.returncode == 0, r.stderr
     meta = json.loads((out / "meta.json").read_text())
     assert meta["protocol"]["noise_scale"] == {**{f: 1.0 for f in FILTERS}, "ctrv": 3.0, "cv": 30.0}
+
+
+def test_se2r3_truth_runs_beyond_pi_and_reports_se2se2_aliasing():
+    """Issue #9: `--truth se2r3 --w0 3` runs; the SE(2)xSE(2) filter cannot represent |ω| > π and aliases:
+    the study counts those trajectories (truth ω leaves [-π, π]) instead of refusing the protocol."""
+    cfg = StudyConfig(trajectories=12, sigmas=[0.0, 1.5], steps=30, truth="se2r3", w0=3.0, seed=4)
+    res = run_study(cfg)
+    assert set(res.aliased) == {"se2se2"}  # the only model with a bounded coordinate
+    # at σ_ω = 0 ω stays at 3 (+ init error) < π for most, at 1.5 the random walk leaves [-π, π] often
+    assert res.aliased["se2se2"][1] > res.aliased["se2se2"][0] >= 0 and res.aliased["se2se2"][1] >= 3
+    assert all(np.isfinite(res.rmse[f]).all() for f in cfg.filters)
+    # the SE(2)xR3 filter (ω a plain number) tracks this truth; the aliased SE(2)xSE(2) filter does worse
+    assert res.mean("se2r3")[1] < res.mean("se2se2")[1]
