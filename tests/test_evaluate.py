@@ -10,10 +10,8 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-from lgekf.apps.evaluate import (
-    FILTERS, TURNING, evaluate_dataset, evaluation_figure, format_table, markdown_table, run_filters, tune_split,
-    world_velocity,
-)
+from lgekf.apps.evaluate import FILTERS, TURNING, evaluate_dataset, run_filters, tune_split, world_velocity
+from lgekf.apps.report import evaluation_figure, format_table, markdown_table
 from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_quantile
 from lgekf.io.datasets import Dataset, data_root, load_dataset
 from lgekf.apps.track import TrackConfig, track_arrays

@@ -367,7 +367,7 @@ def model_kernels(model, measurements: dict) -> list:
     ))
     ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "))))
     # ---- common coordinates
-    cs = sp.symbols("c0:6", real=True)
+    cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
     csub = dict(zip(COMMON, cs))
     cin = vec_inputs("c", cs)
     ks.append(vector_kernel("world_velocity", "World-frame velocity (2,) of a physical state x of this model.", ["x"],

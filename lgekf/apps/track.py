@@ -42,6 +42,7 @@ import numpy as np
 
 from ..core.covariance import pack, packed_diagonal
 from ..core.registry import MODELS, get_model
+from ..core.validate import positive_scalar
 from ..io.files import is_stdio
 from ..io.formatting import format_rows, label_bytes
 
@@ -70,8 +71,7 @@ class TrackConfig:
 
     def validate(self):
         for name, val in (("meas_std", self.meas_std), ("omega_std", self.omega_std), ("heading_std", self.heading_std)):
-            if not (isinstance(val, (int, float)) and math.isfinite(val) and val > 0):
-                raise ValueError(f"{name.replace('_', '-')}: must be a positive number, got {val}")
+            positive_scalar(name.replace("_", "-"), val)
         for model, q in self.accel_std.items():
             spec = get_model(model)
             q = tuple(q)
@@ -255,7 +255,7 @@ def output_columns(model, full_cov=False, origin=False):
     """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon].
 
     ``origin``: the input had lat, lon columns; the last two columns then hold the origin (degrees) of
-    the east/north frame of x, y (``lgekf.geo``), the same on every row.
+    the east/north frame of x, y (``lgekf.io.geo``), the same on every row.
     """
     spec = get_model(model)
     names = list(spec.state_names)

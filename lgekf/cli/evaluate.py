@@ -6,19 +6,17 @@ from __future__ import annotations
 import csv
 import io
 import json
-import math
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
 
-from ..apps.evaluate import (
-    FILTERS, SUMMARY_FIELDS, TUNE_RATIOS, TUNE_SCALES, _csv_text, _fmt, evaluate_dataset, evaluation_figure, format_table,
-    markdown_table,
-)
+from ..apps.evaluate import FILTERS, TUNE_RATIOS, TUNE_SCALES, evaluate_dataset
+from ..apps.report import SUMMARY_FIELDS, _csv_text, _fmt, evaluation_figure, format_table, markdown_table
 from ..apps.track import DEFAULT_ACCEL_STD
 from ..experiments.statistics import BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED, MIN_TRACKS_CI
+from ..core.validate import positive_scalar
 from ..io.datasets import GROUPS, PRESETS, load_dataset
 from ..io.output import staged_directory, write_atomic
 from . import ArgumentParser
@@ -54,8 +52,7 @@ def cmd_evaluate(argv) -> int:
 
 
 def _evaluate(a) -> int:
-    if not (math.isfinite(a.meas_std) and a.meas_std > 0):
-        raise ValueError(f"--meas-std: must be a positive number, got {a.meas_std}")
+    positive_scalar("--meas-std", a.meas_std)
     if a.seeds < 1:
         raise ValueError(f"--seeds: must be at least 1, got {a.seeds}")
     if a.min_length < 3:

@@ -24,12 +24,16 @@ def as_float_array(name: str, value, shape: tuple | None = None) -> np.ndarray:
 
 
 def positive_scalar(name: str, value, allow_zero: bool = False) -> float:
+    """A finite positive (or, with ``allow_zero``, non-negative) number; one ValueError naming ``name``.
+
+    The one check of every noise std, step length and scale in the filters, the study, ``track`` and
+    ``evaluate``."""
     a = as_float_array(name, value)
     if a.ndim != 0:
         raise ValueError(f"{name}: expected a single number, got shape {a.shape}")
     v = float(a)
     if v < 0 or (v == 0 and not allow_zero):
-        raise ValueError(f"{name}: must be {'non-negative' if allow_zero else 'positive'}, got {v}")
+        raise ValueError(f"{name}: must be a {'non-negative' if allow_zero else 'positive'} number, got {v}")
     return v
 
 

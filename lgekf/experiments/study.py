@@ -34,6 +34,7 @@ from ..core.batch import filter_batch
 from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
 from ..core.registry import MODELS, get_model
+from ..core.validate import positive_scalar
 from .simulate import measurement_noise, simulate, truth_models
 
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
@@ -61,8 +62,7 @@ class StudyConfig:
     heading_std: float = 0.1
 
     def validate(self) -> None:
-        if not (self.dt > 0 and math.isfinite(self.dt)):
-            raise ValueError(f"dt: must be a positive number, got {self.dt}")
+        positive_scalar("dt", self.dt)
         if len(self.v0) != 2 or not all(math.isfinite(v) for v in self.v0):
             raise ValueError(f"v0: expected two finite numbers (body velocity v_x, v_y in m/s), got {list(self.v0)}")
         if not math.isfinite(self.w0):
@@ -81,10 +81,8 @@ class StudyConfig:
             raise ValueError(f"trajectories: must be at least 2 (a std is reported), got {self.trajectories}")
         if len(self.sigmas) < 1 or any((not math.isfinite(s)) or s < 0 for s in self.sigmas):
             raise ValueError("sigmas: need at least one finite, non-negative σ_ω")
-        if not (self.meas_std > 0 and math.isfinite(self.meas_std)):
-            raise ValueError(f"meas_std: must be a positive number, got {self.meas_std}")
-        if not (self.sigma_v >= 0 and math.isfinite(self.sigma_v)):
-            raise ValueError(f"sigma_v: must be a non-negative number, got {self.sigma_v}")
+        positive_scalar("meas_std", self.meas_std)
+        positive_scalar("sigma_v", self.sigma_v, allow_zero=True)
         if any(s < 0 for s in self.init_std):
             raise ValueError("init_std: stds must be non-negative")
         if not self.filters:
@@ -93,13 +91,11 @@ class StudyConfig:
             get_model(f)
         if self.measurement != "position":
             get_model(self.truth).measurement(self.measurement)
-            if not (self.heading_std > 0 and math.isfinite(self.heading_std)):
-                raise ValueError(f"heading_std: must be a positive number, got {self.heading_std}")
+            positive_scalar("heading_std", self.heading_std)
         for k, v in self.noise_scale.items():
             if k not in FILTERS:
                 raise ValueError(f"noise scale: unknown filter {k!r}; choose one of {', '.join(FILTERS)}")
-            if not (v > 0 and math.isfinite(v)):
-                raise ValueError(f"noise scale for {k}: must be positive, got {v}")
+            positive_scalar(f"noise scale for {k}", v)
 
     def filter_noise(self, name: str, sigma_w: float):
         """The matched process-noise stds of filter ``name`` at rotational noise σ_ω (times its scale)."""

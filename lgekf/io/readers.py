@@ -74,7 +74,7 @@ class Measurements:
     first appearance; labels[i] the text of object i's id (as written in the output);
     line (N,) the 1-based line number of each row in ``source`` (for error messages); extra: other
     numeric columns asked for (name -> (N,)); origin: (lat0, lon0) in degrees when z was projected
-    from lat, lon columns (``lgekf.geo.to_local``), else None.
+    from lat, lon columns (``lgekf.io.geo.to_local``), else None.
     """
 
     t: np.ndarray
