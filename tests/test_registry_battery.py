@@ -24,7 +24,7 @@ from scipy.linalg import expm, logm
 
 import lgekf
 from lgekf.core.registry import MODELS
-from lgekf.derive.lie.groups import SE2, Product, Rn
+from lgekf.derive.lie.groups import Product, Rn
 from lgekf.derive.lie.special import ANGLE_FUNCTIONS, wrap
 from lgekf.derive.measurements import load_measurements
 from lgekf.derive.models import load_models
