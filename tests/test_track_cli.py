@@ -409,3 +409,50 @@ def test_output_path_for_model_all():
     assert output_path(Path("d/tracks.csv.gz"), "cv", True) == Path("d/tracks_cv.csv.gz")
     assert output_path(Path("tracks"), "ctrv", True) == Path("tracks_ctrv")
     assert output_path("-", "cv", False) == "-"
+
+
+def _pose_file(tmp_path, heading_noise=0.02, seed=9):
+    """A car on a circle of radius 20 m at 5 m/s, 10 Hz: positions with 0.5 m noise, heading with small noise."""
+    rng = np.random.default_rng(seed)
+    t = 0.1 * np.arange(150)
+    a = 5.0 / 20.0 * t
+    x, y = 20 * np.sin(a), 20 * (1 - np.cos(a))
+    h = a + heading_noise * rng.standard_normal(t.size)
+    zx, zy = x + 0.5 * rng.standard_normal(t.size), y + 0.5 * rng.standard_normal(t.size)
+    rows = "".join(f"{ti!r},{xi!r},{yi!r},{hi!r}\n" for ti, xi, yi, hi in zip(t.tolist(), zx.tolist(), zy.tolist(), h.tolist()))
+    return write(tmp_path, "poses.csv", "t,x,y,heading\n" + rows), np.column_stack([x, y, a])
+
+
+@pytest.mark.parametrize("model", [m for m, s in MODELS.items() if "pose" in s.measurements])
+def test_measure_pose_uses_the_heading_column(tmp_path, model):
+    """--measure pose: the heading column is a measurement; the heading error drops well below the
+    position-only run's (same file, same noise settings), and the output is the model's usual columns."""
+    inp, truth = _pose_file(tmp_path)
+    err = {}
+    for measure in ("position", "pose"):
+        out = tmp_path / f"{measure}.csv"
+        r = run(inp, "-o", out, "--model", model, "--measure", measure, "--meas-std", "0.5", "--heading-std", "0.02",
+                "--use-heading", "--quiet")
+        assert r.returncode == 0, r.stderr
+        cols, data = read_out(out)
+        assert cols == output_columns(model)
+        th = data[20:, cols.index(MODELS[model].state_names[2])].astype(float)
+        err[measure] = np.sqrt(np.mean(((th - truth[20:, 2] + np.pi) % (2 * np.pi) - np.pi) ** 2))
+    assert err["pose"] < 0.5 * err["position"] and err["pose"] < 0.03, err
+
+
+def test_measure_pose_refused_for_cv_and_positions_for_cv_under_all(tmp_path):
+    inp, _ = _pose_file(tmp_path)
+    r = run(inp, "-o", tmp_path / "cv.csv", "--model", "cv", "--measure", "pose")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "no heading" in r.stderr
+    assert not (tmp_path / "cv.csv").exists()
+    r = run(inp, "-o", tmp_path / "all.csv", "--model", "all", "--measure", "pose")
+    assert r.returncode == 0, r.stderr
+    assert "cv has no heading: it gets the positions only" in r.stderr
+    assert (tmp_path / "all_cv.csv").exists() and (tmp_path / "all_se2r2.csv").exists()
+
+
+def test_measure_pose_needs_a_heading_column(tmp_path):
+    r = run(write(tmp_path, "a.csv", GOOD), "-o", tmp_path / "o.csv", "--measure", "pose")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "heading" in r.stderr
+    assert not (tmp_path / "o.csv").exists()
