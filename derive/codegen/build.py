@@ -131,6 +131,25 @@ def render_registry(models: dict, measurements: dict) -> str:
     return "".join(out)
 
 
+class _NoBar:
+    def update(self, n=1):
+        pass
+
+    def close(self):
+        pass
+
+
+def _bar(total: int):
+    """A tqdm bar over the models on a terminal (derivation takes 30-60 s), nothing otherwise."""
+    if not sys.stderr.isatty():
+        return _NoBar()
+    try:
+        from tqdm import tqdm
+    except ImportError:  # pragma: no cover - tqdm is a dependency
+        return _NoBar()
+    return tqdm(total=total, desc="lgekf derive", unit="model", leave=False, file=sys.stderr)
+
+
 def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     """{file name: source} for every generated module (deterministic).
 
@@ -144,14 +163,18 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
         "SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.",
         "derive/lie/groups.py through derive/codegen/emitter.py", se2_kernels(), IMPORTS, PREAMBLE)
     jobs_args = [(n, models_dir, meas_dir) for n in sorted(models)]
+    bar = _bar(len(jobs_args))
     if jobs > 1 and len(jobs_args) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as ex:
             for fname, src in ex.map(_render_model, jobs_args):
                 files[fname] = src
+                bar.update(1)
     else:
         for a in jobs_args:
             fname, src = _render_model(a)
             files[fname] = src
+            bar.update(1)
+    bar.close()
     files["registry.py"] = render_registry(models, measurements)
     files["__init__.py"] = HEADER.format(
         title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.",
