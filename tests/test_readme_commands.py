@@ -167,7 +167,9 @@ def workdir(tmp_path_factory):
     return d
 
 
-@pytest.mark.parametrize("cmd", [pytest.param(c, marks=pytest.mark.slow) if c.split()[1] == "derive" else c for c in to_run()])
+# every run is a CLI process (about 1.5 s each, 30 of them): slow, so the quick loop stays under 2 min; CI runs them
+@pytest.mark.slow
+@pytest.mark.parametrize("cmd", to_run())
 def test_readme_command_runs(workdir, cmd):
     script = f"lgekf() {{ {shlex.join(cli_command())} \"$@\"; }}\n{cmd}\n"
     env = dict(os.environ, LGEKF_DATA=str(workdir / "data"), MPLBACKEND="Agg")

@@ -74,6 +74,9 @@ MODEL = Walk()
 '''
 
 
+pytestmark = pytest.mark.slow  # one SymPy derivation of the toy (about 10 s); CI runs it
+
+
 @pytest.fixture(scope="module")
 def toy(tmp_path_factory):
     from lgekf.derive.codegen.build import write_all
