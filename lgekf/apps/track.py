@@ -42,6 +42,7 @@ import numpy as np
 
 from ..core.covariance import pack, packed_diagonal
 from ..core.registry import MODELS, get_model
+from .divergence import MonitorConfig, recover, speed_limits
 from ..io.files import is_stdio
 from ..io.formatting import format_rows, label_bytes
 
@@ -55,6 +56,8 @@ DEFAULT_MEAS_STD = 0.3
 DEFAULT_OMEGA_STD = 0.5
 DEFAULT_HEADING_STD = 0.1
 SIDESLIP_FRACTION = 0.1
+TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
+REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
 ROWS_PER_CHUNK = 1 << 17
 
@@ -67,6 +70,7 @@ class TrackConfig:
     meas_std: float = DEFAULT_MEAS_STD
     omega_std: float = DEFAULT_OMEGA_STD
     heading_std: float = DEFAULT_HEADING_STD
+    heading_cap: float = math.pi  # largest initial heading std of the two-point prior (rad); see two_point
 
     def validate(self):
         for name, val in (("meas_std", self.meas_std), ("omega_std", self.omega_std), ("heading_std", self.heading_std)):
@@ -85,13 +89,25 @@ class TrackConfig:
         return np.asarray(self.accel_std.get(model, DEFAULT_ACCEL_STD[model]), dtype=float)
 
 
-def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD):
+def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD,
+                   heading_cap=math.pi):
     """Common-coordinate initial states c (B, 6) and their diagonal variances (B, 6), one per object.
 
     t (N,), z (N, 2) sorted by object with ``starts`` (B + 1,); every object has >= 2 rows.
     """
-    i0 = starts[:-1]
-    i1 = i0 + 1
+    return two_point(t, z, np.asarray(starts)[:-1] + 1, meas_std, omega_std, heading, heading_std, heading_cap)
+
+
+def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD,
+              heading_cap=math.pi, first=None):
+    """The two-point estimate at each of ``rows`` (R,) from the measurements ``first`` (default rows - 1)
+    and rows (the rules of the module docstring): common coordinates c (R, 6) and diagonal variances (R, 6).
+
+    ``heading_cap``: the largest heading std of the prior; the lateral velocity variance the heading does
+    not take goes to v_y (π: the rule of the module docstring; ``lgekf track`` uses ``TRACK_HEADING_CAP``).
+    """
+    i1 = np.asarray(rows, dtype=np.int64)
+    i0 = i1 - 1 if first is None else np.asarray(first, dtype=np.int64)
     dt = t[i1] - t[i0]
     v = (z[i1] - z[i0]) / dt[:, None]
     speed = np.hypot(v[:, 0], v[:, 1])
@@ -109,7 +125,7 @@ def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=
         c[:, 2] = np.where(speed > 0, np.arctan2(v[:, 1], v[:, 0]), 0.0)
         c[:, 3] = speed
         with np.errstate(divide="ignore"):
-            var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), math.pi**2)
+            var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), heading_cap**2)
         var[:, 2] = var_th
         var[:, 4] = np.maximum(var_v - speed**2 * var_th, floor_vy)
     else:
@@ -191,6 +207,41 @@ def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
             out_nis[a + k] = bn[b, k]
 
 
+def _measurement_inputs(spec, z, heading, cfg, measurement):
+    """(measurements (N, m), noise stds r) of the measurement model."""
+    spec.measurement(measurement)
+    if measurement == "pose":
+        if heading is None:
+            raise ValueError("--measure pose: the input needs a heading column")
+        return np.ascontiguousarray(np.column_stack([z[:, :2], heading])), np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
+    return z, np.array([float(cfg.meas_std)])
+
+
+def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
+    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place. Segments of similar length are
+    bucketed into padded batches for the generated ``run_batch`` kernel (no Python per step)."""
+    spec = get_model(model)
+    kern = spec.kernels
+    n, npk = spec.n, spec.n_packed
+    m = zm.shape[1]
+    lengths = np.asarray(lengths, dtype=np.int64)
+    first_all = np.asarray(first, dtype=np.int64)
+    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
+        Lb = np.ascontiguousarray(lengths[objs])
+        K = int(Lb.max())
+        first = np.ascontiguousarray(first_all[objs])
+        B = len(objs)
+        zb = np.empty((B, K, m))
+        dts = np.empty((B, K))
+        _gather(t, zm, first, Lb, K, zb, dts)
+        bx = np.empty((B, K, n))
+        bp = np.empty((B, K, npk))
+        bn = np.empty((B, K))
+        getattr(kern, f"run_batch_{measurement}")(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
+        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+
+
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
     """Track every object of sorted measurements; no Python per filter step.
 
@@ -199,27 +250,19 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     its filter coordinates, nis (N,) (nan for the first two rows of each object). ``x0``/``P0``
     (B, n), (B, n, n) override the two-point initialisation. ``measurement="pose"`` uses ``heading`` (N,)
     as the measured angle (noise stds meas_std, meas_std, heading_std in the tangent of SE(2)).
+    No divergence monitoring: that is ``track_monitored``.
     """
     spec = get_model(model)
-    meas = spec.measurement(measurement)
-    kern = spec.kernels
     n, npk = spec.n, spec.n_packed
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
     if x0 is None or P0 is None:
-        c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std)
+        c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
         x0, P0 = initial_estimates(model, c, var)
     p0 = pack(P0)
     q = cfg.q(model)
-    if measurement == "pose":
-        if heading is None:
-            raise ValueError("--measure pose: the input needs a heading column")
-        zm = np.ascontiguousarray(np.column_stack([z[:, :2], heading]))
-        r = np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
-    else:
-        zm = z
-        r = np.array([float(cfg.meas_std)])
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     N = t.size
     out_x = np.empty((N, n))
     out_p = np.empty((N, npk))
@@ -230,21 +273,57 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     out_x[i0 + 1] = x0
     out_p[i0] = p0
     out_p[i0 + 1] = p0
-    lengths = np.diff(starts) - 2
-    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
-        Lb = np.ascontiguousarray(lengths[objs])
-        K = int(Lb.max())
-        first = np.ascontiguousarray(starts[objs] + 2)
-        B = len(objs)
-        zb = np.empty((B, K, meas.dim))
-        dts = np.empty((B, K))
-        _gather(t, zm, first, Lb, K, zb, dts)
-        bx = np.empty((B, K, n))
-        bp = np.empty((B, K, npk))
-        bn = np.empty((B, K))
-        getattr(kern, f"run_batch_{measurement}")(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
-        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, q, r, out_x, out_p, out_nis)
     return out_x, out_p, out_nis
+
+
+@dataclass
+class Tracked:
+    """Output of ``track_monitored``: states, packed covariances, NIS, flags (N,) and the alarms."""
+
+    x: np.ndarray
+    p: np.ndarray
+    nis: np.ndarray
+    flag: np.ndarray
+    alarms: list
+
+
+def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
+                    monitor: MonitorConfig | None = MonitorConfig()) -> Tracked:
+    """``track_arrays`` with divergence monitoring and recovery (``lgekf.apps.divergence``).
+
+    Objects whose filter never raises an alarm get exactly the ``track_arrays`` output (flag 0); at an
+    alarm the object is re-initialised from its last two measurements and continues, and the rows of the
+    alarm through the re-initialisation are flagged 1. ``monitor=None``: no monitoring (all flags 0).
+    """
+    spec = get_model(model)
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(z, dtype=float)
+    starts = np.asarray(starts, dtype=np.int64)
+    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, measurement=measurement)
+    flag = np.zeros(t.size, np.int8)
+    if monitor is None:
+        return Tracked(x, p, nis, flag, [])
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    q = cfg.q(model)
+
+    obj_start = np.repeat(starts[:-1], np.diff(starts))
+
+    def reinit(rows):
+        # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
+        first = np.array([max(int(obj_start[g]), int(np.searchsorted(t[obj_start[g]:g], t[g] - REINIT_BASELINE, side="right"))
+                              + int(obj_start[g]) - 1) for g in rows], dtype=np.int64)
+        first = np.minimum(first, np.asarray(rows) - 1)
+        c, var = two_point(t, z, rows, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap, first)
+        x0, P0 = initial_estimates(model, c, var)
+        return x0, pack(P0)
+
+    def rerun(first, lengths, x0, p0):
+        _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, x, p, nis)
+
+    limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
+    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
+    return Tracked(x, p, nis, flag, alarms)
 
 
 # ------------------------------------------------------------------------------------------ CLI
