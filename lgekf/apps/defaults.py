@@ -16,7 +16,7 @@ from .divergence import MonitorConfig
 from .noise import (
     NoiseEstimate, measurement_std, one_step_errors, process_noise_search, subsample_objects, typical_speed,
 )
-from .track import DEFAULT_MEAS_STD, TrackConfig, track_arrays
+from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
 
@@ -118,13 +118,13 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         skip[idx[idx < sub_starts[1:]]] = True
     for m in todo:
         meas = measurement.get(m, "position")
-        dof = get_model(m).measurement(meas).dim
+        get_model(m).measurement(meas)
 
         def run(q, m=m, meas=meas):
             cfg = TrackConfig({m: q}, plan.meas_std, omega_std, heading_std, heading_cap)
-            x, _, nis = track_arrays(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas)
-            err2 = one_step_errors(m, ts, zs, x, sub_starts)
-            return np.where(skip, np.nan, nis), np.where(skip, np.nan, err2)
+            r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor)
+            err2 = one_step_errors(m, ts, zs, r.x, sub_starts)
+            return np.where(skip, np.nan, r.nis), np.where(skip, np.nan, err2)
 
         res = process_noise_search(run, m, plan.v_typ)
         plan.accel_std[m] = res.q

@@ -76,6 +76,7 @@ class Alarm:
     kind: int
     value: float
     limit: float
+    updates: int = 0  # length of the NIS window that triggered (kind 1)
 
     @property
     def kind_name(self) -> str:
@@ -129,6 +130,21 @@ def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 
 @nb.njit(cache=True)
+def _finite_rows(x, p, rows, out):
+    """out[i] = every entry of x[rows[i]] and p[rows[i]] is finite."""
+    for i in range(rows.shape[0]):
+        r = rows[i]
+        ok = True
+        for j in range(x.shape[1]):
+            if not np.isfinite(x[r, j]):
+                ok = False
+        for j in range(p.shape[1]):
+            if not np.isfinite(p[r, j]):
+                ok = False
+        out[i] = ok
+
+
+@nb.njit(cache=True)
 def _scan(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
           out_from):
     """First alarm per segment (row or -1), its kind, value (window mean NIS) and the first flagged row.
@@ -172,31 +188,33 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
     segments' rows (the std only where the speed exceeds the limit).
     """
     S = len(seg_first)
-    rows = np.concatenate([np.arange(a, e) for a, e in zip(seg_first, seg_end)]) if S else np.empty(0, np.int64)
     N = x.shape[0]
+    seg_first = np.asarray(seg_first, np.int64)
+    seg_end = np.asarray(seg_end, np.int64)
+    lens = seg_end - seg_first
+    rows = np.repeat(seg_end - np.cumsum(lens), lens) + np.arange(int(lens.sum()))  # the segments' rows, in order
+    lim_row = np.repeat(np.asarray(limit_seg, float), lens)
     over = np.zeros(N, np.bool_)
     absurd = np.zeros(N, np.bool_)
     bad = np.zeros(N, np.bool_)
-    lim_row = np.repeat(np.asarray(limit_seg, float), np.asarray(seg_end) - np.asarray(seg_first))
     if rows.size:
-        xs = x[rows]
-        finite = np.isfinite(xs).all(axis=1) & np.isfinite(p[rows]).all(axis=1)
+        finite = np.empty(rows.size, np.bool_)
+        _finite_rows(x, p, rows, finite)
         bad[rows] = ~finite
         sp = np.zeros(rows.size)
-        sp[finite] = speeds(model, xs[finite])
+        sp[finite] = speeds(model, x[rows[finite]])
         o = finite & (sp > lim_row)
         over[rows] = o
         if o.any():
             idx = np.flatnonzero(o)
-            std = speed_std(model, xs[idx], p[rows[idx]])
+            std = speed_std(model, x[rows[idx]], p[rows[idx]])
             absurd[rows[idx]] = sp[idx] - cfg.n_sigma * std > lim_row[idx]
     clip, thr, thr_short = cfg.nis_thresholds(m)
     out_row = np.empty(S, np.int64)
     out_kind = np.zeros(S, np.int64)
     out_val = np.zeros(S)
     out_from = np.zeros(S, np.int64)
-    _scan(np.ascontiguousarray(nis, dtype=float), absurd, over, bad, np.asarray(seg_first, np.int64),
-          np.asarray(seg_end, np.int64), int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short),
+    _scan(np.ascontiguousarray(nis, dtype=float), absurd, over, bad, seg_first, seg_end, int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short),
           out_row, out_kind, out_val, out_from)
     hit = out_row >= 0
     sp_hit = out_kind == 2
@@ -252,7 +270,8 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         keep = []
         for i in hit:
             o = int(seg_obj[i])
-            alarms.append(Alarm(o, int(row[i]), int(kind[i]), float(val[i]), float(lim[i])))
+            alarms.append(Alarm(o, int(row[i]), int(kind[i]), float(val[i]), float(lim[i]),
+                                int(row[i] - start[i] + 1) if kind[i] == 1 else 0))
             # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before
             # the alarm's first update (at most back to the segment's initialisation row)
             flag[max(int(start[i]), int(seg_first[i])) - 1:int(row[i]) + 1] = 1

@@ -9,9 +9,16 @@ velocity) and converted to each model with the generated ``common_to_state`` / `
 * position (x, y) = z1, variance r² (r = measurement std);
 * world velocity v = (z1 - z0)/Δ, each component with variance σ_v² = 2r²/Δ²;
 * heading θ = atan2(v) (0 if v = 0), body velocity (|v|, 0), ω = 0;
-* var θ = min(σ_v²/|v|², π²) (the lateral velocity error seen as a heading error, at most π²);
+* var θ = min(σ_v²/|v|², cap²) (the lateral velocity error seen as a heading error, at most cap², cap =
+  ``heading_cap``: π for the library functions, ``TRACK_HEADING_CAP`` = 0.3 rad in ``lgekf track``);
 * var v_x = σ_v²; var v_y = max(σ_v² - |v|² var θ, (0.1 σ_v)²): the lateral velocity the heading
-  cannot explain (slow objects), and at least a small side-slip prior (10 % of σ_v) otherwise;
+  cannot explain (slow objects, or beyond the cap), and at least a small side-slip prior (10 % of σ_v)
+  otherwise. The split between θ and v_y matters only to the models with a side-slip velocity
+  (SE(2)×SE(2), SE(2)×R³; for the others the conversion folds var v_y back into the heading): their
+  LG-EKF update turns a position innovation into a rotation when the heading is very uncertain and
+  bends the correction (docs/track_evaluate.md), so ``lgekf track`` keeps the heading std at most
+  0.3 rad and lets the body velocity carry the rest (ETH pedestrians, robustness set: the lost tracks of
+  the first updates disappear);
 * var ω = ``omega_std``² (default 0.5 rad/s: a pedestrian or car turns at well under 1 rad/s);
 * with ``use_heading`` the measured heading h1 at t1 replaces atan2(v) (variance ``heading_std``²,
   default 0.1 rad) and the body velocity is (v·(cos h1, sin h1), 0) with var v_y = (0.1 σ_v)²;
@@ -21,10 +28,15 @@ velocity) and converted to each model with the generated ``common_to_state`` / `
 The filter then runs predict(t_k - t_{k-1}) + update(z_k) for k = 2, 3, ... Output rows exist for every
 measurement: row 0 holds z0 as position with the two-point velocity/heading and covariance P0 (nis empty
 = nan), row 1 the initial estimate (x0, P0) at t1 (nis nan), rows k >= 2 the filter's posterior.
+``track_monitored`` adds the divergence monitor (``lgekf.apps.divergence``): at an alarm the object is
+re-initialised by the same two-point rule from its measurement at the alarm row and the latest one at
+least ``REINIT_BASELINE`` = 0.5 s earlier (the object's first if none), and continues; the rows of the
+alarm are flagged.
 
-Process noise defaults (``default_accel_std`` of each model definition; see docs/track_evaluate.md):
-SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); SE(2)xR2, CTRV (σ_a, σ_α) =
-(0.5, 1.0); CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
+Noise: ``lgekf track`` takes each value given as an option and estimates the others from the data
+(``lgekf.apps.defaults``). The library defaults (``TrackConfig``) are the models' ``default_accel_std``
+(SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); SE(2)xR2, CTRV (σ_a, σ_α) =
+(0.5, 1.0); CV σ_a = 0.5 m/s²) and a measurement std of 0.3 m.
 
 Measurements: ``position`` (x, y) or ``pose`` (x, y and the ``heading`` column as θ ∈ SE(2), noise
 (meas_std, meas_std, heading_std) in the tangent of SE(2)); a model without a heading (CV) is refused
@@ -48,7 +60,8 @@ from ..io.formatting import format_rows, label_bytes
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
-    "initial_common", "initial_estimates", "track_arrays", "output_columns", "output_path", "write_model",
+    "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -331,10 +344,11 @@ ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
 
 
 def output_columns(model, full_cov=False, origin=False):
-    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon].
+    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon], flag.
 
-    ``origin``: the input had lat, lon columns; the last two columns then hold the origin (degrees) of
-    the east/north frame of x, y (``lgekf.geo``), the same on every row.
+    ``origin``: the input had lat, lon columns; those two columns then hold the origin (degrees) of
+    the east/north frame of x, y (``lgekf.geo``), the same on every row. ``flag``: 1 on the rows of a
+    detected divergence through the object's re-initialisation, else 0 (``lgekf.apps.divergence``).
     """
     spec = get_model(model)
     names = list(spec.state_names)
@@ -342,7 +356,7 @@ def output_columns(model, full_cov=False, origin=False):
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else [])
+    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
 
 
 def output_path(out, model: str, all_models: bool):
@@ -356,30 +370,43 @@ def output_path(out, model: str, all_models: bool):
     return out.with_name(f"{base.stem}_{model}{base.suffix}{'.gz' if gz else ''}")
 
 
-def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position"):
-    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk."""
+def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
+                monitor: MonitorConfig | None = MonitorConfig()):
+    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk.
+
+    Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
+    """
     spec = get_model(model)
     origin = meas.origin is not None
     fh.write((",".join(output_columns(model, full_cov, origin)) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
-    col_digits = np.full(m + (2 if origin else 0), digits, dtype=np.int64)
-    col_digits[m:] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts the projection
+    ncol = m + (2 if origin else 0) + 1
+    col_digits = np.full(ncol, digits, dtype=np.int64)
+    col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
     B = len(starts) - 1
     o = 0
+    alarms = []
+    flagged = 0
     while o < B:
         o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
         o2 = min(max(o2, o + 1), B)
         a, b = int(starts[o]), int(starts[o2])
         sub_starts = starts[o:o2 + 1] - a
         h = None if meas.heading is None else meas.heading[a:b]
-        x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement)
-        std = np.sqrt(np.maximum(p[:, diag], 0.0))
-        parts = [x, std] + ([p] if full_cov else []) + [nis[:, None]]
+        r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
+        for al in r.alarms:
+            al.obj += o
+            al.row += a
+        alarms += r.alarms
+        flagged += int(r.flag.sum())
+        std = np.sqrt(np.maximum(r.p[:, diag], 0.0))
+        parts = [r.x, std] + ([r.p] if full_cov else []) + [r.nis[:, None]]
         if origin:
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+        parts.append(r.flag[:, None].astype(float))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
         bar.update(b - a)
         o = o2
-    return starts[-1]
+    return starts[-1], alarms, flagged
