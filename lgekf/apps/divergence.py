@@ -17,11 +17,16 @@ Monitor (per object, over the rows the filter produced since its last (re-)initi
   ``world_velocity``.
 * **Non-finite**: a NaN or infinite state or covariance entry.
 
-Recovery: at the alarm row g the object is re-initialised from its measurements g − 1 and g exactly as
-at its start (``track.initial_common``: two-point velocity, the same P0 rules), the estimate of row g is
-that initial estimate (NIS nan), and the filter continues from row g + 1. The monitor then restarts (the
-NIS window needs W new updates). At most ``max_reinit`` re-initialisations per object (then it is
-left running and said so).
+Recovery: at the alarm row g the object is re-initialised by the two-point rule of its start
+(``track.two_point``, from its measurement g and the latest one at least 0.5 s earlier), the estimate of
+row g is that initial estimate (NIS nan), and the filter continues from row g + 1; the monitor restarts
+(the NIS windows need new updates). An alarm is a lost filter, not always wrong noise (a maneuver the
+model cannot follow, a bent LG-EKF update), so the first re-initialisation keeps the noise; an NIS alarm
+within ``repeat`` × W = 30 rows of the object's previous re-initialisation says the noise itself is too
+small for this object, and its noise stds (process and measurement) are inflated by √(mean NIS / m) of
+that window (at most ×4 per alarm; covariance inflation through the noise, kept for the rest of the
+object). At most ``max_reinit`` = 100 re-initialisations per object; later alarms are reported and the
+object is left running.
 
 Flags (the output's ``flag`` column): 1 on the rows of the alarm — the rows of the NIS window (or the
 rows since the speed first exceeded the limit, at most W, or the non-finite row) and the row before them
@@ -58,6 +63,8 @@ class MonitorConfig:
     speed_margin: float = 1.0
     n_sigma: float = 3.0
     max_reinit: int = 100
+    repeat: int = 3  # an NIS alarm within repeat x window rows of the object's last re-initialisation inflates its noise
+    max_inflation: float = 4.0  # at most this factor on the noise stds per inflation
 
     def nis_thresholds(self, m: int) -> tuple:
         """(clip value of one NIS, threshold of the clipped sum over ``window`` updates, and over ``short``
@@ -77,6 +84,8 @@ class Alarm:
     value: float
     limit: float
     updates: int = 0  # length of the NIS window that triggered (kind 1)
+    reinitialised: bool = True  # False once the object's max_reinit re-initialisations are used up
+    scale: float = 1.0  # the object's noise inflation (factor on every noise std) from this alarm on
 
     @property
     def kind_name(self) -> str:
@@ -242,11 +251,12 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         Measurement dimension.
     cfg : MonitorConfig
     reinit : callable
-        ``reinit(rows) -> (x0 (R, n), P0 packed (R, n(n+1)/2))``: the two-point estimate from the
-        measurements rows - 1 and rows.
+        ``reinit(rows (R,), scale (R,)) -> (x0 (R, n), P0 packed (R, n(n+1)/2))``: the two-point estimate
+        at each row, with the measurement std multiplied by ``scale``.
     rerun : callable
-        ``rerun(first (R,), lengths (R,), x0, p0)``: filter rows first .. first + length - 1 of each
-        segment from (x0, p0) at row first - 1, writing into x, p, nis.
+        ``rerun(first (R,), lengths (R,), x0, p0, scale (R,))``: filter rows first .. first + length - 1
+        of each segment from (x0, p0) at row first - 1, every noise std multiplied by ``scale``, writing
+        into x, p, nis.
 
     Returns
     -------
@@ -262,6 +272,8 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     seg_first = starts[seg_obj] + 2
     seg_end = starts[seg_obj + 1]
     count = np.zeros(B, np.int64)
+    scale = np.ones(B)
+    last = np.full(B, -(10**18), dtype=np.int64)  # row of each object's last re-initialisation
     while seg_obj.size:
         row, kind, val, start, lim = first_alarms(model, x, p, nis, seg_first, seg_end, limits[seg_obj], m, cfg)
         hit = np.flatnonzero(row >= 0)
@@ -270,26 +282,31 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         keep = []
         for i in hit:
             o = int(seg_obj[i])
-            alarms.append(Alarm(o, int(row[i]), int(kind[i]), float(val[i]), float(lim[i]),
-                                int(row[i] - start[i] + 1) if kind[i] == 1 else 0))
+            g = int(row[i])
+            count[o] += 1
+            again = kind[i] == 1 and g - last[o] <= cfg.repeat * cfg.window
+            if again:  # the same object again soon after its re-initialisation: its noise is too small
+                scale[o] *= min(math.sqrt(max(float(val[i]) / m, 1.0)), cfg.max_inflation)
+            alarms.append(Alarm(o, g, int(kind[i]), float(val[i]), float(lim[i]),
+                                g - int(start[i]) + 1 if kind[i] == 1 else 0, count[o] <= cfg.max_reinit, float(scale[o])))
             # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before
             # the alarm's first update (at most back to the segment's initialisation row)
-            flag[max(int(start[i]), int(seg_first[i])) - 1:int(row[i]) + 1] = 1
-            count[o] += 1
+            flag[max(int(start[i]), int(seg_first[i])) - 1:g + 1] = 1
             if count[o] <= cfg.max_reinit:
                 keep.append(i)
+                last[o] = g
         keep = np.asarray(keep, dtype=np.int64)
         if keep.size == 0:
             break
         g = row[keep]
-        x0, p0 = reinit(g)
+        obj = seg_obj[keep]
+        x0, p0 = reinit(g, scale[obj])
         x[g] = x0
         p[g] = p0
         nis[g] = np.nan
-        obj = seg_obj[keep]
         end = seg_end[keep]
         more = g + 1 < end
         seg_obj, seg_first, seg_end = obj[more], g[more] + 1, end[more]
         if seg_obj.size:
-            rerun(seg_first, seg_end - seg_first, x0[more], p0[more])
+            rerun(seg_first, seg_end - seg_first, x0[more], p0[more], scale[seg_obj])
     return flag, alarms

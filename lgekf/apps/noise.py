@@ -9,11 +9,15 @@ for p ≤ 2, e does not depend on the position, velocity or acceleration of the 
 noise of std σ per axis ``e / ‖w‖`` has std σ exactly (no bias factor: the normalisation is derived, not
 fitted; ``tests/test_noise.py`` checks it by simulation). The estimate pools both axes of every window
 of every object: ``σ̂ = median|e/‖w‖| / Φ⁻¹(0.75)`` (the MAD, robust to the windows where the motion is
-not locally quadratic — sharp turns, braking — and to outlying measurements). Four points are the
+not locally quadratic — sharp turns, braking — and to outlying measurements; each measurement is in four
+windows, so a fraction ε of gross outliers spoils about 4ε of them and the MAD reads high by about 5 %
+at ε = 1 %, 19 % at ε = 3 %). Four points are the
 shortest window with a residual: over thousands of windows a wider one does not estimate σ better but
 spans more time, so more of the motion's jerk leaks in. The estimate is biased upwards where the
 motion's third derivative over three steps is not small against the noise (≈ |jerk|·Δt³ ≳ 0.5 σ in
-more than a few per cent of the windows): low rates with small noise on a turning vehicle.
+more than a few per cent of the windows): low rates with small noise on a turning vehicle. Measured on
+simulated urban driving (``tests/test_noise.py``: σ 0.05–2 m, 0–30 m/s, 1–25 Hz, irregular or regular
+steps): within 15 % everywhere except 1 Hz with σ = 0.05 m on a moving car (+17 to +25 %).
 
 Process noise (``accel_std_search``)
 ------------------------------------

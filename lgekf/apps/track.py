@@ -115,6 +115,7 @@ def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, h
               heading_cap=math.pi, first=None):
     """The two-point estimate at each of ``rows`` (R,) from the measurements ``first`` (default rows - 1)
     and rows (the rules of the module docstring): common coordinates c (R, 6) and diagonal variances (R, 6).
+    ``meas_std`` is a number or one per row.
 
     ``heading_cap``: the largest heading std of the prior; the lateral velocity variance the heading does
     not take goes to v_y (π: the rule of the module docstring; ``lgekf track`` uses ``TRACK_HEADING_CAP``).
@@ -322,17 +323,20 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
 
     obj_start = np.repeat(starts[:-1], np.diff(starts))
 
-    def reinit(rows):
+    def reinit(rows, scale):
         # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
         first = np.array([max(int(obj_start[g]), int(np.searchsorted(t[obj_start[g]:g], t[g] - REINIT_BASELINE, side="right"))
                               + int(obj_start[g]) - 1) for g in rows], dtype=np.int64)
         first = np.minimum(first, np.asarray(rows) - 1)
-        c, var = two_point(t, z, rows, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap, first)
+        c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
+                           cfg.heading_cap, first)
         x0, P0 = initial_estimates(model, c, var)
         return x0, pack(P0)
 
-    def rerun(first, lengths, x0, p0):
-        _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, x, p, nis)
+    def rerun(first, lengths, x0, p0, scale):
+        for s in np.unique(scale):  # objects with the same noise inflation run together
+            j = np.flatnonzero(scale == s)
+            _run_segments(model, measurement, t, zm, first[j], lengths[j], x0[j], p0[j], q * s, r * s, x, p, nis)
 
     limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
     flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)

@@ -127,10 +127,11 @@ def _frame_note(meas) -> str:
 
 def _divergence_warnings(model, meas, alarms, flagged) -> list:
     """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
-    first, count = {}, {}
+    first, count, scale = {}, {}, {}
     for al in alarms:
         first.setdefault(al.obj, al)
         count[al.obj] = count.get(al.obj, 0) + 1
+        scale[al.obj] = al.scale
     lines = []
     for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
         if al.kind_name == "NIS":
@@ -142,8 +143,9 @@ def _divergence_warnings(model, meas, alarms, flagged) -> list:
         n = count[obj]
         cap = MonitorConfig().max_reinit
         stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
+        inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
         lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
-                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{stop}; "
+                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
                      f"rows flagged 1 in the flag column")
     rest = len(first) - MAX_DIVERGENCE_LINES
     if rest > 0:
