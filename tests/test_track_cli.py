@@ -416,3 +416,76 @@ def test_output_path_for_model_all():
     assert output_path(Path("d/tracks.csv.gz"), "cv", True) == Path("d/tracks_cv.csv.gz")
     assert output_path(Path("tracks"), "ctrv", True) == Path("tracks_ctrv")
     assert output_path("-", "cv", False) == "-"
+
+
+# ------------------------------------------------------------------ issue #14: robust by default
+def _noisy_tracks(tmp_path, sigma=0.5, n_obj=2, seed=0):
+    rng = np.random.default_rng(seed)
+    rows = []
+    for j in range(n_obj):
+        t = 0.2 * np.arange(150)
+        z = np.column_stack([6.0 * t, 20.0 * np.sin(0.05 * t) + 10 * j]) + sigma * rng.standard_normal((150, 2))
+        rows += [f"o{j},{a!r},{b!r},{c!r}" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist())]
+    return write(tmp_path, "in.csv", "id,t,x,y\n" + "\n".join(rows) + "\n")
+
+
+def test_noise_from_the_data_is_said_and_options_override(tmp_path):
+    inp = _noisy_tracks(tmp_path)
+    r = run(inp, "-o", tmp_path / "a.csv", "--model", "cv")
+    line = [ln for ln in r.stderr.splitlines() if ln.startswith("lgekf track: noise from the data: ")]
+    assert r.returncode == 0 and len(line) == 1, r.stderr
+    assert float(line[0].split("meas-std ")[1].split(" m")[0]) == pytest.approx(0.5, rel=0.15)
+    assert "accel-std cv " in line[0] and "k = " in line[0]
+    r = run(inp, "-o", tmp_path / "b.csv", "--model", "cv", "--quiet")
+    assert r.returncode == 0 and r.stderr == "" and r.stdout == ""
+    r = run(inp, "-o", tmp_path / "c.csv", "--model", "cv", "--meas-std", "0.45")
+    assert "meas-std 0.45 m (given)" in r.stderr and "warning" not in r.stderr
+    r = run(inp, "-o", tmp_path / "d.csv", "--model", "cv", "--meas-std", "0.45", "--accel-std", "0.8")
+    assert "noise from the data" not in r.stderr
+    _, d = read_out(tmp_path / "d.csv")
+    cfg = TrackConfig({"cv": (0.8,)}, 0.45, heading_cap=TRACK_HEADING_CAP)
+    meas_t = d[:150, 1].astype(float)
+    x = track_monitored("cv", meas_t, d[:150, 2:4].astype(float), np.array([0, 150]), cfg).x  # filtered x, y differ from z
+    assert not np.allclose(x[2:, :2], d[2:150, 2:4].astype(float))  # sanity: compare to the input instead below
+    inp_rows = np.genfromtxt(inp, delimiter=",", skip_header=1, usecols=(1, 2, 3))
+    x = track_monitored("cv", inp_rows[:150, 0], inp_rows[:150, 1:], np.array([0, 150]), cfg).x
+    np.testing.assert_allclose(d[:150, 2:6].astype(float), x, rtol=1e-8, atol=1e-8)
+
+
+def test_wrong_noise_is_warned_and_divergence_reported_once_per_object(tmp_path):
+    inp = _noisy_tracks(tmp_path, sigma=1.0, n_obj=3, seed=2)
+    r = run(inp, "-o", tmp_path / "o.csv", "--model", "ctrv", "--meas-std", "0.1", "--accel-std", "0.5,1")
+    assert r.returncode == 0, r.stderr
+    warn = [ln for ln in r.stderr.splitlines() if ln.startswith("lgekf track: warning: ")]
+    assert "--meas-std 0.1 m is 0.095x the std estimated from the data (1.05 m)" in warn[0]
+    div = [ln for ln in warn if "diverged at t = " in ln]
+    assert sorted(ln.split("object ")[1].split(" ")[0] for ln in div) == ["o0", "o1", "o2"]
+    assert all("re-initialised from its last measurements" in ln for ln in div)
+    _, data = read_out(tmp_path / "o.csv")
+    assert (data[:, -1] == "1").sum() > 0 and "rows flagged" in r.stdout
+    r = run(inp, "-o", tmp_path / "n.csv", "--model", "ctrv", "--meas-std", "0.1", "--accel-std", "0.5,1", "--no-monitor")
+    assert "diverged" not in r.stderr
+    _, data = read_out(tmp_path / "n.csv")
+    assert set(data[:, -1]) == {"0"}
+
+
+def test_heading_cap_moves_lateral_uncertainty_to_the_body_velocity():
+    # a slow object: the two-point heading is uncertain; with the cap its variance is cap² and the rest of
+    # the lateral velocity variance is in v_y; models without side slip fold it back (their P0 unchanged)
+    t = np.array([0.0, 0.5])
+    z = np.array([[0.0, 0.0], [0.2, 0.1]])
+    st = np.array([0, 2])
+    c, var_pi = initial_common(t, z, st, 0.3)
+    _, var_cap = initial_common(t, z, st, 0.3, heading_cap=0.3)
+    var_v = 2 * 0.3**2 / 0.5**2
+    speed2 = (0.2**2 + 0.1**2) / 0.25
+    assert var_pi[0, 2] == pytest.approx(min(var_v / speed2, math.pi**2))
+    assert var_cap[0, 2] == pytest.approx(0.09)
+    assert var_cap[0, 4] == pytest.approx(var_v - speed2 * 0.09)
+    for model, spec in MODELS.items():
+        _, P_pi = initial_estimates(model, c, var_pi)
+        _, P_cap = initial_estimates(model, c, var_cap)
+        if "vy" in spec.state_names and spec.angles:  # heading + side-slip velocity: the heading keeps the cap
+            assert P_cap[0, 2, 2] == pytest.approx(0.09)
+        elif spec.angles:  # heading of motion: the same prior either way, but for the 10 % side-slip floor
+            np.testing.assert_allclose(P_cap, P_pi, rtol=0.02, atol=1e-12)

@@ -37,6 +37,7 @@ Typical speed (``chord_speeds``): the speed of the chord between a measurement a
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -225,6 +226,7 @@ def _gammainc_lower(a: float, x: float) -> float:
     return 1.0 - math.exp(-x + a * math.log(x) - lg) * h
 
 
+@functools.lru_cache(maxsize=256)
 def chi2_quantile(p: float, dof: float) -> float:
     """The p-quantile of the chi-square distribution with ``dof`` degrees of freedom (bisection on the
     regularised incomplete gamma; relative accuracy 1e-12)."""

@@ -73,6 +73,7 @@ TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad);
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
 ROWS_PER_CHUNK = 1 << 17
+SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
 @dataclass
@@ -234,7 +235,8 @@ def _measurement_inputs(spec, z, heading, cfg, measurement):
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
     (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place. Segments of similar length are
-    bucketed into padded batches for the generated ``run_batch`` kernel (no Python per step)."""
+    bucketed into padded batches for the generated ``run_batch`` kernel (no Python per step); a batch of
+    fewer than ``SERIAL_STEPS`` steps runs through ``run_one`` object by object (identical results)."""
     spec = get_model(model)
     kern = spec.kernels
     n, npk = spec.n, spec.n_packed
@@ -252,7 +254,13 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
         bx = np.empty((B, K, n))
         bp = np.empty((B, K, npk))
         bn = np.empty((B, K))
-        getattr(kern, f"run_batch_{measurement}")(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
+        xb, pb = np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs])
+        if B * K <= SERIAL_STEPS:  # small work: numba's thread start-up costs more than the filter (ms)
+            one = getattr(kern, f"run_one_{measurement}")
+            for i in range(B):
+                one(zb[i], dts[i], xb[i], pb[i], q, r, bx[i], bp[i], bn[i])
+        else:
+            getattr(kern, f"run_batch_{measurement}")(zb, dts, xb, pb, q, r, bx, bp, bn)
         _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
 
 
