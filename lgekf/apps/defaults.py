@@ -1,7 +1,8 @@
 """The noise ``lgekf track`` runs with: each value given as an option, else estimated from the data
-(``lgekf.apps.noise``): the measurement std from local quadratic residuals, then per model the
-process-noise scale at which the filter's innovations are consistent (median NIS = chi-square median),
-with the divergence monitor on.
+(``lgekf.apps.noise``): the measurement std from local quadratic residuals, then per model the process
+noise that minimises the filter's mean squared one-step prediction error on a subsample of the objects
+(the filter run as ``lgekf track`` runs it: the measurement std just found, the divergence monitor on;
+the first ``BURN_IN`` updates of every object, which the two-point initialisation dominates, left out).
 """
 
 from __future__ import annotations

@@ -11,25 +11,27 @@ fitted; ``tests/test_noise.py`` checks it by simulation). The estimate pools bot
 of every object: ``σ̂ = median|e/‖w‖| / Φ⁻¹(0.75)`` (the MAD, robust to the windows where the motion is
 not locally quadratic — sharp turns, braking — and to outlying measurements; each measurement is in four
 windows, so a fraction ε of gross outliers spoils about 4ε of them and the MAD reads high by about 5 %
-at ε = 1 %, 19 % at ε = 3 %). Four points are the
-shortest window with a residual: over thousands of windows a wider one does not estimate σ better but
+at ε = 1 %, 19 % at ε = 3 %). Four points are the shortest window with a residual: over thousands of windows a wider one does not estimate σ better but
 spans more time, so more of the motion's jerk leaks in. The estimate is biased upwards where the
 motion's third derivative over three steps is not small against the noise (≈ |jerk|·Δt³ ≳ 0.5 σ in
 more than a few per cent of the windows): low rates with small noise on a turning vehicle. Measured on
 simulated urban driving (``tests/test_noise.py``: σ 0.05–2 m, 0–30 m/s, 1–25 Hz, irregular or regular
 steps): within 15 % everywhere except 1 Hz with σ = 0.05 m on a moving car (+17 to +25 %).
 
-Process noise (``accel_std_search``)
-------------------------------------
-With the measurement std fixed, each model's process noise is a one-parameter family q(k): the model's
-translational stds (``matched_noise`` "v") are k × its defaults (σ_a = k·0.5 m/s²), its rotational stds
-("w") are ``min(default, σ_a / v_typ)`` (the turn-rate noise that a lateral acceleration σ_a gives at
-the data's typical speed ``v_typ``, never more than the default). k is the smallest value of the grid
-2^-3 … 2^5 (factors √2) at which the median normalised innovation squared (NIS) over the updates is at
-most the median of its chi-square distribution (m degrees of freedom, m = measurement dimension): the
-filter's innovations are then consistent with its own covariance for the typical step (the median
-ignores the maneuvers and any divergence). The search runs on a subsample of whole objects (at most
-``SEARCH_ROWS`` rows) with the divergence monitor on.
+Process noise (``process_noise_search``)
+----------------------------------------
+With the measurement std fixed, each model's process noise is chosen by the prediction-error method: the
+one that minimises the mean squared one-step prediction error ‖z_k − h(f(x̂_{k−1}, Δt_k))‖² of the filter
+over the data (for a linear-Gaussian model the true noise minimises the innovation variance; for a
+mismatched one this is the best predictor the model can be, and an unstable filter scores badly). The
+candidates: the translational stds (``matched_noise`` "v") are k × the model's defaults (σ_a = k·0.5 m/s²)
+with k on the grid 2^-3 … 2^5 (factors √2); the rotational stds ("w") start at ``min(default, σ_a/v_typ)``
+(the turn-rate noise that a lateral acceleration σ_a gives at the data's typical speed ``v_typ``) and are
+then searched on the default × 2^-6 … 2^0; k is searched again at the chosen rotational std. The
+rotational noise matters: at 1–2 Hz the LG filters and CTRV become unstable with a turn-rate noise of
+0.2–0.3 rad/s² that is harmless at 10 Hz, and the NIS (the consistency check one might use instead) hardly
+depends on it. The search runs on a subsample of whole objects (at most ``SEARCH_ROWS`` rows). The median
+NIS at the choice is reported (a consistent filter has the chi-square median, 1.39 for 2 degrees of freedom).
 
 Typical speed (``chord_speeds``): the speed of the chord between a measurement and the first one at least
 ``CHORD_S`` = 1 s later (noise contributes √2·σ/1 s instead of √2·σ/Δt), median over all objects.

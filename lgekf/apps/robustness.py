@@ -300,8 +300,8 @@ def markdown_table(results: list) -> str:
     """Case × model: before and after side by side (position RMSE vs raw, speed and turn-rate RMSE, verdict)."""
     by = {(r.case, r.model, r.run): r for r in results}
     keys = list(dict.fromkeys((r.case, r.model) for r in results))
-    lines = ["| case | model | raw pos | before: pos | speed | ω | diverged | after: pos (all rows) | speed | ω | flagged "
-             "| diverged |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    lines = ["| case | model | raw pos | before: pos | speed | ω | verdict | after: pos (all rows) | speed | ω | flagged "
+             "| verdict |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for c, m in keys:
         b, a = by.get((c, m, "before")), by.get((c, m, "after"))
         ref = b or a
@@ -320,19 +320,23 @@ def markdown_table(results: list) -> str:
 
 
 def _verdict(r: Result) -> str:
+    """"**diverged** (j/J)" (j of J tracks diverged), "**worse than raw**", "hard" (passes, see Result.hard), "ok"."""
+    if r.diverged_tracks:
+        return f"**diverged** ({r.diverged_tracks}/{r.tracks})"
     if r.diverged:
-        return f"**yes** ({r.diverged_tracks}/{r.tracks})"
-    return "no, hard" if r.run == "after" and r.hard else "no"
+        return "**worse than raw**"
+    return "hard" if r.run == "after" and r.hard else "ok"
 
 
 def summary_table(results: list, cases: list) -> str:
-    """One row per case: models diverged before / after, hard models, worst after-fix margin, flagged rows."""
-    lines = ["| case | description | diverged before | diverged after | hard after | worst pos/raw after | "
+    """One row per case: models that failed before / after ("(w)": no track diverged but the position RMSE was
+    not below the raw measurements'), hard models, worst after-fix margin, flagged rows."""
+    lines = ["| case | description | failed before | failed after | hard after | worst pos/raw after | "
              "rows flagged after (max) |", "|---|---|---|---|---|---|---|"]
     desc = {c.name: c.description for c in cases}
     for name in dict.fromkeys(r.case for r in results):
         rs = [r for r in results if r.case == name]
-        before = [r.model for r in rs if r.run == "before" and r.diverged]
+        before = [r.model + ("" if r.diverged_tracks else " (w)") for r in rs if r.run == "before" and r.diverged]
         after = [r for r in rs if r.run == "after"]
         worst = max((r.pos / r.raw for r in after), default=float("nan"))
         flagged = max((r.flagged for r in after), default=0.0)
