@@ -6,7 +6,9 @@ Writes a CSV of OBJECTS x STEPS rows (``id,t,x,y``; objects interleaved in time 
 around 0.1 s, turning trajectories with 0.2 m noise) to a temporary folder, then reports:
   read     lgekf.io.read_csv + grouping/validation
   init     two-point initialisation of every object (x0, P0 via common_jacobian)
+  noise    the noise from the data (lgekf.apps.defaults.plan_noise: measurement std, process-noise search)
   filter   the filter over all objects (generated run_batch kernels, objects bucketed by length)
+  monitor  the divergence monitor and any re-initialisations (track_monitored minus the filter)
   format   CSV text of the output (numba formatter) and writing it
   end2end  `lgekf track IN -o OUT --model M` in a fresh process (imports and numba cache loading included)
 """
@@ -62,7 +64,10 @@ def main(argv=None) -> int:
     from lgekf.io.formatting import format_rows, label_bytes
     from lgekf.io.readers import read_csv
     from lgekf.core.registry import MODELS
-    from lgekf.apps.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
+    from lgekf.apps.defaults import plan_noise
+    from lgekf.apps.track import (
+        TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, output_columns, track_arrays, track_monitored,
+    )
 
     tmp = Path(tempfile.mkdtemp(prefix="bench_track_")) if a.keep is None else a.keep
     tmp.mkdir(parents=True, exist_ok=True)
@@ -77,22 +82,33 @@ def main(argv=None) -> int:
         # warm the numba caches (not timed), then each part once
         small = read_csv(inp).grouped()
         track_arrays(a.model, small[0].t[:1000], small[0].z[:1000], np.array([0, 1000]), TrackConfig())
+        track_monitored(a.model, small[0].t[:1000], small[0].z[:1000], np.array([0, 1000]), TrackConfig())
         rows = []
         t0 = time.perf_counter()
         meas, starts, _ = read_csv(inp).grouped()
         rows.append(("read", time.perf_counter() - t0))
-        cfg = TrackConfig()
         t0 = time.perf_counter()
-        c, var = initial_common(meas.t, meas.z, starts, cfg.meas_std)
+        plan = plan_noise(meas.t, meas.z, starts, [a.model], omega_std=0.5, heading_std=0.1, heading_cap=TRACK_HEADING_CAP)
+        rows.append(("noise", time.perf_counter() - t0))
+        print(plan.describe())
+        cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, heading_cap=TRACK_HEADING_CAP)
+        t0 = time.perf_counter()
+        c, var = initial_common(meas.t, meas.z, starts, cfg.meas_std, heading_cap=TRACK_HEADING_CAP)
         x0, P0 = initial_estimates(a.model, c, var)
         rows.append(("init", time.perf_counter() - t0))
         t0 = time.perf_counter()
         x, p, nis = track_arrays(a.model, meas.t, meas.z, starts, cfg, x0=x0, P0=P0)
-        rows.append(("filter", time.perf_counter() - t0))
+        t_filter = time.perf_counter() - t0
+        rows.append(("filter", t_filter))
+        t0 = time.perf_counter()
+        res = track_monitored(a.model, meas.t, meas.z, starts, cfg)
+        rows.append(("monitor", time.perf_counter() - t0 - t_filter))
+        print(f"{len(res.alarms)} alarms, {int(res.flag.sum())} rows flagged")
         t0 = time.perf_counter()
         spec = MODELS[a.model]
         diag = [i * spec.n - i * (i - 1) // 2 for i in range(spec.n)]
-        body = format_rows(label_bytes(meas.labels), meas.obj, meas.t, np.hstack([x, np.sqrt(p[:, diag]), nis[:, None]]), 10)
+        body = format_rows(label_bytes(meas.labels), meas.obj, meas.t,
+                           np.hstack([x, np.sqrt(p[:, diag]), nis[:, None], res.flag[:, None].astype(float)]), 10)
         with open(out, "wb") as f:
             f.write((",".join(output_columns(a.model)) + "\n").encode())
             f.write(body)

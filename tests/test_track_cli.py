@@ -12,7 +12,9 @@ from _cli import cli_command
 from lgekf.core.batch import filter_batch
 from lgekf.core.covariance import unpack
 from lgekf.core.registry import MODELS
-from lgekf.apps.track import TrackConfig, initial_common, initial_estimates, output_columns, track_arrays
+from lgekf.apps.track import (
+    TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, output_columns, track_arrays, track_monitored,
+)
 
 
 
@@ -98,13 +100,14 @@ def test_columns_rows_and_first_rows(tmp_path):
     assert r.returncode == 0, r.stderr
     header, data = read_out(out)
     assert header == ["id", "t", "x", "y", "theta", "vx", "vy", "omega",
-                      "std_x", "std_y", "std_theta", "std_vx", "std_vy", "std_omega", "nis"]
+                      "std_x", "std_y", "std_theta", "std_vx", "std_vy", "std_omega", "nis", "flag"]
     assert data.shape == (4, len(header))
     vals = data[:, 1:].astype(float)
     np.testing.assert_allclose(vals[0, 1:3], [0, 0])  # row 0: the first measurement
     np.testing.assert_allclose(vals[:2, 3:7], [[0, 3, 0, 0]] * 2, atol=1e-12)  # two-point velocity (3, 0), heading 0
     np.testing.assert_allclose(vals[:2, 7:9], 0.2)  # position std = meas std
-    assert np.isnan(vals[:2, -1]).all() and np.isfinite(vals[2:, -1]).all()
+    assert np.isnan(vals[:2, -2]).all() and np.isfinite(vals[2:, -2]).all()
+    assert list(data[:, -1]) == ["0"] * 4  # flag: written as 0 / 1
 
 
 def test_model_all_and_full_cov(tmp_path):
@@ -118,13 +121,13 @@ def test_model_all_and_full_cov(tmp_path):
         assert len([h for h in header if h.startswith("cov_")]) == n * (n + 1) // 2
         vals = data[:, 1:].astype(float)
         std = vals[:, 1 + n:1 + 2 * n]
-        cov = unpack(vals[:, 1 + 2 * n:-1], n)
+        cov = unpack(vals[:, 1 + 2 * n:-2], n)
         np.testing.assert_allclose(std**2, np.diagonal(cov, axis1=1, axis2=2), rtol=1e-8)
     assert not (tmp_path / "tracks.csv").exists()
 
 
 def _x0_P0(model, t, z, r):
-    c, var = initial_common(t, z, np.array([0, len(t)]), r)
+    c, var = initial_common(t, z, np.array([0, len(t)]), r, heading_cap=TRACK_HEADING_CAP)  # as lgekf track does
     x0, P0 = initial_estimates(model, c, var)
     return x0, P0[0]
 
@@ -139,7 +142,8 @@ def test_irregular_dt_equals_filter_batch(tmp_path, model):
     inp = write(tmp_path, "in.csv", "t,x,y\n" + rows)
     out = tmp_path / "o.csv"
     q = ",".join(["0.3", "0.4", "0.9"][-len(MODELS[model].noise_names):] if len(MODELS[model].noise_names) > 1 else ["0.3"])
-    r = run(inp, "-o", out, "--model", model, "--accel-std", q, "--meas-std", "0.15", "--precision", "17", "--full-cov")
+    r = run(inp, "-o", out, "--model", model, "--accel-std", q, "--meas-std", "0.15", "--precision", "17", "--full-cov",
+            "--no-monitor")
     assert r.returncode == 0, r.stderr
     _, data = read_out(out)
     vals = data[:, 1:].astype(float)
@@ -148,9 +152,10 @@ def test_irregular_dt_equals_filter_batch(tmp_path, model):
     xs, Ps, nis = filter_batch(model, z[None, 2:], dt=np.diff(t)[None, 1:], accel_std=[float(v) for v in q.split(",")],
                                meas_std=0.15, x0=x0, P0=P0, return_cov=True, return_nis=True)
     np.testing.assert_allclose(vals[:, 0], t, rtol=1e-14)
+    np.testing.assert_array_equal(vals[:, -1], 0)  # --no-monitor: flag 0
     np.testing.assert_allclose(vals[2:, 1:1 + n], xs[0], rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(unpack(vals[2:, 1 + 2 * n:-1], n), Ps[0], rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(vals[2:, -1], nis[0], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(unpack(vals[2:, 1 + 2 * n:-2], n), Ps[0], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(vals[2:, -2], nis[0], rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(vals[1, 1:1 + n], x0[0], atol=1e-12)
 
 
@@ -165,15 +170,16 @@ def test_interleaved_text_ids_equal_separate_runs(tmp_path):
     rows.sort(key=lambda r: r[0])  # interleaved by time
     text = "x,id,y,t\n" + "".join(f"{z[0]!r},{lab},{z[1]!r},{t!r}\n" for t, lab, z in rows)
     out = tmp_path / "o.csv"
-    r = run(write(tmp_path, "in.csv", text), "-o", out, "--model", "ctrv", "--precision", "17")
+    r = run(write(tmp_path, "in.csv", text), "-o", out, "--model", "ctrv", "--precision", "17", "--meas-std", "0.3",
+            "--accel-std", "0.5,1")
     assert r.returncode == 0, r.stderr
     _, data = read_out(out)
     first = [data[0, 0]] + [data[i, 0] for i in range(1, len(data)) if data[i, 0] != data[i - 1, 0]]
     assert first == sorted(per, key=lambda k: per[k][0][0])  # objects in order of first appearance
-    cfg = TrackConfig()
+    cfg = TrackConfig({"ctrv": (0.5, 1.0)}, 0.3, heading_cap=TRACK_HEADING_CAP)
     for lab, (t, z) in per.items():
         mine = data[data[:, 0] == lab, 1:].astype(float)
-        x, p, nis = track_arrays("ctrv", t, z, np.array([0, len(t)]), cfg)
+        x = track_monitored("ctrv", t, z, np.array([0, len(t)]), cfg).x
         np.testing.assert_allclose(mine[:, 0], t, rtol=1e-14)
         np.testing.assert_allclose(mine[:, 1:6], x, rtol=1e-12, atol=1e-12)
 
@@ -297,13 +303,14 @@ def test_time_unit_ms_equals_seconds_and_warnings(tmp_path):
     z = np.column_stack([1.5 * t, 0.2 * t])
     body = "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist()))
     body_ms = "".join(f"{round(a * 1000)},{b!r},{c!r}\n" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist()))
-    r_s = run(write(tmp_path, "s.csv", "t,x,y\n" + body), "-o", tmp_path / "s_out.csv")
+    noise = ["--meas-std", "0.3", "--accel-std", "0.5,0.5,1"]  # fixed: the comparison below is of the time unit only
+    r_s = run(write(tmp_path, "s.csv", "t,x,y\n" + body), "-o", tmp_path / "s_out.csv", *noise)
     assert r_s.returncode == 0 and "warning" not in r_s.stderr, r_s.stderr
     r_plain = run(write(tmp_path, "ms.csv", "t,x,y\n" + body_ms), "-o", tmp_path / "plain.csv", "--quiet")
     warn = [ln for ln in r_plain.stderr.splitlines() if "warning" in ln]
     assert r_plain.returncode == 0 and len(warn) == 1, r_plain.stderr  # shown even with --quiet
     assert warn[0].startswith("lgekf track: warning: the median time step is 100 s") and "--time-unit ms" in warn[0]
-    r_ms = run(tmp_path / "ms.csv", "-o", tmp_path / "ms_out.csv", "--time-unit", "ms")
+    r_ms = run(tmp_path / "ms.csv", "-o", tmp_path / "ms_out.csv", "--time-unit", "ms", *noise)
     assert r_ms.returncode == 0 and "warning" not in r_ms.stderr, r_ms.stderr
     _, a = read_out(tmp_path / "s_out.csv")
     _, b = read_out(tmp_path / "ms_out.csv")
@@ -336,9 +343,9 @@ def test_lat_lon_input_gives_metres_and_the_origin(tmp_path):
     note = [ln for ln in r.stderr.splitlines() if "projected" in ln]
     assert len(note) == 1 and "(45.0, 7.25)" in note[0] and "origin_lat, origin_lon" in note[0], r.stderr
     header, data = read_out(out)
-    assert header[-2:] == ["origin_lat", "origin_lon"] and header[-3] == "nis"
+    assert header[-3:] == ["origin_lat", "origin_lon", "flag"] and header[-4] == "nis"
     vals = data[:, 1:].astype(float)
-    np.testing.assert_array_equal(vals[:, -2:], [[45.0, 7.25]] * len(t))
+    np.testing.assert_array_equal(vals[:, -3:-1], [[45.0, 7.25]] * len(t))
     np.testing.assert_allclose(vals[:, 1], 1e-5 * t * per_lon, atol=1e-6)  # x east, m (noise-free line: filter = truth)
     np.testing.assert_allclose(vals[:, 2], 1e-5 * t * per_lat, atol=1e-6)
     r = run(tmp_path / "ll.csv", "-o", tmp_path / "q.csv", "--quiet")
@@ -456,3 +463,73 @@ def test_measure_pose_needs_a_heading_column(tmp_path):
     r = run(write(tmp_path, "a.csv", GOOD), "-o", tmp_path / "o.csv", "--measure", "pose")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "heading" in r.stderr
     assert not (tmp_path / "o.csv").exists()
+
+
+# ------------------------------------------------------------------ issue #14: robust by default
+def _noisy_tracks(tmp_path, sigma=0.5, n_obj=2, seed=0):
+    rng = np.random.default_rng(seed)
+    rows = []
+    for j in range(n_obj):
+        t = 0.2 * np.arange(150)
+        z = np.column_stack([6.0 * t, 20.0 * np.sin(0.05 * t) + 10 * j]) + sigma * rng.standard_normal((150, 2))
+        rows += [f"o{j},{a!r},{b!r},{c!r}" for a, b, c in zip(t.tolist(), z[:, 0].tolist(), z[:, 1].tolist())]
+    return write(tmp_path, "in.csv", "id,t,x,y\n" + "\n".join(rows) + "\n")
+
+
+def test_noise_from_the_data_is_said_and_options_override(tmp_path):
+    inp = _noisy_tracks(tmp_path)
+    r = run(inp, "-o", tmp_path / "a.csv", "--model", "cv")
+    line = [ln for ln in r.stderr.splitlines() if ln.startswith("lgekf track: noise from the data: ")]
+    assert r.returncode == 0 and len(line) == 1, r.stderr
+    assert float(line[0].split("meas-std ")[1].split(" m")[0]) == pytest.approx(0.5, rel=0.15)
+    assert "accel-std cv " in line[0] and "k = " in line[0]
+    r = run(inp, "-o", tmp_path / "b.csv", "--model", "cv", "--quiet")
+    assert r.returncode == 0 and r.stderr == "" and r.stdout == ""
+    r = run(inp, "-o", tmp_path / "c.csv", "--model", "cv", "--meas-std", "0.45")
+    assert "meas-std 0.45 m (given)" in r.stderr and "warning" not in r.stderr
+    r = run(inp, "-o", tmp_path / "d.csv", "--model", "cv", "--meas-std", "0.45", "--accel-std", "0.8")
+    assert "noise from the data" not in r.stderr
+    _, d = read_out(tmp_path / "d.csv")  # run with exactly the given noise
+    inp_rows = np.genfromtxt(inp, delimiter=",", skip_header=1, usecols=(1, 2, 3))
+    cfg = TrackConfig({"cv": (0.8,)}, 0.45, heading_cap=TRACK_HEADING_CAP)
+    x = track_monitored("cv", inp_rows[:150, 0], inp_rows[:150, 1:], np.array([0, 150]), cfg).x
+    np.testing.assert_allclose(d[:150, 2:6].astype(float), x, rtol=1e-8, atol=1e-8)
+
+
+def test_wrong_noise_is_warned_and_divergence_reported_once_per_object(tmp_path):
+    inp = _noisy_tracks(tmp_path, sigma=1.0, n_obj=3, seed=2)
+    r = run(inp, "-o", tmp_path / "o.csv", "--model", "ctrv", "--meas-std", "0.1", "--accel-std", "0.5,1")
+    assert r.returncode == 0, r.stderr
+    warn = [ln for ln in r.stderr.splitlines() if ln.startswith("lgekf track: warning: ")]
+    assert "--meas-std 0.1 m is 0.095x the std estimated from the data (1.05 m)" in warn[0]
+    div = [ln for ln in warn if "diverged at t = " in ln]
+    assert sorted(ln.split("object ")[1].split(" ")[0] for ln in div) == ["o0", "o1", "o2"]
+    assert all("re-initialised from its last measurements" in ln for ln in div)
+    _, data = read_out(tmp_path / "o.csv")
+    assert (data[:, -1] == "1").sum() > 0 and "rows flagged" in r.stdout
+    r = run(inp, "-o", tmp_path / "n.csv", "--model", "ctrv", "--meas-std", "0.1", "--accel-std", "0.5,1", "--no-monitor")
+    assert "diverged" not in r.stderr
+    _, data = read_out(tmp_path / "n.csv")
+    assert set(data[:, -1]) == {"0"}
+
+
+def test_heading_cap_moves_lateral_uncertainty_to_the_body_velocity():
+    # a slow object: the two-point heading is uncertain; with the cap its variance is cap² and the rest of
+    # the lateral velocity variance is in v_y; models without side slip fold it back (their P0 unchanged)
+    t = np.array([0.0, 0.5])
+    z = np.array([[0.0, 0.0], [0.2, 0.1]])
+    st = np.array([0, 2])
+    c, var_pi = initial_common(t, z, st, 0.3)
+    _, var_cap = initial_common(t, z, st, 0.3, heading_cap=0.3)
+    var_v = 2 * 0.3**2 / 0.5**2
+    speed2 = (0.2**2 + 0.1**2) / 0.25
+    assert var_pi[0, 2] == pytest.approx(min(var_v / speed2, math.pi**2))
+    assert var_cap[0, 2] == pytest.approx(0.09)
+    assert var_cap[0, 4] == pytest.approx(var_v - speed2 * 0.09)
+    for model, spec in MODELS.items():
+        _, P_pi = initial_estimates(model, c, var_pi)
+        _, P_cap = initial_estimates(model, c, var_cap)
+        if "vy" in spec.state_names and spec.angles:  # heading + side-slip velocity: the heading keeps the cap
+            assert P_cap[0, 2, 2] == pytest.approx(0.09)
+        elif spec.angles:  # heading of motion: the same prior either way, but for the 10 % side-slip floor
+            np.testing.assert_allclose(P_cap, P_pi, rtol=0.02, atol=1e-12)

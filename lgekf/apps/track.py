@@ -9,9 +9,16 @@ velocity) and converted to each model with the generated ``common_to_state`` / `
 * position (x, y) = z1, variance r² (r = measurement std);
 * world velocity v = (z1 - z0)/Δ, each component with variance σ_v² = 2r²/Δ²;
 * heading θ = atan2(v) (0 if v = 0), body velocity (|v|, 0), ω = 0;
-* var θ = min(σ_v²/|v|², π²) (the lateral velocity error seen as a heading error, at most π²);
+* var θ = min(σ_v²/|v|², cap²) (the lateral velocity error seen as a heading error, at most cap², cap =
+  ``heading_cap``: π for the library functions, ``TRACK_HEADING_CAP`` = 0.3 rad in ``lgekf track``);
 * var v_x = σ_v²; var v_y = max(σ_v² - |v|² var θ, (0.1 σ_v)²): the lateral velocity the heading
-  cannot explain (slow objects), and at least a small side-slip prior (10 % of σ_v) otherwise;
+  cannot explain (slow objects, or beyond the cap), and at least a small side-slip prior (10 % of σ_v)
+  otherwise. The split between θ and v_y matters only to the models with a side-slip velocity
+  (SE(2)×SE(2), SE(2)×R³; for the others the conversion folds var v_y back into the heading): their
+  LG-EKF update turns a position innovation into a rotation when the heading is very uncertain and
+  bends the correction (docs/track_evaluate.md), so ``lgekf track`` keeps the heading std at most
+  0.3 rad and lets the body velocity carry the rest (ETH pedestrians, robustness set: the lost tracks of
+  the first updates disappear);
 * var ω = ``omega_std``² (default 0.5 rad/s: a pedestrian or car turns at well under 1 rad/s);
 * with ``use_heading`` the measured heading h1 at t1 replaces atan2(v) (variance ``heading_std``²,
   default 0.1 rad) and the body velocity is (v·(cos h1, sin h1), 0) with var v_y = (0.1 σ_v)²;
@@ -21,10 +28,15 @@ velocity) and converted to each model with the generated ``common_to_state`` / `
 The filter then runs predict(t_k - t_{k-1}) + update(z_k) for k = 2, 3, ... Output rows exist for every
 measurement: row 0 holds z0 as position with the two-point velocity/heading and covariance P0 (nis empty
 = nan), row 1 the initial estimate (x0, P0) at t1 (nis nan), rows k >= 2 the filter's posterior.
+``track_monitored`` adds the divergence monitor (``lgekf.apps.divergence``): at an alarm the object is
+re-initialised by the same two-point rule from its measurement at the alarm row and the latest one at
+least ``REINIT_BASELINE`` = 0.5 s earlier (the object's first if none), and continues; the rows of the
+alarm are flagged.
 
-Process noise defaults (``default_accel_std`` of each model definition; see docs/track_evaluate.md):
-SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); SE(2)xR2, CTRV (σ_a, σ_α) =
-(0.5, 1.0); CV σ_a = 0.5 m/s². Measurement std default 0.3 m.
+Noise: ``lgekf track`` takes each value given as an option and estimates the others from the data
+(``lgekf.apps.defaults``). The library defaults (``TrackConfig``) are the models' ``default_accel_std``
+(SE(2)xSE(2), SE(2)xR3 (σ_x, σ_y, σ_ω) = (0.5 m/s², 0.5 m/s², 1.0 rad/s²); SE(2)xR2, CTRV (σ_a, σ_α) =
+(0.5, 1.0); CV σ_a = 0.5 m/s²) and a measurement std of 0.3 m.
 
 Measurements: ``position`` (x, y) or ``pose`` (x, y and the ``heading`` column as θ ∈ SE(2), noise
 (meas_std, meas_std, heading_std) in the tangent of SE(2)); a model without a heading (CV) is refused
@@ -43,12 +55,14 @@ import numpy as np
 from ..core.covariance import pack, packed_diagonal
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
+from .divergence import MonitorConfig, recover, speed_limits
 from ..io.files import is_stdio
 from ..io.formatting import format_rows, label_bytes
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
-    "initial_common", "initial_estimates", "track_arrays", "output_columns", "output_path", "write_model",
+    "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -56,8 +70,11 @@ DEFAULT_MEAS_STD = 0.3
 DEFAULT_OMEGA_STD = 0.5
 DEFAULT_HEADING_STD = 0.1
 SIDESLIP_FRACTION = 0.1
+TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
+REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
 ROWS_PER_CHUNK = 1 << 17
+SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
 @dataclass
@@ -68,6 +85,7 @@ class TrackConfig:
     meas_std: float = DEFAULT_MEAS_STD
     omega_std: float = DEFAULT_OMEGA_STD
     heading_std: float = DEFAULT_HEADING_STD
+    heading_cap: float = math.pi  # largest initial heading std of the two-point prior (rad); see two_point
 
     def validate(self):
         for name, val in (("meas_std", self.meas_std), ("omega_std", self.omega_std), ("heading_std", self.heading_std)):
@@ -85,13 +103,26 @@ class TrackConfig:
         return np.asarray(self.accel_std.get(model, DEFAULT_ACCEL_STD[model]), dtype=float)
 
 
-def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD):
+def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD,
+                   heading_cap=math.pi):
     """Common-coordinate initial states c (B, 6) and their diagonal variances (B, 6), one per object.
 
     t (N,), z (N, 2) sorted by object with ``starts`` (B + 1,); every object has >= 2 rows.
     """
-    i0 = starts[:-1]
-    i1 = i0 + 1
+    return two_point(t, z, np.asarray(starts)[:-1] + 1, meas_std, omega_std, heading, heading_std, heading_cap)
+
+
+def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD,
+              heading_cap=math.pi, first=None):
+    """The two-point estimate at each of ``rows`` (R,) from the measurements ``first`` (default rows - 1)
+    and rows (the rules of the module docstring): common coordinates c (R, 6) and diagonal variances (R, 6).
+    ``meas_std`` is a number or one per row.
+
+    ``heading_cap``: the largest heading std of the prior; the lateral velocity variance the heading does
+    not take goes to v_y (π: the rule of the module docstring; ``lgekf track`` uses ``TRACK_HEADING_CAP``).
+    """
+    i1 = np.asarray(rows, dtype=np.int64)
+    i0 = i1 - 1 if first is None else np.asarray(first, dtype=np.int64)
     dt = t[i1] - t[i0]
     v = (z[i1] - z[i0]) / dt[:, None]
     speed = np.hypot(v[:, 0], v[:, 1])
@@ -109,7 +140,7 @@ def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=
         c[:, 2] = np.where(speed > 0, np.arctan2(v[:, 1], v[:, 0]), 0.0)
         c[:, 3] = speed
         with np.errstate(divide="ignore"):
-            var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), math.pi**2)
+            var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), heading_cap**2)
         var[:, 2] = var_th
         var[:, 4] = np.maximum(var_v - speed**2 * var_th, floor_vy)
     else:
@@ -191,6 +222,48 @@ def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
             out_nis[a + k] = bn[b, k]
 
 
+def _measurement_inputs(spec, z, heading, cfg, measurement):
+    """(measurements (N, m), noise stds r) of the measurement model."""
+    spec.measurement(measurement)
+    if measurement == "pose":
+        if heading is None:
+            raise ValueError("--measure pose: the input needs a heading column")
+        return np.ascontiguousarray(np.column_stack([z[:, :2], heading])), np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
+    return z, np.array([float(cfg.meas_std)])
+
+
+def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
+    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place. Segments of similar length are
+    bucketed into padded batches for the generated ``run_batch`` kernel (no Python per step); a batch of
+    fewer than ``SERIAL_STEPS`` steps runs through ``run_one`` object by object (identical results)."""
+    spec = get_model(model)
+    kern = spec.kernels
+    n, npk = spec.n, spec.n_packed
+    m = zm.shape[1]
+    lengths = np.asarray(lengths, dtype=np.int64)
+    first_all = np.asarray(first, dtype=np.int64)
+    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
+        Lb = np.ascontiguousarray(lengths[objs])
+        K = int(Lb.max())
+        first = np.ascontiguousarray(first_all[objs])
+        B = len(objs)
+        zb = np.empty((B, K, m))
+        dts = np.empty((B, K))
+        _gather(t, zm, first, Lb, K, zb, dts)
+        bx = np.empty((B, K, n))
+        bp = np.empty((B, K, npk))
+        bn = np.empty((B, K))
+        xb, pb = np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs])
+        if B * K <= SERIAL_STEPS:  # small work: numba's thread start-up costs more than the filter (ms)
+            one = getattr(kern, f"run_one_{measurement}")
+            for i in range(B):
+                one(zb[i], dts[i], xb[i], pb[i], q, r, bx[i], bp[i], bn[i])
+        else:
+            getattr(kern, f"run_batch_{measurement}")(zb, dts, xb, pb, q, r, bx, bp, bn)
+        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+
+
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
     """Track every object of sorted measurements; no Python per filter step.
 
@@ -199,27 +272,19 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     its filter coordinates, nis (N,) (nan for the first two rows of each object). ``x0``/``P0``
     (B, n), (B, n, n) override the two-point initialisation. ``measurement="pose"`` uses ``heading`` (N,)
     as the measured angle (noise stds meas_std, meas_std, heading_std in the tangent of SE(2)).
+    No divergence monitoring: that is ``track_monitored``.
     """
     spec = get_model(model)
-    meas = spec.measurement(measurement)
-    kern = spec.kernels
     n, npk = spec.n, spec.n_packed
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
     if x0 is None or P0 is None:
-        c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std)
+        c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
         x0, P0 = initial_estimates(model, c, var)
     p0 = pack(P0)
     q = cfg.q(model)
-    if measurement == "pose":
-        if heading is None:
-            raise ValueError("--measure pose: the input needs a heading column")
-        zm = np.ascontiguousarray(np.column_stack([z[:, :2], heading]))
-        r = np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
-    else:
-        zm = z
-        r = np.array([float(cfg.meas_std)])
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     N = t.size
     out_x = np.empty((N, n))
     out_p = np.empty((N, npk))
@@ -230,21 +295,60 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     out_x[i0 + 1] = x0
     out_p[i0] = p0
     out_p[i0 + 1] = p0
-    lengths = np.diff(starts) - 2
-    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
-        Lb = np.ascontiguousarray(lengths[objs])
-        K = int(Lb.max())
-        first = np.ascontiguousarray(starts[objs] + 2)
-        B = len(objs)
-        zb = np.empty((B, K, meas.dim))
-        dts = np.empty((B, K))
-        _gather(t, zm, first, Lb, K, zb, dts)
-        bx = np.empty((B, K, n))
-        bp = np.empty((B, K, npk))
-        bn = np.empty((B, K))
-        getattr(kern, f"run_batch_{measurement}")(zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r, bx, bp, bn)
-        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, q, r, out_x, out_p, out_nis)
     return out_x, out_p, out_nis
+
+
+@dataclass
+class Tracked:
+    """Output of ``track_monitored``: states, packed covariances, NIS, flags (N,) and the alarms."""
+
+    x: np.ndarray
+    p: np.ndarray
+    nis: np.ndarray
+    flag: np.ndarray
+    alarms: list
+
+
+def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
+                    monitor: MonitorConfig | None = MonitorConfig()) -> Tracked:
+    """``track_arrays`` with divergence monitoring and recovery (``lgekf.apps.divergence``).
+
+    Objects whose filter never raises an alarm get exactly the ``track_arrays`` output (flag 0); at an
+    alarm the object is re-initialised from its last two measurements and continues, and the rows of the
+    alarm through the re-initialisation are flagged 1. ``monitor=None``: no monitoring (all flags 0).
+    """
+    spec = get_model(model)
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(z, dtype=float)
+    starts = np.asarray(starts, dtype=np.int64)
+    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, measurement=measurement)
+    flag = np.zeros(t.size, np.int8)
+    if monitor is None:
+        return Tracked(x, p, nis, flag, [])
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    q = cfg.q(model)
+
+    obj_start = np.repeat(starts[:-1], np.diff(starts))
+
+    def reinit(rows, scale):
+        # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
+        first = np.array([max(int(obj_start[g]), int(np.searchsorted(t[obj_start[g]:g], t[g] - REINIT_BASELINE, side="right"))
+                              + int(obj_start[g]) - 1) for g in rows], dtype=np.int64)
+        first = np.minimum(first, np.asarray(rows) - 1)
+        c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
+                           cfg.heading_cap, first)
+        x0, P0 = initial_estimates(model, c, var)
+        return x0, pack(P0)
+
+    def rerun(first, lengths, x0, p0, scale):
+        for s in np.unique(scale):  # objects with the same noise inflation run together
+            j = np.flatnonzero(scale == s)
+            _run_segments(model, measurement, t, zm, first[j], lengths[j], x0[j], p0[j], q * s, r * s, x, p, nis)
+
+    limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
+    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
+    return Tracked(x, p, nis, flag, alarms)
 
 
 # ------------------------------------------------------------------------------------------ CLI
@@ -252,10 +356,11 @@ ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
 
 
 def output_columns(model, full_cov=False, origin=False):
-    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon].
+    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon], flag.
 
-    ``origin``: the input had lat, lon columns; the last two columns then hold the origin (degrees) of
-    the east/north frame of x, y (``lgekf.io.geo``), the same on every row.
+    ``origin``: the input had lat, lon columns; those two columns then hold the origin (degrees) of
+    the east/north frame of x, y (``lgekf.io.geo``), the same on every row. ``flag``: 1 on the rows of a
+    detected divergence through the object's re-initialisation, else 0 (``lgekf.apps.divergence``).
     """
     spec = get_model(model)
     names = list(spec.state_names)
@@ -263,7 +368,7 @@ def output_columns(model, full_cov=False, origin=False):
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else [])
+    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
 
 
 def output_path(out, model: str, all_models: bool):
@@ -277,30 +382,43 @@ def output_path(out, model: str, all_models: bool):
     return out.with_name(f"{base.stem}_{model}{base.suffix}{'.gz' if gz else ''}")
 
 
-def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position"):
-    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk."""
+def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
+                monitor: MonitorConfig | None = MonitorConfig()):
+    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk.
+
+    Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
+    """
     spec = get_model(model)
     origin = meas.origin is not None
     fh.write((",".join(output_columns(model, full_cov, origin)) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
-    col_digits = np.full(m + (2 if origin else 0), digits, dtype=np.int64)
-    col_digits[m:] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts the projection
+    ncol = m + (2 if origin else 0) + 1
+    col_digits = np.full(ncol, digits, dtype=np.int64)
+    col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
     B = len(starts) - 1
     o = 0
+    alarms = []
+    flagged = 0
     while o < B:
         o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
         o2 = min(max(o2, o + 1), B)
         a, b = int(starts[o]), int(starts[o2])
         sub_starts = starts[o:o2 + 1] - a
         h = None if meas.heading is None else meas.heading[a:b]
-        x, p, nis = track_arrays(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement)
-        std = np.sqrt(np.maximum(p[:, diag], 0.0))
-        parts = [x, std] + ([p] if full_cov else []) + [nis[:, None]]
+        r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
+        for al in r.alarms:
+            al.obj += o
+            al.row += a
+        alarms += r.alarms
+        flagged += int(r.flag.sum())
+        std = np.sqrt(np.maximum(r.p[:, diag], 0.0))
+        parts = [r.x, std] + ([r.p] if full_cov else []) + [r.nis[:, None]]
         if origin:
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+        parts.append(r.flag[:, None].astype(float))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
         bar.update(b - a)
         o = o2
-    return starts[-1]
+    return starts[-1], alarms, flagged

@@ -8,9 +8,11 @@ import sys
 import time
 from pathlib import Path
 
+from ..apps.defaults import plan_noise
+from ..apps.divergence import MonitorConfig
+from ..apps.noise import measurement_std
 from ..apps.track import (
-    DEFAULT_ACCEL_STD, DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD, ROWS_PER_CHUNK, TrackConfig,
-    output_path, write_model,
+    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, ROWS_PER_CHUNK, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
 )
 from ..core.registry import MODELS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
@@ -20,12 +22,17 @@ from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 
-__all__ = ["cmd_track", "track_parser", "parse_accel_std"]
+__all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
+
+MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
+MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
 
 
 def parse_accel_std(items, models):
-    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable)."""
-    table = {m: DEFAULT_ACCEL_STD[m] for m in models}
+    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable).
+
+    Returns {model: stds} for the models given (the others get their noise from the data)."""
+    table = {}
     for item in items:
         if "=" in item:
             name, text = item.split("=", 1)
@@ -49,7 +56,7 @@ def parse_accel_std(items, models):
                 )
             if any((not math.isfinite(v)) or v < 0 for v in vals):
                 raise ValueError(f"--accel-std: noise stds must be non-negative numbers, got {text!r}")
-            if m in table:
+            if m in models:
                 table[m] = vals
     return table
 
@@ -73,16 +80,20 @@ def track_parser():
     ap.add_argument("--delimiter", default=None, metavar="CHAR",
                     help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
-                    help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + "); repeatable MODEL=LIST")
+                    help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
+                    + "); repeatable MODEL=LIST (default: from the data, see docs/track_evaluate.md)")
     ap.add_argument("--measure", default="position", choices=["position", "pose"],
                     help="measurement model: position (x, y) or pose (x, y and the heading column as an SE(2) pose; noise meas-std, meas-std, heading-std)")
-    ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
+    ap.add_argument("--meas-std", type=float, default=None,
+                    help="measurement std per axis in m (default: estimated from the data, local quadratic residuals)")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
     ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
-    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings about the data")
+    ap.add_argument("--no-monitor", action="store_true",
+                    help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
+    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
     return ap
 
 
@@ -114,10 +125,42 @@ def _frame_note(meas) -> str:
             f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
 
+def _divergence_warnings(model, meas, alarms, flagged) -> list:
+    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
+    first, count, scale = {}, {}, {}
+    for al in alarms:
+        first.setdefault(al.obj, al)
+        count[al.obj] = count.get(al.obj, 0) + 1
+        scale[al.obj] = al.scale
+    lines = []
+    for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
+        if al.kind_name == "NIS":
+            why = f"mean NIS {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
+        elif al.kind_name == "speed":
+            why = f"speed {al.value:.3g} m/s > {al.limit:.3g} m/s, far above the data's"
+        else:
+            why = "non-finite state or covariance"
+        n = count[obj]
+        cap = MonitorConfig().max_reinit
+        stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
+        inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
+        lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
+                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
+                     f"rows flagged 1 in the flag column")
+    rest = len(first) - MAX_DIVERGENCE_LINES
+    if rest > 0:
+        lines.append(f"{model}: {rest} more object{'s' if rest > 1 else ''} diverged and were re-initialised "
+                     f"({flagged} rows flagged in all)")
+    return lines
+
+
 def cmd_track(argv) -> int:
     a = track_parser().parse_args(argv)
     models = list(MODELS) if a.model == "all" else [a.model]
-    cfg = TrackConfig(parse_accel_std(a.accel_std, models), a.meas_std, a.omega_std, a.heading_std).validate()
+    given_q = parse_accel_std(a.accel_std, models)
+    # validate the given values before any reading (the estimated ones are valid by construction)
+    TrackConfig(given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
+                DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
     outs = _check_arguments(a, models)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
     t0 = time.perf_counter()
@@ -136,19 +179,36 @@ def cmd_track(argv) -> int:
         say(_frame_note(meas))
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
+    monitor = None if a.no_monitor else MonitorConfig()
+    heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
     total = meas.t.size * len(models)
     show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
+    flagged = {}
     with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
         handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
+        plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
+                          heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure)
+        if plan.estimated:
+            pose = any(v == "pose" for v in measure.values())
+            say(plan.describe(heading_std if pose else None, heading_given=a.heading_std is not None))
+        if a.meas_std is not None:
+            est = measurement_std(meas.t, meas.z, starts)
+            if est.windows and not est.floored and max(a.meas_std / est.meas_std, est.meas_std / a.meas_std) >= MEAS_STD_WARN_FACTOR:
+                print(f"lgekf track: warning: --meas-std {a.meas_std:g} m is {a.meas_std / est.meas_std:.2g}x the std "
+                      f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
+        cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             for fh, m in zip(handles, models):
-                write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m])
+                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m], monitor)
+                for line in _divergence_warnings(m, meas, alarms, flagged[m]):
+                    print(f"lgekf track: warning: {line}", file=sys.stderr)
         files.commit()
     if not a.quiet:
         wall = time.perf_counter() - t0
         report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
         for m, o in zip(models, outs):
             name = "<stdout>" if is_stdio(o) else o
-            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m})", file=report)
+            extra = f", {flagged[m]} rows flagged" if flagged[m] else ""
+            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m}){extra}", file=report)
         print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
     return 0

@@ -23,13 +23,14 @@ import numpy as np
 
 from .readers import DataError, read_csv, read_pedestrian
 
-__all__ = ["Dataset", "load_dataset", "data_root", "load_kitti", "load_cyclists", "load_dut", "load_pedestrian",
+__all__ = ["Dataset", "load_dataset", "data_root", "load_kitti", "load_cyclists", "load_dut", "load_pedestrian", "load_smartloc",
            "load_csv_dataset", "PRESETS", "GROUPS", "PRESET_SOURCES", "KITTI_DT", "DEFAULT_DATA_ROOT"]
 
 
 @dataclass
 class Dataset:
-    """Tracks sorted by object: t (N,), p (N, 2) truth positions, v (N, 2) truth velocity or None."""
+    """Tracks sorted by object: t (N,), p (N, 2) truth positions, v (N, 2) truth velocity or None,
+    w (N,) truth turn rate (rad/s) or None."""
 
     name: str
     t: np.ndarray
@@ -39,6 +40,7 @@ class Dataset:
     labels: list
     skipped: int = 0
     description: str = ""
+    w: np.ndarray | None = None
 
     @property
     def n_tracks(self) -> int:
@@ -51,11 +53,13 @@ class Dataset:
         starts = np.zeros(len(tracks) + 1, dtype=np.int64)
         np.cumsum(lens, out=starts[1:])
         return Dataset(self.name, self.t[rows], self.p[rows], None if self.v is None else self.v[rows], starts,
-                       [self.labels[i] for i in tracks], self.skipped, self.description)
+                       [self.labels[i] for i in tracks], self.skipped, self.description,
+                       None if self.w is None else self.w[rows])
 
 
 def _concat(name, parts, min_length, description):
-    """parts: list of (label, t, p, v|None) tracks -> a Dataset (short tracks skipped)."""
+    """parts: list of (label, t, p, v|None[, w|None]) tracks -> a Dataset (short tracks skipped)."""
+    parts = [q if len(q) == 5 else (*q, None) for q in parts]
     keep = [q for q in parts if len(q[1]) >= min_length]
     skipped = len(parts) - len(keep)
     if not keep:
@@ -66,7 +70,8 @@ def _concat(name, parts, min_length, description):
     t = np.concatenate([q[1] for q in keep])
     p = np.concatenate([q[2] for q in keep])
     v = np.concatenate([q[3] for q in keep]) if has_v else None
-    return Dataset(name, t, p, v, starts, [q[0] for q in keep], skipped, description)
+    w = np.concatenate([q[4] for q in keep]) if all(q[4] is not None for q in keep) else None
+    return Dataset(name, t, p, v, starts, [q[0] for q in keep], skipped, description, w)
 
 
 def _from_measurements(meas, prefix=""):
@@ -105,7 +110,7 @@ KITTI_DT = 0.1035
 
 
 def load_kitti(folder, name="kitti", min_length=5, description="", dt=KITTI_DT):
-    """KITTI tracking OXTS: one sequence per file; devkit Mercator x, y (m); truth v = (ve, vn).
+    """KITTI tracking OXTS: one sequence per file; devkit Mercator x, y (m); truth v = (ve, vn), w = wu.
 
     The tracking benchmark has no timestamps and is nominally 10 Hz, but the data say otherwise: with
     0.1 s steps the finite-difference yaw rate is 1.034x the OXTS yaw rate (11 turning sequences,
@@ -124,7 +129,7 @@ def load_kitti(folder, name="kitti", min_length=5, description="", dt=KITTI_DT):
         y = scale * R * np.log(np.tan((90.0 + lat) * math.pi / 360.0))
         p = np.column_stack([x - x[0], y - y[0]])
         v = np.column_stack([a[:, 7], a[:, 6]])  # (ve, vn): east = Mercator x, north = y
-        parts.append((f.stem, dt * np.arange(len(a)), p, v))
+        parts.append((f.stem, dt * np.arange(len(a)), p, v, a[:, 22]))  # wu: yaw rate about the vertical
     return _concat(name, parts, min_length, description)
 
 
@@ -154,6 +159,51 @@ def load_dut(folder, name="dut", min_length=5, description="", fps=23.98):
             r = a[a[:, 0] == vid]
             r = r[np.argsort(r[:, 3], kind="stable")]
             parts.append((f"{clip}:{int(vid)}", r[:, 3] / fps, np.column_stack([r[:, 1], -r[:, 2]]) / ratio, None))
+    return _concat(name, parts, min_length, description)
+
+
+def _ecef_to_enu(X):
+    """ECEF points (N, 3) to east/north metres of the tangent plane at the first point (WGS84 geodetic)."""
+    a, f = 6378137.0, 1.0 / 298.257223563
+    e2 = f * (2 - f)
+    x0 = X[0]
+    lon = math.atan2(x0[1], x0[0])
+    r = math.hypot(x0[0], x0[1])
+    lat = math.atan2(x0[2], r * (1 - e2))
+    for _ in range(10):  # fixed point for the geodetic latitude
+        n = a / math.sqrt(1 - e2 * math.sin(lat) ** 2)
+        h = r / math.cos(lat) - n
+        lat = math.atan2(x0[2], r * (1 - e2 * n / (n + h)))
+    east = np.array([-math.sin(lon), math.cos(lon), 0.0])
+    north = np.array([-math.sin(lat) * math.cos(lon), -math.sin(lat) * math.sin(lon), math.cos(lat)])
+    d = X - x0
+    return np.column_stack([d @ east, d @ north])
+
+
+def load_smartloc(folder, name="smartloc", min_length=5, description="", scenes=("Berlin_Potsdamer_Platz",)):
+    """TU Chemnitz smartLoc (car, urban): ``<scene>_GT.txt`` ECEF truth -> east/north m of the first point;
+    ``<scene>_odom3_only.txt`` (same time stamps): forward speed and yaw rate.
+
+    The truth velocity is the odometry speed along the direction of travel of the truth positions
+    (central differences); w is the odometry yaw rate. Scenes without an odometry file are skipped.
+    """
+    parts = []
+    for scene in scenes:
+        gt = Path(folder) / f"{scene}_GT.txt"
+        od = Path(folder) / f"{scene}_odom3_only.txt"
+        if not gt.exists() or not od.exists():
+            continue
+        g = np.loadtxt(gt, usecols=(1, 2, 3, 4), ndmin=2)
+        o = np.loadtxt(od, usecols=(1, 2, 7), ndmin=2)
+        if g.shape[0] != o.shape[0] or not np.allclose(g[:, 0], o[:, 0]):
+            raise DataError(f"{od}: time stamps differ from {gt}")
+        p = _ecef_to_enu(g[:, 1:4])
+        d = np.gradient(p, g[:, 0], axis=0)
+        heading = np.arctan2(d[:, 1], d[:, 0])
+        v = o[:, 1, None] * np.column_stack([np.cos(heading), np.sin(heading)])
+        parts.append((scene, g[:, 0], p, v, o[:, 2]))
+    if not parts:
+        raise DataError(f"{folder}: no smartLoc scene with GT and odometry ({', '.join(scenes)})")
     return _concat(name, parts, min_length, description)
 
 
