@@ -21,7 +21,7 @@ from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
 
-BURN_IN = 3  # updates after each object's initialisation left out of the NIS median
+BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
 
 
 @dataclass
