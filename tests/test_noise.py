@@ -169,3 +169,13 @@ def test_given_values_are_kept():
     assert plan.accel_source["ctrv"] == "data"
     line = plan.describe()
     assert "meas-std 0.25 m (given)" in line and "cv 0.7 (given)" in line and "ctrv" in line
+
+
+def test_objects_too_short_to_learn_from_keep_the_defaults():
+    # three measurements per object: no update survives the burn-in, and no 4-point window exists
+    t = np.tile([0.0, 0.1, 0.2], 5)
+    z = np.column_stack([t, t]) + 0.01 * np.arange(15)[:, None]
+    plan = plan_noise(t, z, 3 * np.arange(6), ["ctrv"], omega_std=0.5, heading_std=0.1)
+    assert plan.meas_source == "default" and plan.meas_std == 0.3
+    assert plan.accel_source["ctrv"] == "default" and plan.accel_std["ctrv"] == MODELS["ctrv"].default_accel_std
+    assert "default: no object has" in plan.describe() and "no object has 4 measurements" in plan.describe()

@@ -21,7 +21,7 @@ from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
 
-BURN_IN = 3  # updates after each object's initialisation left out of the NIS median
+BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
 
 
 @dataclass
@@ -32,7 +32,7 @@ class NoisePlan:
     meas_source: str  # "given", "data" or "default"
     meas_estimate: NoiseEstimate | None
     accel_std: dict = field(default_factory=dict)  # model -> tuple
-    accel_source: dict = field(default_factory=dict)  # model -> "given" | "data"
+    accel_source: dict = field(default_factory=dict)  # model -> "given" | "data" | "default"
     accel_k: dict = field(default_factory=dict)  # model -> k (data only)
     median_nis: dict = field(default_factory=dict)
     search: dict = field(default_factory=dict)  # model -> noise.SearchResult
@@ -55,6 +55,8 @@ class NoisePlan:
             vals = ",".join(f"{v:.3g}" for v in q)
             if self.accel_source[m] == "data":
                 parts.append(f"{m} {vals} (k = {self.accel_k[m]:.3g}, median NIS {self.median_nis[m]:.2f})")
+            elif self.accel_source[m] == "default":
+                parts.append(f"{m} {vals} (default: no object has {BURN_IN + 3} measurements to learn from)")
             else:
                 parts.append(f"{m} {vals} (given)")
         text = f"noise from the data: {meas}; accel-std {'; '.join(parts)}"
@@ -129,7 +131,7 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
 
         res = process_noise_search(run, m, plan.v_typ)
         plan.accel_std[m] = res.q
-        plan.accel_source[m] = "data"
+        plan.accel_source[m] = "data" if np.isfinite(res.mse) else "default"
         plan.accel_k[m] = res.k
         plan.median_nis[m] = res.median_nis
         plan.search[m] = res

@@ -317,7 +317,8 @@ def process_noise_search(run, model: str, v_typ: float, grid=K_GRID) -> SearchRe
     entries at the heuristic ``accel_std_family`` (every other grid value, then the two neighbours of
     the best), the rotational entries over ``angular_grid`` at that k, and k again (the best ± two grid
     steps) at the chosen rotational std: about 20 runs. A filter that becomes unstable with some q makes
-    large prediction errors there before each alarm, so the search avoids it.
+    large prediction errors there before each alarm, so the search avoids it. With nothing to score (every
+    object too short) the model's defaults are returned (``mse`` inf).
     """
     cache = {}
 
@@ -348,4 +349,6 @@ def process_noise_search(run, model: str, v_typ: float, grid=K_GRID) -> SearchRe
         k, q = best([(kk, with_angular(model, accel_std_family(model, kk, v_typ), a))
                      for kk in around(grid.index(k), (-2, -1, 0, 1, 2))])
     mse, med = score(q)
+    if not math.isfinite(mse):  # no update to score (objects too short): the model's defaults
+        k, q = 1.0, tuple(float(v) for v in get_model(model).default_accel_std)
     return SearchResult(k, tuple(float(v) for v in q), mse, med, len(cache))

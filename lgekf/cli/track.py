@@ -187,7 +187,8 @@ def cmd_track(argv) -> int:
     with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
         handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
         plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
-                          heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure)
+                          heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure,
+                          monitor=monitor)
         if plan.estimated:
             pose = any(v == "pose" for v in measure.values())
             say(plan.describe(heading_std if pose else None, heading_given=a.heading_std is not None))
