@@ -4,7 +4,8 @@ Dask is an optional extra (``pip install "lgekf[dask]"``): it is imported only h
 those commands asks for a cluster; without it they stop with one line saying how to install it.
 
 * ``dask_client(workers=N)``: a local cluster of N worker processes with one thread each, every socket
-  bound to 127.0.0.1 (scheduler, workers, nannies, the HTTP endpoints), logs below ERROR silenced. The
+  bound to 127.0.0.1 (scheduler, workers, nannies, the HTTP endpoints), Dask's own logs silenced
+  (a failing task reaches the caller as its exception, which the commands report in one line). The
   workers run numba's parallel kernels on one thread (``NUMBA_NUM_THREADS=1``, same for BLAS/OpenMP):
   one process per core instead of N processes fighting over every core.
 * ``dask_client(scheduler=ADDRESS)``: a client of a running cluster (``tcp://host:8786``); its workers
@@ -108,7 +109,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None, what: 
     n = workers or default_workers()
     cluster = distributed.LocalCluster(
         n_workers=n, threads_per_worker=1, processes=True, host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
-        worker_dashboard_address=f"{LOOPBACK}:0", silence_logs=logging.ERROR, env=dict(WORKER_ENV),
+        worker_dashboard_address=f"{LOOPBACK}:0", silence_logs=logging.CRITICAL, env=dict(WORKER_ENV),
     )
     try:
         client = distributed.Client(cluster)

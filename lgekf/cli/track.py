@@ -12,12 +12,14 @@ from ..apps.track import (
     DEFAULT_ACCEL_STD, DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD, ROWS_PER_CHUNK, TrackConfig,
     output_path, write_model,
 )
+from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
+from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std"]
@@ -83,6 +85,9 @@ def track_parser():
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings about the data")
+    add_cluster_options(ap)
+    ap.add_argument("--partition-rows", type=int, default=PARTITION_ROWS, metavar="N",
+                    help=f"with --workers/--scheduler: rows per partition (whole objects; default {PARTITION_ROWS})")
     return ap
 
 
@@ -128,6 +133,11 @@ def cmd_track(argv) -> int:
         if measure[m] is None:
             measure[m] = "position"
             say(f"{m} has no heading: it gets the positions only")
+    check_cluster_options(a)
+    if cluster_requested(a):  # the same output, computed on Dask in partitions of whole objects
+        from .track_dask import cmd_track_dask
+
+        return cmd_track_dask(a, models, cfg, outs, measure, say)
     meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
     meas, starts, _ = meas.grouped(min_length=2)
     meas.t = to_seconds(meas.t, a.time_unit)
