@@ -133,8 +133,9 @@ def _read_frame(src: TrackSource, partition_rows: int):
     return df.rename(columns=dict(zip(df.columns, [k for k, _ in order])))
 
 
-def _text(series) -> np.ndarray:
-    return np.char.strip(series.to_numpy(dtype=str, na_value=""))
+def _stripped(series):
+    """Text with surrounding whitespace removed, like ``read_csv`` does with ids (pandas string methods: fast)."""
+    return series.astype(str).str.strip()
 
 
 def _ids(df, kind: str) -> np.ndarray:
@@ -147,16 +148,19 @@ def _ids(df, kind: str) -> np.ndarray:
     if kind == "parquet" and s.dtype.kind == "f":
         v = s.to_numpy()
         return np.array([str(int(x)) if math.isfinite(x) and x.is_integer() and abs(x) < 2.0**53 else repr(float(x)) for x in v], dtype=str)
-    return _text(s)
+    return _stripped(s).to_numpy(dtype=str)
 
 
 def _blank(df, kind: str) -> np.ndarray:
     """Rows that are blank lines (every field empty): skipped, like ``read_csv`` does."""
     if kind != "csv" or len(df) == 0:
         return np.zeros(len(df), dtype=bool)
-    blank = np.ones(len(df), dtype=bool)
-    for c in df.columns:
-        blank &= _text(df[c]) == ""
+    blank = (_stripped(df.iloc[:, 0]) == "").to_numpy(dtype=bool, copy=True)
+    for c in df.columns[1:]:  # only the few rows whose first field is empty
+        if not blank.any():
+            break
+        rows = np.flatnonzero(blank)
+        blank[rows] = (_stripped(df[c].iloc[rows]) == "").to_numpy(dtype=bool)
     return blank
 
 
@@ -174,6 +178,18 @@ def _scan(df, kind: str, need_origin: bool):
     return len(df), table, origin
 
 
+def _numbers(col, name: str, lines, source: str) -> np.ndarray:
+    """float64 of a text column: Arrow's parser (correctly rounded like ``numpy.loadtxt``, and it accepts a
+    subset of what loadtxt accepts: no surrounding spaces), else ``parse_number_column`` (spaces, errors)."""
+    import pyarrow as pa
+    import pyarrow.compute as pc
+
+    try:
+        return pc.cast(pa.array(col, type=pa.string()), pa.float64()).to_numpy(zero_copy_only=False)
+    except (pa.ArrowInvalid, pa.ArrowTypeError):
+        return parse_number_column(source, name, col.to_numpy(dtype=str, na_value=""), lines)
+
+
 def _annotate(df, kind: str, offset: int, ranks, first_line: int, source: str):
     """Second pass over one block: numbers parsed (bad values named by line), the global row and the object rank."""
     import pandas as pd
@@ -187,7 +203,7 @@ def _annotate(df, kind: str, offset: int, ranks, first_line: int, source: str):
         if k in df.columns:
             col = df[k].iloc[local]
             if kind == "csv":
-                out[k] = parse_number_column(source, k, col.to_numpy(dtype=str, na_value=""), row + first_line)
+                out[k] = _numbers(col, k, row + first_line, source)
             else:
                 out[k] = col.to_numpy(dtype=np.float64, na_value=np.nan)
     return pd.DataFrame(out)
