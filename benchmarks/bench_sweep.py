@@ -1,6 +1,6 @@
 """Scaling of `lgekf sweep` from 1 to 2 local Dask workers, and the per-task overhead.
 
-    .venv/bin/python benchmarks/bench_sweep.py [--repeats 3]
+    .venv/bin/python benchmarks/bench_sweep.py [--repeats 5]
 
 Two grids, each run in this process (no Dask) and on local clusters of 1 and 2 workers (one thread each,
 127.0.0.1 only), every run into a fresh folder, table written once at the end:
@@ -9,14 +9,16 @@ Two grids, each run in this process (no Dask) and on local clusters of 1 and 2 w
   filters: about 50 ms of compute per cell;
 * "tiny cells": 200 cells of 2 trajectories × 5 steps (about 1 ms each): nearly all overhead.
 
-Reported per run: wall time of ``run_sweep`` (the cluster already started and every worker warmed up:
-numba kernels loaded), the summed task time Σ measured inside the tasks, the speed-up over 1 worker,
+The settings run interleaved, round after round (``--repeats``), so that a burst of load from other jobs
+on the machine hits all of them alike; best and median over the rounds are reported. Per run: the wall
+time of ``run_sweep`` (the clusters already started and every worker warmed up: numba kernels loaded), the
+summed task time Σ measured inside the tasks, the speed-up over 1 worker,
 and the overhead per task = (workers × wall − Σ) / tasks (the worker time per task not spent computing:
 scheduling, serialisation, result transfer, the driver's bookkeeping), and the CPU time the workers used
-(when it is well below Σ, the workers were waiting for a core: the machine is busy). Start-up (cluster +
+relative to Σ (well below 1: the workers were waiting for a core, the machine was busy). Start-up (cluster +
 warm-up) is reported separately. As a ceiling for the speed-up, the same cells also run on a plain
-process pool of 1 and 2 processes (``concurrent.futures``, no Dask). The tables of all runs must be identical (checked). This process runs numba on one
-thread too (``NUMBA_NUM_THREADS=1`` before numba is imported), so "in process" is one core.
+process pool of 1 and 2 processes (``concurrent.futures``, no Dask). The tables of all runs must be
+identical (checked). This process runs numba on one thread too (``NUMBA_NUM_THREADS=1`` before numba is imported), so "in process" is one core.
 """
 
 from __future__ import annotations
@@ -27,10 +29,13 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 import argparse  # noqa: E402
 import datetime  # noqa: E402
+import logging  # noqa: E402
 import shutil  # noqa: E402
 import tempfile  # noqa: E402
 import time  # noqa: E402
 from pathlib import Path  # noqa: E402
+
+import numpy as np  # noqa: E402
 
 from lgekf.apps.cluster import dask_client  # noqa: E402
 from lgekf.apps.sweep import compute_cell, run_sweep  # noqa: E402
@@ -57,16 +62,23 @@ def _cpu_seconds():
     return t.user + t.system
 
 
-def _pool_run(cells, workers):
-    """The same cells on a plain process pool (no Dask): the machine's own ceiling for the speed-up."""
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor
+class _Pool:
+    """A plain process pool (no Dask), warmed up: the machine's own ceiling for the speed-up."""
 
-    with ProcessPoolExecutor(workers, mp_context=mp.get_context("spawn")) as pool:
-        list(pool.map(_warm_one, range(workers)))
+    def __init__(self, workers):
+        import multiprocessing as mp
+        from concurrent.futures import ProcessPoolExecutor
+
+        self.pool = ProcessPoolExecutor(workers, mp_context=mp.get_context("spawn"))
+        list(self.pool.map(_warm_one, range(workers)))
+
+    def run(self, cells):
         t0 = time.perf_counter()
-        list(pool.map(compute_cell, [c.options for c in cells], [c.seed for c in cells], chunksize=1))
+        list(self.pool.map(compute_cell, [c.options for c in cells], [c.seed for c in cells], chunksize=1))
         return time.perf_counter() - t0
+
+    def close(self):
+        self.pool.shutdown()
 
 
 def _warm_one(_):
@@ -76,72 +88,76 @@ def _warm_one(_):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--repeats", type=int, default=3, help="runs per setting; the fastest is reported (default 3)")
+    ap.add_argument("--repeats", type=int, default=5, help="rounds; every setting runs once per round (default 5)")
     a = ap.parse_args()
     load0 = os.getloadavg()
     print(f"{datetime.date.today()}, {os.cpu_count()} cores, load average before: {load0[0]:.2f} {load0[1]:.2f} {load0[2]:.2f}")
     _warm()
+    logging.getLogger("distributed").setLevel(logging.ERROR)  # two clusters: closing one resets the other's silencing
     tmp = Path(tempfile.mkdtemp(prefix="bench_sweep."))
-    tables = {}
-    results = {}
+    clients, contexts, start, warm = {0: None}, [], {}, {}
+    pools = {}
     try:
-        for label, spec in GRIDS.items():
-            grid = parse_grid(spec, label)
-            n = grid.n_cells
-            for workers in (0, 1, 2):
-                best = None
-                if workers:
-                    t0 = time.perf_counter()
-                    ctx = dask_client(workers=workers)
-                    client = ctx.__enter__()
-                    t_start = time.perf_counter() - t0
-                    t0 = time.perf_counter()
-                    client.run(_warm)
-                    t_warm = time.perf_counter() - t0
-                else:
-                    ctx = client = None
-                    t_start = t_warm = 0.0
-                try:
-                    for r in range(a.repeats):
-                        out = tmp / f"{label}-{workers}-{r}"
-                        cpu0 = client.run(_cpu_seconds) if client else None
-                        rep = run_sweep(grid, out, client, flush_seconds=float("inf"), figures=False)
-                        if client:
-                            cpu1 = client.run(_cpu_seconds)
-                            rep.worker_cpu = sum(cpu1[w] - cpu0[w] for w in cpu1)
-                        tables.setdefault(label, (out / "cells.csv").read_bytes())
-                        assert (out / "cells.csv").read_bytes() == tables[label], "tables differ between runs"
-                        shutil.rmtree(out)
-                        if best is None or rep.wall_seconds < best.wall_seconds:
-                            best = rep
-                finally:
-                    if ctx is not None:
-                        ctx.__exit__(None, None, None)
-                results[(label, workers)] = (best, t_start, t_warm)
-                print(f"{label:12} {'in process' if not workers else f'{workers} worker' + ('s' if workers > 1 else ''):11} "
-                      f"cells {n:4d}  wall {best.wall_seconds:7.3f} s  Σ tasks {best.task_seconds:7.3f} s  "
-                      f"per cell {best.task_seconds / n * 1e3:7.2f} ms  "
-                      + (f"overhead/task {best.overhead_per_task * 1e3:6.2f} ms  worker CPU {best.worker_cpu:6.3f} s  "
-                         f"start {t_start:5.2f} s  warm-up {t_warm:5.2f} s" if workers else ""), flush=True)
-            pool = {k: min(_pool_run(grid.cells(), k) for _ in range(a.repeats)) for k in (1, 2)}
-            results[(label, "pool")] = pool
-            print(f"{label:12} plain process pool (no Dask): 1 process {pool[1]:.3f} s, 2 processes {pool[2]:.3f} s, "
-                  f"speed-up {pool[1] / pool[2]:.2f}x", flush=True)
+        for workers in (1, 2):
+            t0 = time.perf_counter()
+            ctx = dask_client(workers=workers)
+            clients[workers] = ctx.__enter__()
+            contexts.append(ctx)
+            start[workers] = time.perf_counter() - t0
+            t0 = time.perf_counter()
+            clients[workers].run(_warm)
+            warm[workers] = time.perf_counter() - t0
+            pools[workers] = _Pool(workers)
+        runs = {}  # (grid, setting) -> list of (wall, Σ tasks, worker CPU)
+        tables = {}
+        for r in range(a.repeats):  # interleaved: a burst of load elsewhere hits every setting alike
+            for label, spec in GRIDS.items():
+                grid = parse_grid(spec, label)
+                for workers, client in clients.items():
+                    out = tmp / f"{label}-{workers}-{r}"
+                    cpu0 = client.run(_cpu_seconds) if client else None
+                    rep = run_sweep(grid, out, client, flush_seconds=float("inf"), figures=False)
+                    cpu = sum(v - cpu0[w] for w, v in client.run(_cpu_seconds).items()) if client else rep.task_seconds
+                    tables.setdefault(label, (out / "cells.csv").read_bytes())
+                    assert (out / "cells.csv").read_bytes() == tables[label], "tables differ between runs"
+                    shutil.rmtree(out)
+                    runs.setdefault((label, workers), []).append((rep.wall_seconds, rep.task_seconds, cpu))
+                for workers, pool in pools.items():
+                    runs.setdefault((label, f"pool{workers}"), []).append((pool.run(grid.cells()), float("nan"), float("nan")))
+            print(f"round {r + 1}/{a.repeats} done, load {os.getloadavg()[0]:.2f}", flush=True)
     finally:
+        for ctx in contexts:
+            ctx.__exit__(None, None, None)
+        for pool in pools.values():
+            pool.close()
         shutil.rmtree(tmp, ignore_errors=True)
     print()
-    print("| grid | cells | in process | 1 worker | 2 workers | speed-up 1 -> 2 | plain pool speed-up 1 -> 2 | "
+    for label, spec in GRIDS.items():
+        n = parse_grid(spec, label).n_cells
+        for workers in (0, 1, 2):
+            rs = runs[(label, workers)]
+            wall = [x[0] for x in rs]
+            best = min(rs)
+            name = "in process" if not workers else f"{workers} worker" + ("s" if workers > 1 else "")
+            over = f"overhead/task {(max(workers, 1) * best[0] - best[1]) / n * 1e3:6.2f} ms  " if workers else ""
+            print(f"{label:12} {name:11} cells {n:4d}  wall best {best[0]:6.3f} s median {np.median(wall):6.3f} s  "
+                  f"Σ tasks {best[1]:6.3f} s ({best[1] / n * 1e3:6.2f} ms per cell)  {over}worker CPU / Σ tasks {best[2] / best[1]:4.2f}")
+        for workers in (1, 2):
+            wall = [x[0] for x in runs[(label, f"pool{workers}")]]
+            print(f"{label:12} pool of {workers}   wall best {min(wall):6.3f} s median {np.median(wall):6.3f} s (plain processes, no Dask)")
+    print()
+    print("| grid | cells | in process | 1 worker | 2 workers | speed-up 1 -> 2 workers (best / median) | plain pool speed-up | "
           "overhead per task, 1 / 2 workers |")
     print("|---|---|---|---|---|---|---|---|")
-    for label in GRIDS:
-        p, w1, w2 = (results[(label, k)][0] for k in (0, 1, 2))
-        pool = results[(label, "pool")]
-        print(f"| {label} | {p.cells} | {p.wall_seconds:.2f} s | {w1.wall_seconds:.2f} s | {w2.wall_seconds:.2f} s | "
-              f"{w1.wall_seconds / w2.wall_seconds:.2f}x | {pool[1] / pool[2]:.2f}x | "
-              f"{w1.overhead_per_task * 1e3:.1f} / {w2.overhead_per_task * 1e3:.1f} ms |")
-    start = [results[(label, k)][1] for label in GRIDS for k in (1, 2)]
-    warm = [results[(label, k)][2] for label in GRIDS for k in (1, 2)]
-    print(f"cluster start {min(start):.2f}-{max(start):.2f} s, worker warm-up (numba kernels from the cache) {min(warm):.2f}-{max(warm):.2f} s")
+    for label, spec in GRIDS.items():
+        n = parse_grid(spec, label).n_cells
+        b = {k: min(runs[(label, k)]) for k in (0, 1, 2, "pool1", "pool2")}
+        med = {k: float(np.median([x[0] for x in runs[(label, k)]])) for k in (1, 2)}
+        o1, o2 = ((k * b[k][0] - b[k][1]) / n * 1e3 for k in (1, 2))
+        print(f"| {label} | {n} | {b[0][0]:.2f} s | {b[1][0]:.2f} s | {b[2][0]:.2f} s | {b[1][0] / b[2][0]:.2f}x / "
+              f"{med[1] / med[2]:.2f}x | {b['pool1'][0] / b['pool2'][0]:.2f}x | {o1:.1f} / {o2:.1f} ms |")
+    print(f"cluster start: 1 worker {start[1]:.2f} s, 2 workers {start[2]:.2f} s; worker warm-up (numba kernels from the cache) "
+          f"{warm[1]:.2f} / {warm[2]:.2f} s")
     load1 = os.getloadavg()
     print(f"load average after: {load1[0]:.2f} {load1[1]:.2f} {load1[2]:.2f}")
 

@@ -6,10 +6,10 @@ appearance in the file, each object's rows in file order), the same numbers, the
 How
 ---
 1. The file is read as a Dask dataframe (``dask.dataframe.read_csv`` in blocks of about
-   ``partition_rows`` rows, every field as text; or ``read_parquet``). A first pass over the blocks
-   counts each object's rows and finds its first row (block, position): the driver turns that into
-   the object table (id, first row, rows), checks that every object has two rows, and ranks the objects
-   by their first row.
+   ``partition_rows`` rows, every field as text; or ``read_parquet``). A first pass over the blocks reads
+   the id column only, counts each object's rows and finds its first row (block, position): the driver
+   turns that into the object table (id, first row, rows), checks that every object has two rows, and
+   ranks the objects by their first row.
 2. The ranks are cut into ranges of about ``partition_rows`` rows, and a second pass parses the numbers
    (the line of a bad value is named, as in ``read_csv``) and moves every row to the partition of its
    object's rank range (``set_index`` with those divisions: a shuffle on the cluster). A partition thus
@@ -113,14 +113,16 @@ def open_source(path, use_heading: bool = False, delimiter="auto") -> TrackSourc
     return TrackSource(str(p), "csv", cols, delim, gz, 2)
 
 
-def _read_frame(src: TrackSource, partition_rows: int):
-    """The Dask dataframe of the columns lgekf reads, named by key; CSV fields as text."""
+def _read_frame(src: TrackSource, partition_rows: int, keys=None):
+    """The Dask dataframe of the columns ``keys`` (default: all that lgekf reads), named by key; CSV fields as
+    text. The blocks depend on the file and ``partition_rows`` only, so two reads have the same rows per block."""
     import dask.dataframe as dd
 
+    cols = {k: v for k, v in src.columns.items() if keys is None or k in keys}
     if src.kind == "parquet":
-        df = dd.read_parquet(src.path, columns=list(src.columns.values()))
-        return df.rename(columns={v: k for k, v in src.columns.items()})
-    order = sorted(src.columns.items(), key=lambda kv: kv[1])  # pandas returns usecols in file order
+        df = dd.read_parquet(src.path, columns=list(cols.values()))
+        return df.rename(columns={v: k for k, v in cols.items()})
+    order = sorted(cols.items(), key=lambda kv: kv[1])  # pandas returns usecols in file order
     with open(src.path, "rb") as f:
         head = f.read(1 << 16)
     per_row = max(len(head) / max(head.count(b"\n"), 1), 8.0)
@@ -164,18 +166,40 @@ def _blank(df, kind: str) -> np.ndarray:
     return blank
 
 
-def _scan(df, kind: str, need_origin: bool):
-    """First pass over one block: (rows, {id: (first local row, rows)} as a frame, first lat/lon text)."""
+def _scan(df, kind: str):
+    """First pass over one block, read with the id column only (or t without ids): (rows, {id: (first local
+    row, rows)} as a frame). A row whose id is empty counts as blank here; the second pass, which sees every
+    column, tells a blank line from a row without an id (an error)."""
     import pandas as pd
 
     keep = ~_blank(df, kind)
     local = np.flatnonzero(keep)
     ids = _ids(df, kind)[keep]
     table = pd.DataFrame({"id": ids, "row": local}).groupby("id", sort=False)["row"].agg(["min", "size"])
-    origin = None
-    if need_origin and local.size:
-        origin = (df["lat"].iloc[local[0]], df["lon"].iloc[local[0]])
-    return len(df), table, origin
+    return len(df), table
+
+
+def _first_row(src: TrackSource):
+    """(lat, lon) of the file's first data row, as ``read_csv`` takes the origin of its projection."""
+    import csv
+
+    from ..io.files import open_input
+
+    if src.kind == "parquet":
+        import pyarrow.dataset as pads
+
+        head = pads.dataset(src.path, format="parquet").head(1, columns=[src.columns["lat"], src.columns["lon"]])
+        return float(head.column(0)[0].as_py()), float(head.column(1)[0].as_py())
+    with open_input(src.path, DataError) as f:
+        f.readline()
+        for n, line in enumerate(f, src.first_line):
+            if line.strip():
+                fields = line.split() if src.delimiter is None else next(csv.reader([line], delimiter=src.delimiter))
+                lines = np.array([n])
+                lat, lon = (fields[src.columns[k]] if src.columns[k] < len(fields) else "" for k in ("lat", "lon"))
+                return (float(parse_number_column(src.source, "lat", [lat], lines)[0]),
+                        float(parse_number_column(src.source, "lon", [lon], lines)[0]))
+    raise DataError(f"{src.source}: no measurements (the file has only a header line)")
 
 
 def _numbers(col, name: str, lines, source: str) -> np.ndarray:
@@ -198,6 +222,9 @@ def _annotate(df, kind: str, offset: int, ranks, first_line: int, source: str):
     local = np.flatnonzero(keep)
     row = offset + local
     ids = _ids(df, kind)[keep]
+    if "id" in df.columns and (ids == "").any():
+        k = int(np.flatnonzero(ids == "")[0])
+        raise DataError(f"{source} line {int(row[k]) + first_line}: column 'id' is empty; every row needs an object id")
     out = {"rank": ranks.reindex(ids).to_numpy(dtype=np.int64), "row": row.astype(np.int64), "id": ids}
     for k in NUMERIC:
         if k in df.columns:
@@ -258,13 +285,12 @@ def plan_partitions(client, src: TrackSource, partition_rows: int = PARTITION_RO
     import pandas as pd
     from dask import delayed
 
-    frame = _read_frame(src, partition_rows)
-    blocks = frame.to_delayed()
-    scans = client.gather(client.compute([delayed(_scan)(b, src.kind, src.projected) for b in blocks]))
+    first = ["id"] if "id" in src.columns else ["t"]
+    scans = client.gather(client.compute([delayed(_scan)(b, src.kind) for b in _read_frame(src, partition_rows, first).to_delayed()]))
     lengths = np.array([s[0] for s in scans], dtype=np.int64)
     offsets = np.concatenate([[0], np.cumsum(lengths)[:-1]])
     tables = []
-    for (n, table, _), off in zip(scans, offsets):
+    for (n, table), off in zip(scans, offsets):
         if len(table):
             t = table.reset_index()
             t["min"] += off
@@ -276,24 +302,18 @@ def plan_partitions(client, src: TrackSource, partition_rows: int = PARTITION_RO
     labels = objects.index.to_list()
     counts = objects["rows"].to_numpy(dtype=np.int64)
     firsts = objects["first"].to_numpy(dtype=np.int64)
-    if "id" in src.columns and "" in objects.index:
-        raise DataError(f"{src.source} line {int(objects.loc['', 'first']) + src.first_line}: column 'id' is empty; every row needs an object id")
     short = np.flatnonzero(counts < 2)
     if short.size:
         i = int(short[0])
         more = f" ({short.size} objects in all)" if short.size > 1 else ""
         raise DataError(f"{src.source}: object id {labels[i]} (line {int(firsts[i]) + src.first_line}) has a single measurement{more}; "
                         "at least 2 are needed to initialise its velocity")
-    origin = None
-    if src.projected:
-        lat, lon = next(s[2] for s in scans if s[2] is not None)
-        line = np.array([int(firsts.min()) + src.first_line])
-        if src.kind == "csv":
-            lat = parse_number_column(src.source, "lat", [lat], line)[0]
-            lon = parse_number_column(src.source, "lon", [lon], line)[0]
-        origin = (float(lat), float(lon))
+    origin = _first_row(src) if src.projected else None
     ranks = pd.Series(np.arange(len(labels), dtype=np.int64), index=pd.Index(labels, dtype=object))
     ranks_f = client.scatter(ranks, broadcast=True)
+    blocks = _read_frame(src, partition_rows).to_delayed()
+    if len(blocks) != len(offsets):  # pragma: no cover - the two reads cut the same blocks
+        raise RuntimeError("the two reads of the file gave different blocks")
     annotated = [delayed(_annotate)(b, src.kind, int(off), ranks_f, src.first_line, src.source) for b, off in zip(blocks, offsets)]
     import dask.dataframe as dd
 
