@@ -205,3 +205,15 @@ def test_evaluate_with_local_workers(tmp_path):
     many = run("evaluate", "walk.csv", "--out", "many", "--seeds", 1, "--no-figure", "--quiet", "--workers", 2, cwd=tmp_path)
     assert one.returncode == 0 and many.returncode == 0, many.stderr
     same_files(tmp_path / "one" / "summary.csv", tmp_path / "many" / "summary.csv")
+
+
+@pytest.mark.parametrize("sep, option", [("\t", ["--delimiter", "tab"]), (";", []), (" ", ["--delimiter", "space"])])
+def test_other_separators(data, tmp_path, dask_scheduler, sep, option):
+    d, _ = data
+    text = (d / "det.csv").read_text().replace("car ", "car_").replace(",", sep)  # ids without spaces
+    (tmp_path / "in.txt").write_text(text)
+    one = run("track", "in.txt", "-o", "one.csv", "--model", "cv", "--quiet", *option, cwd=tmp_path)
+    many = run("track", "in.txt", "-o", "many.csv", "--model", "cv", "--quiet", *option, "--scheduler", dask_scheduler,
+               "--partition-rows", 80, cwd=tmp_path)
+    assert one.returncode == 0 and many.returncode == 0, many.stderr
+    same_files(tmp_path / "one.csv", tmp_path / "many.csv")

@@ -40,9 +40,9 @@ def cmd_sweep(argv) -> int:
     grid = load_grid(a.grid)
     cells = grid.cells()
     check_folder(grid, a.out, a.format)  # another grid's folder is refused before a cluster starts
+    done = {r[0] for r in read_table(a.out / table_name(a.format), table_columns(grid.axis_columns()), a.format)}
+    todo = sum(c.key not in done for c in cells)
     if a.dry_run:
-        done = {r[0] for r in read_table(a.out / table_name(a.format), table_columns(grid.axis_columns()), a.format)}
-        todo = sum(c.key not in done for c in cells)
         axes = ", ".join(f"{k} ({len(v)})" for k, v in grid.axes.items()) or "none"
         print(f"{a.grid}: {len(cells)} cells (axes: {axes}), {len(cells) - todo} in {a.out}, {todo} to run")
         return 0
@@ -52,9 +52,9 @@ def cmd_sweep(argv) -> int:
     with dask_client(workers=workers, scheduler=a.scheduler, what="lgekf sweep") as client:
         n = worker_count(client)
         where = cluster_label(a, n)
-        say(f"{len(cells)} cells on {where}")
+        say(f"{len(cells)} cells, {todo} to run, on {where}")
         bar_on = not a.quiet and stderr_is_terminal()
-        with compile_notice("lgekf sweep", enabled=not a.quiet), progress_bar(len(cells), "lgekf sweep", bar_on, unit="cells") as bar:
+        with compile_notice("lgekf sweep", enabled=not a.quiet), progress_bar(todo, "lgekf sweep", bar_on, unit="cells") as bar:
             try:
                 rep = run_sweep(grid, a.out, client, a.format, progress=bar.update, flush_seconds=a.flush_seconds,
                                 figures=not a.no_figures, where=where)
