@@ -4,4 +4,7 @@ import sys
 
 from lgekf.cli import main
 
-sys.exit(main())
+# the guard matters: Dask's worker processes are started with "spawn", which imports this module again
+# (as __mp_main__) in every worker; without it each worker would rerun the command
+if __name__ == "__main__":
+    sys.exit(main())

@@ -39,3 +39,14 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
     for name in sorted(table):
         err, entry, angle = table[name]
         tr.write_line(f"{name:<28} {err:14.3e}  {err / 2.220446049250313e-16:7.1f}  {entry!s:<8} {angle!r:>24}")
+
+
+@pytest.fixture(scope="session")
+def dask_scheduler():
+    """The address of a local Dask cluster (2 worker processes, 127.0.0.1 only) shared by the tests that
+    pass ``--scheduler``; the ``--workers`` tests start their own, as a user's command does."""
+    pytest.importorskip("distributed")
+    from lgekf.apps.cluster import dask_client
+
+    with dask_client(workers=2) as client:
+        yield client.scheduler.address

@@ -12,8 +12,10 @@ when the README gains a command the test fails until it is added there. Substitu
 * every ``lgekf evaluate`` reads a stand-in data folder (``$LGEKF_DATA``: the presets' file layout
   with a few synthetic tracks each, built below) and gets ``--seeds 1``;
 * ``lgekf derive`` (which rewrites the package's ``generated/``) gets ``--out`` a temporary folder;
-* the files the commands name (``detections.csv``, ``poses.csv``, ``biwi_eth.txt``, ``phone.csv.gz``) are small
-  synthetic stand-ins written into the temporary working folder.
+* the files the commands name (``detections.csv``, ``poses.csv``, ``biwi_eth.txt``, ``phone.csv.gz``, ``year.csv``,
+  ``detections.parquet``, ``grid.toml``) are small synthetic stand-ins written into the temporary working folder;
+  ``examples/sweep_sigma_dt.toml`` is the real example with 5 trajectories of 10 steps per cell;
+* a scheduler address (``tcp://10.0.0.5:8786``) becomes the address of a local test cluster (``{scheduler}``).
 
 The ``lgekf derive`` runs are SymPy work (30-45 s each on 2 cores) and are marked slow.
 """
@@ -85,6 +87,16 @@ README_TO_RUN = {
     "lgekf study --truth se2r3 --noise-scale cv=30": None,
     "lgekf study --dt 0.5 --steps 20 --noise-scale cv=30 ctrv=3": None,
     "lgekf study --v0 1,0 --noise-scale cv=30": None,
+    "lgekf sweep GRID.toml -o DIR [--workers N | --scheduler ADDRESS] [--format csv|parquet] [--dry-run]":
+        ["lgekf sweep grid.toml -o sweep_a/ --workers 2 --format parquet", "lgekf sweep grid.toml -o sweep_b/ --scheduler {scheduler}",
+         "lgekf sweep grid.toml -o sweep_b/ --dry-run"],
+    "lgekf sweep": ["lgekf sweep grid.toml -o sweep_c/ --workers 1"],
+    "lgekf sweep examples/sweep_sigma_dt.toml -o sweep_results/": None,
+    "lgekf sweep grid.toml -o grid_results/ --scheduler tcp://10.0.0.5:8786": ["lgekf sweep grid.toml -o grid_results/ --scheduler {scheduler}"],
+    "lgekf track year.csv -o tracks.csv --model all --workers 2": None,
+    "lgekf track detections.parquet -o tracks.csv --scheduler tcp://10.0.0.5:8786":
+        ["lgekf track detections.parquet -o tracks.csv --scheduler {scheduler}"],
+    "lgekf evaluate ethucy --tune --workers 2": None,
 }
 
 
@@ -164,13 +176,25 @@ def workdir(tmp_path_factory):
     phone = "t,lat,lon\n" + "".join(f"{1000 * k},{lat0 + 1e-5 * y:.8f},{lon0 + 1e-5 * x:.8f}\n" for _, k, x, y in _tracks(1, 12, 1.0))
     (d / "phone.csv.gz").write_bytes(gzip.compress(phone.encode()))
     _data_root(d / "data")
+    (d / "year.csv").write_text((d / "detections.csv").read_text())
+    import pandas as pd
+
+    pd.read_csv(d / "detections.csv", dtype={"id": str}).to_parquet(d / "detections.parquet")
+    (d / "grid.toml").write_text('[grid]\nsigmas = [0.0, 2.0]\n[fixed]\ntrajectories = 3\nsteps = 10\n')
+    example = (Path(__file__).resolve().parents[1] / "examples" / "sweep_sigma_dt.toml").read_text(encoding="utf-8")
+    small = example.replace("trajectories = 1000", "trajectories = 5").replace("steps = 100", "steps = 10")
+    assert small.count("= 5\n") == 1 and "steps = 10\n" in small, "the example's sizes changed: update this stand-in"
+    (d / "examples").mkdir()
+    (d / "examples" / "sweep_sigma_dt.toml").write_text(small, encoding="utf-8")
     return d
 
 
 # every run is a CLI process (about 1.5 s each, 30 of them): slow, so the quick loop stays under 2 min; CI runs them
 @pytest.mark.slow
 @pytest.mark.parametrize("cmd", to_run())
-def test_readme_command_runs(workdir, cmd):
+def test_readme_command_runs(workdir, cmd, request):
+    if "{scheduler}" in cmd:
+        cmd = cmd.replace("{scheduler}", request.getfixturevalue("dask_scheduler"))
     script = f"lgekf() {{ {shlex.join(cli_command())} \"$@\"; }}\n{cmd}\n"
     env = dict(os.environ, LGEKF_DATA=str(workdir / "data"), MPLBACKEND="Agg")
     r = subprocess.run(["bash", "-c", script], cwd=workdir, env=env, capture_output=True, text=True)

@@ -47,7 +47,7 @@ from ..io.readers import DataError
 from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
 
 __all__ = [
-    "evaluate_dataset", "run_filters", "world_velocity", "tune_split", "DatasetResult",
+    "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
     "FILTERS", "TURNING", "BASELINE",
 ]
 
@@ -83,19 +83,38 @@ def _per_track_rmse(ds: Dataset, err2: np.ndarray) -> np.ndarray:
         return np.sqrt(num / den)
 
 
-def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS):
-    """Position (and velocity) RMSE per (model, seed, track): dict model -> (pos (S, J), vel (S, J) | None)."""
-    out = {m: (np.empty((len(seeds), ds.n_tracks)), None if ds.v is None else np.empty((len(seeds), ds.n_tracks))) for m in models}
-    out["measurements"] = (np.empty((len(seeds), ds.n_tracks)), None)
-    for si, seed in enumerate(seeds):
-        rng = _seed_rng(seed, stream, ds.name)
-        z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
-        out["measurements"][0][si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
+def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
+    """Every model on the noisy measurements ``zs`` (one (N, 2) array per seed) of the tracks of ``ds``.
+
+    Returns dict model -> (pos (S, J), vel (S, J) | None), per seed and track. Each track is filtered
+    and scored on its own, so the result for a subset of the tracks is the same subset of this one (the
+    Dask runner of ``lgekf.apps.evaluate_dask`` relies on it).
+    """
+    S = len(zs)
+    out = {m: (np.empty((S, ds.n_tracks)), None if ds.v is None else np.empty((S, ds.n_tracks))) for m in models}
+    for si, z in enumerate(zs):
         for m in models:
             x, _, _ = track_arrays(m, ds.t, z, ds.starts, cfg)
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:
                 out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(m, x) - ds.v) ** 2, axis=1))
+    return out
+
+
+def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None):
+    """Position (and velocity) RMSE per (model, seed, track): dict model -> (pos (S, J), vel (S, J) | None).
+
+    ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask).
+    """
+    zs = []
+    meas = np.empty((len(seeds), ds.n_tracks))
+    for si, seed in enumerate(seeds):
+        rng = _seed_rng(seed, stream, ds.name)
+        z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
+        meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
+        zs.append(z)
+    out = (runner or track_rmse)(ds, zs, cfg, models)
+    out["measurements"] = (meas, None)
     return out
 
 
@@ -161,12 +180,15 @@ class DatasetResult:
         return rows
 
 
-def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None):
-    """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one."""
+def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None):
+    """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
+
+    ``runner``: passed to ``run_filters`` (None: everything in this process).
+    """
     seed_list = [base_seed + s for s in range(seeds)]
     default = {m: (1.0, 1.0) for m in FILTERS}
     if not tune:
-        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0))]
+        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, runner=runner))]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
     tuning = []
@@ -175,7 +197,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     def score(stage, configs, models):
         """configs: list of {model: (k, ρ)}; evaluates each on the tuning split (noise stream 1)."""
         for conf in configs:
-            res = run_filters(dtune, _scaled(conf, meas_std), seed_list, 1, models=models)
+            res = run_filters(dtune, _scaled(conf, meas_std), seed_list, 1, models=models, runner=runner)
             for m in models:
                 per_track = np.nanmean(res[m][0], axis=0)
                 val = float(np.mean(per_track)) if np.all(np.isfinite(per_track)) else float("inf")
@@ -191,7 +213,8 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     chosen = {m: best[m][1] for m in FILTERS}
     out = []
     for noise, scale in (("default", default), ("tuned", chosen)):
-        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0), tuning, len(tune_idx)))
+        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, runner=runner), tuning,
+                                 len(tune_idx)))
     return out
 
 

@@ -47,6 +47,8 @@ COMMANDS = {
               "track the objects of a measurement file (CSV t,x,y[,id] or pedestrian format) with one or all filters"),
     "evaluate": ("lgekf.cli.evaluate", "cmd_evaluate",
                  "evaluate every filter on real ground-truth trajectories (ETH/UCY, KITTI, cyclists, DUT or your CSV)"),
+    "sweep": ("lgekf.cli.sweep", "cmd_sweep",
+              "run a grid of study protocols (GRID.toml) as Dask tasks: cells.csv, meta.json, a figure per swept axis; resumable"),
     "derive": ("lgekf.cli.derive", "cmd_derive",
                "derive the model ingredients with SymPy and regenerate the numba kernels (--check, --verify)"),
 }

@@ -20,6 +20,7 @@ from ..core.validate import positive_scalar
 from ..io.datasets import GROUPS, PRESETS, load_dataset
 from ..io.output import staged_directory, write_atomic
 from . import ArgumentParser
+from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 
 __all__ = ["cmd_evaluate", "evaluate_parser"]
@@ -42,16 +43,29 @@ def evaluate_parser():
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
     ap.add_argument("--quiet", action="store_true", help="print only the output folder (no notes, progress or table)")
+    add_cluster_options(ap)
+    ap.add_argument("--partition-rows", type=int, default=None, metavar="N",
+                    help="with --workers/--scheduler: rows per partition of whole tracks (default: 2 partitions per worker)")
     return ap
 
 
 def cmd_evaluate(argv) -> int:
     a = evaluate_parser().parse_args(argv)
+    check_cluster_options(a)
+    if a.partition_rows is not None and a.partition_rows < 1:
+        raise ValueError(f"--partition-rows: must be at least 1, got {a.partition_rows}")
     with compile_notice("lgekf evaluate", enabled=not a.quiet):
-        return _evaluate(a)
+        if not cluster_requested(a):
+            return _evaluate(a)
+        from ..apps.cluster import dask_client, require_dask, worker_count
+        from ..apps.evaluate_dask import DaskRunner
+
+        require_dask("lgekf evaluate --workers/--scheduler")
+        with dask_client(workers=a.workers, scheduler=a.scheduler, what="lgekf evaluate --workers/--scheduler") as client:
+            return _evaluate(a, DaskRunner(client, a.partition_rows, worker_count(client)))
 
 
-def _evaluate(a) -> int:
+def _evaluate(a, runner=None) -> int:
     positive_scalar("--meas-std", a.meas_std)
     if a.seeds < 1:
         raise ValueError(f"--seeds: must be at least 1, got {a.seeds}")
@@ -69,7 +83,7 @@ def _evaluate(a) -> int:
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
         results = evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune,
-                                   progress=lambda stage: bar.update(1))
+                                   progress=lambda stage: bar.update(1), runner=runner)
         bar.update(1)
         for res in results:
             rows += res.summary()

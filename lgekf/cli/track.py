@@ -14,12 +14,14 @@ from ..apps.noise import measurement_std
 from ..apps.track import (
     DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, ROWS_PER_CHUNK, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
 )
+from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
+from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
@@ -94,6 +96,9 @@ def track_parser():
     ap.add_argument("--no-monitor", action="store_true",
                     help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
+    add_cluster_options(ap)
+    ap.add_argument("--partition-rows", type=int, default=PARTITION_ROWS, metavar="N",
+                    help=f"with --workers/--scheduler: rows per partition (whole objects; default {PARTITION_ROWS})")
     return ap
 
 
@@ -171,6 +176,19 @@ def cmd_track(argv) -> int:
         if measure[m] is None:
             measure[m] = "position"
             say(f"{m} has no heading: it gets the positions only")
+    check_cluster_options(a)
+    if cluster_requested(a):  # the same output, computed on Dask in partitions of whole objects
+        from .track_dask import cmd_track_dask
+
+        # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
+        missing = [m for m in models if m not in given_q]
+        if a.meas_std is None or missing:
+            raise ValueError("--workers/--scheduler: give the noise (--meas-std and --accel-std"
+                             + (f" for {', '.join(missing)}" if missing else "") + "); estimating it needs every object "
+                             "in one process: run `lgekf track` on a sample of the file first, it prints the noise it used")
+        cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
+                          TRACK_HEADING_CAP).validate()
+        return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
     meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
     meas, starts, _ = meas.grouped(min_length=2)
     meas.t = to_seconds(meas.t, a.time_unit)

@@ -44,6 +44,7 @@ from .geo import to_local
 
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
+    "measurements_from_columns", "parse_number_column", "csv_header", "header_keys",
 ]
 
 CHUNK_LINES = 1 << 18
@@ -402,6 +403,73 @@ def _check_degrees(source, cols, lines):
             raise DataError(f"{source} line {int(lines[k])}: column {name!r} is {float(a[k])!r}, not in [{lo:g}, {hi:g}] degrees")
 
 
+def header_keys(source, names, use_heading: bool = False, auto: bool = False) -> dict:
+    """The columns lgekf reads among a header's names (aliases as in ``read_csv``).
+
+    Parameters
+    ----------
+    source : str
+        The file's name in messages.
+    names : sequence of str
+        The header (a CSV's fields, a Parquet file's column names).
+    use_heading : bool
+        The ``heading`` column is needed (an error when there is none).
+    auto : bool
+        The separator was guessed (adds a hint to the message about missing columns).
+
+    Returns
+    -------
+    dict
+        Key (``t``, ``x``, ``y`` or ``lat``, ``lon``, ``id``, ``heading``) -> index in ``names``.
+    """
+    where = _resolve_columns(source, list(names), use_heading, auto)
+    return {k: where[k] for k in ("t", "x", "y", "lat", "lon", "id", "heading") if k in where and (k != "heading" or use_heading)}
+
+
+def _header_columns(source, first: str, use_heading: bool, extra, delimiter):
+    """(separator, column keys, their indices) from a CSV's header line."""
+    if not first.strip():
+        raise DataError(f"{source}: empty file; expected a header line with columns t, x, y (and optionally id)")
+    delim, header = _choose_delimiter(first.rstrip("\r\n"), delimiter)
+    keys = header_keys(source, header, use_heading, delimiter == "auto")
+    colnames, usecols = list(keys), list(keys.values())
+    lower = [h.strip().lower() for h in header]
+    for name in extra:
+        if name in lower and name not in colnames:
+            colnames.append(name)
+            usecols.append(lower.index(name))
+    return delim, colnames, usecols
+
+
+def csv_header(path, use_heading: bool = False, delimiter="auto"):
+    """What ``read_csv`` finds in a file's header line, without reading the rest.
+
+    Parameters
+    ----------
+    path : str or Path
+        A file (plain or gzip-compressed).
+    use_heading : bool
+        The ``heading`` column is needed (an error when there is none).
+    delimiter : str or None, optional
+        As for ``read_csv``.
+
+    Returns
+    -------
+    delimiter : str or None
+        The separator (None: runs of whitespace).
+    columns : dict
+        Column key (``t``, ``x``, ``y`` or ``lat``, ``lon``, ``id``, ``heading``) -> index in the line.
+    gzip : bool
+        The file is gzip-compressed.
+    """
+    source = source_name(path)
+    with open_input(path, DataError) as f, _reading(source):
+        delim, colnames, usecols = _header_columns(source, f.readline(), use_heading, (), delimiter)
+    with open(path, "rb") as raw:
+        gz = raw.read(2) == b"\x1f\x8b"
+    return delim, dict(zip(colnames, usecols)), gz
+
+
 def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Measurements:
     """Read a ``t, x, y[, id][, heading]`` (or ``t, lat, lon, ...``) file with a header line.
 
@@ -423,43 +491,102 @@ def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Mea
         ``007`` and ``7`` are different objects; lat, lon are projected to metres (``origin`` set).
     """
     source = source_name(path)
-    auto = delimiter == "auto"
     with open_input(path, DataError) as f, _reading(source):
-        first = f.readline()
-        if not first.strip():
-            raise DataError(f"{source}: empty file; expected a header line with columns t, x, y (and optionally id)")
-        delim, header = _choose_delimiter(first.rstrip("\r\n"), delimiter)
-        where = _resolve_columns(source, header, use_heading, auto)
-        colnames = [k for k in ("t", "x", "y", "lat", "lon", "id", "heading") if k in where and (k != "heading" or use_heading)]
-        usecols = [where[k] for k in colnames]
-        lower = [h.strip().lower() for h in header]
-        for name in extra:
-            if name in lower and name not in colnames:
-                colnames.append(name)
-                usecols.append(lower.index(name))
-        str_cols = ("id",) if "id" in where else ()
+        delim, colnames, usecols = _header_columns(source, f.readline(), use_heading, extra, delimiter)
+        str_cols = ("id",) if "id" in colnames else ()
         cols, lines = _read_chunks(source, f, 2, delim, usecols, colnames, str_cols)
     if lines.size == 0:
         raise DataError(f"{source}: no measurements (the file has only a header line)")
-    _check_finite(source, cols, lines, [n for n in colnames if n not in str_cols])
-    if str_cols:
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols])
+
+
+def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=()) -> Measurements:
+    """Check parsed columns and assemble them into ``Measurements`` (the last step of ``read_csv``).
+
+    Parameters
+    ----------
+    source : str
+        The file's name in messages.
+    cols : dict
+        Column key (``t``, ``x``, ``y`` or ``lat``, ``lon``, optional ``id`` (text), ``heading`` and the
+        ``extra`` names) -> array, one entry per row.
+    lines : ndarray of int
+        The line number of every row (named in messages).
+    use_heading : bool
+        Keep the ``heading`` column.
+    origin : tuple of float, optional
+        (lat0, lon0) of the projection of lat, lon (default: the first row's).
+    extra : sequence of str
+        Further numeric columns, kept in ``Measurements.extra``.
+
+    Returns
+    -------
+    Measurements
+        Objects numbered in order of first appearance among these rows.
+    """
+    _check_finite(source, cols, lines, [n for n in cols if n != "id"])
+    if "id" in cols:
         _check_ids(source, cols["id"], lines)
         obj, labels = _objects_from_texts(cols["id"])
     else:
         obj, labels = np.zeros(lines.size, dtype=np.int64), ["0"]
-    origin = None
-    if "lat" in where:
+    if "lat" in cols:
         _check_degrees(source, cols, lines)
-        origin = (float(cols["lat"][0]), float(cols["lon"][0]))
+        if origin is None:
+            origin = (float(cols["lat"][0]), float(cols["lon"][0]))
         try:
             x, y = to_local(cols["lat"], cols["lon"], *origin)
         except ValueError as e:
             raise DataError(f"{source} line {int(lines[0])}: {e}") from None
         z = np.column_stack([x, y])
     else:
+        origin = None
         z = np.column_stack([cols["x"], cols["y"]])
     ext = {n: cols[n] for n in extra if n in cols}
     return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin)
+
+
+def parse_number_column(source: str, name: str, texts, lines) -> np.ndarray:
+    """Numbers (float64) of one column given as text, exactly as ``read_csv`` parses them.
+
+    Parameters
+    ----------
+    source : str
+        The file's name in messages.
+    name : str
+        The column's key (named in messages).
+    texts : array_like of str
+        One entry per row.
+    lines : ndarray of int
+        The line number of every row.
+
+    Returns
+    -------
+    ndarray
+        Correctly rounded float64 values (the same as ``numpy.loadtxt``'s).
+
+    Raises
+    ------
+    DataError
+        Naming the line, the column and the first value that is not a number.
+    """
+    a = np.asarray(texts, dtype=str)
+    try:
+        if np.any(np.char.find(a, "_") >= 0):  # Python's float() takes 1_000, numpy.loadtxt does not
+            raise ValueError
+        return a.astype(np.float64)
+    except ValueError:
+        for k, v in enumerate(a.tolist()):
+            try:
+                if "_" in v:
+                    raise ValueError
+                float(v)
+            except ValueError:
+                v = v.strip()
+                shown = v if v else "(empty)"
+                hint = " (a decimal comma? write numbers with a decimal point)" if _DECIMAL_COMMA.match(v) else ""
+                raise DataError(f"{source} line {int(lines[k])}: column {name!r}: {shown!r} is not a number{hint}") from None
+        raise
 
 
 def read_pedestrian(path, frame_dt: float) -> Measurements:
