@@ -93,9 +93,9 @@ README_TO_RUN = {
     "lgekf sweep": ["lgekf sweep grid.toml -o sweep_c/ --workers 1"],
     "lgekf sweep examples/sweep_sigma_dt.toml -o sweep_results/": None,
     "lgekf sweep grid.toml -o grid_results/ --scheduler tcp://10.0.0.5:8786": ["lgekf sweep grid.toml -o grid_results/ --scheduler {scheduler}"],
-    "lgekf track year.csv -o tracks.csv --model all --workers 2": None,
-    "lgekf track detections.parquet -o tracks.csv --scheduler tcp://10.0.0.5:8786":
-        ["lgekf track detections.parquet -o tracks.csv --scheduler {scheduler}"],
+    "lgekf track year.csv -o tracks.csv --model ctrv --meas-std 1 --accel-std 2.8,0.13 --workers 2": None,
+    "lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler tcp://10.0.0.5:8786":
+        ["lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler {scheduler}"],
     "lgekf evaluate ethucy --tune --workers 2": None,
 }
 

@@ -17,8 +17,16 @@ from lgekf.core.registry import MODELS
 pytest.importorskip("distributed")
 
 
+# On a cluster `track` takes the noise as given (the estimate from the data pools every object in one
+# process); both runs of every comparison get the same given noise, for every model.
+NOISE = ("--meas-std", "0.3", *[a for m, s in MODELS.items() for a in ("--accel-std", f"{m}=" + ",".join(map(str, s.default_accel_std)))])
+
+
 def run(cmd, *args, cwd):
-    return subprocess.run([*cli_command(), cmd, *map(str, args)], capture_output=True, text=True, cwd=cwd)
+    args = [*map(str, args)]
+    if cmd == "track" and "--meas-std" not in args:
+        args += NOISE
+    return subprocess.run([*cli_command(), cmd, *args], capture_output=True, text=True, cwd=cwd)
 
 
 def detections(n_obj=30, seed=5, blank_after=40):
@@ -143,7 +151,8 @@ def test_bad_input_one_line_exit_2_no_output(tmp_path, dask_scheduler, case):
     text, extra, message = BAD[case]
     (tmp_path / "in.csv").write_text(text)
     inp = "-" if extra[:1] == ["-"] else "in.csv"
-    r = subprocess.run([*cli_command(), "track", inp, "-o", "out.csv", *extra[1 if inp == "-" else 0:], "--scheduler", dask_scheduler],
+    r = subprocess.run([*cli_command(), "track", inp, "-o", "out.csv", *extra[1 if inp == "-" else 0:], "--scheduler", dask_scheduler,
+                        *NOISE],
                        input=text, capture_output=True, text=True, cwd=tmp_path)
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()
@@ -217,3 +226,12 @@ def test_other_separators(data, tmp_path, dask_scheduler, sep, option):
                "--partition-rows", 80, cwd=tmp_path)
     assert one.returncode == 0 and many.returncode == 0, many.stderr
     same_files(tmp_path / "one.csv", tmp_path / "many.csv")
+
+
+def test_cluster_run_needs_the_noise_given(tmp_path, dask_scheduler):
+    """The noise estimate pools every object of the file, so on a cluster `track` asks for the noise."""
+    (tmp_path / "in.csv").write_text("t,x,y\n0,0,0\n0.1,0.3,0\n0.2,0.6,0\n")
+    r = subprocess.run([*cli_command(), "track", "in.csv", "-o", "out.csv", "--model", "cv", "--scheduler", dask_scheduler],
+                       capture_output=True, text=True, cwd=tmp_path)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "give the noise (--meas-std and --accel-std for cv)" in r.stderr
+    assert not (tmp_path / "out.csv").exists()
