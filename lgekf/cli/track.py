@@ -178,8 +178,10 @@ def cmd_track(argv) -> int:
             say(f"{m} has no heading: it gets the positions only")
     check_cluster_options(a)
     if cluster_requested(a):  # the same output, computed on Dask in partitions of whole objects
+        from ..apps.cluster import require_dask
         from .track_dask import cmd_track_dask
 
+        require_dask("lgekf track --workers/--scheduler")  # first: without Dask nothing else matters
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
         if a.meas_std is None or missing:
