@@ -19,6 +19,8 @@ from lgekf.apps.sweep_table import read_table, table_columns
 from lgekf.experiments.grid import load_grid
 from lgekf.experiments.study import run_study
 
+pytestmark = pytest.mark.slow  # Dask clusters start in seconds each; the quick loop skips them, CI runs them
+
 pytest.importorskip("distributed")
 
 GRID = """\

@@ -14,6 +14,8 @@ from lgekf.apps.evaluate_dask import track_ranges
 from lgekf.apps.track_dask import _divisions
 from lgekf.core.registry import MODELS
 
+pytestmark = pytest.mark.slow  # Dask clusters start in seconds each; the quick loop skips them, CI runs them
+
 pytest.importorskip("distributed")
 
 
