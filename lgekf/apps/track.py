@@ -384,7 +384,8 @@ def output_path(out, model: str, all_models: bool):
 
 def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
                 monitor: MonitorConfig | None = MonitorConfig()):
-    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk.
+    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
+    (``bar`` None: no progress).
 
     Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
     """
@@ -419,6 +420,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
         parts.append(r.flag[:, None].astype(float))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
-        bar.update(b - a)
+        if bar is not None:
+            bar.update(b - a)
         o = o2
     return starts[-1], alarms, flagged

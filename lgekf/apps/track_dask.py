@@ -72,11 +72,6 @@ class TrackSource:
         return "lat" in self.columns
 
 
-class _NoBar:
-    def update(self, n=1):
-        pass
-
-
 def open_source(path, use_heading: bool = False, delimiter="auto") -> TrackSource:
     """Check a file for the Dask reader and find its columns (``read_csv``'s rules and aliases).
 
@@ -349,7 +344,7 @@ def _track_partition(df, src: TrackSource, origin, models, measure: dict, cfg, f
     data = []
     for m in models:
         buf = io.BytesIO()
-        write_model(buf, m, meas, starts, cfg, full_cov, digits, _NoBar(), measure[m], monitor)
+        write_model(buf, m, meas, starts, cfg, full_cov, digits, None, measure[m], monitor)
         head = (",".join(output_columns(m, full_cov, meas.origin is not None)) + "\n").encode()
         b = buf.getvalue()
         assert b.startswith(head)
