@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
 
 
 @nb.njit(cache=True)
@@ -1015,4 +1015,76 @@ def tangent_error(s, c):
     out[2] = wrap_angle(c2 - psi + math.atan2(c4, c3))
     out[3] = -v + math.sqrt(c3*c3 + c4*c4)
     out[4] = c5 - omega
+    return out
+
+
+@nb.njit(cache=True)
+def retract(s, eps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    eps3 = eps[3]
+    eps4 = eps[4]
+    s[0] = eps0 + x
+    s[1] = eps1 + y
+    s[2] = eps2 + psi
+    s[3] = eps3 + v
+    s[4] = eps4 + omega
+
+
+@nb.njit(cache=True)
+def between(s, t):
+    """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
+    angle coordinates of a Euclidean model wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    t_x = t[0]
+    t_y = t[1]
+    t_psi = t[2]
+    t_v = t[3]
+    t_omega = t[4]
+    out = np.zeros(5)
+    out[0] = t_x - x
+    out[1] = t_y - y
+    out[2] = wrap_angle(-psi + t_psi)
+    out[3] = t_v - v
+    out[4] = -omega + t_omega
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian(eps):
+    """Φ_G(ε) of the whole group (block-diagonal over its factors, I for Rⁿ);
+    log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.
+    """
+    out = np.zeros((5, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv(eps):
+    """Φ_G(ε)^-1 of the whole group.
+    """
+    out = np.zeros((5, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
     return out

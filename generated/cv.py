@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
 
 
 @nb.njit(cache=True)
@@ -556,4 +556,68 @@ def tangent_error(s, c):
     out[1] = c1 - y
     out[2] = _cos_c2*c3 - _sin_c2*c4 - w_x
     out[3] = _cos_c2*c4 + _sin_c2*c3 - w_y
+    return out
+
+
+@nb.njit(cache=True)
+def retract(s, eps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    eps3 = eps[3]
+    s[0] = eps0 + x
+    s[1] = eps1 + y
+    s[2] = eps2 + w_x
+    s[3] = eps3 + w_y
+
+
+@nb.njit(cache=True)
+def between(s, t):
+    """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
+    angle coordinates of a Euclidean model wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    t_x = t[0]
+    t_y = t[1]
+    t_w_x = t[2]
+    t_w_y = t[3]
+    out = np.zeros(4)
+    out[0] = t_x - x
+    out[1] = t_y - y
+    out[2] = t_w_x - w_x
+    out[3] = t_w_y - w_y
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian(eps):
+    """Φ_G(ε) of the whole group (block-diagonal over its factors, I for Rⁿ);
+    log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.
+    """
+    out = np.zeros((4, 4))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv(eps):
+    """Φ_G(ε)^-1 of the whole group.
+    """
+    out = np.zeros((4, 4))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
     return out

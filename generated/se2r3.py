@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
 
 
 @nb.njit(cache=True)
@@ -1241,4 +1241,127 @@ def tangent_error(s, c):
     out[3] = c3 - v_x
     out[4] = c4 - v_y
     out[5] = c5 - omega
+    return out
+
+
+@nb.njit(cache=True)
+def retract(s, eps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    eps3 = eps[3]
+    eps4 = eps[4]
+    eps5 = eps[5]
+    _sin_eps2 = math.sin(eps2)
+    _cos_eps2 = math.cos(eps2)
+    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
+    _t0 = -(_cosc_eps2*eps1) + _sinc_eps2*eps0
+    _t1 = _cosc_eps2*eps0 + _sinc_eps2*eps1
+    s[0] = _t0*c_theta - _t1*s_theta + x
+    s[1] = _t0*s_theta + _t1*c_theta + y
+    s[2] = _cos_eps2*c_theta - _sin_eps2*s_theta
+    s[3] = _cos_eps2*s_theta + _sin_eps2*c_theta
+    s[4] = eps3 + v_x
+    s[5] = eps4 + v_y
+    s[6] = eps5 + omega
+
+
+@nb.njit(cache=True)
+def between(s, t):
+    """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
+    angle coordinates of a Euclidean model wrapped to (-π, π].
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    t_x = t[0]
+    t_y = t[1]
+    t_c_theta = t[2]
+    t_s_theta = t[3]
+    t_v_x = t[4]
+    t_v_y = t[5]
+    t_omega = t[6]
+    out = np.zeros(6)
+    _a0 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
+    _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
+    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
+    _t3 = _t2/2.0
+    out[0] = _halfcot__a0*_t0 + _t1*_t3
+    out[1] = _halfcot__a0*_t1 - _t0*_t3
+    out[2] = _t2
+    out[3] = t_v_x - v_x
+    out[4] = t_v_y - v_y
+    out[5] = -omega + t_omega
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian(eps):
+    """Φ_G(ε) of the whole group (block-diagonal over its factors, I for Rⁿ);
+    log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.
+    """
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    out = np.zeros((6, 6))
+    _sin_eps2 = math.sin(eps2)
+    _cos_eps2 = math.cos(eps2)
+    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
+    _cosc2_eps2 = cosc2(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
+    _sinc2_eps2 = sinc2(eps2, _sin_eps2, _cos_eps2)
+    out[0, 0] = _sinc_eps2
+    out[0, 1] = _cosc_eps2
+    out[0, 2] = -(_cosc2_eps2*eps1) + _sinc2_eps2*eps0
+    out[1, 0] = -_cosc_eps2
+    out[1, 1] = _sinc_eps2
+    out[1, 2] = _cosc2_eps2*eps0 + _sinc2_eps2*eps1
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv(eps):
+    """Φ_G(ε)^-1 of the whole group.
+    """
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    out = np.zeros((6, 6))
+    _sin_eps2 = math.sin(eps2)
+    _cos_eps2 = math.cos(eps2)
+    _halfcot_eps2 = halfcot(eps2, _sin_eps2, _cos_eps2)
+    _halfcot1_eps2 = halfcot1(eps2, _sin_eps2, _cos_eps2)
+    _t0 = eps2/2.0
+    out[0, 0] = _halfcot_eps2
+    out[0, 1] = -_t0
+    out[0, 2] = _halfcot1_eps2*eps0 + eps1/2.0
+    out[1, 0] = _t0
+    out[1, 1] = _halfcot_eps2
+    out[1, 2] = _halfcot1_eps2*eps1 - eps0/2.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
     return out

@@ -1,8 +1,8 @@
 """The architecture as a test: imports go one way between layers, there are no import cycles, the runtime
 never imports SymPy, and no module outside the definitions branches on a model's name.
 
-Runtime layers (lower may not import higher): generated (0) < core, io (1) < experiments (2) < apps (3)
-< cli (4).  derive/: lie (0) < models, measurements (1) < algebra (2)
+Runtime layers (lower may not import higher): generated (0) < core, io (1) < estimators (2) < experiments (3) < apps (4)
+< cli (5).  derive/: lie (0) < models, measurements (1) < algebra (2)
 < codegen, paper (3).
 """
 
@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
-RUNTIME_LAYERS = {"generated": 0, "core": 1, "io": 1, "experiments": 2, "apps": 3, "cli": 4}
+RUNTIME_LAYERS = {"generated": 0, "core": 1, "io": 1, "estimators": 2, "experiments": 3, "apps": 4, "cli": 5}
 DERIVE_LAYERS = {"lie": 0, "models": 1, "measurements": 1, "algebra": 2, "codegen": 3, "paper": 3}
 
 

@@ -15,14 +15,16 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
-  ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m)).
+  ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
+* group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
+  of the whole group (smoothing and mixing on the group).
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
-from ..algebra import LEGEND, lg_predict, lg_update, packed_index, sym_cov, symbolize
+from ..algebra import LEGEND, _changed, lg_predict, lg_update, packed_index, sym_cov, symbolize
 from ..lie.groups import SE2
 from ..models.base import COMMON
 from .printer import Kernel
@@ -390,7 +392,43 @@ def model_kernels(model, measurements: dict) -> list:
         "in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].",
         ["s", "c"], sin_ + cin, err.applyfunc(sub),
     ))
+    ks.extend(group_operation_kernels(model))
     return ks
+
+
+def group_operation_kernels(model) -> list:
+    """⊕, ⊖ and the right Jacobian of the model's whole group, for smoothing and mixing on the group.
+
+    ``retract(s, eps)``: μ ← μ·exp([ε]^∧) in place (the update's eq:up_mu with a given ε);
+    ``between(s, t)``: [log_G(μ_s^-1 μ_t)]^∨, angle coordinates of a Euclidean model wrapped to (-π, π];
+    ``right_jacobian(eps)`` / ``right_jacobian_inv(eps)``: Φ_G(ε) and its inverse (block-diagonal over
+    the factors; I for Rⁿ), log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.
+    """
+    from ..lie.special import wrap
+
+    n = model.n
+    G = model.group
+    sub = model.to_internal
+    sin_ = vec_inputs("s", model.internal)
+    eps = sp.symbols(f"eps0:{n}", real=True)
+    ein = vec_inputs("eps", eps)
+    mu = model.mean().applyfunc(sub)
+    new = _changed(model, model.internal_of(mu * G.exp(list(eps))))
+    tsyms = [sp.Symbol(f"t_{v}", real=True) for v in model.internal]
+    tin = vec_inputs("t", tsyms)
+    mu_t = mu.subs(dict(zip(model.internal, tsyms)), simultaneous=True)
+    d = G.log(G.inverse(mu) * mu_t)
+    d = sp.Matrix([wrap(e) if i in model.angles and i not in model.periodic_tangent() else e for i, e in enumerate(d)])
+    return [
+        Kernel(name="retract", doc="μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).",
+               params=["s", "eps"], inputs=sin_ + ein, outputs=[(f"s[{i}]", e) for i, e in new.items()]),
+        vector_kernel("between", "[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);\n"
+                      "angle coordinates of a Euclidean model wrapped to (-π, π].",
+                      ["s", "t"], sin_ + tin, d.applyfunc(sub)),
+        matrix_kernel("right_jacobian", "Φ_G(ε) of the whole group (block-diagonal over its factors, I for Rⁿ);\n"
+                      "log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.", ["eps"], ein, G.right_jacobian(list(eps))),
+        matrix_kernel("right_jacobian_inv", "Φ_G(ε)^-1 of the whole group.", ["eps"], ein, G.right_jacobian_inv(list(eps))),
+    ]
 
 
 def registry_entry(model, measurements: dict, refused: dict) -> dict:
