@@ -1,0 +1,290 @@
+"""Multi-target tracking from unlabelled detections in clutter: ``MultiTargetTracker``.
+
+One call ``step(t, detections)`` per scan (all detections of one time):
+
+1. **predict** every track to t (``ModelBank.predict``: the model's fused LG-EKF prediction) and its
+   existence r ← p_S r (``survival_prob`` per scan);
+2. **gate** every track × detection with the model's innovation covariance S = ℋPℋᵀ + R
+   (``lgekf.estimators.gating``: d² ≤ γ, γ the χ²_m quantile of ``gate_prob``);
+3. **associate** (``lgekf.estimators.association``): PDA, JPDA (JIPDA: joint events with existence) or
+   GNN marginals from the weights w0_i = 1 − r_i P_D P_G and W_ij = r_i P_D N(e_ij; 0, S_i)/κ, κ the
+   clutter density (λ per m² per scan for position; λ/(2π) per m²·rad for pose);
+4. **update** the existence r_i⁺ = Σ_j p_ij + p_i0 r_i(1 − P_D P_G)/w0_i (integrated track existence,
+   IPDA/JIPDA) and the state by the PDA correction on the group (``lgekf.estimators.pda``:
+   μ ← μ·exp(ν), P ← Φ(ν) P_c Φ(ν)ᵀ);
+5. **manage tracks** (the choice: integrated track existence, not M-of-N):
+
+   * a track is *confirmed* the first time r ≥ ``confirm_existence`` (default 0.9) and from then on
+     *reported* in every scan with r ≥ ``report_existence`` (default 0.5);
+   * a track is *deleted* when r < ``delete_existence`` (default 0.01);
+   * *initiation* (two-point, the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): a
+     detection is *unused* when Σ_i p_ij < 0.5 (no track claims it); each unused detection of this scan is
+     paired with the nearest unused detection of the previous scan within ``max_speed``·Δt + 3√2 r (each
+     previous one used once, nearest pairs first) and starts a track with existence ``birth_existence``
+     (default 0.1), position from this detection and velocity from the pair; unpaired unused detections
+     are kept for the next scan only.
+
+   Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
+
+The per-track filters are a ``TrackFilterBank`` (``lgekf.estimators.bank``): ``ModelBank`` for any
+registry model; an IMM bank implementing the same five calls plugs in unchanged (``bank=`` argument).
+
+With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
+from ..core.registry import get_model
+from ..core.validate import positive_scalar
+from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
+from .bank import ModelBank, TrackFilterBank
+from .gating import gate_threshold
+from .jpda import MAX_EVENTS
+
+__all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP"]
+
+HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
+UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
+
+
+@dataclass
+class ScanReport:
+    """The confirmed tracks after one scan.
+
+    Attributes
+    ----------
+    t : float
+        Scan time.
+    ids : ndarray of int, (K,)
+        Track ids.
+    states : ndarray, (K, n)
+        Physical states (the model's ``state_names``).
+    stds : ndarray, (K, n)
+        Std of each tangent coordinate (square roots of P's diagonal).
+    existence : ndarray, (K,)
+        Existence probabilities.
+    """
+
+    t: float
+    ids: np.ndarray
+    states: np.ndarray
+    stds: np.ndarray
+    existence: np.ndarray
+
+
+class MultiTargetTracker:
+    """Track many objects from unlabelled detections with clutter and misses (module docstring).
+
+    Parameters
+    ----------
+    model : str
+        A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...).
+    association : {"jpda", "pda", "gnn"}
+        JPDA (JIPDA; exact joint events up to ``max_events`` per cluster, loopy belief propagation beyond),
+        PDA per track, or global nearest neighbour.
+    detection_prob : float
+        P_D in (0, 1].
+    clutter_density : float
+        λ > 0, expected false alarms per m² per scan.
+    meas_std : float or tuple
+        Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements.
+    accel_std : tuple, optional
+        The model's process-noise stds (default the model's ``default_accel_std``).
+    measurement : {"position", "pose"}
+        Detections (x, y) or (x, y, θ).
+    gate_prob : float
+        P_G: the gate is d² ≤ the χ²_m quantile of P_G.
+    survival_prob : float
+        Probability that a target survives one scan.
+    birth_existence, confirm_existence, report_existence, delete_existence : float
+        Existence probability of a new track, of confirmation, of reporting a confirmed track, of deletion.
+    max_speed : float
+        Largest speed (m/s) of a two-point initiation.
+    omega_std : float
+        Initial turn-rate std (rad/s) of a new track.
+    max_events : int
+        JPDA: clusters with more joint events use loopy belief propagation.
+    bank : TrackFilterBank, optional
+        The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
+
+    Examples
+    --------
+    >>> trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9)
+    >>> for k in range(6):
+    ...     rep = trk.step(0.1 * k, np.array([[1.0 * k * 0.1, 0.0], [50.0, 0.5 * k * 0.1]]))
+    >>> sorted(rep.ids.tolist()), bool(np.all(rep.existence > 0.9))
+    ([0, 1], True)
+    """
+
+    def __init__(self, model: str, association: str = "jpda", detection_prob: float = 0.9,
+                 clutter_density: float = 1e-4, meas_std=0.3, accel_std=None, measurement: str = "position",
+                 gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float = 0.1,
+                 confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
+                 max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
+                 bank: TrackFilterBank | None = None):
+        spec = get_model(model)
+        meas = spec.measurement(measurement)
+        if association not in ASSOCIATIONS:
+            raise ValueError(f"association: unknown method {association!r}; choose one of {', '.join(ASSOCIATIONS)}")
+        for name, v in (("detection-prob", detection_prob), ("gate-prob", gate_prob), ("survival-prob", survival_prob),
+                        ("birth-existence", birth_existence), ("confirm-existence", confirm_existence),
+                        ("report-existence", report_existence), ("delete-existence", delete_existence)):
+            positive_scalar(name, v)
+            if v > 1:
+                raise ValueError(f"{name}: must be a probability in (0, 1], got {v}")
+        self.clutter_density = positive_scalar("clutter-density", clutter_density)
+        self.max_speed = positive_scalar("max-speed", max_speed)
+        self.omega_std = positive_scalar("omega-std", omega_std)
+        r = np.atleast_1d(np.asarray(meas_std, dtype=float))
+        if r.size == 1:
+            r = np.full(len(meas.noise_names), r[0])
+        if r.size != len(meas.noise_names) or not np.all(np.isfinite(r)) or np.any(r <= 0):
+            raise ValueError(f"meas-std: {measurement} takes {len(meas.noise_names)} positive value(s) "
+                             f"({', '.join(meas.noise_names)}), got {np.asarray(meas_std).tolist()}")
+        q = spec.default_accel_std if accel_std is None else accel_std
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        if q.size != len(spec.noise_names) or not np.all(np.isfinite(q)) or np.any(q < 0):
+            raise ValueError(f"accel-std: {model} takes {len(spec.noise_names)} non-negative value(s) "
+                             f"({', '.join(spec.noise_names)}), got {np.asarray(accel_std).tolist()}")
+        self.model, self.measurement, self.association = model, measurement, association
+        self.spec, self.meas = spec, meas
+        self.pd, self.pg, self.ps = float(detection_prob), float(gate_prob), float(survival_prob)
+        self.r_birth, self.r_confirm = float(birth_existence), float(confirm_existence)
+        self.r_report, self.r_delete = float(report_existence), float(delete_existence)
+        self.meas_std = r
+        self.pos_std = float(np.sqrt(np.mean(r[:2] ** 2))) if r.size > 1 else float(r[0])
+        self.max_events = int(max_events)
+        self.kappa = self.clutter_density / (2.0 * math.pi) ** len(meas.angles)
+        self.gamma = gate_threshold(self.pg, meas.dim)
+        self.bank = bank if bank is not None else ModelBank(model, measurement, q, r)
+        cap = self.bank.live.size
+        self.r = np.zeros(cap)
+        self.ids = np.full(cap, -1, dtype=np.int64)
+        self.confirmed = np.zeros(cap, dtype=bool)
+        self.next_id = 0
+        self.t = None
+        self.seeds = np.zeros((0, meas.dim))
+        self.last_exact = True
+
+    # ------------------------------------------------------------------ one scan
+    def step(self, t: float, detections) -> ScanReport:
+        """Process the scan at time t with its detections (M, m) (rows (x, y) or (x, y, θ)); M may be 0.
+
+        Parameters
+        ----------
+        t : float
+            Scan time in seconds, increasing from call to call.
+        detections : array_like, (M, m)
+            The scan's detections, unlabelled.
+
+        Returns
+        -------
+        ScanReport
+            The confirmed tracks after the scan.
+        """
+        Z = np.ascontiguousarray(detections, dtype=float).reshape(-1, self.meas.dim)
+        if not np.all(np.isfinite(Z)):
+            raise ValueError(f"detections at t = {t}: contain NaN or infinite values")
+        t = float(t)
+        dt = 0.0 if self.t is None else t - self.t
+        if self.t is not None and not dt > 0:
+            raise ValueError(f"scan times must increase: t = {t} after {self.t}")
+        bank = self.bank
+        self._sync()
+        live = bank.live
+        M = Z.shape[0]
+        claimed = np.zeros(M)
+        if live.any():
+            bank.predict(dt)
+            self.r[live] *= self.ps
+            ll, gated = bank.gate(Z, self.gamma)
+            N = live.size
+            w0 = np.empty(N)
+            W = np.empty((N, M))
+            association_weights(ll, gated, live, self.r, self.pd, self.pg, self.kappa, w0, W)
+            p0, P, exact = association_marginals(self.association, w0, W, gated, live, self.max_events)
+            self.last_exact = bool(exact[live].all())
+            beta0 = np.ones(N)
+            beta = np.zeros((N, M))
+            r_new = self.r.copy()
+            existence_and_weights(p0, P, w0, self.r, live, self.pd, self.pg, r_new, beta0, beta)
+            bank.update(beta0, beta)
+            self.r = r_new
+            claimed = P[live].sum(axis=0)
+            self.confirmed |= live & (self.r >= self.r_confirm)
+            dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
+            if dead.size:
+                bank.remove(dead)
+                self.ids[dead] = -1
+                self.confirmed[dead] = False
+                self.r[dead] = 0.0
+        unused = Z[claimed < UNUSED_BELOW]
+        self._initiate(t, dt, unused)
+        self.t = t
+        return self.report()
+
+    def _sync(self):
+        """Grow the per-track arrays when the bank has grown."""
+        cap = self.bank.live.size
+        if self.r.size < cap:
+            k = cap - self.r.size
+            self.r = np.concatenate([self.r, np.zeros(k)])
+            self.ids = np.concatenate([self.ids, np.full(k, -1, dtype=np.int64)])
+            self.confirmed = np.concatenate([self.confirmed, np.zeros(k, dtype=bool)])
+
+    def _initiate(self, t, dt, unused):
+        """Two-point initiation from this scan's unused detections and the previous scan's (module docstring)."""
+        seeds = self.seeds
+        self.seeds = unused
+        if seeds.shape[0] == 0 or unused.shape[0] == 0 or dt <= 0:
+            return
+        reach = self.max_speed * dt + 3.0 * math.sqrt(2.0) * self.pos_std
+        d = np.hypot(unused[:, None, 0] - seeds[None, :, 0], unused[:, None, 1] - seeds[None, :, 1])
+        cand = np.argwhere(d <= reach)
+        if cand.size == 0:
+            return
+        order = np.argsort(d[cand[:, 0], cand[:, 1]], kind="stable")
+        used_new = np.zeros(unused.shape[0], dtype=bool)
+        used_old = np.zeros(seeds.shape[0], dtype=bool)
+        pairs = []
+        for a, b in cand[order]:
+            if not used_new[a] and not used_old[b]:
+                used_new[a] = used_old[b] = True
+                pairs.append((a, b))
+        pairs = np.asarray(pairs, dtype=np.int64)
+        B = len(pairs)
+        tt = np.concatenate([np.full(B, t - dt), np.full(B, t)])
+        zz = np.concatenate([seeds[pairs[:, 1]], unused[pairs[:, 0]]])
+        heading = zz[:, 2] if self.meas.angles else None
+        hstd = float(self.meas_std[2]) if self.meas.angles else 0.1
+        c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
+                           heading, hstd, HEADING_CAP, first=np.arange(B))
+        x0, P0 = initial_estimates(self.model, c, var)
+        rows = self.bank.add(x0, P0)
+        self._sync()
+        self.r[rows] = self.r_birth
+        self.ids[rows] = np.arange(self.next_id, self.next_id + B)
+        self.next_id += B
+        self.confirmed[rows] = False
+        # the seeds that started a track are used
+        self.seeds = unused[~used_new]
+
+    # ------------------------------------------------------------------ reading out
+    def report(self) -> ScanReport:
+        """The confirmed tracks now (confirmed and existence ≥ ``report_existence``), sorted by id."""
+        live = self.bank.live
+        sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
+        sel = sel[np.argsort(self.ids[sel], kind="stable")]
+        X = self.bank.physical()[sel] if sel.size else np.zeros((0, self.spec.n))
+        return ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
+
+    @property
+    def n_tracks(self) -> int:
+        """Number of live tracks (tentative and confirmed)."""
+        return int(self.bank.live.sum())
