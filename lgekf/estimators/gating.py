@@ -14,7 +14,7 @@ import math
 
 import numba as nb
 import numpy as np
-from scipy.stats import chi2
+from scipy.special import gammaincinv
 
 __all__ = ["gate_threshold", "innovation_covariances", "gate_scores", "unpack_into"]
 
@@ -41,7 +41,7 @@ def gate_threshold(gate_prob: float, m: int) -> float:
     """
     if not 0.0 < gate_prob < 1.0:
         raise ValueError(f"gate probability: must be in (0, 1), got {gate_prob}")
-    return float(chi2.ppf(gate_prob, m))
+    return float(2.0 * gammaincinv(0.5 * m, gate_prob))  # the χ²_m quantile
 
 
 @nb.njit(cache=True)
