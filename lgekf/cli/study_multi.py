@@ -34,6 +34,11 @@ def study_multi_parser():
     ap.add_argument("--duration", type=float, default=20.0, help="scenario length in s (default 20)")
     ap.add_argument("--gospa-c", type=float, default=5.0, help="GOSPA cut-off c in m (default 5)")
     ap.add_argument("--gospa-p", type=float, default=2.0, help="GOSPA order p (default 2)")
+    ap.add_argument("--max-speed", type=float, default=30.0, help="largest speed of a new track in m/s (default 30)")
+    ap.add_argument("--dataset", default=None, metavar="NAME",
+                    help="real trajectories of `lgekf evaluate` (eth, hotel, zara1, zara2, univ, ...) as detection streams "
+                         "(truth + noise + misses + clutter) instead of the simulated scenario")
+    ap.add_argument("--data-root", default=None, help="folder of the datasets (default $LGEKF_DATA, else ../shared/data)")
     ap.add_argument("--quiet", action="store_true", help="print only the output file")
     return ap
 
@@ -55,7 +60,8 @@ def cmd_study_multi(argv) -> int:
     cfg = MultiStudyConfig(models=_names("--models", a.models, list(MODELS)),
                            associations=_names("--association", a.association, list(ASSOCIATIONS)),
                            runs=a.runs, seed=a.seed, dt=a.dt, duration=a.duration, detection_prob=a.detection_prob,
-                           clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p).validate()
+                           clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
+                           dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed).validate()
     say = (lambda s: None) if a.quiet else (lambda s: print(s, file=sys.stderr))
     with compile_notice("lgekf study", enabled=not a.quiet):
         cells = run_multi_study(cfg, progress=lambda c: say(f"  {c.model} {c.association}: GOSPA {c.gospa:.3f}"))

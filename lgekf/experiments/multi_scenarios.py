@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["MultiScenario", "BASE_TARGETS", "base_scenario", "truth_trajectories", "detection_stream"]
+__all__ = ["MultiScenario", "BASE_TARGETS", "base_scenario", "truth_trajectories", "detection_stream", "dataset_scenario"]
 
 # id: (birth s, death s, x0, y0, heading deg, speed m/s, turn rate rad/s)
 BASE_TARGETS = (
@@ -185,3 +185,47 @@ def base_scenario(seed: int = 0, dt: float = 0.1, duration: float = 20.0, detect
     truth = truth_trajectories(targets, times, rng)
     dets, srcs = detection_stream(truth, rng, detection_prob, clutter_density, meas_std, region, measurement)
     return MultiScenario(times, truth, dets, srcs, tuple(region))
+
+
+def dataset_scenario(ds, seed: int = 0, detection_prob: float = 0.9, clutter_density: float = 0.01, meas_std=0.1,
+                     margin: float = 2.0) -> MultiScenario:
+    """A detection stream from real trajectories (``lgekf.io.datasets.Dataset``, e.g. the pedestrians of
+    ``lgekf evaluate``): one scan per distinct time, truth = the objects present then, detections = truth +
+    N(0, r² I) noise, each kept with probability P_D, plus Poisson clutter of density λ uniform in the
+    data's bounding box grown by ``margin`` metres.
+
+    Parameters
+    ----------
+    ds : Dataset
+        Tracks sorted by object (t, p, starts).
+    seed : int
+        Seed of the noise, misses and clutter.
+    detection_prob, clutter_density : float
+        P_D and λ (false alarms per m² per scan).
+    meas_std : float
+        Position noise std r (m).
+    margin : float
+        Border added around the bounding box of the data for the clutter (m).
+
+    Returns
+    -------
+    MultiScenario
+        The truth's heading column is the direction of motion between consecutive samples (0 when unknown).
+    """
+    rng = np.random.default_rng(seed)
+    obj = np.repeat(np.arange(ds.n_tracks), np.diff(ds.starts))
+    heading = np.zeros(ds.t.size)
+    d = np.diff(ds.p, axis=0)
+    same = obj[1:] == obj[:-1]
+    heading[1:][same] = np.arctan2(d[same, 1], d[same, 0])
+    times, inv = np.unique(ds.t, return_inverse=True)
+    order = np.argsort(inv, kind="stable")
+    cuts = np.searchsorted(inv[order], np.arange(times.size + 1))
+    truth = []
+    for k in range(times.size):
+        rows = order[cuts[k]:cuts[k + 1]]
+        truth.append((obj[rows].astype(np.int64), np.column_stack([ds.p[rows], heading[rows]])))
+    lo, hi = ds.p.min(axis=0) - margin, ds.p.max(axis=0) + margin
+    region = (float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]))
+    dets, srcs = detection_stream(truth, rng, detection_prob, clutter_density, meas_std, region)
+    return MultiScenario(times, truth, dets, srcs, region)

@@ -3,7 +3,9 @@ the base scenario (``lgekf.experiments.multi_scenarios``), scored by GOSPA (α =
 ``lgekf.experiments.gospa``) per scan and averaged, its localisation / missed / false parts, the track
 switches and the wall time of the tracker.
 
-Every cell sees the same detections (one stream per run seed).
+Every cell sees the same detections (one stream per run seed). With ``dataset`` the streams are the real
+trajectories of ``lgekf evaluate`` (``lgekf.experiments.multi_scenarios.dataset_scenario``: truth + noise +
+misses + clutter) instead of the base scenario.
 """
 
 from __future__ import annotations
@@ -16,9 +18,10 @@ import numpy as np
 from ..core.registry import get_model
 from ..estimators.tracker import MultiTargetTracker
 from .gospa import gospa, track_switches
-from .multi_scenarios import base_scenario
+from ..io.datasets import load_dataset
+from .multi_scenarios import base_scenario, dataset_scenario
 
-__all__ = ["MultiStudyConfig", "MultiCell", "run_tracker_on", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
+__all__ = ["MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
 
 MULTI_COLUMNS = ("model", "association", "gospa", "localisation", "missed", "false", "switches", "scans_per_s")
 
@@ -38,6 +41,9 @@ class MultiStudyConfig:
     meas_std: float = 0.3
     c: float = 5.0
     p: float = 2.0
+    dataset: str | None = None  # a preset of ``lgekf evaluate`` (e.g. eth): its trajectories as detection streams
+    data_root: str | None = None
+    max_speed: float = 30.0
 
     def validate(self):
         for m in self.models:
@@ -89,18 +95,28 @@ def run_tracker_on(scenario, step, c: float, p: float):
     return float(np.mean(G)), float(np.mean(L)), float(np.mean(Mi)), float(np.mean(F)), track_switches(assigned), wall
 
 
+def scenarios(cfg: MultiStudyConfig) -> list:
+    """The detection streams of the study: ``cfg.runs`` seeds of the base scenario, or of the real
+    trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent)."""
+    if cfg.dataset:
+        ds = load_dataset(cfg.dataset, root=cfg.data_root)
+        return [dataset_scenario(ds, seed=cfg.seed + k, detection_prob=cfg.detection_prob, clutter_density=cfg.clutter_density,
+                                 meas_std=cfg.meas_std) for k in range(cfg.runs)]
+    return [base_scenario(seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration, detection_prob=cfg.detection_prob,
+                          clutter_density=cfg.clutter_density, meas_std=cfg.meas_std) for k in range(cfg.runs)]
+
+
 def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
     """Every model × association of ``cfg`` on ``cfg.runs`` scenarios; a list of ``MultiCell``."""
     cfg.validate()
-    scen = [base_scenario(seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration, detection_prob=cfg.detection_prob,
-                          clutter_density=cfg.clutter_density, meas_std=cfg.meas_std) for k in range(cfg.runs)]
+    scen = scenarios(cfg)
     cells = []
     for model in cfg.models:
         for assoc in cfg.associations:
             parts, sw, wall, scans = [], 0, 0.0, 0
             for sc in scen:
                 trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
-                                         clutter_density=cfg.clutter_density, meas_std=cfg.meas_std)
+                                         clutter_density=cfg.clutter_density, meas_std=cfg.meas_std, max_speed=cfg.max_speed)
 
                 def step(t, Z, trk=trk):
                     rep = trk.step(t, Z)
@@ -120,7 +136,8 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
 
 def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     """The GOSPA table as text (mean per scan over all runs; parts in m^p)."""
-    head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {int(round(cfg.duration / cfg.dt)) + 1} scans; "
+    what = f"the {cfg.dataset} trajectories" if cfg.dataset else f"{int(round(cfg.duration / cfg.dt)) + 1} scans"
+    head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
             f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m")
     lines = [head, f"{'model':<8} {'assoc':<5} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} {'switches':>8} {'scans/s':>8}"]
     for c in cells:
