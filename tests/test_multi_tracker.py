@@ -132,6 +132,8 @@ BAD = {
     "bad_pd": ("t,x,y\n0,0,0\n", ["--detection-prob", "1.2"], "detection-prob: must be a probability"),
     "bad_clutter": ("t,x,y\n0,0,0\n", ["--clutter-density", "-1"], "clutter-density: must be a positive number"),
     "pose_without_heading": ("t,x,y\n0,0,0\n", ["--measure", "pose"], "heading"),
+    "accel_arity": ("t,x,y\n0,0,0\n", ["--model", "cv", "--accel-std", "1,2"], "accel-std: cv takes 1"),
+    "accel_other_model": ("t,x,y\n0,0,0\n", ["--model", "cv", "--accel-std", "se2se2=1,2,3"], "not the tracked model"),
     "cv_pose": ("t,x,y,heading\n0,0,0,0\n", ["--model", "cv", "--measure", "pose"], "no heading to measure"),
 }
 

@@ -18,7 +18,6 @@ from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
-from .track import parse_accel_std
 
 __all__ = ["cmd_track_multi", "track_multi_parser"]
 
@@ -57,11 +56,27 @@ def track_multi_parser():
     return ap
 
 
+def _accel_std(items, model):
+    """``--accel-std A,B,C`` (or ``MODEL=A,B,C`` naming the tracked model) -> the stds, None when not given;
+    the number and sign of the values are checked by the tracker."""
+    if not items:
+        return None
+    text = items[-1]
+    if "=" in text:
+        name, text = text.split("=", 1)
+        if name.strip() != model:
+            raise ValueError(f"--accel-std: {name.strip()!r} is not the tracked model ({model})")
+    try:
+        return tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
+
+
 def cmd_track_multi(argv) -> int:
     a = track_multi_parser().parse_args(argv)
     if not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
-    q = parse_accel_std(a.accel_std, [a.model]).get(a.model)
+    q = _accel_std(a.accel_std, a.model)
     MODELS[a.model].measurement(a.measure)
     check_output_path(a.output)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
