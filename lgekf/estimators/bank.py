@@ -10,7 +10,7 @@ scan for all tracks (no Python per track):
   and detection j (the quantities PDA/JPDA/GNN weigh);
 * ``update(beta0, beta)``: the PDA correction of every track with the association weights β of the last
   gated scan;
-* ``physical()`` and ``stds()``: the estimates to report.
+* ``physical(rows)`` and ``stds()``: the estimates to report.
 
 ``ModelBank`` implements it with the generated kernels of a model (fused ``predict``, ``calH_<meas>``,
 the innovation, ``retract``, ``right_jacobian``; see ``derive/codegen/bank.py``). An IMM bank would
@@ -47,7 +47,7 @@ class TrackFilterBank(Protocol):
 
     def update(self, beta0: np.ndarray, beta: np.ndarray) -> None: ...
 
-    def physical(self) -> np.ndarray: ...
+    def physical(self, rows: np.ndarray) -> np.ndarray: ...
 
     def stds(self) -> np.ndarray: ...
 
@@ -168,11 +168,12 @@ class ModelBank:
             self.kern.right_jacobian_bank(upd, eps, Phi)
             transport_covariances(Phi, Pc, upd, self.p)
 
-    def physical(self) -> np.ndarray:
-        """Physical states (N, n) of every row (rows not live are meaningless)."""
-        out = np.zeros((self.live.size, self.n))
-        for i in np.flatnonzero(self.live):
-            self.kern.physical_into(self.s[i], out[i])
+    def physical(self, rows: np.ndarray) -> np.ndarray:
+        """Physical states (len(rows), n) of the given live rows."""
+        rows = np.asarray(rows, dtype=np.int64)
+        out = np.zeros((rows.size, self.n))
+        for k, i in enumerate(rows):
+            self.kern.physical_into(self.s[i], out[k])
         return out
 
     def stds(self) -> np.ndarray:

@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numba as nb
 import numpy as np
 
 from ..core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
@@ -51,6 +52,42 @@ __all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP"]
 
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
+
+
+@nb.njit(cache=True)
+def nearest_pairs(new, old, reach):
+    """Greedy nearest pairs (i of ``new``, j of ``old``) with distance ≤ reach, nearest first, each point used at
+    most once; new (A, ≥2), old (B, ≥2) positions in the first two columns. Returns (K, 2) indices."""
+    A, B = new.shape[0], old.shape[0]
+    ci = np.empty(A * B, dtype=np.int64)
+    cj = np.empty(A * B, dtype=np.int64)
+    cd = np.empty(A * B)
+    k = 0
+    r2 = reach * reach
+    for i in range(A):
+        for j in range(B):
+            dx = new[i, 0] - old[j, 0]
+            dy = new[i, 1] - old[j, 1]
+            d2 = dx * dx + dy * dy
+            if d2 <= r2:
+                ci[k] = i
+                cj[k] = j
+                cd[k] = d2
+                k += 1
+    order = np.argsort(cd[:k], kind="mergesort")
+    used_i = np.zeros(A, dtype=np.bool_)
+    used_j = np.zeros(B, dtype=np.bool_)
+    out = np.empty((min(A, B), 2), dtype=np.int64)
+    n = 0
+    for o in order:
+        i, j = ci[o], cj[o]
+        if not used_i[i] and not used_j[j]:
+            used_i[i] = True
+            used_j[j] = True
+            out[n, 0] = i
+            out[n, 1] = j
+            n += 1
+    return out[:n]
 
 
 @dataclass
@@ -245,19 +282,11 @@ class MultiTargetTracker:
         if seeds.shape[0] == 0 or unused.shape[0] == 0 or dt <= 0:
             return
         reach = self.max_speed * dt + 3.0 * math.sqrt(2.0) * self.pos_std
-        d = np.hypot(unused[:, None, 0] - seeds[None, :, 0], unused[:, None, 1] - seeds[None, :, 1])
-        cand = np.argwhere(d <= reach)
-        if cand.size == 0:
+        pairs = nearest_pairs(unused, seeds, reach)
+        if pairs.shape[0] == 0:
             return
-        order = np.argsort(d[cand[:, 0], cand[:, 1]], kind="stable")
         used_new = np.zeros(unused.shape[0], dtype=bool)
-        used_old = np.zeros(seeds.shape[0], dtype=bool)
-        pairs = []
-        for a, b in cand[order]:
-            if not used_new[a] and not used_old[b]:
-                used_new[a] = used_old[b] = True
-                pairs.append((a, b))
-        pairs = np.asarray(pairs, dtype=np.int64)
+        used_new[pairs[:, 0]] = True
         B = len(pairs)
         tt = np.concatenate([np.full(B, t - dt), np.full(B, t)])
         zz = np.concatenate([seeds[pairs[:, 1]], unused[pairs[:, 0]]])
@@ -272,7 +301,7 @@ class MultiTargetTracker:
         self.ids[rows] = np.arange(self.next_id, self.next_id + B)
         self.next_id += B
         self.confirmed[rows] = False
-        # the seeds that started a track are used
+        # this scan's detections that started a track are no seeds for the next scan
         self.seeds = unused[~used_new]
 
     # ------------------------------------------------------------------ reading out
@@ -281,7 +310,7 @@ class MultiTargetTracker:
         live = self.bank.live
         sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
         sel = sel[np.argsort(self.ids[sel], kind="stable")]
-        X = self.bank.physical()[sel] if sel.size else np.zeros((0, self.spec.n))
+        X = self.bank.physical(sel)
         return ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
 
     @property
