@@ -161,3 +161,53 @@ def test_cli_multi_bad_file_as_a_subprocess(tmp_path):
     r = run(src, "--multi", "-o", tmp_path / "out.csv")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "'abc' is not a number" in r.stderr, r.stderr
     assert not (tmp_path / "out.csv").exists()
+
+
+def test_pose_detections_with_uniform_clutter_heading():
+    """SE(2)×R² from pose detections (clutter headings uniform, κ = λ/2π): the close parallel pair is resolved
+    (measured mean GOSPA 0.77 m, no switch)."""
+    sc = base_scenario(seed=1, targets=CROSSING, duration=10.0, measurement="pose", meas_std=(0.3, 0.05))
+    trk = MultiTargetTracker(model="se2r2", measurement="pose", meas_std=(0.3, 0.3, 0.05), clutter_density=1e-4)
+    dist, assigned = [], []
+    for t, Z, (ids, X) in zip(sc.times, sc.detections, sc.truth):
+        rep = trk.step(t, Z)
+        g = gospa(X[:, :2], rep.states[:, :2], c=5.0, p=2)
+        dist.append(g.distance)
+        assigned.append({int(ids[i]): int(rep.ids[j]) for i, j in g.assignment})
+    assert np.mean(dist) < 1.0 and track_switches(assigned) <= 1
+    assert trk.kappa == pytest.approx(1e-4 / (2 * np.pi))
+
+
+class CountingBank:
+    """A bank that delegates to a ModelBank and counts the calls: the tracker uses only the interface."""
+
+    def __init__(self, inner):
+        self.inner, self.calls = inner, {}
+
+    def __getattr__(self, name):
+        attr = getattr(self.inner, name)
+        if callable(attr):
+            def wrapped(*a, **k):
+                self.calls[name] = self.calls.get(name, 0) + 1
+                return attr(*a, **k)
+            return wrapped
+        return attr
+
+    @property
+    def live(self):
+        return self.inner.live
+
+
+def test_tracker_runs_on_any_bank_with_the_interface():
+    from lgekf.estimators.bank import ModelBank
+
+    sc = base_scenario(seed=0, targets=CROSSING, duration=3.0)
+    ref = MultiTargetTracker(model="cv", clutter_density=1e-4)
+    bank = CountingBank(ModelBank("cv", "position", (0.5,), (0.3,)))
+    trk = MultiTargetTracker(model="cv", clutter_density=1e-4, bank=bank)
+    for t, Z in zip(sc.times, sc.detections):
+        a, b = ref.step(t, Z), trk.step(t, Z)
+        np.testing.assert_array_equal(a.ids, b.ids)
+        np.testing.assert_allclose(a.states, b.states, rtol=1e-12)
+    assert set(bank.calls) <= {"add", "remove", "predict", "gate", "update", "physical", "stds"}
+    assert bank.calls["gate"] == bank.calls["update"] == len(sc.times) - 2  # the first tracks start at scan 2

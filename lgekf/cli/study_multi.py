@@ -34,6 +34,9 @@ def study_multi_parser():
     ap.add_argument("--duration", type=float, default=20.0, help="scenario length in s (default 20)")
     ap.add_argument("--gospa-c", type=float, default=5.0, help="GOSPA cut-off c in m (default 5)")
     ap.add_argument("--gospa-p", type=float, default=2.0, help="GOSPA order p (default 2)")
+    ap.add_argument("--measure", default="position", choices=["position", "pose"],
+                    help="position or pose detections (heading noise --heading-std; models without a heading get the positions)")
+    ap.add_argument("--heading-std", type=float, default=0.05, help="pose: heading noise std in rad (default 0.05)")
     ap.add_argument("--max-speed", type=float, default=30.0, help="largest speed of a new track in m/s (default 30)")
     ap.add_argument("--dataset", default=None, metavar="NAME",
                     help="real trajectories of `lgekf evaluate` (eth, hotel, zara1, zara2, univ, ...) as detection streams "
@@ -61,7 +64,8 @@ def cmd_study_multi(argv) -> int:
                            associations=_names("--association", a.association, list(ASSOCIATIONS)),
                            runs=a.runs, seed=a.seed, dt=a.dt, duration=a.duration, detection_prob=a.detection_prob,
                            clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
-                           dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed).validate()
+                           dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed,
+                           measurement=a.measure, heading_std=a.heading_std).validate()
     say = (lambda s: None) if a.quiet else (lambda s: print(s, file=sys.stderr))
     with compile_notice("lgekf study", enabled=not a.quiet):
         cells = run_multi_study(cfg, progress=lambda c: say(f"  {c.model} {c.association}: GOSPA {c.gospa:.3f}"))

@@ -44,6 +44,8 @@ class MultiStudyConfig:
     dataset: str | None = None  # a preset of ``lgekf evaluate`` (e.g. eth): its trajectories as detection streams
     data_root: str | None = None
     max_speed: float = 30.0
+    measurement: str = "position"  # or "pose" (models without a heading get the position part)
+    heading_std: float = 0.05
 
     def validate(self):
         for m in self.models:
@@ -56,6 +58,8 @@ class MultiStudyConfig:
                 raise ValueError(f"{name}: must be a positive number, got {v}")
         if not 0 < self.detection_prob <= 1:
             raise ValueError(f"--detection-prob: must be a probability in (0, 1], got {self.detection_prob}")
+        if self.measurement not in ("position", "pose"):
+            raise ValueError(f"--measure: position or pose, got {self.measurement!r}")
         if not self.p >= 1:
             raise ValueError(f"--gospa-p: must be at least 1, got {self.p}")
         return self
@@ -100,10 +104,19 @@ def scenarios(cfg: MultiStudyConfig) -> list:
     trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent)."""
     if cfg.dataset:
         ds = load_dataset(cfg.dataset, root=cfg.data_root)
+        if measures_pose(cfg):
+            raise ValueError("--measure pose: the real trajectories have no measured heading; use position")
         return [dataset_scenario(ds, seed=cfg.seed + k, detection_prob=cfg.detection_prob, clutter_density=cfg.clutter_density,
                                  meas_std=cfg.meas_std) for k in range(cfg.runs)]
+    r = (cfg.meas_std, cfg.heading_std) if measures_pose(cfg) else cfg.meas_std
     return [base_scenario(seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration, detection_prob=cfg.detection_prob,
-                          clutter_density=cfg.clutter_density, meas_std=cfg.meas_std) for k in range(cfg.runs)]
+                          clutter_density=cfg.clutter_density, meas_std=r, measurement=cfg.measurement)
+            for k in range(cfg.runs)]
+
+
+def measures_pose(cfg: MultiStudyConfig) -> bool:
+    """Whether the study measures poses."""
+    return cfg.measurement == "pose"
 
 
 def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
@@ -114,12 +127,15 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
     for model in cfg.models:
         for assoc in cfg.associations:
             parts, sw, wall, scans = [], 0, 0.0, 0
+            pose = measures_pose(cfg) and "pose" in get_model(model).measurements
             for sc in scen:
                 trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
-                                         clutter_density=cfg.clutter_density, meas_std=cfg.meas_std, max_speed=cfg.max_speed)
+                                         clutter_density=cfg.clutter_density, max_speed=cfg.max_speed,
+                                         measurement="pose" if pose else "position",
+                                         meas_std=(cfg.meas_std, cfg.meas_std, cfg.heading_std) if pose else cfg.meas_std)
 
-                def step(t, Z, trk=trk):
-                    rep = trk.step(t, Z)
+                def step(t, Z, trk=trk, m=3 if pose else 2):
+                    rep = trk.step(t, Z[:, :m])
                     return rep.ids, rep.states[:, :2]
 
                 g, lo, mi, fa, s, w = run_tracker_on(sc, step, cfg.c, cfg.p)
@@ -138,7 +154,8 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     """The GOSPA table as text (mean per scan over all runs; parts in m^p)."""
     what = f"the {cfg.dataset} trajectories" if cfg.dataset else f"{int(round(cfg.duration / cfg.dt)) + 1} scans"
     head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
-            f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m")
+            f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
+            + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_pose(cfg) else ""))
     lines = [head, f"{'model':<8} {'assoc':<5} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} {'switches':>8} {'scans/s':>8}"]
     for c in cells:
         lines.append(f"{c.model:<8} {c.association:<5} {c.gospa:7.3f} {c.localisation:7.3f} {c.missed:7.3f} {c.false:7.3f} "
