@@ -84,6 +84,8 @@ def test_tracker_arguments_are_checked():
         trk.step(1.0, np.zeros((1, 2)))
     with pytest.raises(ValueError, match="NaN"):
         trk.step(2.0, np.array([[np.nan, 0.0]]))
+    with pytest.raises(ValueError, match=r"expected shape \(M, 2\)"):
+        trk.step(3.0, np.zeros((4, 3)))
 
 
 @pytest.mark.parametrize("module", [tracker_module, gating])
@@ -211,3 +213,16 @@ def test_tracker_runs_on_any_bank_with_the_interface():
         np.testing.assert_allclose(a.states, b.states, rtol=1e-12)
     assert set(bank.calls) <= {"add", "remove", "predict", "gate", "update", "physical", "stds"}
     assert bank.calls["gate"] == bank.calls["update"] == len(sc.times) - 2  # the first tracks start at scan 2
+
+
+def test_readme_python_example_runs(capsys):
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = re.search(r"## Many objects in clutter\n.*?```python\n(.*?)```", readme, re.S).group(1)
+    ns: dict = {}
+    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
+    rep = ns["rep"]
+    assert rep.ids.size == 2 and np.all(rep.existence > 0.9)
+    np.testing.assert_allclose(np.sort(rep.states[:, 0]), [5.8, 50.0], atol=0.5)

@@ -225,7 +225,12 @@ class MultiTargetTracker:
         ScanReport
             The confirmed tracks after the scan.
         """
-        Z = np.ascontiguousarray(detections, dtype=float).reshape(-1, self.meas.dim)
+        Z = np.ascontiguousarray(detections, dtype=float)
+        if Z.size == 0:
+            Z = np.zeros((0, self.meas.dim))
+        elif Z.ndim != 2 or Z.shape[1] != self.meas.dim:
+            raise ValueError(f"detections at t = {t}: expected shape (M, {self.meas.dim}) ({', '.join(self.meas.z_names)}), "
+                             f"got {Z.shape}")
         if not np.all(np.isfinite(Z)):
             raise ValueError(f"detections at t = {t}: contain NaN or infinite values")
         t = float(t)
