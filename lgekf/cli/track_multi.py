@@ -95,6 +95,8 @@ def cmd_track_multi(argv) -> int:
         if Path(a.output).resolve() == Path(a.input).resolve():
             raise ValueError(f"--output: {a.output} would overwrite the input file")
     t = to_seconds(meas.t, a.time_unit)
+    if meas.origin is not None:
+        say(f"lat, lon projected to x, y in metres east and north of {meas.origin} (the first row; local equirectangular)")
     Z = meas.z if a.measure == "position" else np.column_stack([meas.z, meas.heading])
     if a.clutter_density is None:
         args["clutter_density"] = estimated_clutter_density(t, meas.z)
