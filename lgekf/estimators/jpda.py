@@ -18,8 +18,8 @@ different clusters are independent, so the marginals are computed per cluster:
   of marginal association probabilities with belief propagation", IEEE TAES 50(4), 2014): with
   ψ_ij = W_ij / w0_i, messages μ_{i→j} = ψ_ij / (1 + Σ_{j'≠j} ψ_ij' ν_{j'→i}) and
   ν_{j→i} = 1 / (1 + Σ_{i'≠i} μ_{i'→j}) are iterated to convergence; p_ij ∝ ψ_ij ν_{j→i}, p_i0 ∝ 1.
-  It is exact on trees (clusters without cycles) and within about 1e-2 of the exact marginals on the
-  dense clusters of the tests; its cost is linear in the gated pairs per iteration.
+  It is exact on trees (clusters without cycles); on 20 random dense 5 × 5 clusters of the tests its
+  marginals are off by at most 0.059 (median 0.035); its cost is linear in the gated pairs per iteration.
 """
 
 from __future__ import annotations
