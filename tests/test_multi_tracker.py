@@ -226,3 +226,19 @@ def test_readme_python_example_runs(capsys):
     rep = ns["rep"]
     assert rep.ids.size == 2 and np.all(rep.existence > 0.9)
     np.testing.assert_allclose(np.sort(rep.states[:, 0]), [5.8, 50.0], atol=0.5)
+
+
+def test_seed_scans_tolerates_a_missed_detection_at_the_start():
+    """One object at 1 m/s detected at scans 0, 2, 3, 4: consecutive-only pairing starts its track at scan 3
+    (from scans 2 and 3), a two-scan window already at scan 2 (from scans 0 and 2)."""
+    scans = {0: [[0.0, 0.0]], 1: [], 2: [[0.2, 0.0]], 3: [[0.3, 0.0]], 4: [[0.4, 0.0]]}
+    born = {}
+    for window in (1, 2):
+        trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.05, seed_scans=window)
+        for k, z in scans.items():
+            trk.step(0.1 * k, np.array(z).reshape(-1, 2))
+            if trk.n_tracks and window not in born:
+                born[window] = k
+    assert born == {1: 3, 2: 2}
+    with pytest.raises(ValueError, match="seed-scans"):
+        MultiTargetTracker(model="cv", seed_scans=0)

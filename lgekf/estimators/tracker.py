@@ -19,10 +19,10 @@ One call ``step(t, detections)`` per scan (all detections of one time):
    * a track is *deleted* when r < ``delete_existence`` (default 0.01);
    * *initiation* (two-point, the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): a
      detection is *unused* when Σ_i p_ij < 0.5 (no track claims it); each unused detection of this scan is
-     paired with the nearest unused detection of the previous scan within ``max_speed``·Δt + 3√2 r (each
-     previous one used once, nearest pairs first) and starts a track with existence ``birth_existence``
-     (default 0.1), position from this detection and velocity from the pair; unpaired unused detections
-     are kept for the next scan only.
+     paired with the nearest unused detection of the previous ``seed_scans`` scans (default 1: the previous
+     scan only) within ``max_speed``·Δt + 3√2 r (each used once, nearest pairs first) and starts a track
+     with existence ``birth_existence`` (default 0.1), position from this detection and velocity from the
+     pair; unpaired unused detections wait up to ``seed_scans`` scans.
 
    Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
 
@@ -56,20 +56,19 @@ UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start
 
 @nb.njit(cache=True)
 def nearest_pairs(new, old, reach):
-    """Greedy nearest pairs (i of ``new``, j of ``old``) with distance ≤ reach, nearest first, each point used at
-    most once; new (A, ≥2), old (B, ≥2) positions in the first two columns. Returns (K, 2) indices."""
+    """Greedy nearest pairs (i of ``new``, j of ``old``) with distance ≤ reach[j], nearest first, each point used
+    at most once; new (A, ≥2), old (B, ≥2) positions in the first two columns. Returns (K, 2) indices."""
     A, B = new.shape[0], old.shape[0]
     ci = np.empty(A * B, dtype=np.int64)
     cj = np.empty(A * B, dtype=np.int64)
     cd = np.empty(A * B)
     k = 0
-    r2 = reach * reach
     for i in range(A):
         for j in range(B):
             dx = new[i, 0] - old[j, 0]
             dy = new[i, 1] - old[j, 1]
             d2 = dx * dx + dy * dy
-            if d2 <= r2:
+            if d2 <= reach[j] * reach[j]:
                 ci[k] = i
                 cj[k] = j
                 cd[k] = d2
@@ -147,6 +146,9 @@ class MultiTargetTracker:
         Initial turn-rate std (rad/s) of a new track.
     max_events : int
         JPDA: clusters with more joint events use loopy belief propagation.
+    seed_scans : int
+        How many scans an unused detection waits for a partner of a two-point initiation (1: consecutive
+        detections only; 2 tolerates one missed detection at the start, at the price of more false tracks).
     bank : TrackFilterBank, optional
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
 
@@ -164,7 +166,7 @@ class MultiTargetTracker:
                  gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float = 0.1,
                  confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
-                 bank: TrackFilterBank | None = None):
+                 seed_scans: int = 1, bank: TrackFilterBank | None = None):
         spec = get_model(model)
         meas = spec.measurement(measurement)
         if association not in ASSOCIATIONS:
@@ -207,6 +209,11 @@ class MultiTargetTracker:
         self.next_id = 0
         self.t = None
         self.seeds = np.zeros((0, meas.dim))
+        self.seed_t = np.zeros(0)
+        self.seed_scans = int(seed_scans)
+        if self.seed_scans < 1:
+            raise ValueError(f"seed-scans: must be at least 1, got {seed_scans}")
+        self._scan_times = []
         self.last_exact = True
 
     # ------------------------------------------------------------------ one scan
@@ -281,19 +288,29 @@ class MultiTargetTracker:
             self.confirmed = np.concatenate([self.confirmed, np.zeros(k, dtype=bool)])
 
     def _initiate(self, t, dt, unused):
-        """Two-point initiation from this scan's unused detections and the previous scan's (module docstring)."""
-        seeds = self.seeds
-        self.seeds = unused
+        """Two-point initiation from this scan's unused detections and those of the previous ``seed_scans`` scans
+        (module docstring)."""
+        self._scan_times = (self._scan_times + [t])[-(self.seed_scans + 1):]
+        oldest = self._scan_times[0]
+        keep = self.seed_t >= oldest  # seeds of the last ``seed_scans`` scans
+        seeds, st = self.seeds[keep], self.seed_t[keep]
+        new_t = np.full(unused.shape[0], t)
         if seeds.shape[0] == 0 or unused.shape[0] == 0 or dt <= 0:
+            self.seeds, self.seed_t = np.vstack([seeds, unused]), np.concatenate([st, new_t])
             return
-        reach = self.max_speed * dt + 3.0 * math.sqrt(2.0) * self.pos_std
+        reach = self.max_speed * (t - st) + 3.0 * math.sqrt(2.0) * self.pos_std
         pairs = nearest_pairs(unused, seeds, reach)
-        if pairs.shape[0] == 0:
-            return
         used_new = np.zeros(unused.shape[0], dtype=bool)
         used_new[pairs[:, 0]] = True
-        B = len(pairs)
-        tt = np.concatenate([np.full(B, t - dt), np.full(B, t)])
+        used_old = np.zeros(seeds.shape[0], dtype=bool)
+        used_old[pairs[:, 1]] = True
+        # detections that started a track are no seeds any more; the others wait up to ``seed_scans`` scans
+        self.seeds = np.vstack([seeds[~used_old], unused[~used_new]])
+        self.seed_t = np.concatenate([st[~used_old], new_t[~used_new]])
+        B = pairs.shape[0]
+        if B == 0:
+            return
+        tt = np.concatenate([st[pairs[:, 1]], np.full(B, t)])
         zz = np.concatenate([seeds[pairs[:, 1]], unused[pairs[:, 0]]])
         heading = zz[:, 2] if self.meas.angles else None
         hstd = float(self.meas_std[2]) if self.meas.angles else 0.1
@@ -306,8 +323,6 @@ class MultiTargetTracker:
         self.ids[rows] = np.arange(self.next_id, self.next_id + B)
         self.next_id += B
         self.confirmed[rows] = False
-        # this scan's detections that started a track are no seeds for the next scan
-        self.seeds = unused[~used_new]
 
     # ------------------------------------------------------------------ reading out
     def report(self) -> ScanReport:
