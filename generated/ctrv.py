@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank']
 
 
 @nb.njit(cache=True)
@@ -610,6 +610,52 @@ def measure_batch_pose(X, noise, out):
 
 
 @nb.njit(cache=True)
+def innovation_into_pose(s, z_x, z_y, z_theta, out):
+    """The pose innovation e = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K) of the state s for the measured z, written into out (3,).
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a0 = math.atan2(-(math.sin(psi)*math.cos(z_theta)) + math.sin(z_theta)*math.cos(psi), math.sin(psi)*math.sin(z_theta) + math.cos(psi)*math.cos(z_theta))
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = -(_cos_psi*x) + _cos_psi*z_x - _sin_psi*y + _sin_psi*z_y
+    _t1 = -(_cos_psi*y) + _cos_psi*z_y + _sin_psi*x - _sin_psi*z_x
+    _t2 = math.atan2(_cos_psi*_sin_z_theta - _cos_z_theta*_sin_psi, _cos_psi*_cos_z_theta + _sin_psi*_sin_z_theta)
+    _t3 = _t2/2.0
+    out[0] = _halfcot__a0*_t0 + _t1*_t3
+    out[1] = _halfcot__a0*_t1 - _t0*_t3
+    out[2] = _t2
+
+
+@nb.njit(cache=True)
+def innovation_bank_pose(s, live, z, out):
+    """Innovation [log_G'(h(μ_i)⁻¹ Z_j)]^∨ of every live track i (rows of s, live[i] true) and every
+    pose detection j (rows of z, (M, 3)) into out (N, M, 3); rows of dead tracks are not written."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            si = s[i]
+            for j in range(z.shape[0]):
+                innovation_into_pose(si, z[j, 0], z[j, 1], z[j, 2], out[i, j])
+
+
+@nb.njit(cache=True)
+def calH_bank_pose(s, live, out):
+    """ℋ (eq:calH) of every live track for pose measurements into out (N, 3, 5)."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            h = calH_pose(s[i])
+            for a in range(3):
+                for b in range(5):
+                    out[i, a, b] = h[a, b]
+
+
+@nb.njit(cache=True)
 def calH_position(s):
     """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
     """
@@ -812,6 +858,38 @@ def measure_batch_position(X, noise, out):
         z = measure_position(s, noise[i, 0], noise[i, 1])
         for j in range(2):
             out[i, j] = z[j]
+
+
+@nb.njit(cache=True)
+def innovation_into_position(s, z_x, z_y, out):
+    """The position innovation e = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K) of the state s for the measured z, written into out (2,).
+    """
+    x = s[0]
+    y = s[1]
+    out[0] = -x + z_x
+    out[1] = -y + z_y
+
+
+@nb.njit(cache=True)
+def innovation_bank_position(s, live, z, out):
+    """Innovation [log_G'(h(μ_i)⁻¹ Z_j)]^∨ of every live track i (rows of s, live[i] true) and every
+    position detection j (rows of z, (M, 2)) into out (N, M, 2); rows of dead tracks are not written."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            si = s[i]
+            for j in range(z.shape[0]):
+                innovation_into_position(si, z[j, 0], z[j, 1], out[i, j])
+
+
+@nb.njit(cache=True)
+def calH_bank_position(s, live, out):
+    """ℋ (eq:calH) of every live track for position measurements into out (N, 2, 5)."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            h = calH_position(s[i])
+            for a in range(2):
+                for b in range(5):
+                    out[i, a, b] = h[a, b]
 
 
 @nb.njit(cache=True)
@@ -1088,3 +1166,31 @@ def right_jacobian_inv(eps):
     out[3, 3] = 1.0
     out[4, 4] = 1.0
     return out
+
+
+@nb.njit(cache=True)
+def predict_bank(s, p, live, dt, q):
+    """The fused prediction (eq:pred_mu, eq:pred_cov) of every live track (rows of s and p) by dt, in place;
+    q (2,) process-noise stds."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            predict(s[i], p[i], dt, q[0], q[1])
+
+
+@nb.njit(cache=True)
+def retract_bank(s, live, eps):
+    """μ_i ← μ_i·exp([ε_i]^∧) for every live track (eq:up_mu with the given corrections eps (N, 5))."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            retract(s[i], eps[i])
+
+
+@nb.njit(cache=True)
+def right_jacobian_bank(live, eps, out):
+    """Φ_G(ε_i) (eq:up_P) of every live track's correction eps (N, 5) into out (N, 5, 5)."""
+    for i in range(eps.shape[0]):
+        if live[i]:
+            f = right_jacobian(eps[i])
+            for a in range(5):
+                for b in range(5):
+                    out[i, a, b] = f[a, b]

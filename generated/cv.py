@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank']
 
 
 @nb.njit(cache=True)
@@ -386,6 +386,38 @@ def measure_batch_position(X, noise, out):
 
 
 @nb.njit(cache=True)
+def innovation_into_position(s, z_x, z_y, out):
+    """The position innovation e = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K) of the state s for the measured z, written into out (2,).
+    """
+    x = s[0]
+    y = s[1]
+    out[0] = -x + z_x
+    out[1] = -y + z_y
+
+
+@nb.njit(cache=True)
+def innovation_bank_position(s, live, z, out):
+    """Innovation [log_G'(h(μ_i)⁻¹ Z_j)]^∨ of every live track i (rows of s, live[i] true) and every
+    position detection j (rows of z, (M, 2)) into out (N, M, 2); rows of dead tracks are not written."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            si = s[i]
+            for j in range(z.shape[0]):
+                innovation_into_position(si, z[j, 0], z[j, 1], out[i, j])
+
+
+@nb.njit(cache=True)
+def calH_bank_position(s, live, out):
+    """ℋ (eq:calH) of every live track for position measurements into out (N, 2, 4)."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            h = calH_position(s[i])
+            for a in range(2):
+                for b in range(4):
+                    out[i, a, b] = h[a, b]
+
+
+@nb.njit(cache=True)
 def covariance_is_pd(p):
     """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
     p0_0 = p[0]
@@ -621,3 +653,31 @@ def right_jacobian_inv(eps):
     out[2, 2] = 1.0
     out[3, 3] = 1.0
     return out
+
+
+@nb.njit(cache=True)
+def predict_bank(s, p, live, dt, q):
+    """The fused prediction (eq:pred_mu, eq:pred_cov) of every live track (rows of s and p) by dt, in place;
+    q (1,) process-noise stds."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            predict(s[i], p[i], dt, q[0])
+
+
+@nb.njit(cache=True)
+def retract_bank(s, live, eps):
+    """μ_i ← μ_i·exp([ε_i]^∧) for every live track (eq:up_mu with the given corrections eps (N, 4))."""
+    for i in range(s.shape[0]):
+        if live[i]:
+            retract(s[i], eps[i])
+
+
+@nb.njit(cache=True)
+def right_jacobian_bank(live, eps, out):
+    """Φ_G(ε_i) (eq:up_P) of every live track's correction eps (N, 4) into out (N, 4, 4)."""
+    for i in range(eps.shape[0]):
+        if live[i]:
+            f = right_jacobian(eps[i])
+            for a in range(4):
+                for b in range(4):
+                    out[i, a, b] = f[a, b]

@@ -57,6 +57,10 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
 
 # README command -> the commands run for it (None: run as written)
 README_TO_RUN = {
+    "lgekf track detections.csv --multi --model se2se2 -o tracks.csv --clutter-density 1e-4 --detection-prob 0.9 --association jpda": None,
+    "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
+    "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
+        ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,
     "lgekf track biwi_eth.txt --format pedestrian --frame-dt 0.06667 -o eth.csv --model all": None,
     "lgekf track phone.csv.gz --time-unit ms -o phone_tracks.csv.gz": None,
@@ -103,7 +107,7 @@ README_TO_RUN = {
 def reduce(cmd: str) -> str:
     """The size reductions of the module docstring."""
     words = cmd.split()
-    if words[1] == "study":
+    if words[1] == "study" and "--multi" not in words:
         for flag, value in (("--trajectories", "3"), ("--sigmas", "0,1"), ("--steps", "10")):
             if flag not in words:
                 cmd += f" {flag} {value}"

@@ -17,7 +17,9 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
-  of the whole group (smoothing and mixing on the group).
+  of the whole group (smoothing and mixing on the group);
+* bank loops for multi-target tracking (``derive/codegen/bank.py``): ``innovation_into_<meas>``,
+  ``innovation_bank_<meas>``, ``calH_bank_<meas>``, ``predict_bank``, ``retract_bank``, ``right_jacobian_bank``.
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ import sympy as sp
 from ..algebra import LEGEND, _changed, lg_predict, lg_update, packed_index, sym_cov, symbolize
 from ..lie.groups import SE2
 from ..models.base import COMMON
+from .bank import bank_measurement_kernels, bank_model_kernels
 from .printer import Kernel
 
 __all__ = ["se2_kernels", "model_kernels", "registry_entry", "PD_TOL"]
@@ -300,7 +303,7 @@ def _measurement_kernels(model, meas, P, pin, sin_):
         rargs=_args("r", len(meas.noise_names)), nan_test=nan_test,
     ))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
-    return [calH, upd, measure, batch, meas_loop]
+    return [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
 
 
 def model_kernels(model, measurements: dict) -> list:
@@ -393,6 +396,7 @@ def model_kernels(model, measurements: dict) -> list:
         ["s", "c"], sin_ + cin, err.applyfunc(sub),
     ))
     ks.extend(group_operation_kernels(model))
+    ks.extend(bank_model_kernels(model))
     return ks
 
 

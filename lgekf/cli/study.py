@@ -72,6 +72,7 @@ def study_parser():
     ap.add_argument("--no-figure", action="store_true", help="skip study.png")
     ap.add_argument("--pdf", action="store_true", help="also write study.pdf")
     ap.add_argument("--quiet", action="store_true", help="print only the output folder")
+    ap.add_argument("--multi", action="store_true", help="the multi-target study in clutter instead (see `lgekf study --multi --help`)")
     return ap
 
 
@@ -116,6 +117,10 @@ def format_table(res) -> str:
 
 
 def cmd_study(argv) -> int:
+    if "--multi" in argv:  # multi-target tracking in clutter: lgekf.cli.study_multi
+        from .study_multi import cmd_study_multi
+
+        return cmd_study_multi(argv)
     from .. import __version__
     from ..experiments.study import claims_check, config_dict, run_study
 

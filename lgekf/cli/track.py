@@ -72,6 +72,8 @@ def track_parser():
     )
     ap.add_argument("input", help="measurements: CSV with header t,x,y[,id][,heading] (or t,lat,lon,...), or the pedestrian format; "
                     "- reads stdin; gzip input is recognised")
+    ap.add_argument("--multi", action="store_true",
+                    help="unlabelled detections with clutter and misses: multi-target tracking (see `lgekf track --multi --help`)")
     ap.add_argument("-o", "--output", required=True,
                     help="output CSV; - writes to stdout; a name ending in .gz is gzip-compressed "
                          "(with --model all: one file per model, OUTPUT_<model>.csv)")
@@ -160,6 +162,10 @@ def _divergence_warnings(model, meas, alarms, flagged) -> list:
 
 
 def cmd_track(argv) -> int:
+    if "--multi" in argv:  # many objects from unlabelled detections: lgekf.cli.track_multi
+        from .track_multi import cmd_track_multi
+
+        return cmd_track_multi(argv)
     a = track_parser().parse_args(argv)
     models = list(MODELS) if a.model == "all" else [a.model]
     given_q = parse_accel_std(a.accel_std, models)

@@ -1,0 +1,117 @@
+"""`lgekf track DETECTIONS.csv --multi`: many objects from unlabelled detections in clutter (one clear error
+line per bad input, all-or-nothing output). The tracking is ``lgekf.apps.track_multi``."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD
+from ..apps.track_multi import estimated_clutter_density, track_scans, write_multi
+from ..core.registry import MODELS
+from ..estimators.association import ASSOCIATIONS
+from ..io.files import AtomicFiles, check_output_path, is_stdio
+from ..io.readers import parse_delimiter, read_measurements
+from ..io.units import TIME_UNITS, to_seconds
+from . import ArgumentParser
+from .progress import compile_notice
+
+__all__ = ["cmd_track_multi", "track_multi_parser"]
+
+
+def track_multi_parser():
+    ap = ArgumentParser(
+        prog="lgekf track --multi",
+        description="Track many objects from unlabelled detections with clutter and missed detections (JPDA/PDA/GNN "
+                    "with integrated track existence; one scan = all rows with the same t).",
+    )
+    ap.add_argument("input", help="detections: CSV with header t,x,y[,heading] (an id column is ignored); - reads stdin; gzip is recognised")
+    ap.add_argument("--multi", action="store_true", required=True, help="multi-target mode")
+    ap.add_argument("-o", "--output", required=True, help="output CSV (track,t,state,std_state,existence); - writes to stdout; .gz compresses")
+    ap.add_argument("--model", default="se2se2", choices=list(MODELS), help="filter of every track (default se2se2)")
+    ap.add_argument("--association", default="jpda", choices=list(ASSOCIATIONS),
+                    help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), pda or gnn (default jpda)")
+    ap.add_argument("--detection-prob", type=float, default=0.9, help="probability of detecting an object in a scan (default 0.9)")
+    ap.add_argument("--clutter-density", type=float, default=None,
+                    help="expected false alarms per m² per scan (default: detections per scan / bounding-box area of the data)")
+    ap.add_argument("--measure", default="position", choices=["position", "pose"], help="position (x, y) or pose (x, y, heading column)")
+    ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
+    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    ap.add_argument("--accel-std", action="append", default=[], metavar="LIST",
+                    help="process noise stds of the model (default the model's: " + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + ")")
+    ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial turn-rate std of a new track in rad/s (default {DEFAULT_OMEGA_STD})")
+    ap.add_argument("--gate-prob", type=float, default=0.99, help="gate probability P_G (default 0.99)")
+    ap.add_argument("--survival-prob", type=float, default=0.99, help="probability that an object survives one scan (default 0.99)")
+    ap.add_argument("--birth-existence", type=float, default=0.1, help="existence probability of a new track (default 0.1)")
+    ap.add_argument("--confirm-existence", type=float, default=0.9, help="existence that confirms a track (default 0.9)")
+    ap.add_argument("--delete-existence", type=float, default=0.01, help="existence below which a track is deleted (default 0.01)")
+    ap.add_argument("--max-speed", type=float, default=30.0, help="largest speed of a new track's two detections in m/s (default 30)")
+    ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
+    ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
+    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--quiet", action="store_true", help="print nothing on success")
+    return ap
+
+
+def _accel_std(items, model):
+    """``--accel-std A,B,C`` (or ``MODEL=A,B,C`` naming the tracked model) -> the stds, None when not given;
+    the number and sign of the values are checked by the tracker."""
+    if not items:
+        return None
+    text = items[-1]
+    if "=" in text:
+        name, text = text.split("=", 1)
+        if name.strip() != model:
+            raise ValueError(f"--accel-std: {name.strip()!r} is not the tracked model ({model})")
+    try:
+        return tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
+
+
+def cmd_track_multi(argv) -> int:
+    a = track_multi_parser().parse_args(argv)
+    if not 1 <= a.precision <= 17:
+        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
+    q = _accel_std(a.accel_std, a.model)
+    MODELS[a.model].measurement(a.measure)
+    check_output_path(a.output)
+    say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
+    meas_std = (a.meas_std,) if a.measure == "position" else (a.meas_std, a.meas_std, a.heading_std)
+    args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, meas_std=meas_std,
+                accel_std=q, measurement=a.measure, gate_prob=a.gate_prob, survival_prob=a.survival_prob,
+                birth_existence=a.birth_existence, confirm_existence=a.confirm_existence,
+                delete_existence=a.delete_existence, max_speed=a.max_speed, omega_std=a.omega_std,
+                clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
+    from ..estimators.tracker import MultiTargetTracker
+
+    MultiTargetTracker(**args)  # every option checked before reading
+    t0 = time.perf_counter()
+    meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
+    if not is_stdio(a.input) and not is_stdio(a.output):
+        if Path(a.output).resolve() == Path(a.input).resolve():
+            raise ValueError(f"--output: {a.output} would overwrite the input file")
+    t = to_seconds(meas.t, a.time_unit)
+    if meas.origin is not None:
+        say(f"lat, lon projected to x, y in metres east and north of {meas.origin} (the first row; local equirectangular)")
+    Z = meas.z if a.measure == "position" else np.column_stack([meas.z, meas.heading])
+    if a.clutter_density is None:
+        args["clutter_density"] = estimated_clutter_density(t, meas.z)
+        say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
+            "bounding-box area; give --clutter-density to set it)")
+    with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
+        fh = files.open(0)
+        ids, times, values, trk = track_scans(t, Z, **args)
+        write_multi(fh, a.model, ids, times, values, a.precision)
+        files.commit()
+    if not a.quiet:
+        report = sys.stderr if is_stdio(a.output) else sys.stdout
+        name = "<stdout>" if is_stdio(a.output) else a.output
+        n_conf = len(set(ids.tolist()))
+        print(f"{name}: {ids.size} rows, {n_conf} confirmed track{'s' if n_conf != 1 else ''} from {t.size} detections "
+              f"({a.model}, {a.association})", file=report)
+        print(f"total {time.perf_counter() - t0:.2f} s", file=sys.stderr)
+    return 0

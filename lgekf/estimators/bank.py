@@ -1,0 +1,181 @@
+"""A bank of per-track filters of one registry model, stored as arrays (one row per track), and the small
+interface the multi-target tracker needs from it (``TrackFilterBank``).
+
+The tracker (``lgekf.estimators.tracker``) talks to its filters only through this interface, once per
+scan for all tracks (no Python per track):
+
+* ``add(x0, P0) -> rows`` / ``remove(rows)``: start and end tracks;
+* ``predict(dt)``: every live track to the scan time;
+* ``gate(Z, gamma) -> (loglik, gated)``: log N(e_ij; 0, S_i) and the gate d² ≤ γ of every live track i
+  and detection j (the quantities PDA/JPDA/GNN weigh);
+* ``update(beta0, beta)``: the PDA correction of every track with the association weights β of the last
+  gated scan;
+* ``physical(rows)`` and ``stds()``: the estimates to report.
+
+``ModelBank`` implements it with the generated kernels of a model (fused ``predict``, ``calH_<meas>``,
+the innovation, ``retract``, ``right_jacobian``; see ``derive/codegen/bank.py``). An IMM bank would
+implement the same five calls: ``gate`` with the mode-mixed likelihood Σ_k μ_k N_k, ``update`` with the
+IMM-PDA per-mode corrections, and the tracker would use it unchanged.
+"""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+import numpy as np
+
+from ..core.covariance import pack, packed_diagonal
+from ..core.registry import get_model
+from .gating import gate_scores, innovation_covariances
+from .pda import pda_corrections, transport_covariances
+
+__all__ = ["TrackFilterBank", "ModelBank"]
+
+
+class TrackFilterBank(Protocol):
+    """What the multi-target tracker needs from its per-track filters (see the module docstring)."""
+
+    live: np.ndarray
+
+    def add(self, x0: np.ndarray, P0: np.ndarray) -> np.ndarray: ...
+
+    def remove(self, rows: np.ndarray) -> None: ...
+
+    def predict(self, dt: float) -> None: ...
+
+    def gate(self, Z: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]: ...
+
+    def update(self, beta0: np.ndarray, beta: np.ndarray) -> None: ...
+
+    def physical(self, rows: np.ndarray) -> np.ndarray: ...
+
+    def stds(self) -> np.ndarray: ...
+
+
+class ModelBank:
+    """Per-track LG-EKFs (or EKF/KF) of one registry model, in arrays that grow as tracks are added.
+
+    Parameters
+    ----------
+    model : str
+        A registry model (``lgekf.core.registry.MODELS``).
+    measurement : str
+        ``"position"`` or ``"pose"`` (a measurement the model supports).
+    accel_std : array_like
+        The model's process-noise stds (its ``noise_names``).
+    meas_std : array_like
+        The measurement's noise stds (its ``noise_names``: ``r`` for position; ``r_x, r_y, r_theta`` for pose).
+    capacity : int
+        Initial number of rows.
+
+    Notes
+    -----
+    Row i holds the internal state ``s[i]`` and the packed covariance ``p[i]`` (tangent coordinates of
+    X = μ·exp(ε), right perturbation); ``live[i]`` marks rows in use. Removed rows are reused.
+    """
+
+    def __init__(self, model: str, measurement: str, accel_std, meas_std, capacity: int = 64):
+        self.spec = get_model(model)
+        self.meas = self.spec.measurement(measurement)
+        self.kern = self.spec.kernels
+        self.q = np.ascontiguousarray(accel_std, dtype=float)
+        r = np.ascontiguousarray(meas_std, dtype=float).reshape(-1)
+        if r.size == 1 and self.meas.dim > 1:
+            r = np.full(self.meas.dim, r[0])
+        self.R = np.diag(r**2)
+        n, m = self.spec.n, self.meas.dim
+        self.n, self.m = n, m
+        self.periodic = np.asarray(self.spec.periodic_tangent, dtype=np.int64)
+        self._innov = getattr(self.kern, f"innovation_bank_{measurement}")
+        self._calH = getattr(self.kern, f"calH_bank_{measurement}")
+        self._diag = packed_diagonal(n)
+        self._alloc(capacity)
+        self._last = None
+
+    def _alloc(self, cap):
+        n, m = self.n, self.m
+        self.s = np.zeros((cap, len(self.spec.internal_names)))
+        self.p = np.zeros((cap, self.spec.n_packed))
+        self.live = np.zeros(cap, dtype=bool)
+        self.H = np.zeros((cap, m, n))
+        self.S = np.zeros((cap, m, m))
+        self.Sinv = np.zeros((cap, m, m))
+        self.logdet = np.zeros(cap)
+
+    def _grow(self, need):
+        cap = self.live.size
+        new = max(2 * cap, need)
+        old = (self.s, self.p, self.live)
+        self._alloc(new)
+        self.s[:cap], self.p[:cap], self.live[:cap] = old
+
+    def add(self, x0: np.ndarray, P0: np.ndarray) -> np.ndarray:
+        """Start tracks at physical states x0 (B, n) with covariances P0 (B, n, n); returns their rows."""
+        x0 = np.atleast_2d(np.asarray(x0, dtype=float))
+        B = x0.shape[0]
+        free = np.flatnonzero(~self.live)
+        if free.size < B:
+            self._grow(self.live.size + B - free.size)
+            free = np.flatnonzero(~self.live)
+        rows = free[:B]
+        for b, i in enumerate(rows):
+            self.s[i] = self.kern.state_from_physical(x0[b])
+        self.p[rows] = pack(np.asarray(P0, dtype=float).reshape(B, self.n, self.n))
+        self.live[rows] = True
+        return rows
+
+    def remove(self, rows: np.ndarray) -> None:
+        """End the tracks of ``rows`` (their rows are reused)."""
+        self.live[np.asarray(rows, dtype=np.int64)] = False
+
+    def predict(self, dt: float) -> None:
+        """Predict every live track by dt > 0 (the generated fused ``predict``)."""
+        if dt > 0:
+            self.kern.predict_bank(self.s, self.p, self.live, float(dt), self.q)
+
+    def gate(self, Z: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]:
+        """Log-likelihoods (N, M) and gate membership (N, M) of detections Z (M, m) for every row.
+
+        Computes ℋ (``calH_bank_<meas>``), S = ℋPℋᵀ + R, the innovations (``innovation_bank_<meas>``)
+        and keeps them for the next ``update``."""
+        Z = np.ascontiguousarray(Z, dtype=float).reshape(-1, self.m)
+        N, M = self.live.size, Z.shape[0]
+        self._calH(self.s, self.live, self.H)
+        innovation_covariances(self.H, self.p, self.live, self.R, self.S, self.Sinv, self.logdet)
+        E = np.zeros((N, M, self.m))
+        self._innov(self.s, self.live, Z, E)
+        d2 = np.empty((N, M))
+        ll = np.empty((N, M))
+        g = np.empty((N, M), dtype=bool)
+        gate_scores(E, self.Sinv, self.logdet, self.live, float(gamma), d2, ll, g)
+        self._last = E
+        self.d2 = d2
+        return ll, g
+
+    def update(self, beta0: np.ndarray, beta: np.ndarray) -> None:
+        """The PDA correction (``lgekf.estimators.pda``) of every live track with weights β_i0 (N,) and
+        β_ij (N, M) for the detections of the last ``gate`` call."""
+        E = self._last
+        N = self.live.size
+        eps = np.zeros((N, self.n))
+        Pc = np.zeros((N, self.n, self.n))
+        upd = np.zeros(N, dtype=bool)
+        pda_corrections(self.p, self.live, self.H, self.S, self.Sinv, E, np.ascontiguousarray(beta0),
+                        np.ascontiguousarray(beta), self.periodic, eps, Pc, upd)
+        if upd.any():
+            self.kern.retract_bank(self.s, upd, eps)
+            Phi = np.zeros((N, self.n, self.n))
+            self.kern.right_jacobian_bank(upd, eps, Phi)
+            transport_covariances(Phi, Pc, upd, self.p)
+
+    def physical(self, rows: np.ndarray) -> np.ndarray:
+        """Physical states (len(rows), n) of the given live rows."""
+        rows = np.asarray(rows, dtype=np.int64)
+        out = np.zeros((rows.size, self.n))
+        for k, i in enumerate(rows):
+            self.kern.physical_into(self.s[i], out[k])
+        return out
+
+    def stds(self) -> np.ndarray:
+        """Square roots of P's diagonal (N, n): the std of each tangent coordinate."""
+        return np.sqrt(np.maximum(self.p[:, self._diag], 0.0))

@@ -1,0 +1,339 @@
+"""Multi-target tracking from unlabelled detections in clutter: ``MultiTargetTracker``.
+
+One call ``step(t, detections)`` per scan (all detections of one time):
+
+1. **predict** every track to t (``ModelBank.predict``: the model's fused LG-EKF prediction) and its
+   existence r ← p_S r (``survival_prob`` per scan);
+2. **gate** every track × detection with the model's innovation covariance S = ℋPℋᵀ + R
+   (``lgekf.estimators.gating``: d² ≤ γ, γ the χ²_m quantile of ``gate_prob``);
+3. **associate** (``lgekf.estimators.association``): PDA, JPDA (JIPDA: joint events with existence) or
+   GNN marginals from the weights w0_i = 1 − r_i P_D P_G and W_ij = r_i P_D N(e_ij; 0, S_i)/κ, κ the
+   clutter density (λ per m² per scan for position; λ/(2π) per m²·rad for pose);
+4. **update** the existence r_i⁺ = Σ_j p_ij + p_i0 r_i(1 − P_D P_G)/w0_i (integrated track existence,
+   IPDA/JIPDA) and the state by the PDA correction on the group (``lgekf.estimators.pda``:
+   μ ← μ·exp(ν), P ← Φ(ν) P_c Φ(ν)ᵀ);
+5. **manage tracks** (the choice: integrated track existence, not M-of-N):
+
+   * a track is *confirmed* the first time r ≥ ``confirm_existence`` (default 0.9) and from then on
+     *reported* in every scan with r ≥ ``report_existence`` (default 0.5);
+   * a track is *deleted* when r < ``delete_existence`` (default 0.01);
+   * *initiation* (two-point, the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): a
+     detection is *unused* when Σ_i p_ij < 0.5 (no track claims it); each unused detection of this scan is
+     paired with the nearest unused detection of the previous ``seed_scans`` scans (default 1: the previous
+     scan only) within ``max_speed``·Δt + 3√2 r (each used once, nearest pairs first) and starts a track
+     with existence ``birth_existence`` (default 0.1), position from this detection and velocity from the
+     pair; unpaired unused detections wait up to ``seed_scans`` scans.
+
+   Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
+
+The per-track filters are a ``TrackFilterBank`` (``lgekf.estimators.bank``): ``ModelBank`` for any
+registry model; an IMM bank implementing the same five calls plugs in unchanged (``bank=`` argument).
+
+With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numba as nb
+import numpy as np
+
+from ..core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
+from ..core.registry import get_model
+from ..core.validate import positive_scalar
+from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
+from .bank import ModelBank, TrackFilterBank
+from .gating import gate_threshold
+from .jpda import MAX_EVENTS
+
+__all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP"]
+
+HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
+UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
+
+
+@nb.njit(cache=True)
+def nearest_pairs(new, old, reach):
+    """Greedy nearest pairs (i of ``new``, j of ``old``) with distance ≤ reach[j], nearest first, each point used
+    at most once; new (A, ≥2), old (B, ≥2) positions in the first two columns. Returns (K, 2) indices."""
+    A, B = new.shape[0], old.shape[0]
+    ci = np.empty(A * B, dtype=np.int64)
+    cj = np.empty(A * B, dtype=np.int64)
+    cd = np.empty(A * B)
+    k = 0
+    for i in range(A):
+        for j in range(B):
+            dx = new[i, 0] - old[j, 0]
+            dy = new[i, 1] - old[j, 1]
+            d2 = dx * dx + dy * dy
+            if d2 <= reach[j] * reach[j]:
+                ci[k] = i
+                cj[k] = j
+                cd[k] = d2
+                k += 1
+    order = np.argsort(cd[:k], kind="mergesort")
+    used_i = np.zeros(A, dtype=np.bool_)
+    used_j = np.zeros(B, dtype=np.bool_)
+    out = np.empty((min(A, B), 2), dtype=np.int64)
+    n = 0
+    for o in order:
+        i, j = ci[o], cj[o]
+        if not used_i[i] and not used_j[j]:
+            used_i[i] = True
+            used_j[j] = True
+            out[n, 0] = i
+            out[n, 1] = j
+            n += 1
+    return out[:n]
+
+
+@dataclass
+class ScanReport:
+    """The confirmed tracks after one scan.
+
+    Attributes
+    ----------
+    t : float
+        Scan time.
+    ids : ndarray of int, (K,)
+        Track ids.
+    states : ndarray, (K, n)
+        Physical states (the model's ``state_names``).
+    stds : ndarray, (K, n)
+        Std of each tangent coordinate (square roots of P's diagonal).
+    existence : ndarray, (K,)
+        Existence probabilities.
+    """
+
+    t: float
+    ids: np.ndarray
+    states: np.ndarray
+    stds: np.ndarray
+    existence: np.ndarray
+
+
+class MultiTargetTracker:
+    """Track many objects from unlabelled detections with clutter and misses (module docstring).
+
+    Parameters
+    ----------
+    model : str
+        A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...).
+    association : {"jpda", "pda", "gnn"}
+        JPDA (JIPDA; exact joint events up to ``max_events`` per cluster, loopy belief propagation beyond),
+        PDA per track, or global nearest neighbour.
+    detection_prob : float
+        P_D in (0, 1].
+    clutter_density : float
+        λ > 0, expected false alarms per m² per scan.
+    meas_std : float or tuple
+        Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements.
+    accel_std : tuple, optional
+        The model's process-noise stds (default the model's ``default_accel_std``).
+    measurement : {"position", "pose"}
+        Detections (x, y) or (x, y, θ).
+    gate_prob : float
+        P_G: the gate is d² ≤ the χ²_m quantile of P_G.
+    survival_prob : float
+        Probability that a target survives one scan.
+    birth_existence, confirm_existence, report_existence, delete_existence : float
+        Existence probability of a new track, of confirmation, of reporting a confirmed track, of deletion.
+    max_speed : float
+        Largest speed (m/s) of a two-point initiation.
+    omega_std : float
+        Initial turn-rate std (rad/s) of a new track.
+    max_events : int
+        JPDA: clusters with more joint events use loopy belief propagation.
+    seed_scans : int
+        How many scans an unused detection waits for a partner of a two-point initiation (1: consecutive
+        detections only; 2 tolerates one missed detection at the start, at the price of more false tracks).
+    bank : TrackFilterBank, optional
+        The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
+
+    Examples
+    --------
+    >>> trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9)
+    >>> for k in range(6):
+    ...     rep = trk.step(0.1 * k, np.array([[1.0 * k * 0.1, 0.0], [50.0, 0.5 * k * 0.1]]))
+    >>> sorted(rep.ids.tolist()), bool(np.all(rep.existence > 0.9))
+    ([0, 1], True)
+    """
+
+    def __init__(self, model: str, association: str = "jpda", detection_prob: float = 0.9,
+                 clutter_density: float = 1e-4, meas_std=0.3, accel_std=None, measurement: str = "position",
+                 gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float = 0.1,
+                 confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
+                 max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
+                 seed_scans: int = 1, bank: TrackFilterBank | None = None):
+        spec = get_model(model)
+        meas = spec.measurement(measurement)
+        if association not in ASSOCIATIONS:
+            raise ValueError(f"association: unknown method {association!r}; choose one of {', '.join(ASSOCIATIONS)}")
+        for name, v in (("detection-prob", detection_prob), ("gate-prob", gate_prob), ("survival-prob", survival_prob),
+                        ("birth-existence", birth_existence), ("confirm-existence", confirm_existence),
+                        ("report-existence", report_existence), ("delete-existence", delete_existence)):
+            positive_scalar(name, v)
+            if v > 1:
+                raise ValueError(f"{name}: must be a probability in (0, 1], got {v}")
+        self.clutter_density = positive_scalar("clutter-density", clutter_density)
+        self.max_speed = positive_scalar("max-speed", max_speed)
+        self.omega_std = positive_scalar("omega-std", omega_std)
+        r = np.atleast_1d(np.asarray(meas_std, dtype=float))
+        if r.size == 1:
+            r = np.full(len(meas.noise_names), r[0])
+        if r.size != len(meas.noise_names) or not np.all(np.isfinite(r)) or np.any(r <= 0):
+            raise ValueError(f"meas-std: {measurement} takes {len(meas.noise_names)} positive value(s) "
+                             f"({', '.join(meas.noise_names)}), got {np.asarray(meas_std).tolist()}")
+        q = spec.default_accel_std if accel_std is None else accel_std
+        q = np.atleast_1d(np.asarray(q, dtype=float))
+        if q.size != len(spec.noise_names) or not np.all(np.isfinite(q)) or np.any(q < 0):
+            raise ValueError(f"accel-std: {model} takes {len(spec.noise_names)} non-negative value(s) "
+                             f"({', '.join(spec.noise_names)}), got {np.asarray(accel_std).tolist()}")
+        self.model, self.measurement, self.association = model, measurement, association
+        self.spec, self.meas = spec, meas
+        self.pd, self.pg, self.ps = float(detection_prob), float(gate_prob), float(survival_prob)
+        self.r_birth, self.r_confirm = float(birth_existence), float(confirm_existence)
+        self.r_report, self.r_delete = float(report_existence), float(delete_existence)
+        self.meas_std = r
+        self.pos_std = float(np.sqrt(np.mean(r[:2] ** 2))) if r.size > 1 else float(r[0])
+        self.max_events = int(max_events)
+        self.kappa = self.clutter_density / (2.0 * math.pi) ** len(meas.angles)
+        self.gamma = gate_threshold(self.pg, meas.dim)
+        self.bank = bank if bank is not None else ModelBank(model, measurement, q, r)
+        cap = self.bank.live.size
+        self.r = np.zeros(cap)
+        self.ids = np.full(cap, -1, dtype=np.int64)
+        self.confirmed = np.zeros(cap, dtype=bool)
+        self.next_id = 0
+        self.t = None
+        self.seeds = np.zeros((0, meas.dim))
+        self.seed_t = np.zeros(0)
+        self.seed_scans = int(seed_scans)
+        if self.seed_scans < 1:
+            raise ValueError(f"seed-scans: must be at least 1, got {seed_scans}")
+        self._scan_times = []
+        self.last_exact = True
+
+    # ------------------------------------------------------------------ one scan
+    def step(self, t: float, detections) -> ScanReport:
+        """Process the scan at time t with its detections (M, m) (rows (x, y) or (x, y, θ)); M may be 0.
+
+        Parameters
+        ----------
+        t : float
+            Scan time in seconds, increasing from call to call.
+        detections : array_like, (M, m)
+            The scan's detections, unlabelled.
+
+        Returns
+        -------
+        ScanReport
+            The confirmed tracks after the scan.
+        """
+        Z = np.ascontiguousarray(detections, dtype=float)
+        if Z.size == 0:
+            Z = np.zeros((0, self.meas.dim))
+        elif Z.ndim != 2 or Z.shape[1] != self.meas.dim:
+            raise ValueError(f"detections at t = {t}: expected shape (M, {self.meas.dim}) ({', '.join(self.meas.z_names)}), "
+                             f"got {Z.shape}")
+        if not np.all(np.isfinite(Z)):
+            raise ValueError(f"detections at t = {t}: contain NaN or infinite values")
+        t = float(t)
+        dt = 0.0 if self.t is None else t - self.t
+        if self.t is not None and not dt > 0:
+            raise ValueError(f"scan times must increase: t = {t} after {self.t}")
+        bank = self.bank
+        self._sync()
+        live = bank.live
+        M = Z.shape[0]
+        claimed = np.zeros(M)
+        if live.any():
+            bank.predict(dt)
+            self.r[live] *= self.ps
+            ll, gated = bank.gate(Z, self.gamma)
+            N = live.size
+            w0 = np.empty(N)
+            W = np.empty((N, M))
+            association_weights(ll, gated, live, self.r, self.pd, self.pg, self.kappa, w0, W)
+            p0, P, exact = association_marginals(self.association, w0, W, gated, live, self.max_events)
+            self.last_exact = bool(exact[live].all())
+            beta0 = np.ones(N)
+            beta = np.zeros((N, M))
+            r_new = self.r.copy()
+            existence_and_weights(p0, P, w0, self.r, live, self.pd, self.pg, r_new, beta0, beta)
+            bank.update(beta0, beta)
+            self.r = r_new
+            claimed = P[live].sum(axis=0)
+            self.confirmed |= live & (self.r >= self.r_confirm)
+            dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
+            if dead.size:
+                bank.remove(dead)
+                self.ids[dead] = -1
+                self.confirmed[dead] = False
+                self.r[dead] = 0.0
+        unused = Z[claimed < UNUSED_BELOW]
+        self._initiate(t, dt, unused)
+        self.t = t
+        return self.report()
+
+    def _sync(self):
+        """Grow the per-track arrays when the bank has grown."""
+        cap = self.bank.live.size
+        if self.r.size < cap:
+            k = cap - self.r.size
+            self.r = np.concatenate([self.r, np.zeros(k)])
+            self.ids = np.concatenate([self.ids, np.full(k, -1, dtype=np.int64)])
+            self.confirmed = np.concatenate([self.confirmed, np.zeros(k, dtype=bool)])
+
+    def _initiate(self, t, dt, unused):
+        """Two-point initiation from this scan's unused detections and those of the previous ``seed_scans`` scans
+        (module docstring)."""
+        self._scan_times = (self._scan_times + [t])[-(self.seed_scans + 1):]
+        oldest = self._scan_times[0]
+        keep = self.seed_t >= oldest  # seeds of the last ``seed_scans`` scans
+        seeds, st = self.seeds[keep], self.seed_t[keep]
+        new_t = np.full(unused.shape[0], t)
+        if seeds.shape[0] == 0 or unused.shape[0] == 0 or dt <= 0:
+            self.seeds, self.seed_t = np.vstack([seeds, unused]), np.concatenate([st, new_t])
+            return
+        reach = self.max_speed * (t - st) + 3.0 * math.sqrt(2.0) * self.pos_std
+        pairs = nearest_pairs(unused, seeds, reach)
+        used_new = np.zeros(unused.shape[0], dtype=bool)
+        used_new[pairs[:, 0]] = True
+        used_old = np.zeros(seeds.shape[0], dtype=bool)
+        used_old[pairs[:, 1]] = True
+        # detections that started a track are no seeds any more; the others wait up to ``seed_scans`` scans
+        self.seeds = np.vstack([seeds[~used_old], unused[~used_new]])
+        self.seed_t = np.concatenate([st[~used_old], new_t[~used_new]])
+        B = pairs.shape[0]
+        if B == 0:
+            return
+        tt = np.concatenate([st[pairs[:, 1]], np.full(B, t)])
+        zz = np.concatenate([seeds[pairs[:, 1]], unused[pairs[:, 0]]])
+        heading = zz[:, 2] if self.meas.angles else None
+        hstd = float(self.meas_std[2]) if self.meas.angles else 0.1
+        c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
+                           heading, hstd, HEADING_CAP, first=np.arange(B))
+        x0, P0 = initial_estimates(self.model, c, var)
+        rows = self.bank.add(x0, P0)
+        self._sync()
+        self.r[rows] = self.r_birth
+        self.ids[rows] = np.arange(self.next_id, self.next_id + B)
+        self.next_id += B
+        self.confirmed[rows] = False
+
+    # ------------------------------------------------------------------ reading out
+    def report(self) -> ScanReport:
+        """The confirmed tracks now (confirmed and existence ≥ ``report_existence``), sorted by id."""
+        live = self.bank.live
+        sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
+        sel = sel[np.argsort(self.ids[sel], kind="stable")]
+        X = self.bank.physical(sel)
+        return ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
+
+    @property
+    def n_tracks(self) -> int:
+        """Number of live tracks (tentative and confirmed)."""
+        return int(self.bank.live.sum())

@@ -1,0 +1,77 @@
+"""The multi-target study: scenario contents, detection streams from real trajectories (skipped without the
+data), the study's cells and table, and `lgekf study --multi` errors."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from lgekf.experiments.multi_scenarios import BASE_TARGETS, base_scenario, dataset_scenario
+from lgekf.experiments.multi_study import MultiStudyConfig, format_multi_table, run_multi_study
+from lgekf.io.datasets import Dataset, data_root, load_dataset
+
+
+def test_base_scenario_has_births_deaths_clutter_and_misses():
+    sc = base_scenario(seed=3, clutter_density=1e-4, detection_prob=0.9)
+    alive = np.array([len(ids) for ids, _ in sc.truth])
+    assert alive.min() == 6 and alive.max() == len(BASE_TARGETS)  # all 8 between 8 s (birth) and 12 s (death)
+    assert alive[0] == 6 and alive[-1] == 6 and alive[int(np.searchsorted(sc.times, 6.0))] == 7
+    src = np.concatenate(sc.sources)
+    n_truth = alive.sum()
+    assert 0.86 < np.sum(src >= 0) / n_truth < 0.94  # P_D = 0.9
+    assert 3.0 < np.sum(src < 0) / len(sc.times) < 5.0  # λ · area = 4 per scan
+    # the crossing pair meets: at some scan the two are within 1 m
+    d = [np.hypot(*(X[list(ids).index(0), :2] - X[list(ids).index(1), :2])) for ids, X in sc.truth]
+    assert min(d) < 1.0
+    # the parallel pair stays 2.5 m apart (up to the speed random walk)
+    d = [np.hypot(*(X[list(ids).index(2), :2] - X[list(ids).index(3), :2])) for ids, X in sc.truth[:50]]
+    assert 2.0 < min(d) and max(d) < 3.5
+
+
+def test_dataset_scenario_from_synthetic_tracks():
+    t = np.array([0.0, 0.4, 0.8, 0.4, 0.8, 1.2])
+    p = np.array([[0, 0], [0.5, 0], [1.0, 0], [5, 5], [5, 5.5], [5, 6.0]], dtype=float)
+    ds = Dataset("toy", t, p, None, np.array([0, 3, 6]), ["a", "b"])
+    sc = dataset_scenario(ds, seed=0, detection_prob=1.0, clutter_density=1e-9, meas_std=1e-6)
+    assert sc.times.tolist() == [0.0, 0.4, 0.8, 1.2]
+    assert [ids.tolist() for ids, _ in sc.truth] == [[0], [0, 1], [0, 1], [1]]
+    np.testing.assert_allclose(sc.truth[1][1][:, :2], [[0.5, 0], [5, 5]])
+    np.testing.assert_allclose(sc.truth[2][1][:, 2], [0.0, np.pi / 2])  # heading of motion
+    got = sorted(map(tuple, np.round(sc.detections[1], 4)))
+    assert got == [(0.5, 0.0), (5.0, 5.0)]
+
+
+def test_study_cells_and_table():
+    cfg = MultiStudyConfig(models=("cv",), associations=("jpda", "gnn"), runs=1, duration=3.0)
+    cells = run_multi_study(cfg)
+    assert [(c.model, c.association) for c in cells] == [("cv", "jpda"), ("cv", "gnn")]
+    for c in cells:
+        assert c.gospa > 0 and c.localisation >= 0 and c.missed >= 0 and c.false >= 0
+    text = format_multi_table(cells, cfg)
+    assert "GOSPA (c = 5 m, p = 2" in text and text.count("\ncv ") == 2
+
+
+def test_real_trajectories_as_detection_streams():
+    root = data_root()
+    try:
+        ds = load_dataset("eth", root=root)
+    except Exception as e:  # noqa: BLE001 - absent data is a skip, any reason
+        pytest.skip(f"ETH data not available under {root}: {e}")
+    sc = dataset_scenario(ds, seed=0, detection_prob=0.9, clutter_density=0.01, meas_std=0.1)
+    assert len(sc.times) == np.unique(ds.t).size
+    assert sum(len(ids) for ids, _ in sc.truth) == ds.t.size
+
+
+@pytest.mark.parametrize("args,msg", [
+    (["--models", "ukf"], "--models: unknown name 'ukf'"),
+    (["--runs", "0"], "--runs: must be at least 1"),
+    (["--detection-prob", "0"], "--detection-prob: must be a probability"),
+    (["--gospa-p", "0.5"], "--gospa-p: must be at least 1"),
+])
+def test_study_multi_errors_are_one_line(args, msg, capsys, tmp_path):
+    from lgekf.cli import main
+
+    code = main(["study", "--multi", "--out", str(tmp_path), *args])
+    err = capsys.readouterr().err
+    assert code == 2 and len(err.strip().splitlines()) == 1 and msg in err, err
+    assert not (tmp_path / "multi_gospa.csv").exists()
