@@ -17,7 +17,9 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
-  of the whole group (smoothing and mixing on the group).
+  of the whole group (smoothing and mixing on the group);
+* estimators (``derive.codegen.estimators``): ``innovation_logdet_<meas>``, ``run_one_store_<meas>`` /
+  ``run_batch_store_<meas>``, ``loglik_batch_<meas>``, ``smooth_one`` / ``smooth_batch`` (RTS on the group).
 """
 
 from __future__ import annotations
@@ -27,6 +29,7 @@ import sympy as sp
 from ..algebra import LEGEND, _changed, lg_predict, lg_update, packed_index, sym_cov, symbolize
 from ..lie.groups import SE2
 from ..models.base import COMMON
+from .estimators import estimator_kernels
 from .printer import Kernel
 
 __all__ = ["se2_kernels", "model_kernels", "registry_entry", "PD_TOL"]
@@ -393,6 +396,7 @@ def model_kernels(model, measurements: dict) -> list:
         ["s", "c"], sin_ + cin, err.applyfunc(sub),
     ))
     ks.extend(group_operation_kernels(model))
+    ks.extend(estimator_kernels(model, measurements, P, pin, sin_))  # likelihood, store loops, RTS smoother
     return ks
 
 
