@@ -101,7 +101,7 @@ def test_smoother_mean_converges_to_the_batch_map(model):
     rng = np.random.default_rng(7)
     K = 20
     gaps = []
-    for scale in (1.0, 0.1):
+    for scale in (1.0, 0.01):
         q = np.asarray(spec.default_accel_std) * scale
         r = 0.3 * scale
         P0 = _p0(spec, scale)
@@ -118,10 +118,11 @@ def test_smoother_mean_converges_to_the_batch_map(model):
         gaps.append((gap(xs[0], Ps[0]), gap(xf[0], Pf[0])))
     (sm_big, f_big), (sm_small, f_small) = gaps
     # the smoother is far closer to the MAP than the filter (which misses the future measurements), and its
-    # gap, in units of its own std, shrinks with the noise (linearisation error)
+    # gap, in units of its own std, shrinks with the noise like the linearisation error (measured: 0.23-0.49 σ
+    # at scale 1, 0.005-0.007 σ at scale 0.01 for the nonlinear models; 0 for the linear CV)
     assert sm_small < 0.02, gaps
     assert f_small > 0.2, gaps
-    assert sm_small < 0.5 * sm_big or sm_big < 0.02, gaps
+    assert sm_small < 0.1 * sm_big or sm_big < 1e-6, gaps
 
 
 @pytest.mark.slow
@@ -131,7 +132,7 @@ def test_smoothed_nees_and_rmse_monte_carlo(model):
     rng = np.random.default_rng(11)
     B, K = 300, 40
     q = np.asarray(spec.default_accel_std)
-    P0 = _p0(spec)
+    P0 = _p0(spec, 0.3)  # an initial error the filters linearise well (at 1.0 SE(2)×SE(2)'s own NEES is 9.1 for n = 6)
     X, z, x0 = _simulate(spec, B, K, q, 0.3, P0, rng)
     xf, Pf, xs, Ps = filter_batch(model, z, dt=DT, accel_std=q, meas_std=0.3, x0=x0, P0=P0, return_cov=True, smooth=True)
     k = spec.kernels
@@ -144,11 +145,13 @@ def test_smoothed_nees_and_rmse_monte_carlo(model):
                 e = k.between(k.state_from_physical(x[b, j]), t)
                 out[b, j] = e @ np.linalg.solve(P[b, j], e)
     n = spec.n
-    # mean NEES over B·K samples; a consistent estimator gives n (filter's own NEES shown for comparison)
-    assert 0.85 * n < nees_s.mean() < 1.2 * n, (nees_s.mean(), nees_f.mean())
+    # mean NEES over B·K samples; a consistent estimator gives n. Measured (smoothed / filtered): CTRV 5.32 / 5.16
+    # (n 5), CV 3.98 / 4.05 (4), SE(2)×R² 5.16 / 5.05 (5), SE(2)×R³ 6.24 / 6.27 (6), SE(2)×SE(2) 6.64 / 6.58 (6)
+    assert 0.85 * n < nees_s.mean() < 1.15 * n, (nees_s.mean(), nees_f.mean())
+    assert abs(nees_s.mean() - nees_f.mean()) < 0.05 * n, (nees_s.mean(), nees_f.mean())
     rmse_s = np.sqrt(np.mean(np.sum((xs[..., :2] - X[:, 1:, :2]) ** 2, axis=-1)))
     rmse_f = np.sqrt(np.mean(np.sum((xf[..., :2] - X[:, 1:, :2]) ** 2, axis=-1)))
-    assert rmse_s < 0.85 * rmse_f, (rmse_s, rmse_f)
+    assert rmse_s < 0.75 * rmse_f, (rmse_s, rmse_f)  # measured 0.55-0.60
 
 
 @pytest.mark.parametrize("model", MODEL_NAMES)

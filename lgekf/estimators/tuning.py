@@ -7,7 +7,8 @@ give the prediction-error decomposition of the likelihood of the measurements (S
     log L(θ) = Σ_tracks Σ_k −½ (log det S_k + e_kᵀ S_k⁻¹ e_k + m log 2π),
 
 exact for a linear Gaussian model (CV) and the usual EKF approximation otherwise. Each track is conditioned
-on its first two measurements, which start the filter (``two_point_prior``). The parameters θ are the logs
+on its first measurement and the first one at least ``baseline`` (1 s) later, which start the filter
+(``two_point_prior``). The parameters θ are the logs
 of the model's process-noise stds (``accel_std``, its ``noise_names``) and of the measurement stds (one for
 position; (σ_x, σ_y, σ_θ) for pose), unless ``meas_std`` is given (then fixed). The generated
 ``loglik_batch_<measurement>`` evaluates log L over all tracks in numba (prange); ``scipy.optimize``
@@ -19,6 +20,12 @@ The fit says when the data do not identify the noise (``NoiseFit.problems``): fe
 ``MIN_UPDATES_PER_PARAMETER`` updates per parameter is refused (ValueError); a Hessian that is not positive
 definite (flat likelihood), an interval wider than a factor ``WIDE_FACTOR`` either way, an optimum on a
 bound, or starts ending at different optima are reported.
+
+Measured (tests/test_tuning.py): with SE(2)×SE(2) truth (σ_v, σ_ω, r) = (0.5, 0.2, 0.2) the 95 % intervals
+cover the truth on 60 tracks of 20 s. From positions alone the lateral-velocity std of SE(2)×SE(2) and
+SE(2)×R³ trades against the turn-rate std (both bend the path) and on 6 s tracks it is reported as not
+identified. The two-point start needs a baseline: with the first two measurements 0.1 s apart (heading
+almost unknown) the same data gave σ_ω = 0.35 [0.29, 0.42], far above the truth, hence ``baseline`` = 1 s.
 """
 
 from __future__ import annotations
@@ -170,7 +177,7 @@ def _meas_guess(batch: TrackBatch, m: int) -> float:
 
 def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
                 meas_std: float | ArrayLike | None = None, n_starts: int = 3, omega_std: float = 0.5,
-                heading_cap: float = math.pi, hessian: bool = True) -> NoiseFit:
+                heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0) -> NoiseFit:
     """Maximum-likelihood process noise (and measurement noise) of ``model`` from measured tracks.
 
     Parameters
@@ -191,6 +198,11 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
         Of the two-point prior (``lgekf.estimators.tracks.two_point_prior``).
     hessian : bool
         Compute the intervals (2d² extra likelihood evaluations).
+    baseline : float
+        Each track starts from its first measurement and the first one at least ``baseline`` s later (the
+        two-point prior, ``lgekf.estimators.tracks.batch_tracks``); the measurements in between are not used.
+        Two points 0.1 s apart leave the heading almost unknown (velocity error √2·r/Δ), and the likelihood
+        of the steps that follow then asks for a much larger process noise than the motion has.
 
     Returns
     -------
@@ -212,7 +224,7 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     spec = get_model(model)
     meas = spec.measurement(measurement)
     m = meas.dim
-    batch = tracks if isinstance(tracks, TrackBatch) else batch_tracks(tracks, m, dt)
+    batch = tracks if isinstance(tracks, TrackBatch) else batch_tracks(tracks, m, dt, baseline)
     nq = len(spec.noise_names)
     nr = len(meas.noise_names)
     names = tuple(spec.noise_names) + tuple(f"meas_{nm}" for nm in meas.noise_names)
@@ -227,7 +239,7 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     if n_upd < need:
         raise ValueError(
             f"too few measurements to learn the noise of {model}: {n_upd} filter updates in {batch.z.shape[0]} tracks "
-            f"(each track's first two start the filter) for {d} parameters; need at least {need}")
+            f"(each track's two-point start uses its first measurement and one ≥ baseline s later) for {d} parameters; need at least {need}")
     x0, prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)
 
     def unpack_theta(th):
