@@ -43,7 +43,7 @@ def test_learns_cv_noise_with_fixed_measurement_std_and_likelihood_is_maximal():
     fit = learn_noise("cv", tracks, dt=dt, meas_std=0.3)
     assert fit.fixed == (False, True)
     assert fit.ci_low[0] <= 0.8 <= fit.ci_high[0], fit.report()
-    batch = batch_tracks(tracks, 2, dt)
+    batch = batch_tracks(tracks, 2, dt, baseline=1.0)  # the start learn_noise uses
     best = log_likelihood("cv", batch, fit.accel_std, 0.3)
     assert best == pytest.approx(fit.loglik, rel=1e-9)
     for f in (0.7, 1.4):
