@@ -355,7 +355,7 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
 ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
 
 
-def output_columns(model, full_cov=False, origin=False):
+def output_columns(model, full_cov=False, origin=False, smooth=False):
     """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon], flag.
 
     ``origin``: the input had lat, lon columns; those two columns then hold the origin (degrees) of
@@ -368,7 +368,10 @@ def output_columns(model, full_cov=False, origin=False):
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
+    cols = cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
+    if smooth:  # `--smooth`: smooth_<state>, smooth_std_<state> (lgekf.apps.smooth_track)
+        cols += [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
+    return cols
 
 
 def output_path(out, model: str, all_models: bool):
@@ -383,19 +386,19 @@ def output_path(out, model: str, all_models: bool):
 
 
 def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
-                monitor: MonitorConfig | None = MonitorConfig()):
+                monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False):
     """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
-    (``bar`` None: no progress).
+    (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
 
     Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
     """
     spec = get_model(model)
     origin = meas.origin is not None
-    fh.write((",".join(output_columns(model, full_cov, origin)) + "\n").encode())
+    fh.write((",".join(output_columns(model, full_cov, origin, smooth)) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
-    ncol = m + (2 if origin else 0) + 1
+    ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
     B = len(starts) - 1
@@ -419,6 +422,10 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
         if origin:
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
         parts.append(r.flag[:, None].astype(float))
+        if smooth:
+            from .smooth_track import smoothed_columns
+
+            parts.append(smoothed_columns(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, r.x, r.p, h, measurement))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
         if bar is not None:
             bar.update(b - a)
