@@ -20,7 +20,7 @@ from ..estimators.smoother import smooth_segments
 from ..estimators.tuning import NoiseFit, learn_noise
 from .track import TrackConfig, _measurement_inputs, initial_common, initial_estimates
 
-__all__ = ["smoothed_columns", "smooth_column_names", "tune_models"]
+__all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset"]
 
 
 def smooth_column_names(model: str) -> list:
@@ -63,3 +63,14 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
             fixed = meas_std if meas == "position" else None
         fits[m] = learn_noise(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
     return fits
+
+
+def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models) -> dict:
+    """{model: NoiseFit} learned on a ``lgekf.io.datasets.Dataset``'s tracks with N(0, meas_std²) noise added
+    (noise stream 1 of ``lgekf evaluate``, every seed's draw a track of its own), the measurement std held
+    at ``meas_std``."""
+    tracks = []
+    for seed in seeds:
+        z = ds.p + meas_std * seed_rng(seed, 1, ds.name).standard_normal(ds.p.shape)
+        tracks += [(ds.t[a:b], z[a:b]) for a, b in zip(ds.starts[:-1], ds.starts[1:])]
+    return {m: learn_noise(m, tracks, meas_std=meas_std) for m in models}
