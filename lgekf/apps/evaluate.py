@@ -197,7 +197,7 @@ class DatasetResult:
 
 
 def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
-                     tune_method="grid", smooth=False):
+                     tune_method="mle", smooth=False):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
     ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid" or

@@ -82,7 +82,7 @@ def _evaluate(a, runner=None) -> int:
     datasets = [load_dataset(d, root=a.data_root, fmt=a.format, frame_dt=a.frame_dt, min_length=a.min_length) for d in names]
     if len({d.name for d in datasets}) != len(datasets):
         raise ValueError("datasets: the same dataset (name) is given twice")
-    rows, tuning, per_track, fits = [], [], [], []
+    rows, tuning, per_track, fits, learned = [], [], [], [], []
     steps = 1 + ((2 * len(TUNE_SCALES) + len(TUNE_RATIOS) if a.tune_method == "grid" else 1) if a.tune else 0)  # runs per dataset (tuning grid + evaluation)
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
@@ -100,6 +100,10 @@ def _evaluate(a, runner=None) -> int:
                         min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
                 for m, fit in res.fits.items():
                     fits.append(f"{ds.name}: {fit.report()}")
+                    learned += [{"dataset": ds.name, "filter": m, "parameter": nm, "value": v, "ci_lo": lo, "ci_hi": hi,
+                                 "loglik": fit.loglik, "updates": fit.n_updates, "identified": fit.identified,
+                                 "tune_tracks": res.n_tune_tracks}
+                                for nm, v, lo, hi in zip(fit.names, fit.values, fit.ci_low, fit.ci_high)]
             for m, (pos, vel) in res.rmse.items():
                 for si in range(pos.shape[0]):
                     for j, lab in enumerate(res.dataset.labels):
@@ -116,6 +120,9 @@ def _evaluate(a, runner=None) -> int:
         for r in per_track:
             w.writerow(r[:5] + [_fmt(float(r[5]), 6), _fmt(float(r[6]), 6)])
         write_atomic(stage / "per_track.csv", buf.getvalue())
+        if learned:  # --tune-method mle: the learned noise, its 95 % interval and likelihood
+            write_atomic(stage / "learned.csv", _csv_text(["dataset", "filter", "parameter", "value", "ci_lo", "ci_hi", "loglik", "updates",
+                                                           "identified", "tune_tracks"], learned))
         if tuning:
             write_atomic(stage / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
         meta = {
@@ -146,6 +153,6 @@ def _evaluate(a, runner=None) -> int:
         for r in rows:
             if r["noise"] == "tuned":
                 print(f"tuned {r['dataset']} {r['filter']}: k = {r['scale']:.3g}, ρ = {r['turn_ratio']:.3g} -> accel_std {r['accel_std']}", file=sys.stderr)
-    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}, meta.json"
+    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}{', learned.csv' if learned else ''}, meta.json"
           f"{'' if a.no_figure else ', evaluation.png'} ({meta['seconds']:.1f} s)", file=sys.stderr)
     return 0

@@ -290,8 +290,9 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     ci_low = values.copy()
     ci_high = values.copy()
     for i in free:
-        ci_low[i] = values[i] * math.exp(-1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
-        ci_high[i] = values[i] * math.exp(1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
+        with np.errstate(over="ignore"):  # a flat direction: the interval reaches 0 or ∞
+            ci_low[i] = values[i] * np.exp(-1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
+            ci_high[i] = values[i] * np.exp(1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
         if np.isfinite(log_se[i]) and 1.96 * log_se[i] > math.log(WIDE_FACTOR):
             problems.append(f"{names[i]}: the 95 % interval spans more than ×/÷{WIDE_FACTOR:g}")
     for j, i in enumerate(free):
