@@ -51,7 +51,7 @@ from ..core.registry import MODELS, get_model
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
-from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
+from .track import DEFAULT_ACCEL_STD, TrackConfig, smoothing_inputs, track_arrays
 
 __all__ = [
     "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
@@ -106,7 +106,7 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
             if variant == "smoothed":
                 from .smooth_track import smoothed_columns
 
-                x = smoothed_columns(base, ds.t, z, ds.starts, cfg, x, p)[:, :get_model(base).n]
+                x = smoothed_columns(base, "position", ds.t, *smoothing_inputs(base, ds.t, z, ds.starts, cfg), x, p)[:, :get_model(base).n]
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:
                 out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(base, x) - ds.v) ** 2, axis=1))
@@ -160,7 +160,7 @@ class DatasetResult:
     tuning: list = field(default_factory=list)  # (model, stage, k, ρ, mean pos rmse on the tuning split)
     n_tune_tracks: int = 0
     accel: dict | None = None  # model -> accel_std when learned (tune_method "mle"), else k·default (scale)
-    fits: dict = field(default_factory=dict)  # model -> NoiseFit (tune_method "mle")
+    fits: dict = field(default_factory=dict)  # model -> NoiseFit, or why it could not be learned (tune_method "mle")
 
     def summary(self):
         rows = []
@@ -214,7 +214,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
         from .smooth_track import learn_on_dataset
 
         fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS)
-        accel = {m: fits[m].accel_std for m in FILTERS}
+        accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
         cfg = TrackConfig(dict(accel), meas_std).validate()
         if progress:
             progress(1)

@@ -18,7 +18,6 @@ import numpy as np
 from ..core.registry import get_model
 from ..estimators.smoother import smooth_segments
 from ..estimators.tuning import NoiseFit, learn_noise
-from .track import TrackConfig, _measurement_inputs, initial_common, initial_estimates
 
 __all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset"]
 
@@ -29,15 +28,16 @@ def smooth_column_names(model: str) -> list:
     return [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
 
 
-def smoothed_columns(model, t, z, starts, cfg: TrackConfig, x_filt, p_filt, heading=None, measurement="position"):
-    """(N, 2n): smoothed states and stds of every row (module docstring); x_filt, p_filt the filter's columns
-    (used for each object's first two rows)."""
+def smoothed_columns(model, measurement, t, zm, starts, x0, P0, q, r, x_filt, p_filt):
+    """(N, 2n): smoothed states and stds of every row (module docstring).
+
+    zm (N, m) the measurements and r their noise stds, x0 (B, n) / P0 (B, n, n) each object's two-point start
+    at its row 1, q the process-noise stds (``lgekf.apps.track.smoothing_inputs`` gives them all);
+    x_filt, p_filt the filter's columns (kept for each object's first two rows).
+    """
     spec = get_model(model)
     starts = np.asarray(starts, dtype=np.int64)
-    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
-    x0, P0 = initial_estimates(model, c, var)
-    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
-    xs, ps = smooth_segments(model, measurement, np.asarray(t, float), zm, starts[:-1] + 2, np.diff(starts) - 2, x0, P0, cfg.q(model), r)
+    xs, ps = smooth_segments(model, measurement, np.asarray(t, float), zm, starts[:-1] + 2, np.diff(starts) - 2, x0, P0, q, r)
     i0 = starts[:-1]
     for off in (0, 1):
         xs[i0 + off] = x_filt[i0 + off]
@@ -68,9 +68,15 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
 def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models) -> dict:
     """{model: NoiseFit} learned on a ``lgekf.io.datasets.Dataset``'s tracks with N(0, meas_std²) noise added
     (noise stream 1 of ``lgekf evaluate``, every seed's draw a track of its own), the measurement std held
-    at ``meas_std``."""
+    at ``meas_std``. A model whose noise cannot be learned (too few points) maps to the reason (a str)."""
     tracks = []
     for seed in seeds:
         z = ds.p + meas_std * seed_rng(seed, 1, ds.name).standard_normal(ds.p.shape)
         tracks += [(ds.t[a:b], z[a:b]) for a, b in zip(ds.starts[:-1], ds.starts[1:])]
-    return {m: learn_noise(m, tracks, meas_std=meas_std) for m in models}
+    out = {}
+    for m in models:
+        try:
+            out[m] = learn_noise(m, tracks, meas_std=meas_std)
+        except ValueError as e:  # too few points: the caller keeps the default noise and says why
+            out[m] = str(e)
+    return out

@@ -62,7 +62,7 @@ from ..io.formatting import format_rows, label_bytes
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -299,6 +299,16 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     return out_x, out_p, out_nis
 
 
+def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
+    """(zm, starts, x0, P0, q, r): what ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the filter's
+    output, from the same two-point start and noise as ``track_arrays``."""
+    spec = get_model(model)
+    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
+    x0, P0 = initial_estimates(model, c, var)
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    return zm, starts, x0, P0, cfg.q(model), r
+
+
 @dataclass
 class Tracked:
     """Output of ``track_monitored``: states, packed covariances, NIS, flags (N,) and the alarms."""
@@ -425,7 +435,8 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
         if smooth:
             from .smooth_track import smoothed_columns
 
-            parts.append(smoothed_columns(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, r.x, r.p, h, measurement))
+            parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
+                                                                                             cfg, h, measurement), r.x, r.p))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
         if bar is not None:
             bar.update(b - a)

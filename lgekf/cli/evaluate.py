@@ -99,6 +99,9 @@ def _evaluate(a, runner=None) -> int:
                     if mine:  # (none with --tune-method mle)
                         min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
                 for m, fit in res.fits.items():
+                    if isinstance(fit, str):
+                        fits.append(f"{ds.name}: {m}: {fit}; the default noise is kept")
+                        continue
                     fits.append(f"{ds.name}: {fit.report()}")
                     learned += [{"dataset": ds.name, "filter": m, "parameter": nm, "value": v, "ci_lo": lo, "ci_hi": hi,
                                  "loglik": fit.loglik, "updates": fit.n_updates, "identified": fit.identified,
