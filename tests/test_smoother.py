@@ -185,3 +185,26 @@ def test_smooth_needs_record():
     f.predict()
     with pytest.raises(ValueError, match="record=True"):
         f.smooth()
+
+
+@pytest.mark.parametrize("model", [m for m in MODEL_NAMES if "pose" in get_model(m).measurements])
+def test_pose_measurements_smooth_and_class_agrees(model):
+    spec = get_model(model)
+    rng = np.random.default_rng(4)
+    K = 12
+    q = np.asarray(spec.default_accel_std)
+    P0 = _p0(spec, 0.3)
+    X, _, x0 = _simulate(spec, 1, K, q, 0.3, P0, rng)
+    z = np.empty((K, 3))
+    spec.kernels.measure_batch_pose(np.ascontiguousarray(X[0, 1:]), np.ascontiguousarray(rng.standard_normal((K, 3)) * [0.3, 0.3, 0.05]), z)
+    r = (0.3, 0.3, 0.05)
+    xf, _, xs, Ps = filter_batch(model, z[None], dt=DT, accel_std=q, meas_std=r, x0=x0, P0=P0, measurement="pose", smooth=True,
+                                 return_cov=True)
+    f = make_filter(model, dt=DT, accel_std=q, meas_std=r, x0=x0[0], P0=P0, measurement="pose", record=True)
+    for j in range(K):
+        f.predict()
+        f.update(z[j])
+    xc, Pc = f.smooth()
+    np.testing.assert_allclose(xc, xs[0], rtol=0, atol=1e-10)
+    np.testing.assert_allclose(Pc, Ps[0], rtol=0, atol=1e-10)
+    assert np.all(np.isfinite(xs)) and not np.allclose(xs[0, :-1], xf[0, :-1])
