@@ -16,7 +16,7 @@ def run(*args, cwd):
     return subprocess.run([*cli_command(), *map(str, args)], capture_output=True, text=True, cwd=cwd)
 
 
-def _simulated_file(path, B=6, K=120, missing=(40, 41)):
+def _simulated_file(path, B=4, K=80, missing=(40, 41)):
     rng = np.random.default_rng(1)
     sim = simulate(np.tile([0, 0, 0, 3.0, 0, 0], (B, 1)), dt=0.1, steps=K, sigma_v=0.5, sigma_w=0.3, meas_std=0.3, rng=rng)
     lines = ["id,t,x,y"]
@@ -32,7 +32,7 @@ def test_track_tune_smooth_writes_smoothed_columns_closer_to_the_truth(tmp_path)
     sim = _simulated_file(tmp_path / "obj.csv")
     r = run("track", "obj.csv", "--model", "se2r3", "--tune", "--smooth", "-o", "out.csv", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
-    assert "learned noise for se2r3 (position, 6 tracks" in r.stderr and "95 %" in r.stderr
+    assert "learned noise for se2r3 (position, 4 tracks" in r.stderr and "95 %" in r.stderr
     rows = list(csv.DictReader(open(tmp_path / "out.csv")))
     head = list(rows[0])
     assert head[-12:] == [f"smooth_{s}" for s in ("x", "y", "theta", "vx", "vy", "omega")] + \
