@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch']
 
 
 @nb.njit(cache=True)
@@ -681,3 +681,214 @@ def right_jacobian_bank(live, eps, out):
             for a in range(4):
                 for b in range(4):
                     out[i, a, b] = f[a, b]
+
+
+@nb.njit(cache=True)
+def innovation_logdet_position(s, p, r):
+    """log det S, S = ℋ P ℋᵀ + R (eq:K) for a position measurement at the predicted state (s, p),
+    noise stds (r): the log-determinant term of the innovation log-likelihood.
+    """
+    p00 = p[0]
+    p01 = p[1]
+    p11 = p[4]
+    _t0 = r*r
+    S00 = _t0 + p00
+    S11 = _t0 + p11
+    detS = S00*S11 - p01*p01
+    return math.log(detS)
+
+
+@nb.njit(cache=True)
+def run_one_store_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """Filter one trajectory like run_one_position and keep every step's predicted internal state and packed
+    covariance (s_pred (K, 4), p_pred (K, 10), before the update) and posterior ones (s_filt, p_filt),
+    the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
+    the posterior physical states out_x (K, 4)."""
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    for k in range(K):
+        predict(s, p, dts[k], q[0])
+        for i in range(4):
+            s_pred[k, i] = s[i]
+        for i in range(10):
+            p_pred[k, i] = p[i]
+        if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            out_nis[k] = np.nan
+            out_logdet[k] = np.nan
+        else:
+            out_logdet[k] = innovation_logdet_position(s, p, r[0])
+            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+        for i in range(4):
+            s_filt[k, i] = s[i]
+        for i in range(10):
+            p_filt[k, i] = p[i]
+        physical_into(s, out_x[k])
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_store_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_one_store_position over B trajectories in parallel (prange); arrays as run_batch_position with a
+    leading batch axis (s_pred, s_filt (B, K, 4); p_pred, p_filt (B, K, 10); out_nis, out_logdet (B, K);
+    out_x (B, K, 4))."""
+    for b in nb.prange(z.shape[0]):
+        run_one_store_position(z[b], dts[b], x0[b], p0[b], q, r, s_pred[b], p_pred[b], s_filt[b], p_filt[b], out_nis[b],
+                             out_logdet[b], out_x[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def loglik_batch_position(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
+    """Innovation log-likelihood of each of B trajectories (prange): out_ll[b] = Σ_k −½(log det S_k + NIS_k +
+    2·log 2π) over its first lengths[b] steps (the rest is padding), out_count[b] = its number of updates
+    (NaN rows of z are missed detections: predicted, not counted). A diverged filter gives NaN."""
+    for b in nb.prange(z.shape[0]):
+        s = state_from_physical(x0[b])
+        p = p0[b].copy()
+        ll = 0.0
+        cnt = 0
+        for k in range(lengths[b]):
+            predict(s, p, dts[b, k], q[0])
+            if not (np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1])):
+                ld = innovation_logdet_position(s, p, r[0])
+                nis = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                ll += -0.5 * (ld + nis + 2.0 * 1.8378770664093453)
+                cnt += 1
+        out_ll[b] = ll
+        out_count[b] = cnt
+
+
+@nb.njit(cache=True)
+def unpack_into(p, A):
+    """The packed covariance p (10) into the full symmetric A (4, 4)."""
+    k = 0
+    for i in range(4):
+        for j in range(i, 4):
+            A[i, j] = p[k]
+            A[j, i] = p[k]
+            k += 1
+
+
+@nb.njit(cache=True)
+def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
+    """Rauch–Tung–Striebel backward pass on the group over the first K steps (derivation:
+    lgekf.estimators.smoother). dts (K,) step lengths (dts[k] led to step k); s_pred, p_pred / s_filt, p_filt:
+    predicted / posterior internal states and packed covariances (run_one_store_*); writes the smoothed ones
+    into s_sm (K, 4), p_sm (K, 10). For k = K-2 ... 0, with F = transition(μ_k, dts[k+1]):
+    d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), P̄ = Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ, G = P_k Fᵀ P_{k+1|k}⁻¹, δ = G d,
+    μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) [P_k + G (P̄ − P_{k+1|k}) Gᵀ] Φ(δ)ᵀ."""
+    n = 4
+    Pf = np.empty((n, n))
+    Pp = np.empty((n, n))
+    Ps = np.empty((n, n))
+    L = np.empty((n, n))
+    C = np.empty((n, n))
+    G = np.empty((n, n))
+    T = np.empty((n, n))
+    D = np.empty((n, n))
+    dl = np.empty(n)
+    for i in range(4):
+        s_sm[K - 1, i] = s_filt[K - 1, i]
+    for i in range(10):
+        p_sm[K - 1, i] = p_filt[K - 1, i]
+    for k in range(K - 2, -1, -1):
+        F = transition(s_filt[k], dts[k + 1])
+        unpack_into(p_filt[k], Pf)
+        unpack_into(p_pred[k + 1], Pp)
+        unpack_into(p_sm[k + 1], Ps)
+        d = between(s_pred[k + 1], s_sm[k + 1])
+        Ji = right_jacobian_inv(d)
+        # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Ji[i, a] * Ps[a, j]
+                T[i, j] = acc
+        for i in range(n):
+            for j in range(i, n):
+                acc = 0.0
+                for a in range(n):
+                    acc += T[i, a] * Ji[j, a]
+                D[i, j] = acc - Pp[i, j]
+                D[j, i] = D[i, j]
+        # C = P_k Fᵀ
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Pf[i, a] * F[j, a]
+                C[i, j] = acc
+        # Cholesky P_{k+1|k} = L Lᵀ, then G = C P_{k+1|k}⁻¹ row by row (two triangular solves)
+        for j in range(n):
+            acc = Pp[j, j]
+            for a in range(j):
+                acc -= L[j, a] * L[j, a]
+            dj = math.sqrt(acc) if acc > 0.0 else 1e-300
+            L[j, j] = dj
+            for i in range(j + 1, n):
+                acc = Pp[i, j]
+                for a in range(j):
+                    acc -= L[i, a] * L[j, a]
+                L[i, j] = acc / dj
+        for r in range(n):
+            for i in range(n):
+                acc = C[r, i]
+                for a in range(i):
+                    acc -= L[i, a] * G[r, a]
+                G[r, i] = acc / L[i, i]
+            for i in range(n - 1, -1, -1):
+                acc = G[r, i]
+                for a in range(i + 1, n):
+                    acc -= L[a, i] * G[r, a]
+                G[r, i] = acc / L[i, i]
+        # δ = G d
+        for i in range(n):
+            acc = 0.0
+            for a in range(n):
+                acc += G[i, a] * d[a]
+            dl[i] = acc
+        # P̃ = P_k + G D Gᵀ  (T = G D)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += G[i, a] * D[a, j]
+                T[i, j] = acc
+        for i in range(n):
+            for j in range(i, n):
+                acc = Pf[i, j]
+                for a in range(n):
+                    acc += T[i, a] * G[j, a]
+                Ps[i, j] = acc
+                Ps[j, i] = acc
+        # μˢ_k = μ_k·exp(δ); Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ
+        for i in range(4):
+            s_sm[k, i] = s_filt[k, i]
+        retract(s_sm[k], dl)
+        Phi = right_jacobian(dl)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Phi[i, a] * Ps[a, j]
+                T[i, j] = acc
+        m = 0
+        for i in range(n):
+            for j in range(i, n):
+                acc = 0.0
+                for a in range(n):
+                    acc += T[i, a] * Phi[j, a]
+                p_sm[k, m] = acc
+                m += 1
+
+
+@nb.njit(cache=True, parallel=True)
+def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_one for B trajectories (prange), trajectory b over its first lengths[b] steps; also writes the
+    smoothed physical states into out_x (B, K, 4)."""
+    for b in nb.prange(dts.shape[0]):
+        Kb = lengths[b]
+        if Kb > 0:
+            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
+            for k in range(Kb):
+                physical_into(s_sm[b, k], out_x[b, k])

@@ -147,7 +147,7 @@ def test_evaluate_synthetic_end_to_end(tmp_path):
 def test_evaluate_tune_uses_only_the_tuning_split(tmp_path):
     data = write_synthetic(tmp_path / "synth.csv", synthetic_tracks(n=10))
     out = tmp_path / "ev"
-    r = evaluate(data, "--seeds", "1", "--tune", "--out", out, "--no-figure")
+    r = evaluate(data, "--seeds", "1", "--tune", "--tune-method", "grid", "--out", out, "--no-figure")
     assert r.returncode == 0, r.stderr
     rows = list(csv.DictReader(open(out / "summary.csv")))
     assert {x["noise"] for x in rows} == {"default", "tuned", "-"}
@@ -176,9 +176,9 @@ def test_tuning_never_sees_the_evaluation_tracks():
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     assert set(tune_idx).isdisjoint(eval_idx) and len(tune_idx) == 3
     # poisoning the evaluation part does not change the chosen scales
-    a = evaluate_dataset(ds, seeds=1, tune=True)[1].scale
+    a = evaluate_dataset(ds, seeds=1, tune=True, tune_method="grid")[1].scale
     ds.p[starts[3]:] += 1e3 * np.random.default_rng(0).standard_normal(ds.p[starts[3]:].shape)
-    b = evaluate_dataset(ds, seeds=1, tune=True)[1].scale
+    b = evaluate_dataset(ds, seeds=1, tune=True, tune_method="grid")[1].scale
     assert a == b
 
 

@@ -101,6 +101,11 @@ README_TO_RUN = {
     "lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler tcp://10.0.0.5:8786":
         ["lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler {scheduler}"],
     "lgekf evaluate ethucy --tune --workers 2": None,
+    # the stand-in detections are too few to learn SE(2)xR3's four noise stds: CV (two) on the same file
+    "lgekf track detections.csv --model se2r3 --tune --smooth -o tracks.csv": ["lgekf track detections.csv --model cv --tune --smooth -o tracks.csv",
+                                                                              "lgekf track detections.csv --model se2r3 --smooth -o tracks.csv"],
+    "lgekf evaluate ethucy kitti cyclists dut --tune --smooth": None,
+    "lgekf evaluate --tune": ["lgekf evaluate ethucy --tune"],
 }
 
 

@@ -198,7 +198,7 @@ def evaluate_csv(path):
 @pytest.mark.parametrize("tune", [False, pytest.param(True, marks=pytest.mark.slow)])
 def test_evaluate_equals_the_single_process_run(tmp_path, dask_scheduler, tune):
     evaluate_csv(tmp_path / "walk.csv")
-    extra = ["--tune"] if tune else []
+    extra = ["--tune", "--tune-method", "grid"] if tune else []
     one = run("evaluate", "walk.csv", "--out", "one", "--seeds", 2, "--no-figure", "--quiet", *extra, cwd=tmp_path)
     assert one.returncode == 0, one.stderr
     many = run("evaluate", "walk.csv", "--out", "many", "--seeds", 2, "--no-figure", "--quiet", "--scheduler", dask_scheduler,

@@ -20,6 +20,8 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   of the whole group (smoothing and mixing on the group);
 * bank loops for multi-target tracking (``derive/codegen/bank.py``): ``innovation_into_<meas>``,
   ``innovation_bank_<meas>``, ``calH_bank_<meas>``, ``predict_bank``, ``retract_bank``, ``right_jacobian_bank``.
+* estimators (``derive.codegen.estimators``): ``innovation_logdet_<meas>``, ``run_one_store_<meas>`` /
+  ``run_batch_store_<meas>``, ``loglik_batch_<meas>``, ``smooth_one`` / ``smooth_batch`` (RTS on the group).
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from ..algebra import LEGEND, _changed, lg_predict, lg_update, packed_index, sym
 from ..lie.groups import SE2
 from ..models.base import COMMON
 from .bank import bank_measurement_kernels, bank_model_kernels
+from .estimators import estimator_kernels
 from .printer import Kernel
 
 __all__ = ["se2_kernels", "model_kernels", "registry_entry", "PD_TOL"]
@@ -397,6 +400,7 @@ def model_kernels(model, measurements: dict) -> list:
     ))
     ks.extend(group_operation_kernels(model))
     ks.extend(bank_model_kernels(model))
+    ks.extend(estimator_kernels(model, measurements, P, pin, sin_))  # likelihood, store loops, RTS smoother
     return ks
 
 

@@ -30,6 +30,13 @@ Protocol
   (1) k in 2^-3 ... 2^4 by factors √2 with ρ = 1 (all filters); (2) ρ in 2^-6 ... 2^3 by factors 2 at
   that k (LG, CTRV); (3) k again over its grid at the chosen ρ. CV has only k.
 
+* ``tune_method="mle"`` (the default of ``lgekf evaluate --tune``): each filter's process noise is instead
+  learned by maximum likelihood (``lgekf.estimators.tuning.learn_noise``) from the noisy measurements of the
+  tuning split (every seed's draw a track of its own, noise stream 1), with the measurement std held at the
+  known ``meas_std``; ``"grid"`` is the search above. ``smooth=True`` adds a row ``<model>:smoothed`` per
+  filter: the RTS smoother on the group (``lgekf.apps.smooth_track``) on the same measurements and noise,
+  scored on the same rows.
+
 Datasets: ``lgekf.io.datasets``; intervals: ``lgekf.experiments.statistics``.
 """
 
@@ -44,7 +51,7 @@ from ..core.registry import MODELS, get_model
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
-from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
+from .track import DEFAULT_ACCEL_STD, TrackConfig, smoothing_inputs, track_arrays
 
 __all__ = [
     "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
@@ -94,10 +101,15 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
     out = {m: (np.empty((S, ds.n_tracks)), None if ds.v is None else np.empty((S, ds.n_tracks))) for m in models}
     for si, z in enumerate(zs):
         for m in models:
-            x, _, _ = track_arrays(m, ds.t, z, ds.starts, cfg)
+            base, _, variant = m.partition(":")  # "<model>:smoothed": the RTS smoother of the model
+            x, p, _ = track_arrays(base, ds.t, z, ds.starts, cfg)
+            if variant == "smoothed":
+                from .smooth_track import smoothed_columns
+
+                x = smoothed_columns(base, "position", ds.t, *smoothing_inputs(base, ds.t, z, ds.starts, cfg), x, p)[:, :get_model(base).n]
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:
-                out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(m, x) - ds.v) ** 2, axis=1))
+                out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(base, x) - ds.v) ** 2, axis=1))
     return out
 
 
@@ -147,21 +159,25 @@ class DatasetResult:
     rmse: dict  # model -> (pos (S, J), vel (S, J) | None)
     tuning: list = field(default_factory=list)  # (model, stage, k, ρ, mean pos rmse on the tuning split)
     n_tune_tracks: int = 0
+    accel: dict | None = None  # model -> accel_std when learned (tune_method "mle"), else k·default (scale)
+    fits: dict = field(default_factory=dict)  # model -> NoiseFit, or why it could not be learned (tune_method "mle")
 
     def summary(self):
         rows = []
         base = np.nanmean(self.rmse[BASELINE][0], axis=0)
-        for m, (pos, vel) in self.rmse.items():
+        for m_row, (pos, vel) in self.rmse.items():
+            m = m_row.split(":")[0]  # a smoothed row's settings are its model's
             per_track = np.nanmean(pos, axis=0)
             diverged = int(np.sum(~np.isfinite(pos)))
             ok = np.isfinite(per_track)
             pm, plo, phi = bootstrap_ci(per_track[ok])
             pmed = float(np.median(per_track[ok])) if ok.any() else float("nan")
             row = {
-                "dataset": self.dataset.name, "filter": m, "noise": self.noise if m != "measurements" else "-",
+                "dataset": self.dataset.name, "filter": m_row, "noise": self.noise if m != "measurements" else "-",
                 "scale": self.scale[m][0] if m in self.scale else float("nan"),
                 "turn_ratio": self.scale[m][1] if m in self.scale else float("nan"),
-                "accel_std": ";".join(f"{v:.4g}" for v in accel_std_for(m, *self.scale[m])) if m in self.scale else "",
+                "accel_std": ";".join(f"{v:.4g}" for v in (self.accel[m] if self.accel and m in self.accel else accel_std_for(m, *self.scale[m])))
+                if m in self.scale else "",
                 "tracks": self.dataset.n_tracks, "skipped_short": self.dataset.skipped, "seeds": pos.shape[0],
                 "diverged": diverged, "pos_rmse": pm, "pos_ci_lo": plo, "pos_ci_hi": phi, "pos_median": pmed,
                 "pos_n": int(ok.sum()),
@@ -180,17 +196,33 @@ class DatasetResult:
         return rows
 
 
-def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None):
+def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
+                     tune_method="mle", smooth=False):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
-    ``runner``: passed to ``run_filters`` (None: everything in this process).
+    ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid" or
+    "mle"; ``smooth``: also the ``<model>:smoothed`` rows (module docstring).
     """
     seed_list = [base_seed + s for s in range(seeds)]
     default = {m: (1.0, 1.0) for m in FILTERS}
+    models = FILTERS + (tuple(f"{m}:smoothed" for m in FILTERS) if smooth else ())
     if not tune:
-        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, runner=runner))]
+        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, models=models, runner=runner))]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
+    if tune_method == "mle":
+        from .smooth_track import learn_on_dataset
+
+        fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS)
+        accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
+        cfg = TrackConfig(dict(accel), meas_std).validate()
+        if progress:
+            progress(1)
+        out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
+                                                                    runner=runner), [], len(tune_idx))]
+        out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner), [],
+                                 len(tune_idx), accel, fits))
+        return out
     tuning = []
     best = {m: (float("inf"), (1.0, 1.0)) for m in FILTERS}
 
@@ -213,7 +245,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     chosen = {m: best[m][1] for m in FILTERS}
     out = []
     for noise, scale in (("default", default), ("tuned", chosen)):
-        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, runner=runner), tuning,
+        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, models=models, runner=runner), tuning,
                                  len(tune_idx)))
     return out
 

@@ -63,7 +63,7 @@ from ..io.formatting import format_rows, label_bytes
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -231,6 +231,16 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     return out_x, out_p, out_nis
 
 
+def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
+    """(zm, starts, x0, P0, q, r): what ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the filter's
+    output, from the same two-point start and noise as ``track_arrays``."""
+    spec = get_model(model)
+    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
+    x0, P0 = initial_estimates(model, c, var)
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    return zm, starts, x0, P0, cfg.q(model), r
+
+
 @dataclass
 class Tracked:
     """Output of ``track_monitored``: states, packed covariances, NIS, flags (N,) and the alarms."""
@@ -287,7 +297,7 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
 ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
 
 
-def output_columns(model, full_cov=False, origin=False):
+def output_columns(model, full_cov=False, origin=False, smooth=False):
     """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon], flag.
 
     ``origin``: the input had lat, lon columns; those two columns then hold the origin (degrees) of
@@ -300,7 +310,10 @@ def output_columns(model, full_cov=False, origin=False):
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    return cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
+    cols = cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
+    if smooth:  # `--smooth`: smooth_<state>, smooth_std_<state> (lgekf.apps.smooth_track)
+        cols += [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
+    return cols
 
 
 def output_path(out, model: str, all_models: bool):
@@ -315,19 +328,19 @@ def output_path(out, model: str, all_models: bool):
 
 
 def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
-                monitor: MonitorConfig | None = MonitorConfig()):
+                monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False):
     """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
-    (``bar`` None: no progress).
+    (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
 
     Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
     """
     spec = get_model(model)
     origin = meas.origin is not None
-    fh.write((",".join(output_columns(model, full_cov, origin)) + "\n").encode())
+    fh.write((",".join(output_columns(model, full_cov, origin, smooth)) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
-    ncol = m + (2 if origin else 0) + 1
+    ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
     B = len(starts) - 1
@@ -351,6 +364,11 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
         if origin:
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
         parts.append(r.flag[:, None].astype(float))
+        if smooth:
+            from .smooth_track import smoothed_columns
+
+            parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
+                                                                                             cfg, h, measurement), r.x, r.p))
         fh.write(format_rows(lab, meas.obj[a:b], meas.t[a:b], np.hstack(parts), col_digits))
         if bar is not None:
             bar.update(b - a)

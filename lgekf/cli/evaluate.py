@@ -38,7 +38,11 @@ def evaluate_parser():
     ap.add_argument("--seed", type=int, default=0, help="first seed (default 0)")
     ap.add_argument("--min-length", type=int, default=5, help="skip tracks with fewer samples (default 5)")
     ap.add_argument("--tune", action="store_true",
-                    help="grid-search the process noise (scale k, turn-rate ratio ρ) per filter on the first 30 %% of tracks; evaluate on the rest")
+                    help="tune each filter's process noise on the first 30 %% of tracks (--tune-method), evaluate on the rest")
+    ap.add_argument("--tune-method", choices=["mle", "grid"], default="mle",
+                    help="with --tune: mle = maximum-likelihood process noise learned on the tuning split (default), "
+                         "grid = the RMSE grid search over k·default noise and the turn-rate ratio")
+    ap.add_argument("--smooth", action="store_true", help="also rows <model>:smoothed, the RTS smoother on the group")
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
@@ -78,12 +82,12 @@ def _evaluate(a, runner=None) -> int:
     datasets = [load_dataset(d, root=a.data_root, fmt=a.format, frame_dt=a.frame_dt, min_length=a.min_length) for d in names]
     if len({d.name for d in datasets}) != len(datasets):
         raise ValueError("datasets: the same dataset (name) is given twice")
-    rows, tuning, per_track = [], [], []
-    steps = 1 + (2 * len(TUNE_SCALES) + len(TUNE_RATIOS) if a.tune else 0)  # runs per dataset (tuning grid + evaluation)
+    rows, tuning, per_track, fits, learned = [], [], [], [], []
+    steps = 1 + ((2 * len(TUNE_SCALES) + len(TUNE_RATIOS) if a.tune_method == "grid" else 1) if a.tune else 0)  # runs per dataset (tuning grid + evaluation)
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
         results = evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune,
-                                   progress=lambda stage: bar.update(1), runner=runner)
+                                   progress=lambda stage: bar.update(1), runner=runner, tune_method=a.tune_method, smooth=a.smooth)
         bar.update(1)
         for res in results:
             rows += res.summary()
@@ -92,7 +96,17 @@ def _evaluate(a, runner=None) -> int:
                             "chosen": False, "tune_tracks": res.n_tune_tracks} for m, st, k, rho, sc in res.tuning]
                 for m in FILTERS:  # mark the first row that reached the chosen value
                     mine = [r for r in tuning if r["dataset"] == ds.name and r["filter"] == m]
-                    min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
+                    if mine:  # (none with --tune-method mle)
+                        min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
+                for m, fit in res.fits.items():
+                    if isinstance(fit, str):
+                        fits.append(f"{ds.name}: {m}: {fit}; the default noise is kept")
+                        continue
+                    fits.append(f"{ds.name}: {fit.report()}")
+                    learned += [{"dataset": ds.name, "filter": m, "parameter": nm, "value": v, "ci_lo": lo, "ci_hi": hi,
+                                 "loglik": fit.loglik, "updates": fit.n_updates, "identified": fit.identified,
+                                 "tune_tracks": res.n_tune_tracks}
+                                for nm, v, lo, hi in zip(fit.names, fit.values, fit.ci_low, fit.ci_high)]
             for m, (pos, vel) in res.rmse.items():
                 for si in range(pos.shape[0]):
                     for j, lab in enumerate(res.dataset.labels):
@@ -109,13 +123,16 @@ def _evaluate(a, runner=None) -> int:
         for r in per_track:
             w.writerow(r[:5] + [_fmt(float(r[5]), 6), _fmt(float(r[6]), 6)])
         write_atomic(stage / "per_track.csv", buf.getvalue())
+        if learned:  # --tune-method mle: the learned noise, its 95 % interval and likelihood
+            write_atomic(stage / "learned.csv", _csv_text(["dataset", "filter", "parameter", "value", "ci_lo", "ci_hi", "loglik", "updates",
+                                                           "identified", "tune_tracks"], learned))
         if tuning:
             write_atomic(stage / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
         meta = {
             "datasets": {d.name: {"description": d.description, "tracks": d.n_tracks, "skipped_short": d.skipped,
                                   "samples": int(d.t.size), "velocity_truth": d.v is not None} for d in datasets},
-            "meas_std": a.meas_std, "seeds": a.seeds, "first_seed": a.seed, "min_length": a.min_length, "tune": a.tune,
-            "tune_scales": list(TUNE_SCALES) if a.tune else None, "tune_turn_ratios": list(TUNE_RATIOS) if a.tune else None, "tune_split": "first 30 % of tracks" if a.tune else None,
+            "meas_std": a.meas_std, "seeds": a.seeds, "first_seed": a.seed, "min_length": a.min_length, "tune": a.tune, "tune_method": a.tune_method if a.tune else None, "smooth": a.smooth,
+            "tune_scales": list(TUNE_SCALES) if a.tune and a.tune_method == "grid" else None, "tune_turn_ratios": list(TUNE_RATIOS) if a.tune and a.tune_method == "grid" else None, "tune_split": "first 30 % of tracks" if a.tune else None,
             "default_accel_std": {m: list(v) for m, v in DEFAULT_ACCEL_STD.items()},
             "ci": (f"mean over tracks of the seed-averaged per-track RMSE; 95 % expanded percentile bootstrap interval over "
                    f"tracks ({BOOTSTRAP_RESAMPLES} resamples, seed {BOOTSTRAP_SEED}); none with fewer than {MIN_TRACKS_CI} tracks"),
@@ -133,10 +150,12 @@ def _evaluate(a, runner=None) -> int:
           f"n/a with fewer than {MIN_TRACKS_CI} tracks", file=sys.stderr)
     for d in datasets:
         print(f"{d.name}: {d.n_tracks} tracks used, {d.skipped} shorter than {a.min_length} skipped ({d.description})", file=sys.stderr)
-    if a.tune:
+    for line in fits:
+        print(f"learned {line}", file=sys.stderr)
+    if a.tune and a.tune_method == "grid":
         for r in rows:
             if r["noise"] == "tuned":
                 print(f"tuned {r['dataset']} {r['filter']}: k = {r['scale']:.3g}, ρ = {r['turn_ratio']:.3g} -> accel_std {r['accel_std']}", file=sys.stderr)
-    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}, meta.json"
+    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}{', learned.csv' if learned else ''}, meta.json"
           f"{'' if a.no_figure else ', evaluation.png'} ({meta['seconds']:.1f} s)", file=sys.stderr)
     return 0

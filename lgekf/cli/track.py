@@ -98,6 +98,11 @@ def track_parser():
     ap.add_argument("--no-monitor", action="store_true",
                     help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
+    ap.add_argument("--tune", action="store_true",
+                    help="learn each model's process noise (and the measurement std unless --meas-std) by maximum likelihood "
+                         "on the file's own tracks, print it with 95 %% intervals to stderr, then track with it")
+    ap.add_argument("--smooth", action="store_true",
+                    help="also write RTS-smoothed columns smooth_<state>, smooth_std_<state> (after flag)")
     add_cluster_options(ap)
     ap.add_argument("--partition-rows", type=int, default=PARTITION_ROWS, metavar="N",
                     help=f"with --workers/--scheduler: rows per partition (whole objects; default {PARTITION_ROWS})")
@@ -188,6 +193,8 @@ def cmd_track(argv) -> int:
         from .track_dask import cmd_track_dask
 
         require_dask("lgekf track --workers/--scheduler")  # first: without Dask nothing else matters
+        if a.tune or a.smooth:
+            raise ValueError("--tune/--smooth: not available with --workers/--scheduler (yet); run without them")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
         if a.meas_std is None or missing:
@@ -224,9 +231,20 @@ def cmd_track(argv) -> int:
                 print(f"lgekf track: warning: --meas-std {a.meas_std:g} m is {a.meas_std / est.meas_std:.2g}x the std "
                       f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
         cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
+        cfgs = {m: cfg for m in models}
+        if a.tune:
+            from ..apps.smooth_track import tune_models
+
+            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, given_q, meas.heading, a.omega_std)
+            for m, fit in fits.items():
+                print(f"lgekf track: {fit.report()}", file=sys.stderr)
+                r = fit.meas_std
+                cfgs[m] = TrackConfig({**cfg.accel_std, m: fit.accel_std}, r[0], a.omega_std,
+                                      r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             for fh, m in zip(handles, models):
-                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m], monitor)
+                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfgs[m], a.full_cov, a.precision, bar, measure[m], monitor,
+                                                    smooth=a.smooth)
                 for line in _divergence_warnings(m, meas, alarms, flagged[m]):
                     print(f"lgekf track: warning: {line}", file=sys.stderr)
         files.commit()

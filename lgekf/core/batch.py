@@ -8,6 +8,7 @@ from numpy.typing import ArrayLike
 from .covariance import pack, unpack
 from .filters import measurement_std
 from .registry import get_model
+from .rts import forward_store, smooth_stored
 from .validate import as_float_array, positive_vector, spd_matrix
 
 __all__ = ["filter_batch", "step_lengths"]
@@ -42,7 +43,7 @@ def measurements_array(z, m: int) -> np.ndarray:
 
 def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: ArrayLike, meas_std: float | ArrayLike,
                  x0: ArrayLike, P0: ArrayLike, measurement: str = "position", return_cov: bool = False,
-                 return_nis: bool = False) -> np.ndarray | tuple[np.ndarray, ...]:
+                 return_nis: bool = False, smooth: bool = False) -> np.ndarray | tuple[np.ndarray, ...]:
     """Run ``model`` over a batch of measurement sequences.
 
     Parameters
@@ -63,11 +64,16 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     measurement : {"position", "pose"}
     return_cov, return_nis : bool
         Also return the covariances (B, K, n, n) and the NIS of every update (B, K).
+    smooth : bool
+        Also run the Rauch–Tung–Striebel backward pass on the group (``lgekf.estimators.smoother``) and
+        return the smoothed states (B, K, n) (and, with ``return_cov``, their covariances (B, K, n, n)),
+        after the filter's outputs. Missed detections (NaN rows) are smoothed like any other step.
 
     Returns
     -------
     states : ndarray, (B, K, n)
-        Posterior physical states; followed by the covariances and/or NIS when asked for.
+        Posterior physical states; followed by the covariances and/or NIS when asked for, then with
+        ``smooth`` the smoothed states and (with ``return_cov``) the smoothed covariances.
     """
     spec = get_model(model)
     n = spec.n
@@ -83,6 +89,8 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     if P0.ndim == 3 and P0.shape[0] != B:
         raise ValueError(f"P0: expected ({n}, {n}) or ({B}, {n}, {n}) for {B} trajectories, got {P0.shape}")
     p0 = pack(np.broadcast_to(P0, (B, n, n)))
+    if smooth:
+        return _filter_and_smooth(spec, measurement, z, dts, q, r, x0, p0, return_cov, return_nis)
     out_x = np.empty((B, K, n))
     out_p = np.empty((B, K if return_cov else 0, spec.n_packed))
     out_nis = np.empty((B, K))
@@ -93,3 +101,19 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     if return_nis:
         result.append(out_nis)
     return result[0] if len(result) == 1 else tuple(result)
+
+
+def _filter_and_smooth(spec, measurement, z, dts, q, r, x0, p0, return_cov, return_nis):
+    """filter_batch(..., smooth=True): the storing forward pass, then the backward pass."""
+    fp = forward_store(spec, measurement, z, dts, x0, p0, q, r)
+    x_f = fp.x_filt
+    x_s, _, p_s = smooth_stored(spec, fp)
+    result = [x_f]
+    if return_cov:
+        result.append(unpack(fp.p_filt, spec.n))
+    if return_nis:
+        result.append(fp.nis)
+    result.append(x_s)
+    if return_cov:
+        result.append(unpack(p_s, spec.n))
+    return tuple(result)

@@ -59,6 +59,9 @@ class Filter:
         The measurement model used by ``update``.
     model : str, optional
         The registry model (only for the generic ``Filter``; the per-model classes fix it).
+    record : bool
+        Keep every step's predicted and posterior state (a few hundred bytes per step) so that
+        ``smooth()`` can run the RTS backward pass on the group after the run (default False).
 
     Attributes
     ----------
@@ -73,7 +76,7 @@ class Filter:
     model = ""
 
     def __init__(self, dt: float, accel_std: ArrayLike, meas_std: float | ArrayLike, x0: ArrayLike, P0: ArrayLike, *,
-                 measurement: str = "position", model: str | None = None):
+                 measurement: str = "position", model: str | None = None, record: bool = False):
         spec = get_model(model if model is not None else self.model)
         self._spec = spec
         self._k = spec.kernels
@@ -89,6 +92,8 @@ class Filter:
         self._s = self._k.state_from_physical(x0)
         self._p = pack(P0)
         self.nis = float("nan")
+        self.record = bool(record)
+        self._history = []  # per predict: [dt, s_pred, p_pred, s_post, p_post]
 
     @property
     def accel_std(self) -> np.ndarray:
@@ -118,12 +123,42 @@ class Filter:
         """Propagate the state by ``dt`` seconds (default: the filter's ``dt``), eq:pred_mu, eq:pred_cov."""
         step = self.dt if dt is None else positive_scalar("dt", dt)
         self._k.predict(self._s, self._p, step, *self._q)
+        if self.record:
+            self._history.append([step, self._s.copy(), self._p.copy(), self._s.copy(), self._p.copy()])
 
     def update(self, z: ArrayLike) -> float:
         """Correct with one measurement z ((x, y) or (x, y, θ)); returns the NIS of the innovation."""
         z = as_float_array("z", z, (self._m,))
         self.nis = float(self._update(self._s, self._p, *z.tolist(), *self._r))
+        if self.record and self._history:
+            self._history[-1][3] = self._s.copy()
+            self._history[-1][4] = self._p.copy()
         return self.nis
+
+    def smooth(self) -> tuple[np.ndarray, np.ndarray]:
+        """Rauch–Tung–Striebel smoothing on the group of the steps run so far (needs ``record=True``).
+
+        One step per ``predict()`` call, with the posterior after that step's last ``update`` (or the
+        prediction for a step without one); the derivation is in ``lgekf.estimators.smoother``.
+
+        Returns
+        -------
+        x : ndarray, (K, n)
+            Smoothed physical states.
+        P : ndarray, (K, n, n)
+            Smoothed covariances in the filter's tangent coordinates.
+        """
+        if not self.record:
+            raise ValueError("smooth: create the filter with record=True to keep the history a smoother needs")
+        if not self._history:
+            raise ValueError("smooth: no step has been run")
+        dts = np.array([h[0] for h in self._history])
+        s_pred, p_pred, s_filt, p_filt = (np.array([h[i] for h in self._history]) for i in range(1, 5))
+        s_sm = np.empty_like(s_filt)
+        p_sm = np.empty_like(p_filt)
+        self._k.smooth_one(dts, s_pred, p_pred, s_filt, p_filt, len(dts), s_sm, p_sm)
+        x = np.array([self._k.state_to_physical(si) for si in s_sm])
+        return x, unpack(p_sm, self._spec.n)
 
     @property
     def x(self) -> np.ndarray:

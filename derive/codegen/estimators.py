@@ -1,0 +1,267 @@
+"""Kernels for the estimators (``lgekf.estimators``): the innovation likelihood and the RTS smoother on the group.
+
+Added to every model module by ``emitter.model_kernels`` (one call), generic in n, m and the noise inputs
+like the rest of the emitter:
+
+* ``innovation_logdet_<meas>(s, p, *r)``: log det S, S = ℋ P ℋᵀ + R (eq:K) at the predicted state, the
+  term of the Gaussian innovation log-likelihood that the fused update's NIS does not give;
+* ``run_one_store_<meas>`` / ``run_batch_store_<meas>``: the filter loop of ``run_one_<meas>``, keeping the
+  predicted and the posterior internal states and packed covariances of every step, the NIS and log det S
+  (what the backward pass and the likelihood need);
+* ``loglik_batch_<meas>``: Σ_k −½(log det S_k + e_kᵀ S_k⁻¹ e_k + m log 2π) per trajectory (prange), for
+  maximum-likelihood noise learning (``lgekf.estimators.tuning``);
+* ``smooth_one`` / ``smooth_batch``: the Rauch–Tung–Striebel backward pass on the group (derivation in
+  ``lgekf.estimators.smoother``), using the generated ``transition`` (F), ``between`` (log(μ_a⁻¹μ_b)),
+  ``retract`` (μ·exp ε) and ``right_jacobian``/``right_jacobian_inv`` (Φ) of the model.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from ..algebra import symbolize
+from .printer import Kernel
+
+__all__ = ["estimator_kernels"]
+
+STORE_TEMPLATE = '''
+@nb.njit(cache=True)
+def run_one_store_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """Filter one trajectory like run_one_{meas} and keep every step's predicted internal state and packed
+    covariance (s_pred (K, {ni}), p_pred (K, {npk}), before the update) and posterior ones (s_filt, p_filt),
+    the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
+    the posterior physical states out_x (K, {n})."""
+    s = state_from_physical(x0)
+    p = p0.copy()
+    K = z.shape[0]
+    for k in range(K):
+        predict(s, p, dts[k], {qargs})
+        for i in range({ni}):
+            s_pred[k, i] = s[i]
+        for i in range({npk}):
+            p_pred[k, i] = p[i]
+        if {nan_test}:
+            out_nis[k] = np.nan
+            out_logdet[k] = np.nan
+        else:
+            out_logdet[k] = innovation_logdet_{meas}(s, p, {rargs})
+            out_nis[k] = update_{meas}(s, p, {zargs}, {rargs})
+        for i in range({ni}):
+            s_filt[k, i] = s[i]
+        for i in range({npk}):
+            p_filt[k, i] = p[i]
+        physical_into(s, out_x[k])
+
+
+@nb.njit(cache=True, parallel=True)
+def run_batch_store_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_one_store_{meas} over B trajectories in parallel (prange); arrays as run_batch_{meas} with a
+    leading batch axis (s_pred, s_filt (B, K, {ni}); p_pred, p_filt (B, K, {npk}); out_nis, out_logdet (B, K);
+    out_x (B, K, {n}))."""
+    for b in nb.prange(z.shape[0]):
+        run_one_store_{meas}(z[b], dts[b], x0[b], p0[b], q, r, s_pred[b], p_pred[b], s_filt[b], p_filt[b], out_nis[b],
+                             out_logdet[b], out_x[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def loglik_batch_{meas}(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
+    """Innovation log-likelihood of each of B trajectories (prange): out_ll[b] = Σ_k −½(log det S_k + NIS_k +
+    {m}·log 2π) over its first lengths[b] steps (the rest is padding), out_count[b] = its number of updates
+    (NaN rows of z are missed detections: predicted, not counted). A diverged filter gives NaN."""
+    for b in nb.prange(z.shape[0]):
+        s = state_from_physical(x0[b])
+        p = p0[b].copy()
+        ll = 0.0
+        cnt = 0
+        for k in range(lengths[b]):
+            predict(s, p, dts[b, k], {qargs})
+            if not ({nan_test_b}):
+                ld = innovation_logdet_{meas}(s, p, {rargs})
+                nis = update_{meas}(s, p, {zargs_b}, {rargs})
+                ll += -0.5 * (ld + nis + {m}.0 * 1.8378770664093453)
+                cnt += 1
+        out_ll[b] = ll
+        out_count[b] = cnt
+'''
+
+SMOOTH_TEMPLATE = '''
+@nb.njit(cache=True)
+def unpack_into(p, A):
+    """The packed covariance p ({npk}) into the full symmetric A ({n}, {n})."""
+    k = 0
+    for i in range({n}):
+        for j in range(i, {n}):
+            A[i, j] = p[k]
+            A[j, i] = p[k]
+            k += 1
+
+
+@nb.njit(cache=True)
+def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
+    """Rauch–Tung–Striebel backward pass on the group over the first K steps (derivation:
+    lgekf.estimators.smoother). dts (K,) step lengths (dts[k] led to step k); s_pred, p_pred / s_filt, p_filt:
+    predicted / posterior internal states and packed covariances (run_one_store_*); writes the smoothed ones
+    into s_sm (K, {ni}), p_sm (K, {npk}). For k = K-2 ... 0, with F = transition(μ_k, dts[k+1]):
+    d = log(μ_{{k+1|k}}⁻¹ μˢ_{{k+1}}), P̄ = Φ(d)⁻¹ Pˢ_{{k+1}} Φ(d)⁻ᵀ, G = P_k Fᵀ P_{{k+1|k}}⁻¹, δ = G d,
+    μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) [P_k + G (P̄ − P_{{k+1|k}}) Gᵀ] Φ(δ)ᵀ."""
+    n = {n}
+    Pf = np.empty((n, n))
+    Pp = np.empty((n, n))
+    Ps = np.empty((n, n))
+    L = np.empty((n, n))
+    C = np.empty((n, n))
+    G = np.empty((n, n))
+    T = np.empty((n, n))
+    D = np.empty((n, n))
+    dl = np.empty(n)
+    for i in range({ni}):
+        s_sm[K - 1, i] = s_filt[K - 1, i]
+    for i in range({npk}):
+        p_sm[K - 1, i] = p_filt[K - 1, i]
+    for k in range(K - 2, -1, -1):
+        F = transition(s_filt[k], dts[k + 1])
+        unpack_into(p_filt[k], Pf)
+        unpack_into(p_pred[k + 1], Pp)
+        unpack_into(p_sm[k + 1], Ps)
+        d = between(s_pred[k + 1], s_sm[k + 1])
+        Ji = right_jacobian_inv(d)
+        # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Ji[i, a] * Ps[a, j]
+                T[i, j] = acc
+        for i in range(n):
+            for j in range(i, n):
+                acc = 0.0
+                for a in range(n):
+                    acc += T[i, a] * Ji[j, a]
+                D[i, j] = acc - Pp[i, j]
+                D[j, i] = D[i, j]
+        # C = P_k Fᵀ
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Pf[i, a] * F[j, a]
+                C[i, j] = acc
+        # Cholesky P_{{k+1|k}} = L Lᵀ, then G = C P_{{k+1|k}}⁻¹ row by row (two triangular solves)
+        for j in range(n):
+            acc = Pp[j, j]
+            for a in range(j):
+                acc -= L[j, a] * L[j, a]
+            dj = math.sqrt(acc) if acc > 0.0 else 1e-300
+            L[j, j] = dj
+            for i in range(j + 1, n):
+                acc = Pp[i, j]
+                for a in range(j):
+                    acc -= L[i, a] * L[j, a]
+                L[i, j] = acc / dj
+        for r in range(n):
+            for i in range(n):
+                acc = C[r, i]
+                for a in range(i):
+                    acc -= L[i, a] * G[r, a]
+                G[r, i] = acc / L[i, i]
+            for i in range(n - 1, -1, -1):
+                acc = G[r, i]
+                for a in range(i + 1, n):
+                    acc -= L[a, i] * G[r, a]
+                G[r, i] = acc / L[i, i]
+        # δ = G d
+        for i in range(n):
+            acc = 0.0
+            for a in range(n):
+                acc += G[i, a] * d[a]
+            dl[i] = acc
+        # P̃ = P_k + G D Gᵀ  (T = G D)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += G[i, a] * D[a, j]
+                T[i, j] = acc
+        for i in range(n):
+            for j in range(i, n):
+                acc = Pf[i, j]
+                for a in range(n):
+                    acc += T[i, a] * G[j, a]
+                Ps[i, j] = acc
+                Ps[j, i] = acc
+        # μˢ_k = μ_k·exp(δ); Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ
+        for i in range({ni}):
+            s_sm[k, i] = s_filt[k, i]
+        retract(s_sm[k], dl)
+        Phi = right_jacobian(dl)
+        for i in range(n):
+            for j in range(n):
+                acc = 0.0
+                for a in range(n):
+                    acc += Phi[i, a] * Ps[a, j]
+                T[i, j] = acc
+        m = 0
+        for i in range(n):
+            for j in range(i, n):
+                acc = 0.0
+                for a in range(n):
+                    acc += T[i, a] * Phi[j, a]
+                p_sm[k, m] = acc
+                m += 1
+
+
+@nb.njit(cache=True, parallel=True)
+def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_one for B trajectories (prange), trajectory b over its first lengths[b] steps; also writes the
+    smoothed physical states into out_x (B, K, {n})."""
+    for b in nb.prange(dts.shape[0]):
+        Kb = lengths[b]
+        if Kb > 0:
+            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
+            for k in range(Kb):
+                physical_into(s_sm[b, k], out_x[b, k])
+'''
+
+
+def _logdet_kernel(model, meas, P, pin, sin_):
+    """log det(ℋ P ℋᵀ + R) at the predicted state: ℋ of eq:calH, R of the measurement definition."""
+    H = model.calH_for(meas).applyfunc(model.to_internal)
+    hdefs, Hs = symbolize(H, "hh")
+    pdefs, HPs = symbolize(Hs * P, "hp")
+    sdefs, Ss = symbolize(HPs * Hs.T + meas.R(), "S", only_upper=True)
+    det = sp.Symbol("detS", real=True)
+    r_params = list(meas.noise_names)
+    return Kernel(
+        name=f"innovation_logdet_{meas.name}",
+        doc=(f"log det S, S = ℋ P ℋᵀ + R (eq:K) for a {meas.name} measurement at the predicted state (s, p),\n"
+             "noise stds (" + ", ".join(r_params) + "): the log-determinant term of the innovation log-likelihood."),
+        params=["s", "p", *r_params], inputs=sin_ + pin + list(zip(meas.noise_symbols, r_params)),
+        stages=[hdefs, pdefs, sdefs, [(det, sp.expand(Ss.det()) if meas.m > 1 else Ss[0, 0])]],
+        outputs=[], ret="math.log(detS)",
+    )
+
+
+def _args(prefix, k):
+    return ", ".join(f"{prefix}[{i}]" for i in range(k))
+
+
+def estimator_kernels(model, measurements: dict, P, pin, sin_) -> list:
+    """The estimator kernels of one model (module docstring), for the measurements that fit it."""
+    n = model.n
+    ni = len(model.internal)
+    npk = n * (n + 1) // 2
+    nq = len(model.noise_names)
+    ks = []
+    for meas in measurements.values():
+        m = meas.m
+        nr = len(meas.noise_names)
+        ks.append(_logdet_kernel(model, meas, P, pin, sin_))
+        ks.append((f"run_one_store_{meas.name}", STORE_TEMPLATE.format(
+            meas=meas.name, m=m, n=n, ni=ni, npk=npk, qargs=_args("q", nq), rargs=_args("r", nr),
+            zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
+            zargs_b=_args("z[b, k]", m).replace("z[b, k][", "z[b, k, "),
+            nan_test=" or ".join(f"np.isnan(z[k, {i}])" for i in range(m)),
+            nan_test_b=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
+        )))
+    ks.append(("smooth_one", SMOOTH_TEMPLATE.format(n=n, ni=ni, npk=npk)))
+    return ks

@@ -1,0 +1,82 @@
+"""`lgekf track --smooth` and `--tune`: smoothed columns and noise learned from the file's own tracks.
+
+Smoothed columns (``smooth_<state>``, ``smooth_std_<state>``, after ``flag``): the RTS smoother on the group
+(``lgekf.estimators.smoother``) over each object's rows 2, 3, ... from the same two-point start as the
+filter columns, with the same noise. Rows 0 and 1 of an object (its two-point initialisation) repeat the
+filter columns. The smoother runs without the divergence monitor: for an object with an alarm (flag 1
+somewhere) the smoothed columns are those of the unmonitored filter from its first start.
+
+``--tune``: ``lgekf.estimators.tuning.learn_noise`` on all objects of the file (each object's first
+measurement and the first one at least 1 s later start it), per model; a given ``--meas-std`` is held fixed,
+a given ``--accel-std`` is kept (that model is not tuned).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..core.registry import get_model
+from ..estimators.smoother import smooth_segments
+from ..estimators.tuning import NoiseFit, learn_noise
+
+__all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset"]
+
+
+def smooth_column_names(model: str) -> list:
+    """The header of the smoothed columns of ``model``."""
+    names = get_model(model).state_names
+    return [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
+
+
+def smoothed_columns(model, measurement, t, zm, starts, x0, P0, q, r, x_filt, p_filt):
+    """(N, 2n): smoothed states and stds of every row (module docstring).
+
+    zm (N, m) the measurements and r their noise stds, x0 (B, n) / P0 (B, n, n) each object's two-point start
+    at its row 1, q the process-noise stds (``lgekf.apps.track.smoothing_inputs`` gives them all);
+    x_filt, p_filt the filter's columns (kept for each object's first two rows).
+    """
+    spec = get_model(model)
+    starts = np.asarray(starts, dtype=np.int64)
+    xs, ps = smooth_segments(model, measurement, np.asarray(t, float), zm, starts[:-1] + 2, np.diff(starts) - 2, x0, P0, q, r)
+    i0 = starts[:-1]
+    for off in (0, 1):
+        xs[i0 + off] = x_filt[i0 + off]
+        ps[i0 + off] = p_filt[i0 + off]
+    i, j = np.triu_indices(spec.n)
+    diag = np.flatnonzero(i == j)
+    return np.hstack([xs, np.sqrt(np.maximum(ps[:, diag], 0.0))])
+
+
+def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5):
+    """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file)."""
+    fits: dict[str, NoiseFit] = {}
+    starts = np.asarray(starts, dtype=np.int64)
+    for m in models:
+        if given_q and m in given_q:
+            continue
+        meas = measurement[m]
+        cols = [z] if meas == "position" else [z, heading[:, None]]
+        zz = np.hstack(cols)
+        tracks = [(t[a:b], zz[a:b]) for a, b in zip(starts[:-1], starts[1:])]
+        fixed = None
+        if meas_std is not None:
+            fixed = meas_std if meas == "position" else None
+        fits[m] = learn_noise(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
+    return fits
+
+
+def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models) -> dict:
+    """{model: NoiseFit} learned on a ``lgekf.io.datasets.Dataset``'s tracks with N(0, meas_std²) noise added
+    (noise stream 1 of ``lgekf evaluate``, every seed's draw a track of its own), the measurement std held
+    at ``meas_std``. A model whose noise cannot be learned (too few points) maps to the reason (a str)."""
+    tracks = []
+    for seed in seeds:
+        z = ds.p + meas_std * seed_rng(seed, 1, ds.name).standard_normal(ds.p.shape)
+        tracks += [(ds.t[a:b], z[a:b]) for a, b in zip(ds.starts[:-1], ds.starts[1:])]
+    out = {}
+    for m in models:
+        try:
+            out[m] = learn_noise(m, tracks, meas_std=meas_std)
+        except ValueError as e:  # too few points: the caller keeps the default noise and says why
+            out[m] = str(e)
+    return out

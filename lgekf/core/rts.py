@@ -1,0 +1,61 @@
+"""Forward pass with storage and the RTS backward pass on the group, through the generated kernels.
+
+The derivation of the backward step is in ``lgekf.estimators.smoother``; the kernels (``run_batch_store_<meas>``,
+``smooth_batch``) are emitted by ``derive/codegen/estimators.py``. This module only allocates and calls them
+(it sits in ``core`` so that ``filter_batch(..., smooth=True)`` and the filter classes' ``smooth()`` can use it).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .registry import ModelSpec
+
+__all__ = ["ForwardPass", "forward_store", "smooth_stored"]
+
+
+@dataclass
+class ForwardPass:
+    """What the forward pass keeps, per trajectory b and step k: predicted internal states ``s_pred``
+    (B, K, n_int) and packed covariances ``p_pred`` (B, K, n(n+1)/2), the posterior ones ``s_filt``,
+    ``p_filt``, the NIS and log det S of each update (NaN at a missed detection), the step lengths and
+    the number of valid steps of each trajectory, and the posterior physical states ``x_filt`` (B, K, n)."""
+
+    s_pred: np.ndarray
+    p_pred: np.ndarray
+    s_filt: np.ndarray
+    p_filt: np.ndarray
+    nis: np.ndarray
+    logdet: np.ndarray
+    dts: np.ndarray
+    lengths: np.ndarray
+    x_filt: np.ndarray
+
+
+def forward_store(spec: ModelSpec, measurement: str, z, dts, x0, p0, q, r) -> ForwardPass:
+    """Run the filter over z (B, K, m) with dts (B, K), physical x0 (B, n), packed p0 (B, n(n+1)/2), keeping
+    every step (``run_batch_store_<measurement>``)."""
+    B, K = z.shape[:2]
+    ni = len(spec.internal_names)
+    fp = ForwardPass(np.empty((B, K, ni)), np.empty((B, K, spec.n_packed)), np.empty((B, K, ni)),
+                     np.empty((B, K, spec.n_packed)), np.empty((B, K)), np.empty((B, K)), dts,
+                     np.full(B, K, dtype=np.int64), np.empty((B, K, spec.n)))
+    getattr(spec.kernels, f"run_batch_store_{measurement}")(
+        z, dts, x0, p0, np.asarray(q, dtype=float), np.asarray(r, dtype=float), fp.s_pred, fp.p_pred, fp.s_filt,
+        fp.p_filt, fp.nis, fp.logdet, fp.x_filt)
+    return fp
+
+
+def smooth_stored(spec: ModelSpec, fp: ForwardPass) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The RTS backward pass (``smooth_batch``) over a stored forward pass: smoothed physical states
+    (B, K, n), internal states (B, K, n_int) and packed covariances (B, K, n(n+1)/2) (entries past a
+    trajectory's length are left unset)."""
+    B, K = fp.s_filt.shape[:2]
+    s_sm = np.empty_like(fp.s_filt)
+    p_sm = np.empty_like(fp.p_filt)
+    x_sm = np.full((B, K, spec.n), np.nan)
+    spec.kernels.smooth_batch(fp.dts, fp.s_pred, fp.p_pred, fp.s_filt, fp.p_filt, np.ascontiguousarray(fp.lengths, dtype=np.int64),
+                              s_sm, p_sm, x_sm)
+    return x_sm, s_sm, p_sm
