@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing']
 
 
 @nb.njit(cache=True)
@@ -1088,3 +1088,41 @@ def right_jacobian_inv(eps):
     out[3, 3] = 1.0
     out[4, 4] = 1.0
     return out
+
+
+@nb.njit(cache=True)
+def physical_to_common(xp):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    """
+    x = xp[0]
+    y = xp[1]
+    psi = xp[2]
+    v = xp[3]
+    omega = xp[4]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = psi
+    out[3] = v
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian(xp):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    """
+    out = np.zeros((6, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[5, 4] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def common_missing():
+    """1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on."""
+    return np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0])

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing']
 
 
 @nb.njit(cache=True)
@@ -1531,3 +1531,54 @@ def right_jacobian_inv(eps):
     out[4, 5] = _halfcot1_eps5*eps4 - eps3/2.0
     out[5, 5] = 1.0
     return out
+
+
+@nb.njit(cache=True)
+def physical_to_common(xp):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v_x = xp[3]
+    v_y = xp[4]
+    omega = xp[5]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = theta
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian(xp):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    """
+    theta = xp[2]
+    omega = xp[5]
+    out = np.zeros((6, 6))
+    _sin_omega = math.sin(omega)
+    _cos_omega = math.cos(omega)
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0, 0] = _cos_theta
+    out[0, 1] = -_sin_theta
+    out[1, 0] = _sin_theta
+    out[1, 1] = _cos_theta
+    out[2, 2] = 1.0
+    out[3, 3] = _cos_omega
+    out[3, 4] = -_sin_omega
+    out[4, 3] = _sin_omega
+    out[4, 4] = _cos_omega
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def common_missing():
+    """1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on."""
+    return np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0])

@@ -393,6 +393,9 @@ def model_kernels(model, measurements: dict) -> list:
         ["s", "c"], sin_ + cin, err.applyfunc(sub),
     ))
     ks.extend(group_operation_kernels(model))
+    from .dispatch import common_readout_kernels
+
+    ks.extend(common_readout_kernels(model))
     return ks
 
 
