@@ -73,13 +73,50 @@ def pack_from(P, n, p):
 def _congruence_add(T, P, w, out):
     """out += w · T P Tᵀ (T (a, b), P (b, b), out (a, a))."""
     a, b = T.shape
-    TP = T @ P
+    TP = np.empty((a, b))
     for i in range(a):
-        for j in range(a):
+        for k in range(b):
+            acc = 0.0
+            for m in range(b):
+                acc += T[i, m] * P[m, k]
+            TP[i, k] = acc
+    for i in range(a):
+        for j in range(i, a):
             acc = 0.0
             for k in range(b):
                 acc += TP[i, k] * T[j, k]
             out[i, j] += w * acc
+            if j != i:
+                out[j, i] += w * acc
+
+
+@nb.njit(cache=True)
+def _packed_at(p, n, i, j):
+    """P[i, j] of a packed upper triangle (row-major)."""
+    if i > j:
+        i, j = j, i
+    return p[i * n - i * (i - 1) // 2 + (j - i)]
+
+
+@nb.njit(cache=True)
+def _congruence_packed(T, p, n, out):
+    """out = T P Tᵀ (T (a, n), P packed (n(n+1)/2)), no temporary arrays beyond one row."""
+    a = T.shape[0]
+    row = np.empty(n)
+    for i in range(a):
+        for k in range(n):
+            acc = 0.0
+            for m in range(n):
+                t = T[i, m]
+                if t != 0.0:
+                    acc += t * _packed_at(p, n, m, k)
+            row[k] = acc
+        for j in range(i, a):
+            acc = 0.0
+            for k in range(n):
+                acc += row[k] * T[j, k]
+            out[i, j] = acc
+            out[j, i] = acc
 
 
 @nb.njit(cache=True)
@@ -99,8 +136,9 @@ def mix_on_group(model, S, Pp, w, s_out, P_out):
         s_out[k] = S[best, k]
     it = 0
     if M > 1:
+        delta = np.empty(n)
         for it in range(1, 51):
-            delta = np.zeros(n)
+            delta[:] = 0.0
             for i in range(M):
                 if w[i] > 0.0:
                     d = D.between(model, s_out, S[i])
@@ -141,13 +179,9 @@ def _to_common(model, s, p, c_out, P_out):
     x = D.state_to_physical(model, s)
     c = D.physical_to_common(model, x)
     A = D.physical_to_common_jacobian(model, x)
-    P = np.empty((n, n))
-    unpack_into(p, n, P)
     for a in range(6):
         c_out[a] = c[a]
-        for b in range(6):
-            P_out[a, b] = 0.0
-    _congruence_add(A, P, 1.0, P_out)
+    _congruence_packed(A, p, n, P_out)
 
 
 @nb.njit(cache=True)
@@ -205,6 +239,9 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out):
 def combined_common(models, S, Pp, mu, same_group, c_out, P_out):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
     M = models.shape[0]
+    if M == 1:
+        _to_common(models[0], S[0], Pp[0], c_out, P_out)
+        return
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
@@ -302,10 +339,35 @@ def _log_likelihood(model, s, p, r, meas_pose):
     else:
         H = D.calH_position(model, s)
         R = D.meas_cov_position(r)
-    P = np.empty((n, n))
-    unpack_into(p, n, P)
-    Sm = H @ P @ H.T + R
-    return math.log(np.linalg.det(Sm)), H.shape[0]
+    m = H.shape[0]
+    Sm = np.empty((m, m))
+    _congruence_packed(H, p, n, Sm)
+    for a in range(m):
+        for b in range(m):
+            Sm[a, b] += R[a, b]
+    return _logdet_spd(Sm), m
+
+
+@nb.njit(cache=True)
+def _logdet_spd(A):
+    """log det of a small symmetric positive definite matrix (Cholesky; -inf if not PD)."""
+    m = A.shape[0]
+    L = np.zeros((m, m))
+    out = 0.0
+    for j in range(m):
+        d = A[j, j]
+        for k in range(j):
+            d -= L[j, k] * L[j, k]
+        if not d > 0.0:
+            return -np.inf
+        L[j, j] = math.sqrt(d)
+        out += math.log(d)
+        for i in range(j + 1, m):
+            v = A[i, j]
+            for k in range(j):
+                v -= L[i, k] * L[j, k]
+            L[i, j] = v / L[j, j]
+    return out
 
 
 @nb.njit(cache=True)
