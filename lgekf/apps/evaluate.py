@@ -45,6 +45,7 @@ from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
 from .track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
+from .track_imm import IMM_FILTER, common_world_velocity, imm_track_common
 
 __all__ = [
     "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
@@ -83,7 +84,7 @@ def _per_track_rmse(ds: Dataset, err2: np.ndarray) -> np.ndarray:
         return np.sqrt(num / den)
 
 
-def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
+def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None):
     """Every model on the noisy measurements ``zs`` (one (N, 2) array per seed) of the tracks of ``ds``.
 
     Returns dict model -> (pos (S, J), vel (S, J) | None), per seed and track. Each track is filtered
@@ -94,14 +95,19 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
     out = {m: (np.empty((S, ds.n_tracks)), None if ds.v is None else np.empty((S, ds.n_tracks))) for m in models}
     for si, z in enumerate(zs):
         for m in models:
-            x, _, _ = track_arrays(m, ds.t, z, ds.starts, cfg)
+            if m == IMM_FILTER:  # lgekf.apps.track_imm: the IMM of ``imm`` (ImmTrackOptions)
+                x, _, _ = imm_track_common(ds.t, z, ds.starts, cfg.meas_std, cfg.omega_std, imm)
+                vel = common_world_velocity(x) if ds.v is not None else None
+            else:
+                x, _, _ = track_arrays(m, ds.t, z, ds.starts, cfg)
+                vel = world_velocity(m, x) if ds.v is not None else None
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:
-                out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(m, x) - ds.v) ** 2, axis=1))
+                out[m][1][si] = _per_track_rmse(ds, np.sum((vel - ds.v) ** 2, axis=1))
     return out
 
 
-def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None):
+def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None, imm=None):
     """Position (and velocity) RMSE per (model, seed, track): dict model -> (pos (S, J), vel (S, J) | None).
 
     ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask).
@@ -113,7 +119,7 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
-    out = (runner or track_rmse)(ds, zs, cfg, models)
+    out = (runner or track_rmse)(ds, zs, cfg, models) if imm is None else track_rmse(ds, zs, cfg, (*models, IMM_FILTER), imm)
     out["measurements"] = (meas, None)
     return out
 
@@ -180,15 +186,18 @@ class DatasetResult:
         return rows
 
 
-def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None):
+def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None, imm=None):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
-    ``runner``: passed to ``run_filters`` (None: everything in this process).
+    ``runner``: passed to ``run_filters`` (None: everything in this process). ``imm``: an
+    ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row (its modes' noise as given there, not tuned).
     """
+    if imm is not None and runner is not None:
+        raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
     seed_list = [base_seed + s for s in range(seeds)]
     default = {m: (1.0, 1.0) for m in FILTERS}
     if not tune:
-        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, runner=runner))]
+        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, runner=runner, imm=imm))]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
     tuning = []
@@ -213,7 +222,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     chosen = {m: best[m][1] for m in FILTERS}
     out = []
     for noise, scale in (("default", default), ("tuned", chosen)):
-        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, runner=runner), tuning,
+        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, runner=runner, imm=imm), tuning,
                                  len(tune_idx)))
     return out
 

@@ -18,7 +18,10 @@ from ..estimators.imm import DEFAULT_SWITCH, imm_batch, parse_modes, transition_
 from ..io.formatting import format_rows, label_bytes
 from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, initial_common
 
-__all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm", "COMMON_NAMES"]
+__all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm", "imm_track_common",
+           "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
+
+IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 
 #: ``lgekf track --model imm`` modes by default: a calm and a manoeuvring SE(2)×R³
 DEFAULT_TRACK_MODES = "se2r3:calm,se2r3:manoeuvre"
@@ -48,39 +51,58 @@ def imm_columns(opts: ImmTrackOptions, origin: bool = False) -> list:
             + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"])
 
 
+def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions):
+    """Every object's IMM estimate in the common coordinates: c (N, 6), their stds (N, 6), mode probabilities (N, M).
+
+    Row 0 of an object is the two-point estimate at its first measurement's position, row 1 the two-point estimate
+    (uniform mode probabilities), rows >= 2 the IMM's posteriors (as ``lgekf.apps.track.track_arrays``).
+    """
+    t = np.ascontiguousarray(t, float)
+    z = np.ascontiguousarray(z, float)[:, :2]
+    N, M = t.size, len(opts.modes)
+    c = np.full((N, 6), np.nan)
+    sd = np.full((N, 6), np.nan)
+    mu = np.full((N, M), 1.0 / M)
+    c0, var0 = initial_common(t, z, starts, meas_std, omega_std)
+    for b in range(len(starts) - 1):
+        a, e = int(starts[b]), int(starts[b + 1])
+        c[a] = c0[b]  # as the filters of lgekf track: the two-point estimate, at the first measurement's position
+        c[a, :2] = z[a]
+        c[a + 1] = c0[b]
+        sd[a:a + 2] = np.sqrt(var0[b])
+        if e - a > 2:
+            est, m, P = imm_batch(z[None, a + 2:e], opts.modes, opts.switch, dt=np.diff(t[a + 1:e])[None], meas_std=meas_std,
+                                  x0=c0[b], P0=np.diag(var0[b]), return_cov=True)
+            c[a + 2:e] = est[0]
+            sd[a + 2:e] = np.sqrt(np.maximum(np.diagonal(P[0], axis1=1, axis2=2), 0.0))
+            mu[a + 2:e] = m[0]
+    return c, sd, mu
+
+
+def common_world_velocity(c: np.ndarray) -> np.ndarray:
+    """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
+    ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
+    return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
+
+
 def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_std: float, digits: int, bar=None) -> int:
     """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) and write the CSV to ``fh``."""
     origin = meas.origin is not None
     fh.write((",".join(imm_columns(opts, origin)) + "\n").encode())
     lab = label_bytes(meas.labels)
     M = len(opts.modes)
-    t, z = np.ascontiguousarray(meas.t, float), np.ascontiguousarray(meas.z[:, :2], float)
-    c0, var0 = initial_common(t, z, starts, meas_std, omega_std)
+    t = np.ascontiguousarray(meas.t, float)
+    c, sd, mu = imm_track_common(t, meas.z, starts, meas_std, omega_std, opts)
     ncol = 12 + M + (2 if origin else 0) + 1
     col_digits = np.full(ncol, digits, dtype=np.int64)
+    parts = [c, sd, mu]
     if origin:
         col_digits[12 + M:12 + M + 2] = 17
-    for b in range(len(starts) - 1):
-        a, e = int(starts[b]), int(starts[b + 1])
-        n = e - a
-        vals = np.full((n, ncol), np.nan)
-        vals[:, -1] = 0.0
-        vals[0, :2] = z[a]
-        vals[1, :6] = c0[b]
-        vals[:2, 6:12] = np.sqrt(var0[b])
-        vals[:2, 12:12 + M] = 1.0 / M
-        if n > 2:
-            dts = np.diff(t[a + 1:e])[None]
-            est, mu, P = imm_batch(z[None, a + 2:e], opts.modes, opts.switch, dt=dts, meas_std=meas_std, x0=c0[b],
-                                   P0=np.diag(var0[b]), return_cov=True)
-            vals[2:, :6] = est[0]
-            vals[2:, 6:12] = np.sqrt(np.maximum(np.diagonal(P[0], axis1=1, axis2=2), 0.0))
-            vals[2:, 12:12 + M] = mu[0]
-        if origin:
-            vals[:, 12 + M:12 + M + 2] = np.asarray(meas.origin, dtype=float)
-        fh.write(format_rows(lab, meas.obj[a:e], t[a:e], vals, col_digits))
-        if bar is not None:
-            bar.update(n)
+        parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
+    parts.append(np.zeros((t.size, 1)))
+    fh.write(format_rows(lab, meas.obj, t, np.hstack(parts), col_digits))
+    if bar is not None:
+        bar.update(t.size)
     return int(starts[-1])
 
 

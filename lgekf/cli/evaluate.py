@@ -39,6 +39,9 @@ def evaluate_parser():
     ap.add_argument("--min-length", type=int, default=5, help="skip tracks with fewer samples (default 5)")
     ap.add_argument("--tune", action="store_true",
                     help="grid-search the process noise (scale k, turn-rate ratio ρ) per filter on the first 30 %% of tracks; evaluate on the rest")
+    ap.add_argument("--imm", action="store_true", help="add an IMM row (modes --imm-modes, not tuned; one process only)")
+    ap.add_argument("--imm-modes", default=None, metavar="LIST", help="--imm: modes (default se2r3:calm,se2r3:manoeuvre)")
+    ap.add_argument("--imm-switch", type=float, default=None, metavar="P", help="--imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
@@ -71,6 +74,11 @@ def _evaluate(a, runner=None) -> int:
         raise ValueError(f"--seeds: must be at least 1, got {a.seeds}")
     if a.min_length < 3:
         raise ValueError(f"--min-length: must be at least 3 (two samples initialise the filter), got {a.min_length}")
+    from ..apps.track_imm import ImmTrackOptions
+
+    if not a.imm and (a.imm_modes is not None or a.imm_switch is not None):
+        raise ValueError("--imm-modes/--imm-switch: only with --imm")
+    imm = ImmTrackOptions(a.imm_modes, a.imm_switch) if a.imm else None
     names = []
     for d in a.datasets:
         names += GROUPS.get(d, [d])
@@ -83,7 +91,7 @@ def _evaluate(a, runner=None) -> int:
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
         results = evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune,
-                                   progress=lambda stage: bar.update(1), runner=runner)
+                                   progress=lambda stage: bar.update(1), runner=runner, imm=imm)
         bar.update(1)
         for res in results:
             rows += res.summary()
