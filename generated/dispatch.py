@@ -258,3 +258,141 @@ def retract(model, s, eps):
         se2r3.retract(s, eps)
     elif model == 4:
         se2se2.retract(s, eps)
+
+
+@nb.njit(cache=True)
+def state_from_physical_into(model, x, out):
+    if model == 0:
+        ctrv.state_from_physical_into(x, out)
+    elif model == 1:
+        cv.state_from_physical_into(x, out)
+    elif model == 2:
+        se2r2.state_from_physical_into(x, out)
+    elif model == 3:
+        se2r3.state_from_physical_into(x, out)
+    elif model == 4:
+        se2se2.state_from_physical_into(x, out)
+
+
+@nb.njit(cache=True)
+def between_into(model, s, t, out):
+    if model == 0:
+        ctrv.between_into(s, t, out)
+    elif model == 1:
+        cv.between_into(s, t, out)
+    elif model == 2:
+        se2r2.between_into(s, t, out)
+    elif model == 3:
+        se2r3.between_into(s, t, out)
+    elif model == 4:
+        se2se2.between_into(s, t, out)
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv_into(model, eps, out):
+    if model == 0:
+        ctrv.right_jacobian_inv_into(eps, out)
+    elif model == 1:
+        cv.right_jacobian_inv_into(eps, out)
+    elif model == 2:
+        se2r2.right_jacobian_inv_into(eps, out)
+    elif model == 3:
+        se2r3.right_jacobian_inv_into(eps, out)
+    elif model == 4:
+        se2se2.right_jacobian_inv_into(eps, out)
+
+
+@nb.njit(cache=True)
+def common_to_state_into(model, c, out):
+    if model == 0:
+        ctrv.common_to_state_into(c, out)
+    elif model == 1:
+        cv.common_to_state_into(c, out)
+    elif model == 2:
+        se2r2.common_to_state_into(c, out)
+    elif model == 3:
+        se2r3.common_to_state_into(c, out)
+    elif model == 4:
+        se2se2.common_to_state_into(c, out)
+
+
+@nb.njit(cache=True)
+def common_jacobian_into(model, c, out):
+    if model == 0:
+        ctrv.common_jacobian_into(c, out)
+    elif model == 1:
+        cv.common_jacobian_into(c, out)
+    elif model == 2:
+        se2r2.common_jacobian_into(c, out)
+    elif model == 3:
+        se2r3.common_jacobian_into(c, out)
+    elif model == 4:
+        se2se2.common_jacobian_into(c, out)
+
+
+@nb.njit(cache=True)
+def physical_to_common_into(model, x, out):
+    if model == 0:
+        ctrv.physical_to_common_into(x, out)
+    elif model == 1:
+        cv.physical_to_common_into(x, out)
+    elif model == 2:
+        se2r2.physical_to_common_into(x, out)
+    elif model == 3:
+        se2r3.physical_to_common_into(x, out)
+    elif model == 4:
+        se2se2.physical_to_common_into(x, out)
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian_into(model, x, out):
+    if model == 0:
+        ctrv.physical_to_common_jacobian_into(x, out)
+    elif model == 1:
+        cv.physical_to_common_jacobian_into(x, out)
+    elif model == 2:
+        se2r2.physical_to_common_jacobian_into(x, out)
+    elif model == 3:
+        se2r3.physical_to_common_jacobian_into(x, out)
+    elif model == 4:
+        se2se2.physical_to_common_jacobian_into(x, out)
+
+
+@nb.njit(cache=True)
+def physical_into(model, s, out):
+    if model == 0:
+        ctrv.physical_into(s, out)
+    elif model == 1:
+        cv.physical_into(s, out)
+    elif model == 2:
+        se2r2.physical_into(s, out)
+    elif model == 3:
+        se2r3.physical_into(s, out)
+    elif model == 4:
+        se2se2.physical_into(s, out)
+
+
+@nb.njit(cache=True)
+def calH_pose_into(model, s, out):
+    if model == 0:
+        ctrv.calH_pose_into(s, out)
+    elif model == 2:
+        se2r2.calH_pose_into(s, out)
+    elif model == 3:
+        se2r3.calH_pose_into(s, out)
+    elif model == 4:
+        se2se2.calH_pose_into(s, out)
+
+
+@nb.njit(cache=True)
+def calH_position_into(model, s, out):
+    if model == 0:
+        ctrv.calH_position_into(s, out)
+    elif model == 1:
+        cv.calH_position_into(s, out)
+    elif model == 2:
+        se2r2.calH_position_into(s, out)
+    elif model == 3:
+        se2r3.calH_position_into(s, out)
+    elif model == 4:
+        se2se2.calH_position_into(s, out)

@@ -18,16 +18,32 @@ from __future__ import annotations
 import sympy as sp
 
 from .emitter import matrix_kernel, vec_inputs, vector_kernel
-from .printer import HEADER
+from dataclasses import replace
+
+from .printer import HEADER, Kernel
 
 __all__ = ["common_readout_kernels", "render_dispatch"]
 
 
-def common_readout_kernels(model) -> list:
-    """``physical_to_common``, ``physical_to_common_jacobian`` and ``common_missing`` of one model."""
+#: kernels that also get an allocation-free ``<name>_into(..., out)`` variant (the IMM's inner loop)
+INTO = ("state_from_physical", "between", "right_jacobian_inv", "calH_position", "calH_pose", "common_to_state",
+        "common_jacobian", "physical_to_common", "physical_to_common_jacobian")
+
+
+def into_variant(k: Kernel) -> Kernel:
+    """The same kernel writing into a caller's ``out`` (zeroed first) instead of allocating it."""
+    matrix = any("np.zeros((" in line for line in k.prologue)
+    return replace(k, name=f"{k.name}_into", params=[*k.params, "out"], ret=None,
+                   prologue=["out[:, :] = 0.0" if matrix else "out[:] = 0.0"],
+                   doc=f"{k.doc.rstrip()}\nWritten into ``out`` (no allocation).")
+
+
+def common_readout_kernels(model, kernels=()) -> list:
+    """``physical_to_common``, ``physical_to_common_jacobian`` and ``common_missing`` of one model, and the
+    ``_into`` variants (``INTO``) of those and of ``kernels`` (the model's other kernels)."""
     xin = vec_inputs("xp", model.physical)
     missing = [1.0 if i in model.common_missing else 0.0 for i in range(6)]
-    return [
+    own = [
         vector_kernel("physical_to_common", "c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model\n"
                       "without a heading; 0 for the coordinates of common_missing).", ["xp"], xin, model.common_of_physical),
         matrix_kernel("physical_to_common_jacobian", "A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.",
@@ -36,6 +52,8 @@ def common_readout_kernels(model) -> list:
          "    \"\"\"1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on.\"\"\"\n"
          f"    return np.array({missing!r})\n"),
     ]
+    every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
+    return own + [into_variant(k) for k in every]
 
 
 def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
@@ -86,5 +104,13 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
         funcs.append(_chain(fname, params, names, lambda n, fname=fname, params=params: f"{n}.{fname}({params})", True)
                      .replace("(model, )", "(model)"))
     funcs.append(_chain("retract", "s, eps", names, lambda n: f"{n}.retract(s, eps)", False))
+    into_params = {"state_from_physical": "x", "between": "s, t", "right_jacobian_inv": "eps", "common_to_state": "c",
+                   "common_jacobian": "c", "physical_to_common": "x", "physical_to_common_jacobian": "x"}
+    for fname, params in into_params.items():
+        funcs.append(_chain(f"{fname}_into", f"{params}, out", names, lambda n, fname=fname, params=params: f"{n}.{fname}_into({params}, out)", False))
+    funcs.append(_chain("physical_into", "s, out", names, lambda n: f"{n}.physical_into(s, out)", False))
+    for mname in sorted(measurements):
+        funcs.append(_chain(f"calH_{mname}_into", "s, out", names,
+                            lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}_into(s, out)", False))
     out.append("\n\n" + "\n\n".join(funcs))
     return "".join(out)

@@ -395,7 +395,7 @@ def model_kernels(model, measurements: dict) -> list:
     ks.extend(group_operation_kernels(model))
     from .dispatch import common_readout_kernels
 
-    ks.extend(common_readout_kernels(model))
+    ks.extend(common_readout_kernels(model, ks))
     return ks
 
 

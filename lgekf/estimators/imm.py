@@ -253,6 +253,11 @@ class IMM:
         self._m = get_model(self._set.modes[0].model).measurement(measurement).dim
         self.nis = np.full(self._set.M, np.nan)
         self.log_likelihood = float("nan")
+        from ..generated import dispatch
+        from .imm_kernels import workspace
+
+        self._ws = workspace(self._set.M)
+        self._R = dispatch.meas_cov_pose(self._set.r) if self._set.meas_pose else dispatch.meas_cov_position(self._set.r)
 
     @property
     def modes(self) -> list:
@@ -270,7 +275,7 @@ class IMM:
 
         step = self.dt if dt is None else positive_scalar("dt", dt)
         s = self._set
-        imm_predict(s.models, self._S, self._p, self._mu, s.PI, s.Q, step, s.same_group)
+        imm_predict(s.models, self._S, self._p, self._mu, s.PI, s.Q, step, s.same_group, self._ws)
 
     def update(self, z: ArrayLike) -> float:
         """Every mode's update with z and the new mode probabilities; returns log p(z | past)."""
@@ -278,7 +283,8 @@ class IMM:
 
         z = as_float_array("z", z, (self._m,))
         s = self._set
-        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas_pose, self.nis))
+        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, self._R, z, s.meas_pose, self.nis,
+                                               self._ws))
         return self.log_likelihood
 
     def _combined(self):
@@ -287,7 +293,7 @@ class IMM:
         c = np.empty(6)
         P = np.empty((6, 6))
         s = self._set
-        combined_common(s.models, self._S, self._p, self._mu, s.same_group, c, P)
+        combined_common(s.models, self._S, self._p, self._mu, s.same_group, c, P, self._ws)
         return c, P
 
     @property

@@ -43,9 +43,24 @@ import numpy as np
 
 from ..generated import dispatch as D
 
-__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "mix_on_group", "combined_common"]
+__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "mix_on_group", "combined_common",
+           "workspace"]
 
 LOG_2PI = math.log(2.0 * math.pi)
+NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
+LMAX = int(np.max(D.N_INTERNAL))
+MMAX = 3  # the largest measurement dimension (pose)
+NW = max(NMAX, 6)  # square scratch matrices hold n × n and n × 6 blocks
+
+
+@nb.njit(cache=True)
+def workspace(M):
+    """The scratch arrays of one IMM of M modes (no allocation inside the step loop)."""
+    return (np.empty(NMAX), np.empty(NMAX), np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW),
+            np.empty((MMAX, NMAX)), np.empty((MMAX, MMAX)), np.empty((MMAX, MMAX)), np.empty(NMAX), np.empty(6),
+            np.empty((6, NMAX)), np.empty((M, 6)), np.empty((M, 6, 6)), np.empty((M, 6)), np.empty((M, M)),
+            np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
+            np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)))
 
 
 @nb.njit(cache=True)
@@ -70,27 +85,6 @@ def pack_from(P, n, p):
 
 
 @nb.njit(cache=True)
-def _congruence_add(T, P, w, out):
-    """out += w · T P Tᵀ (T (a, b), P (b, b), out (a, a))."""
-    a, b = T.shape
-    TP = np.empty((a, b))
-    for i in range(a):
-        for k in range(b):
-            acc = 0.0
-            for m in range(b):
-                acc += T[i, m] * P[m, k]
-            TP[i, k] = acc
-    for i in range(a):
-        for j in range(i, a):
-            acc = 0.0
-            for k in range(b):
-                acc += TP[i, k] * T[j, k]
-            out[i, j] += w * acc
-            if j != i:
-                out[j, i] += w * acc
-
-
-@nb.njit(cache=True)
 def _packed_at(p, n, i, j):
     """P[i, j] of a packed upper triangle (row-major)."""
     if i > j:
@@ -99,10 +93,8 @@ def _packed_at(p, n, i, j):
 
 
 @nb.njit(cache=True)
-def _congruence_packed(T, p, n, out):
-    """out = T P Tᵀ (T (a, n), P packed (n(n+1)/2)), no temporary arrays beyond one row."""
-    a = T.shape[0]
-    row = np.empty(n)
+def _congruence_packed(T, a, p, n, row, out, w, accumulate):
+    """out[:a, :a] (+)= w · T P Tᵀ for T[:a, :n] and P packed (n(n+1)/2); ``row`` (n,) scratch."""
     for i in range(a):
         for k in range(n):
             acc = 0.0
@@ -115,16 +107,42 @@ def _congruence_packed(T, p, n, out):
             acc = 0.0
             for k in range(n):
                 acc += row[k] * T[j, k]
+            acc *= w
+            if accumulate:
+                out[i, j] += acc
+                if j != i:
+                    out[j, i] += acc
+            else:
+                out[i, j] = acc
+                out[j, i] = acc
+
+
+@nb.njit(cache=True)
+def _congruence_dense(T, a, P, n, row, out):
+    """out[:a, :a] = T P Tᵀ for T[:a, :n] and dense P[:n, :n]."""
+    for i in range(a):
+        for k in range(n):
+            acc = 0.0
+            for m in range(n):
+                t = T[i, m]
+                if t != 0.0:
+                    acc += t * P[m, k]
+            row[k] = acc
+        for j in range(i, a):
+            acc = 0.0
+            for k in range(n):
+                acc += row[k] * T[j, k]
             out[i, j] = acc
             out[j, i] = acc
 
 
 @nb.njit(cache=True)
-def mix_on_group(model, S, Pp, w, s_out, P_out):
+def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     """Reduce Σ w_i N_G(μ_i, P_i) (rows of S, Pp; all the same model) to one N_G(μ, P) (module docstring).
 
-    s_out: (L,) receives μ (internal state); P_out (n, n) the dense covariance. Returns the iterations used.
+    s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance. Returns the iterations used.
     """
+    delta, d, T, row = ws[0], ws[1], ws[2], ws[4]
     M = S.shape[0]
     n = D.N_TANGENT[model]
     ni = D.N_INTERNAL[model]
@@ -136,12 +154,12 @@ def mix_on_group(model, S, Pp, w, s_out, P_out):
         s_out[k] = S[best, k]
     it = 0
     if M > 1:
-        delta = np.empty(n)
         for it in range(1, 51):
-            delta[:] = 0.0
+            for k in range(n):
+                delta[k] = 0.0
             for i in range(M):
-                if w[i] > 0.0:
-                    d = D.between(model, s_out, S[i])
+                if w[i] > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
+                    D.between_into(model, s_out, S[i], d)
                     for k in range(n):
                         delta[k] += w[i] * d[k]
             D.retract(model, s_out, delta)
@@ -150,22 +168,18 @@ def mix_on_group(model, S, Pp, w, s_out, P_out):
                 nrm += delta[k] * delta[k]
             if nrm < 1e-24:
                 break
-    Pi = np.empty((n, n))
     for a in range(n):
         for b in range(n):
             P_out[a, b] = 0.0
     for i in range(M):
         if w[i] <= 0.0:
             continue
-        unpack_into(Pp[i], n, Pi)
         if M == 1:
-            for a in range(n):
-                for b in range(n):
-                    P_out[a, b] += w[i] * Pi[a, b]
+            unpack_into(Pp[i], n, P_out)
             continue
-        d = D.between(model, s_out, S[i])
-        Ti = D.right_jacobian_inv(model, d)
-        _congruence_add(Ti, Pi, w[i], P_out)
+        D.between_into(model, s_out, S[i], d)
+        D.right_jacobian_inv_into(model, d, T)
+        _congruence_packed(T, n, Pp[i], n, row, P_out, w[i], True)
         for a in range(n):
             for b in range(n):
                 P_out[a, b] += w[i] * d[a] * d[b]
@@ -173,15 +187,14 @@ def mix_on_group(model, S, Pp, w, s_out, P_out):
 
 
 @nb.njit(cache=True)
-def _to_common(model, s, p, c_out, P_out):
+def _to_common(model, s, p, c_out, P_out, ws):
     """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ)."""
+    x, A, row = ws[8], ws[10], ws[4]
     n = D.N_TANGENT[model]
-    x = D.state_to_physical(model, s)
-    c = D.physical_to_common(model, x)
-    A = D.physical_to_common_jacobian(model, x)
-    for a in range(6):
-        c_out[a] = c[a]
-    _congruence_packed(A, p, n, P_out)
+    D.physical_into(model, s, x)
+    D.physical_to_common_into(model, x, c_out)
+    D.physical_to_common_jacobian_into(model, x, A)
+    _congruence_packed(A, 6, p, n, row, P_out, 1.0, False)
 
 
 @nb.njit(cache=True)
@@ -190,16 +203,15 @@ def _wrap(a):
 
 
 @nb.njit(cache=True)
-def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out):
+def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
     """Moment-match Σ w_i N(c_i, P_c,i) in the common coordinates (θ wrapped); coordinates k a source does not
-    carry (miss[i, k] = 1) take fill_c[k] and the variance fill_P[k, k] (no correlation) for that source."""
+    carry (miss[i, k] = 1) take fill_c[k] and the variance fill_P[k, k] (no correlation) for that source.
+    Ci (M, 6), Pi (M, 6, 6), d (6,): scratch."""
     M = C.shape[0]
     best = 0
     for i in range(M):
         if w[i] > w[best]:
             best = i
-    Ci = np.empty((M, 6))
-    Pi = np.empty((M, 6, 6))
     for i in range(M):
         for a in range(6):
             Ci[i, a] = C[i, a]
@@ -216,6 +228,8 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out):
     for a in range(6):
         c_out[a] = 0.0
     for i in range(M):
+        if w[i] == 0.0:
+            continue
         for a in range(6):
             v = Ci[i, a]
             if a == 2:
@@ -224,8 +238,9 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out):
     for a in range(6):
         for b in range(6):
             P_out[a, b] = 0.0
-    d = np.empty(6)
     for i in range(M):
+        if w[i] == 0.0:
+            continue
         for a in range(6):
             d[a] = Ci[i, a] - c_out[a]
         d[2] = _wrap(d[2])
@@ -236,31 +251,39 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out):
 
 
 @nb.njit(cache=True)
-def combined_common(models, S, Pp, mu, same_group, c_out, P_out):
+def _all_common(models, S, Pp, ws):
+    """Every mode in the common coordinates: ws C (M, 6), PC (M, 6, 6), miss (M, 6)."""
+    C, PC, miss = ws[11], ws[12], ws[13]
+    for i in range(models.shape[0]):
+        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws)
+        mi = D.common_missing(models[i])
+        for a in range(6):
+            miss[i, a] = mi[a]
+
+
+@nb.njit(cache=True)
+def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
     M = models.shape[0]
     if M == 1:
-        _to_common(models[0], S[0], Pp[0], c_out, P_out)
+        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws)
         return
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
-        s = np.empty(S.shape[1])
-        P = np.empty((n, n))
-        mix_on_group(model, S, Pp, mu, s, P)
-        p = np.empty(n * (n + 1) // 2)
+        s, P, p = ws[17], ws[3], ws[18]
+        mix_on_group(model, S, Pp, mu, s, P, ws)
         pack_from(P, n, p)
-        _to_common(model, s, p, c_out, P_out)
+        _to_common(model, s, p, c_out, P_out, ws)
         return
-    C = np.empty((M, 6))
-    PC = np.empty((M, 6, 6))
-    miss = np.empty((M, 6))
-    for i in range(M):
-        _to_common(models[i], S[i], Pp[i], C[i], PC[i])
-        miss[i] = D.common_missing(models[i])
+    _all_common(models, S, Pp, ws)
+    C, PC, miss = ws[11], ws[12], ws[13]
     # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
-    fill_c = np.zeros(6)
-    fill_P = np.zeros((6, 6))
+    fill_c, fill_P = ws[21], ws[22]
+    for a in range(6):
+        fill_c[a] = 0.0
+        for b in range(6):
+            fill_P[a, b] = 0.0
     for a in range(6):
         tot = 0.0
         for i in range(M):
@@ -274,96 +297,77 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out):
                 if miss[i, a] < 0.5:
                     e = C[i, a] - fill_c[a]
                     fill_P[a, a] += mu[i] / tot * (PC[i, a, a] + e * e)
-    mix_common(C, PC, miss, mu, fill_c, fill_P, c_out, P_out)
+    mix_common(C, PC, miss, mu, fill_c, fill_P, c_out, P_out, ws[23], ws[24], ws[9])
 
 
 @nb.njit(cache=True)
-def _mix(models, S, Pp, mu, PI, same_group):
-    """The IMM's interaction step, in place: every mode restarts from its mixed estimate; returns c̄_j = Σ_i PI_ij μ_i."""
+def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
+    """The IMM's interaction step, in place: every mode restarts from its mixed estimate; cbar_j = Σ_i PI_ij μ_i."""
     M = models.shape[0]
-    cbar = np.zeros(M)
     for j in range(M):
+        cbar[j] = 0.0
         for i in range(M):
             cbar[j] += PI[i, j] * mu[i]
     if M == 1:
-        return cbar
-    W = np.zeros((M, M))  # W[j, i] = w_{i|j}
+        return
+    W = ws[14]  # W[j, i] = w_{i|j}
     for j in range(M):
-        if cbar[j] > 0.0:
-            for i in range(M):
-                W[j, i] = PI[i, j] * mu[i] / cbar[j]
-        else:
-            W[j, j] = 1.0
-    S_new = S.copy()
-    P_new = Pp.copy()
+        for i in range(M):
+            W[j, i] = PI[i, j] * mu[i] / cbar[j] if cbar[j] > 0.0 else (1.0 if i == j else 0.0)
+    S_new, P_new, P = ws[15], ws[16], ws[3]
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
-        P = np.empty((n, n))
         for j in range(M):
-            mix_on_group(model, S, Pp, W[j], S_new[j], P)
+            mix_on_group(model, S, Pp, W[j], S_new[j], P, ws)
             pack_from(P, n, P_new[j])
     else:
-        C = np.empty((M, 6))
-        PC = np.empty((M, 6, 6))
-        miss = np.empty((M, 6))
-        for i in range(M):
-            _to_common(models[i], S[i], Pp[i], C[i], PC[i])
-            miss[i] = D.common_missing(models[i])
-        c = np.empty(6)
-        Pc = np.empty((6, 6))
+        _all_common(models, S, Pp, ws)
+        C, PC, miss = ws[11], ws[12], ws[13]
+        c, Pc, x, J, row = ws[21], ws[22], ws[8], ws[10], ws[4]
+        # (ws[10] is 6 × NMAX; J of common_jacobian is n × 6: use ws[2] (NMAX × NMAX) instead)
+        J = ws[2]
         for j in range(M):
-            mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc)
+            mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[23], ws[24], ws[9])
             model = models[j]
             n = D.N_TANGENT[model]
-            x = D.common_to_state(model, c)
-            s = D.state_from_physical(model, x)
-            for k in range(s.shape[0]):
-                S_new[j, k] = s[k]
-            J = D.common_jacobian(model, c)
-            P = np.zeros((n, n))
-            _congruence_add(J, Pc, 1.0, P)
+            D.common_to_state_into(model, c, x)
+            D.state_from_physical_into(model, x, S_new[j])
+            D.common_jacobian_into(model, c, J)
+            _congruence_dense(J, n, Pc, 6, row, P)
             pack_from(P, n, P_new[j])
-    S[:, :] = S_new
-    Pp[:, :] = P_new
-    return cbar
+    for j in range(M):
+        model = models[j]
+        for k in range(D.N_INTERNAL[model]):
+            S[j, k] = S_new[j, k]
+        n = D.N_TANGENT[model]
+        for k in range(n * (n + 1) // 2):
+            Pp[j, k] = P_new[j, k]
 
 
 @nb.njit(cache=True)
-def _log_likelihood(model, s, p, r, meas_pose):
-    """log det S and m of the innovation covariance S = ℋ P ℋᵀ + R of mode (model, s, p)."""
+def _log_det_S(model, s, p, R, meas_pose, ws):
+    """log det S of the innovation covariance S = ℋ P ℋᵀ + R of mode (model, s, p) (Cholesky; -inf if not PD)."""
+    H, Sm, row = ws[5], ws[6], ws[4]
     n = D.N_TANGENT[model]
     if meas_pose:
-        H = D.calH_pose(model, s)
-        R = D.meas_cov_pose(r)
+        D.calH_pose_into(model, s, H)
     else:
-        H = D.calH_position(model, s)
-        R = D.meas_cov_position(r)
-    m = H.shape[0]
-    Sm = np.empty((m, m))
-    _congruence_packed(H, p, n, Sm)
-    for a in range(m):
-        for b in range(m):
-            Sm[a, b] += R[a, b]
-    return _logdet_spd(Sm), m
-
-
-@nb.njit(cache=True)
-def _logdet_spd(A):
-    """log det of a small symmetric positive definite matrix (Cholesky; -inf if not PD)."""
-    m = A.shape[0]
-    L = np.zeros((m, m))
+        D.calH_position_into(model, s, H)
+    m = R.shape[0]
+    _congruence_packed(H, m, p, n, row, Sm, 1.0, False)
+    L = ws[7]
     out = 0.0
     for j in range(m):
-        d = A[j, j]
+        dd = Sm[j, j] + R[j, j]
         for k in range(j):
-            d -= L[j, k] * L[j, k]
-        if not d > 0.0:
+            dd -= L[j, k] * L[j, k]
+        if not dd > 0.0:
             return -np.inf
-        L[j, j] = math.sqrt(d)
-        out += math.log(d)
+        L[j, j] = math.sqrt(dd)
+        out += math.log(dd)
         for i in range(j + 1, m):
-            v = A[i, j]
+            v = Sm[i, j] + R[i, j]
             for k in range(j):
                 v -= L[i, k] * L[j, k]
             L[i, j] = v / L[j, j]
@@ -371,22 +375,24 @@ def _logdet_spd(A):
 
 
 @nb.njit(cache=True)
-def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group):
+def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws):
     """Mixing, then every mode's prediction by dt, in place; mu becomes the predicted probabilities Σ_i PI_ij μ_i.
 
-    Q (M, q): the modes' process-noise stds.
+    Q (M, q): the modes' process-noise stds; ws: ``workspace(M)``.
     """
-    cbar = _mix(models, S, Pp, mu, PI, same_group)
+    cbar = ws[19]
+    _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
     for j in range(models.shape[0]):
         D.predict(models[j], S[j], Pp[j], dt, Q[j])
         mu[j] = cbar[j]
 
 
 @nb.njit(cache=True)
-def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out):
+def imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws):
     """Every mode's update with z, in place, and μ_j ∝ μ_j N(ν_j; 0, S_j); a NaN in z: nothing changes.
 
-    nis_out (M,) receives each mode's NIS (NaN when missed). Returns the log-likelihood log Σ_j μ_j N_j.
+    R: the measurement covariance (``meas_cov_<meas>(r)``); nis_out (M,) receives each mode's NIS (NaN when
+    missed). Returns the log-likelihood log Σ_j μ_j N_j.
     """
     M = models.shape[0]
     for k in range(z.shape[0]):
@@ -394,16 +400,17 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out):
             for j in range(M):
                 nis_out[j] = np.nan
             return np.nan
-    loglik = np.zeros(M)
+    loglik, prior = ws[20], ws[19]
+    m = R.shape[0]
     for j in range(M):
-        logdet, m = _log_likelihood(models[j], S[j], Pp[j], r, meas_pose)
+        logdet = _log_det_S(models[j], S[j], Pp[j], R, meas_pose, ws)
         if meas_pose:
             nis = D.update_pose(models[j], S[j], Pp[j], z, r)
         else:
             nis = D.update_position(models[j], S[j], Pp[j], z, r)
         nis_out[j] = nis
         loglik[j] = -0.5 * (nis + logdet + m * LOG_2PI)
-    prior = mu.copy()
+        prior[j] = mu[j]
     top = -np.inf
     for j in range(M):
         if mu[j] > 0.0 and loglik[j] > top:
@@ -414,7 +421,8 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out):
         mu[j] = v
         tot += v
     if not (tot > 0.0) or not np.isfinite(tot):
-        mu[:] = prior
+        for j in range(M):
+            mu[j] = prior[j]
         return -np.inf
     for j in range(M):
         mu[j] /= tot
@@ -422,10 +430,10 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out):
 
 
 @nb.njit(cache=True)
-def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out):
+def imm_step(models, S, Pp, mu, PI, Q, r, R, z, dt, same_group, meas_pose, nis_out, ws):
     """One IMM cycle in place: imm_predict by dt, then imm_update with z (NaN: missed detection)."""
-    imm_predict(models, S, Pp, mu, PI, Q, dt, same_group)
-    return imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out)
+    imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws)
+    return imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws)
 
 
 @nb.njit(cache=True)
@@ -436,15 +444,18 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
     and the mode probabilities out_mu (K, M).
     """
     K = z.shape[0]
+    M = models.shape[0]
     keep_P = out_P.shape[0] == K
+    ws = workspace(M)
+    R = D.meas_cov_pose(r) if meas_pose else D.meas_cov_position(r)
     Pc = np.empty((6, 6))
-    nis = np.empty(models.shape[0])
+    nis = np.empty(M)
     for k in range(K):
-        imm_step(models, S, Pp, mu, PI, Q, r, z[k], dts[k], same_group, meas_pose, nis)
-        combined_common(models, S, Pp, mu, same_group, out_c[k], Pc)
+        imm_step(models, S, Pp, mu, PI, Q, r, R, z[k], dts[k], same_group, meas_pose, nis, ws)
+        combined_common(models, S, Pp, mu, same_group, out_c[k], Pc, ws)
         if keep_P:
             out_P[k, :, :] = Pc
-        for j in range(models.shape[0]):
+        for j in range(M):
             out_mu[k, j] = mu[j]
 
 
