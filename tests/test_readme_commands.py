@@ -97,6 +97,11 @@ README_TO_RUN = {
     "lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler tcp://10.0.0.5:8786":
         ["lgekf track detections.parquet -o tracks.csv --model cv --meas-std 1 --accel-std 2.8 --scheduler {scheduler}"],
     "lgekf evaluate ethucy --tune --workers 2": None,
+    "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
+    "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
+    "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
+    "lgekf evaluate ethucy kitti cyclists dut --imm": None,
+    "lgekf evaluate ethucy kitti cyclists dut --imm --tune": None,
 }
 
 

@@ -23,8 +23,9 @@ __all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm",
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 
-#: ``lgekf track --model imm`` modes by default: a calm and a manoeuvring SE(2)×R³
-DEFAULT_TRACK_MODES = "se2r3:calm,se2r3:manoeuvre"
+#: ``lgekf track --model imm`` / ``lgekf evaluate --imm`` modes by default: CV and a calm and a manoeuvring SE(2)×R³
+#: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see README)
+DEFAULT_TRACK_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
 COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
 
 

@@ -40,7 +40,7 @@ def evaluate_parser():
     ap.add_argument("--tune", action="store_true",
                     help="grid-search the process noise (scale k, turn-rate ratio ρ) per filter on the first 30 %% of tracks; evaluate on the rest")
     ap.add_argument("--imm", action="store_true", help="add an IMM row (modes --imm-modes, not tuned; one process only)")
-    ap.add_argument("--imm-modes", default=None, metavar="LIST", help="--imm: modes (default se2r3:calm,se2r3:manoeuvre)")
+    ap.add_argument("--imm-modes", default=None, metavar="LIST", help="--imm: modes (default cv,se2r3:calm,se2r3:manoeuvre)")
     ap.add_argument("--imm-switch", type=float, default=None, metavar="P", help="--imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")

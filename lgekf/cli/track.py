@@ -77,7 +77,7 @@ def track_parser():
                          "(with --model all: one file per model, OUTPUT_<model>.csv)")
     ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all", "imm"], help="filter (default se2se2); imm: an IMM of --imm-modes")
     ap.add_argument("--imm-modes", default=None, metavar="LIST",
-                    help="--model imm: modes MODEL[:calm|manoeuvre|a/b/c],... (default se2r3:calm,se2r3:manoeuvre)")
+                    help="--model imm: modes MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3:calm,se2r3:manoeuvre)")
     ap.add_argument("--imm-switch", type=float, default=None, metavar="P",
                     help="--model imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
