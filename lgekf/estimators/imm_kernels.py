@@ -60,7 +60,8 @@ def workspace(M):
             np.empty((MMAX, NMAX)), np.empty((MMAX, MMAX)), np.empty((MMAX, MMAX)), np.empty(NMAX), np.empty(6),
             np.empty((6, NMAX)), np.empty((M, 6)), np.empty((M, 6, 6)), np.empty((M, 6)), np.empty((M, M)),
             np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
-            np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)))
+            np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
+            np.empty((NW, NW)))
 
 
 @nb.njit(cache=True)
@@ -93,15 +94,16 @@ def _packed_at(p, n, i, j):
 
 
 @nb.njit(cache=True)
-def _congruence_packed(T, a, p, n, row, out, w, accumulate):
-    """out[:a, :a] (+)= w · T P Tᵀ for T[:a, :n] and P packed (n(n+1)/2); ``row`` (n,) scratch."""
+def _congruence_packed(T, a, p, n, row, Pd, out, w, accumulate):
+    """out[:a, :a] (+)= w · T P Tᵀ for T[:a, :n] and P packed (n(n+1)/2); ``row`` (n,), ``Pd`` (n, n) scratch."""
+    unpack_into(p, n, Pd)
     for i in range(a):
         for k in range(n):
             acc = 0.0
             for m in range(n):
                 t = T[i, m]
                 if t != 0.0:
-                    acc += t * _packed_at(p, n, m, k)
+                    acc += t * Pd[m, k]
             row[k] = acc
         for j in range(i, a):
             acc = 0.0
@@ -140,9 +142,15 @@ def _congruence_dense(T, a, P, n, row, out):
 def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     """Reduce Σ w_i N_G(μ_i, P_i) (rows of S, Pp; all the same model) to one N_G(μ, P) (module docstring).
 
-    s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance. Returns the iterations used.
+    s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance; ws: ``workspace(M)``.
+    Returns the iterations used.
     """
-    delta, d, T, row = ws[0], ws[1], ws[2], ws[4]
+    return _mix_on_group(model, S, Pp, w, s_out, P_out, ws[0], ws[1], ws[2], ws[4], ws[25])
+
+
+@nb.njit(cache=True)
+def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
+    """mix_on_group with its scratch arrays passed one by one (a tuple argument costs a reference count per array)."""
     M = S.shape[0]
     n = D.N_TANGENT[model]
     ni = D.N_INTERNAL[model]
@@ -179,7 +187,7 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
             continue
         D.between_into(model, s_out, S[i], d)
         D.right_jacobian_inv_into(model, d, T)
-        _congruence_packed(T, n, Pp[i], n, row, P_out, w[i], True)
+        _congruence_packed(T, n, Pp[i], n, row, Pd, P_out, w[i], True)
         for a in range(n):
             for b in range(n):
                 P_out[a, b] += w[i] * d[a] * d[b]
@@ -187,14 +195,13 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
 
 
 @nb.njit(cache=True)
-def _to_common(model, s, p, c_out, P_out, ws):
-    """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ)."""
-    x, A, row = ws[8], ws[10], ws[4]
+def _to_common(model, s, p, c_out, P_out, x, A, row, Pd):
+    """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ); x, A, row, Pd scratch."""
     n = D.N_TANGENT[model]
     D.physical_into(model, s, x)
     D.physical_to_common_into(model, x, c_out)
     D.physical_to_common_jacobian_into(model, x, A)
-    _congruence_packed(A, 6, p, n, row, P_out, 1.0, False)
+    _congruence_packed(A, 6, p, n, row, Pd, P_out, 1.0, False)
 
 
 @nb.njit(cache=True)
@@ -255,7 +262,7 @@ def _all_common(models, S, Pp, ws):
     """Every mode in the common coordinates: ws C (M, 6), PC (M, 6, 6), miss (M, 6)."""
     C, PC, miss = ws[11], ws[12], ws[13]
     for i in range(models.shape[0]):
-        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws)
+        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[8], ws[10], ws[4], ws[25])
         mi = D.common_missing(models[i])
         for a in range(6):
             miss[i, a] = mi[a]
@@ -266,15 +273,15 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
     M = models.shape[0]
     if M == 1:
-        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws)
+        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[8], ws[10], ws[4], ws[25])
         return
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
         s, P, p = ws[17], ws[3], ws[18]
-        mix_on_group(model, S, Pp, mu, s, P, ws)
+        _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[25])
         pack_from(P, n, p)
-        _to_common(model, s, p, c_out, P_out, ws)
+        _to_common(model, s, p, c_out, P_out, ws[8], ws[10], ws[4], ws[25])
         return
     _all_common(models, S, Pp, ws)
     C, PC, miss = ws[11], ws[12], ws[13]
@@ -319,7 +326,7 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
         model = models[0]
         n = D.N_TANGENT[model]
         for j in range(M):
-            mix_on_group(model, S, Pp, W[j], S_new[j], P, ws)
+            _mix_on_group(model, S, Pp, W[j], S_new[j], P, ws[0], ws[1], ws[2], ws[4], ws[25])
             pack_from(P, n, P_new[j])
     else:
         _all_common(models, S, Pp, ws)
@@ -346,17 +353,16 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
 
 
 @nb.njit(cache=True)
-def _log_det_S(model, s, p, R, meas_pose, ws):
-    """log det S of the innovation covariance S = ℋ P ℋᵀ + R of mode (model, s, p) (Cholesky; -inf if not PD)."""
-    H, Sm, row = ws[5], ws[6], ws[4]
+def _log_det_S(model, s, p, R, meas_pose, H, Sm, L, row, Pd):
+    """log det S of the innovation covariance S = ℋ P ℋᵀ + R of mode (model, s, p) (Cholesky; -inf if not PD);
+    H, Sm, L, row, Pd scratch."""
     n = D.N_TANGENT[model]
     if meas_pose:
         D.calH_pose_into(model, s, H)
     else:
         D.calH_position_into(model, s, H)
     m = R.shape[0]
-    _congruence_packed(H, m, p, n, row, Sm, 1.0, False)
-    L = ws[7]
+    _congruence_packed(H, m, p, n, row, Pd, Sm, 1.0, False)
     out = 0.0
     for j in range(m):
         dd = Sm[j, j] + R[j, j]
@@ -403,7 +409,7 @@ def imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws):
     loglik, prior = ws[20], ws[19]
     m = R.shape[0]
     for j in range(M):
-        logdet = _log_det_S(models[j], S[j], Pp[j], R, meas_pose, ws)
+        logdet = _log_det_S(models[j], S[j], Pp[j], R, meas_pose, ws[5], ws[6], ws[7], ws[4], ws[25])
         if meas_pose:
             nis = D.update_pose(models[j], S[j], Pp[j], z, r)
         else:
