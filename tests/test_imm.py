@@ -263,3 +263,24 @@ def test_study_cli_bad_imm_options(tmp_path, args, msg):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and msg in lines[0], r.stderr
     assert not (tmp_path / "o").exists()
+
+
+def test_missed_detections_pose_and_a_stationary_cv_mode():
+    """NaN rows predict only (probabilities follow the transition matrix), pose measurements work, and a CV mode
+    at exactly zero velocity (heading undefined) keeps the heterogeneous mixing finite."""
+    z, pos = _calm_then_turning(K1=30, K2=10)
+    z[10:13] = np.nan
+    c0 = [0.0, 0.0, 0.0, 4.0, 0.0, 0.0]
+    P0 = np.diag([0.05, 0.05, 0.01, 0.1, 0.1, 0.01])
+    est, mu = imm_batch(z[None], "cv,se2r3", 0.1, dt=0.1, meas_std=0.15, x0=c0, P0=P0)
+    assert np.all(np.isfinite(est))
+    PI = transition_matrix(2, 0.1)
+    np.testing.assert_allclose(mu[0, 10], mu[0, 9] @ PI, atol=1e-12)
+    heading = np.arctan2(np.gradient(pos[:, 1]), np.gradient(pos[:, 0]))
+    zp = np.column_stack([z, heading])[None]
+    est, mu = imm_batch(zp, "se2r3:calm,se2r3:manoeuvre", dt=0.1, meas_std=(0.15, 0.15, 0.05), x0=c0, P0=P0,
+                        measurement="pose")
+    assert np.all(np.isfinite(est))
+    still = np.zeros((1, 20, 2)) + 0.01 * np.random.default_rng(0).standard_normal((1, 20, 2))
+    est, mu = imm_batch(still, "cv,ctrv,se2r3", dt=0.1, meas_std=0.01, x0=np.zeros(6), P0=np.diag([1e-4, 1e-4, 0.01, 1e-2, 1e-2, 0.01]))
+    assert np.all(np.isfinite(est)) and np.all(np.isfinite(mu))

@@ -40,6 +40,8 @@ __all__ = [
 NOISE_LEVELS = {"calm": 0.2, "default": 1.0, "manoeuvre": 4.0, "maneuver": 4.0}
 #: default probability of leaving a mode per step (the transition matrix's off-diagonal mass)
 DEFAULT_SWITCH = 0.05
+#: below this speed (m/s) the conversions' Jacobians are evaluated at this speed (singular at 0)
+SPEED_FLOOR = 1e-9
 
 
 @dataclass(frozen=True)
@@ -188,7 +190,12 @@ class _Setup:
             spec = get_model(m.model)
             x = state_from_common(m.model, c0)
             spec.check_state("c0", x)
-            P = covariance_from_common(m.model, c0, P0c) + 1e-12 * np.eye(spec.n)
+            # a heading-of-motion coordinate (CTRV's ψ) has a singular Jacobian at speed 0: evaluate it just off
+            # zero, as lgekf track does
+            cj = c0.copy()
+            slow = np.hypot(cj[:, 3], cj[:, 4]) < SPEED_FLOOR
+            cj[slow, 3] = SPEED_FLOOR
+            P = covariance_from_common(m.model, cj, P0c) + 1e-12 * np.eye(spec.n)
             for b in range(B):
                 s = spec.kernels.state_from_physical(x[b])
                 S0[b, j, :s.shape[0]] = s

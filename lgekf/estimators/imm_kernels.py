@@ -51,6 +51,7 @@ NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
 LMAX = int(np.max(D.N_INTERNAL))
 MMAX = 3  # the largest measurement dimension (pose)
 NW = max(NMAX, 6)  # square scratch matrices hold n × n and n × 6 blocks
+SPEED_FLOOR = 1e-9  # m/s: conversions' Jacobians are evaluated at least this far from speed 0
 
 
 @nb.njit(cache=True)
@@ -195,13 +196,41 @@ def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
 
 
 @nb.njit(cache=True)
-def _to_common(model, s, p, c_out, P_out, x, A, row, Pd):
-    """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ); x, A, row, Pd scratch."""
+def _to_common(model, s, p, c_out, P_out, x, A, row, Pd, ctmp):
+    """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ); x, A, row, Pd, ctmp scratch.
+
+    At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
+    read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
     n = D.N_TANGENT[model]
     D.physical_into(model, s, x)
     D.physical_to_common_into(model, x, c_out)
+    if math.hypot(c_out[3], c_out[4]) < SPEED_FLOOR:
+        for k in range(6):
+            ctmp[k] = c_out[k]
+        ctmp[3] = SPEED_FLOOR
+        ctmp[4] = 0.0
+        D.common_to_state_into(model, ctmp, x)
     D.physical_to_common_jacobian_into(model, x, A)
     _congruence_packed(A, 6, p, n, row, Pd, P_out, 1.0, False)
+    _cap_heading(c_out, P_out)
+
+
+@nb.njit(cache=True)
+def _cap_heading(c, P):
+    """Cap the std of the common θ at π by congruence scaling (as the filters' limit_angle_variance): a heading
+    read off a velocity near zero (CV) is unknown, not infinitely uncertain; at exactly zero θ = 0, variance π²."""
+    v = P[2, 2]
+    if not (np.isfinite(v) and np.isfinite(c[2])):
+        c[2] = 0.0
+        for k in range(6):
+            P[2, k] = 0.0
+            P[k, 2] = 0.0
+        P[2, 2] = math.pi * math.pi
+    elif v > math.pi * math.pi:
+        f = math.pi / math.sqrt(v)
+        for k in range(6):
+            P[2, k] *= f
+            P[k, 2] *= f
 
 
 @nb.njit(cache=True)
@@ -262,7 +291,7 @@ def _all_common(models, S, Pp, ws):
     """Every mode in the common coordinates: ws C (M, 6), PC (M, 6, 6), miss (M, 6)."""
     C, PC, miss = ws[11], ws[12], ws[13]
     for i in range(models.shape[0]):
-        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[8], ws[10], ws[4], ws[25])
+        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[8], ws[10], ws[4], ws[25], ws[9])
         mi = D.common_missing(models[i])
         for a in range(6):
             miss[i, a] = mi[a]
@@ -273,7 +302,7 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
     M = models.shape[0]
     if M == 1:
-        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[8], ws[10], ws[4], ws[25])
+        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[8], ws[10], ws[4], ws[25], ws[9])
         return
     if same_group:
         model = models[0]
@@ -281,7 +310,7 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
         s, P, p = ws[17], ws[3], ws[18]
         _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[25])
         pack_from(P, n, p)
-        _to_common(model, s, p, c_out, P_out, ws[8], ws[10], ws[4], ws[25])
+        _to_common(model, s, p, c_out, P_out, ws[8], ws[10], ws[4], ws[25], ws[9])
         return
     _all_common(models, S, Pp, ws)
     C, PC, miss = ws[11], ws[12], ws[13]
@@ -340,6 +369,8 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
             n = D.N_TANGENT[model]
             D.common_to_state_into(model, c, x)
             D.state_from_physical_into(model, x, S_new[j])
+            if math.hypot(c[3], c[4]) < SPEED_FLOOR:  # the Jacobian of a heading of motion is singular at speed 0
+                c[3] = SPEED_FLOOR
             D.common_jacobian_into(model, c, J)
             _congruence_dense(J, n, Pc, 6, row, P)
             pack_from(P, n, P_new[j])
