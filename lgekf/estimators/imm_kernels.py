@@ -27,6 +27,9 @@ CTRV and SE(2)×R²): for mixing into mode j those coordinates of mode i are rep
 (mean, variance; no correlation), i.e. only the shared components are mixed and each mode keeps its own
 others. The mixture is moment-matched in c (θ differences wrapped to (−π, π] about the most probable
 source) and converted to mode j: s_j = ``common_to_state``(c̄), P_j = J P̄_c Jᵀ, J = ``common_jacobian``(c̄).
+A heading read off a velocity (CV) is singular at speed 0: the Jacobians are taken at speed ≥ 1e-9 m/s
+(``SPEED_FLOOR``) and the std of the common θ is capped at π (congruence scaling, as the filters'
+``limit_angle_variance``), so a stopped CV mode hands on "heading unknown", not an infinite variance.
 
 Likelihood of mode j: N(ν; 0, S) with S = ℋ P ℋᵀ + R (generated ``calH_<meas>``, ``meas_cov_<meas>``) from
 the predicted P, and νᵀS⁻¹ν the NIS returned by the fused update; a missed detection (NaN in z) leaves the
