@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -1496,3 +1496,194 @@ def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x
             smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
             for k in range(Kb):
                 physical_into(s_sm[b, k], out_x[b, k])
+
+
+@nb.njit(cache=True)
+def physical_to_common(xp):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    """
+    x = xp[0]
+    y = xp[1]
+    psi = xp[2]
+    v = xp[3]
+    omega = xp[4]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = psi
+    out[3] = v
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian(xp):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    """
+    out = np.zeros((6, 5))
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[5, 4] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def common_missing():
+    """1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on."""
+    return np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+
+
+@nb.njit(cache=True)
+def state_from_physical_into(xp, out):
+    """Internal state [x, y, psi, v, omega] from the physical [x, y, psi, v, omega].
+    Written into ``out`` (no allocation).
+    """
+    x = xp[0]
+    y = xp[1]
+    psi = xp[2]
+    v = xp[3]
+    omega = xp[4]
+    out[:] = 0.0
+    out[0] = x
+    out[1] = y
+    out[2] = psi
+    out[3] = v
+    out[4] = omega
+
+
+@nb.njit(cache=True)
+def calH_pose_into(s, out):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for pose measurements.
+    Written into ``out`` (no allocation).
+    """
+    psi = s[2]
+    out[:, :] = 0.0
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    out[0, 0] = _cos_psi
+    out[0, 1] = _sin_psi
+    out[1, 0] = -_sin_psi
+    out[1, 1] = _cos_psi
+    out[2, 2] = 1.0
+
+
+@nb.njit(cache=True)
+def calH_position_into(s, out):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    Written into ``out`` (no allocation).
+    """
+    out[:, :] = 0.0
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+
+
+@nb.njit(cache=True)
+def common_to_state_into(c, out):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    Written into ``out`` (no allocation).
+    """
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
+    out[:] = 0.0
+    out[0] = c0
+    out[1] = c1
+    out[2] = c2 + math.atan2(c4, c3)
+    out[3] = math.sqrt(c3*c3 + c4*c4)
+    out[4] = c5
+
+
+@nb.njit(cache=True)
+def common_jacobian_into(c, out):
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    Written into ``out`` (no allocation).
+    """
+    c3 = c[3]
+    c4 = c[4]
+    out[:, :] = 0.0
+    _t0 = c3*c3 + c4*c4
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[2, 3] = -(_t1*c4)
+    out[2, 4] = _t1*c3
+    out[3, 3] = _t2*c3
+    out[3, 4] = _t2*c4
+    out[4, 5] = 1.0
+
+
+@nb.njit(cache=True)
+def between_into(s, t, out):
+    """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
+    angle coordinates of a Euclidean model wrapped to (-π, π].
+    Written into ``out`` (no allocation).
+    """
+    x = s[0]
+    y = s[1]
+    psi = s[2]
+    v = s[3]
+    omega = s[4]
+    t_x = t[0]
+    t_y = t[1]
+    t_psi = t[2]
+    t_v = t[3]
+    t_omega = t[4]
+    out[:] = 0.0
+    out[0] = t_x - x
+    out[1] = t_y - y
+    out[2] = wrap_angle(-psi + t_psi)
+    out[3] = t_v - v
+    out[4] = -omega + t_omega
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv_into(eps, out):
+    """Φ_G(ε)^-1 of the whole group.
+    Written into ``out`` (no allocation).
+    """
+    out[:, :] = 0.0
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+
+
+@nb.njit(cache=True)
+def physical_to_common_into(xp, out):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    Written into ``out`` (no allocation).
+    """
+    x = xp[0]
+    y = xp[1]
+    psi = xp[2]
+    v = xp[3]
+    omega = xp[4]
+    out[:] = 0.0
+    out[0] = x
+    out[1] = y
+    out[2] = psi
+    out[3] = v
+    out[5] = omega
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian_into(xp, out):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    Written into ``out`` (no allocation).
+    """
+    out[:, :] = 0.0
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[5, 4] = 1.0

@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -1767,3 +1767,239 @@ def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x
             smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
             for k in range(Kb):
                 physical_into(s_sm[b, k], out_x[b, k])
+
+
+@nb.njit(cache=True)
+def physical_to_common(xp):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v_x = xp[3]
+    v_y = xp[4]
+    omega = xp[5]
+    out = np.zeros(6)
+    out[0] = x
+    out[1] = y
+    out[2] = theta
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+    return out
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian(xp):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    """
+    theta = xp[2]
+    out = np.zeros((6, 6))
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0, 0] = _cos_theta
+    out[0, 1] = -_sin_theta
+    out[1, 0] = _sin_theta
+    out[1, 1] = _cos_theta
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+    return out
+
+
+@nb.njit(cache=True)
+def common_missing():
+    """1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on."""
+    return np.array([0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+
+
+@nb.njit(cache=True)
+def state_from_physical_into(xp, out):
+    """Internal state [x, y, c_theta, s_theta, v_x, v_y, omega] from the physical [x, y, theta, vx, vy, omega].
+    Written into ``out`` (no allocation).
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v_x = xp[3]
+    v_y = xp[4]
+    omega = xp[5]
+    out[:] = 0.0
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = x
+    out[1] = y
+    out[2] = _cos_theta
+    out[3] = _sin_theta
+    out[4] = v_x
+    out[5] = v_y
+    out[6] = omega
+
+
+@nb.njit(cache=True)
+def calH_pose_into(s, out):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for pose measurements.
+    Written into ``out`` (no allocation).
+    """
+    out[:, :] = 0.0
+    out[0, 0] = 1.0
+    out[1, 1] = 1.0
+    out[2, 2] = 1.0
+
+
+@nb.njit(cache=True)
+def calH_position_into(s, out):
+    """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
+    Written into ``out`` (no allocation).
+    """
+    c_theta = s[2]
+    s_theta = s[3]
+    out[:, :] = 0.0
+    out[0, 0] = c_theta
+    out[0, 1] = -s_theta
+    out[1, 0] = s_theta
+    out[1, 1] = c_theta
+
+
+@nb.njit(cache=True)
+def common_to_state_into(c, out):
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    Written into ``out`` (no allocation).
+    """
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    c5 = c[5]
+    out[:] = 0.0
+    out[0] = c0
+    out[1] = c1
+    out[2] = c2
+    out[3] = c3
+    out[4] = c4
+    out[5] = c5
+
+
+@nb.njit(cache=True)
+def common_jacobian_into(c, out):
+    """J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).
+    Written into ``out`` (no allocation).
+    """
+    c2 = c[2]
+    out[:, :] = 0.0
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    out[0, 0] = _cos_c2
+    out[0, 1] = _sin_c2
+    out[1, 0] = -_sin_c2
+    out[1, 1] = _cos_c2
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+
+
+@nb.njit(cache=True)
+def between_into(s, t, out):
+    """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
+    angle coordinates of a Euclidean model wrapped to (-π, π].
+    Written into ``out`` (no allocation).
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    t_x = t[0]
+    t_y = t[1]
+    t_c_theta = t[2]
+    t_s_theta = t[3]
+    t_v_x = t[4]
+    t_v_y = t[5]
+    t_omega = t[6]
+    out[:] = 0.0
+    _a0 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
+    _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
+    _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
+    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
+    _t3 = _t2/2.0
+    out[0] = _halfcot__a0*_t0 + _t1*_t3
+    out[1] = _halfcot__a0*_t1 - _t0*_t3
+    out[2] = _t2
+    out[3] = t_v_x - v_x
+    out[4] = t_v_y - v_y
+    out[5] = -omega + t_omega
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv_into(eps, out):
+    """Φ_G(ε)^-1 of the whole group.
+    Written into ``out`` (no allocation).
+    """
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    out[:, :] = 0.0
+    _sin_eps2 = math.sin(eps2)
+    _cos_eps2 = math.cos(eps2)
+    _halfcot_eps2 = halfcot(eps2, _sin_eps2, _cos_eps2)
+    _halfcot1_eps2 = halfcot1(eps2, _sin_eps2, _cos_eps2)
+    _t0 = eps2/2.0
+    out[0, 0] = _halfcot_eps2
+    out[0, 1] = -_t0
+    out[0, 2] = _halfcot1_eps2*eps0 + eps1/2.0
+    out[1, 0] = _t0
+    out[1, 1] = _halfcot_eps2
+    out[1, 2] = _halfcot1_eps2*eps1 - eps0/2.0
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
+
+
+@nb.njit(cache=True)
+def physical_to_common_into(xp, out):
+    """c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model
+    without a heading; 0 for the coordinates of common_missing).
+    Written into ``out`` (no allocation).
+    """
+    x = xp[0]
+    y = xp[1]
+    theta = xp[2]
+    v_x = xp[3]
+    v_y = xp[4]
+    omega = xp[5]
+    out[:] = 0.0
+    out[0] = x
+    out[1] = y
+    out[2] = theta
+    out[3] = v_x
+    out[4] = v_y
+    out[5] = omega
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian_into(xp, out):
+    """A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.
+    Written into ``out`` (no allocation).
+    """
+    theta = xp[2]
+    out[:, :] = 0.0
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0, 0] = _cos_theta
+    out[0, 1] = -_sin_theta
+    out[1, 0] = _sin_theta
+    out[1, 1] = _cos_theta
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0

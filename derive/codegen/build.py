@@ -176,6 +176,9 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
             bar.update(1)
     bar.close()
     files["registry.py"] = render_registry(models, measurements)
+    from .dispatch import render_dispatch
+
+    files["dispatch.py"] = render_dispatch(models, {n: _fitting(m, measurements)[0] for n, m in models.items()}, measurements)
     files["__init__.py"] = HEADER.format(
         title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.",
         source="derive/codegen/build.py",

@@ -264,6 +264,56 @@ class MotionModel:
         J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
         return J.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
 
+    @cached_property
+    def common_of_physical(self) -> list:
+        """c = (x, y, θ, v_x, v_y, ω) read off the physical state (the inverse direction of ``from_common``).
+
+        Generic: (x, y) = ``position``; θ = the ``heading`` or, for a model without one, the direction of
+        the world velocity; (v_x, v_y) = R(θ)ᵀ·``world_velocity`` (body frame); ω = the physical coordinate
+        that ``from_common`` sets to ω.  Components in ``common_missing`` (the model carries no information
+        on them, e.g. CV's ω) are 0 here.
+        """
+        X = self.mean()
+        px, py = self.position(X)
+        w = self.world_velocity()
+        h = self.heading(X)
+        if h is None:
+            th = sp.atan2(w[1], w[0])
+            vb = [sp.sqrt(w[0] ** 2 + w[1] ** 2), sp.Integer(0)]
+        else:
+            ch, sh = h
+            th = angle_of(sp.Matrix([[ch, -sh], [sh, ch]]))
+            vb = [sp.simplify(ch * w[0] + sh * w[1]), sp.simplify(-sh * w[0] + ch * w[1])]
+        om = next((p for p, e in zip(self.physical, self.from_common()) if sp.sympify(e) == omega), sp.Integer(0))
+        return [px, py, th, vb[0], vb[1], om]
+
+    @cached_property
+    def common_missing(self) -> tuple:
+        """Indices of the common coordinates the model does not depend on (``from_common`` ignores them)."""
+        used = set().union(*(sp.sympify(e).free_symbols for e in self.from_common()))
+        return tuple(i for i, c in enumerate(COMMON) if c not in used)
+
+    @cached_property
+    def physical_jacobian(self) -> sp.Matrix:
+        """∂ε/∂x at the mean: the tangent coordinates ε (X = μ·exp ε) w.r.t. the physical state x (n × n)."""
+        d = sp.symbols(f"_d0:{self.n}", real=True)
+        mu = self.mean()
+        Xd = mu.subs({p: p + di for p, di in zip(self.physical, d)}, simultaneous=True)
+        E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
+        J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
+        return J.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+
+    @cached_property
+    def common_of_physical_jacobian(self) -> sp.Matrix:
+        """∂c/∂ε at the mean (6 × n): a covariance P of ε maps to the common coordinates as A P Aᵀ.
+
+        A = ∂c/∂x · (∂ε/∂x)⁻¹ (chain rule through the physical coordinates x); rows of ``common_missing``
+        are zero.
+        """
+        c = sp.Matrix(self.common_of_physical)
+        A = c.jacobian(sp.Matrix(self.physical)) * self.physical_jacobian.inv()
+        return A.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+
     def periodic_tangent(self) -> tuple:
         """Tangent coordinates that are rotation angles of SE(2) factors (exp is periodic in them)."""
         return tuple(self.group.periodic_coordinates())

@@ -52,6 +52,7 @@ from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
 from .track import DEFAULT_ACCEL_STD, TrackConfig, smoothing_inputs, track_arrays
+from .track_imm import IMM_FILTER, common_world_velocity, imm_track_common
 
 __all__ = [
     "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
@@ -90,7 +91,7 @@ def _per_track_rmse(ds: Dataset, err2: np.ndarray) -> np.ndarray:
         return np.sqrt(num / den)
 
 
-def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
+def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None):
     """Every model on the noisy measurements ``zs`` (one (N, 2) array per seed) of the tracks of ``ds``.
 
     Returns dict model -> (pos (S, J), vel (S, J) | None), per seed and track. Each track is filtered
@@ -102,18 +103,23 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS):
     for si, z in enumerate(zs):
         for m in models:
             base, _, variant = m.partition(":")  # "<model>:smoothed": the RTS smoother of the model
-            x, p, _ = track_arrays(base, ds.t, z, ds.starts, cfg)
-            if variant == "smoothed":
-                from .smooth_track import smoothed_columns
+            if m == IMM_FILTER:  # lgekf.apps.track_imm: the IMM of ``imm`` (ImmTrackOptions)
+                x, _, _ = imm_track_common(ds.t, z, ds.starts, cfg.meas_std, cfg.omega_std, imm)
+                vel = common_world_velocity(x) if ds.v is not None else None
+            else:
+                x, p, _ = track_arrays(base, ds.t, z, ds.starts, cfg)
+                if variant == "smoothed":
+                    from .smooth_track import smoothed_columns
 
-                x = smoothed_columns(base, "position", ds.t, *smoothing_inputs(base, ds.t, z, ds.starts, cfg), x, p)[:, :get_model(base).n]
+                    x = smoothed_columns(base, "position", ds.t, *smoothing_inputs(base, ds.t, z, ds.starts, cfg), x, p)[:, :get_model(base).n]
+                vel = world_velocity(base, x) if ds.v is not None else None
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:
-                out[m][1][si] = _per_track_rmse(ds, np.sum((world_velocity(base, x) - ds.v) ** 2, axis=1))
+                out[m][1][si] = _per_track_rmse(ds, np.sum((vel - ds.v) ** 2, axis=1))
     return out
 
 
-def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None):
+def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None, imm=None):
     """Position (and velocity) RMSE per (model, seed, track): dict model -> (pos (S, J), vel (S, J) | None).
 
     ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask).
@@ -125,7 +131,7 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
-    out = (runner or track_rmse)(ds, zs, cfg, models)
+    out = (runner or track_rmse)(ds, zs, cfg, models) if imm is None else track_rmse(ds, zs, cfg, (*models, IMM_FILTER), imm)
     out["measurements"] = (meas, None)
     return out
 
@@ -197,17 +203,20 @@ class DatasetResult:
 
 
 def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
-                     tune_method="mle", smooth=False):
+                     tune_method="mle", smooth=False, imm=None):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
     ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid" or
-    "mle"; ``smooth``: also the ``<model>:smoothed`` rows (module docstring).
+    "mle"; ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
+    ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row (its modes' noise as given there, not tuned).
     """
+    if imm is not None and runner is not None:
+        raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
     seed_list = [base_seed + s for s in range(seeds)]
     default = {m: (1.0, 1.0) for m in FILTERS}
     models = FILTERS + (tuple(f"{m}:smoothed" for m in FILTERS) if smooth else ())
     if not tune:
-        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, models=models, runner=runner))]
+        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, models=models, runner=runner, imm=imm))]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
     if tune_method == "mle":
@@ -219,7 +228,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
         if progress:
             progress(1)
         out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
-                                                                    runner=runner), [], len(tune_idx))]
+                                                                    runner=runner, imm=imm), [], len(tune_idx))]
         out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner), [],
                                  len(tune_idx), accel, fits))
         return out
@@ -245,7 +254,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     chosen = {m: best[m][1] for m in FILTERS}
     out = []
     for noise, scale in (("default", default), ("tuned", chosen)):
-        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, models=models, runner=runner), tuning,
+        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, models=models, runner=runner, imm=imm), tuning,
                                  len(tune_idx)))
     return out
 

@@ -97,7 +97,7 @@ def evaluation_figure(rows, path: Path, noise: str):
     # at least 7 in wide: the legend and the two-line title must fit even for a single dataset
     fig, axes = plt.subplots(1, len(panels), figsize=(max(1.0 * sum(widths) + 1.5, 7.0), 4.6), squeeze=False,
                              gridspec_kw={"width_ratios": widths})
-    colors = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "0.7"}
+    colors = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "0.7", "imm": "tab:brown"}
     for ax, (key, sets, unit) in zip(axes[0], panels):
         width = 0.8 / len(names)
         for i, m in enumerate(names):

@@ -43,6 +43,9 @@ def evaluate_parser():
                     help="with --tune: mle = maximum-likelihood process noise learned on the tuning split (default), "
                          "grid = the RMSE grid search over k·default noise and the turn-rate ratio")
     ap.add_argument("--smooth", action="store_true", help="also rows <model>:smoothed, the RTS smoother on the group")
+    ap.add_argument("--imm", action="store_true", help="add an IMM row (modes --imm-modes, not tuned; one process only)")
+    ap.add_argument("--imm-modes", default=None, metavar="LIST", help="--imm: modes (default cv,se2r3:calm,se2r3:manoeuvre)")
+    ap.add_argument("--imm-switch", type=float, default=None, metavar="P", help="--imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
     ap.add_argument("--no-figure", action="store_true", help="skip evaluation.png")
     ap.add_argument("--markdown", action="store_true", help="print the table as Markdown")
@@ -75,6 +78,11 @@ def _evaluate(a, runner=None) -> int:
         raise ValueError(f"--seeds: must be at least 1, got {a.seeds}")
     if a.min_length < 3:
         raise ValueError(f"--min-length: must be at least 3 (two samples initialise the filter), got {a.min_length}")
+    from ..apps.track_imm import ImmTrackOptions
+
+    if not a.imm and (a.imm_modes is not None or a.imm_switch is not None):
+        raise ValueError("--imm-modes/--imm-switch: only with --imm")
+    imm = ImmTrackOptions(a.imm_modes, a.imm_switch) if a.imm else None
     names = []
     for d in a.datasets:
         names += GROUPS.get(d, [d])
@@ -87,7 +95,7 @@ def _evaluate(a, runner=None) -> int:
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
         results = evaluate_dataset(ds, meas_std=a.meas_std, seeds=a.seeds, base_seed=a.seed, tune=a.tune,
-                                   progress=lambda stage: bar.update(1), runner=runner, tune_method=a.tune_method, smooth=a.smooth)
+                                   progress=lambda stage: bar.update(1), runner=runner, tune_method=a.tune_method, smooth=a.smooth, imm=imm)
         bar.update(1)
         for res in results:
             rows += res.summary()

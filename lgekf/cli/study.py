@@ -69,6 +69,10 @@ def study_parser():
         "--noise-scale", action="extend", nargs="+", default=[], metavar="FILTER=K",
         help="multiply a filter's process-noise stds by K; several after one flag or the flag repeated, e.g. --noise-scale cv=30 ctrv=3",
     )
+    ap.add_argument("--imm-modes", default=None, metavar="LIST",
+                    help="modes of the imm filter (with --filters ...,imm): MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3)")
+    ap.add_argument("--imm-switch", type=float, default=None, metavar="P",
+                    help="imm: probability of leaving a mode per step (default 0.002)")
     ap.add_argument("--no-figure", action="store_true", help="skip study.png")
     ap.add_argument("--pdf", action="store_true", help="also write study.pdf")
     ap.add_argument("--quiet", action="store_true", help="print only the output folder")
@@ -101,9 +105,9 @@ def _filter_list(text):
     from ..core.registry import MODELS
 
     names = [v.strip() for v in str(text).split(",") if v.strip()]
-    bad = [v for v in names if v not in MODELS]
+    bad = [v for v in names if v not in MODELS and v != "imm"]
     if bad or not names:
-        raise UsageError(f"--filters: unknown filter {bad[0] if bad else text!r}; choose from {', '.join(MODELS)}")
+        raise UsageError(f"--filters: unknown filter {bad[0] if bad else text!r}; choose from {', '.join(MODELS)}, imm")
     return tuple(dict.fromkeys(names))
 
 
@@ -126,10 +130,13 @@ def cmd_study(argv) -> int:
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
+    from ..experiments.imm_study import imm_options_from_args
+
+    imm = imm_options_from_args(a.imm_modes, a.imm_switch)
     t0 = time.perf_counter()
     with compile_notice("lgekf study", enabled=not a.quiet):
         with progress_bar(len(cfg.sigmas), "lgekf study", not a.quiet and stderr_is_terminal(), unit="σ_ω") as bar:
-            res = run_study(cfg, progress=lambda done, total: bar.update(1))
+            res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
     claims = claims_check(res)
     out = a.out
     buf = io.StringIO()
@@ -154,6 +161,7 @@ def cmd_study(argv) -> int:
         "wrapped_trajectories_per_sigma": {f"{s:.6g}": int(k) for s, k in zip(res.sigmas, res.wrapped)},
         "aliased_trajectories": {name: int(c.sum()) for name, c in res.aliased.items()},
         "filter_measurements": {f: cfg.filter_measurement(f) for f in res.filters},
+        **({"imm": {"modes": imm.modes, "switch": imm.switch}} if "imm" in res.filters else {}),
         "claims": [{"claim": c.text, "holds": c.holds, "evidence": c.evidence} for c in claims],
         "compute_seconds": round(res.compute_seconds, 4),
         "wall_seconds": None,

@@ -77,7 +77,11 @@ def track_parser():
     ap.add_argument("-o", "--output", required=True,
                     help="output CSV; - writes to stdout; a name ending in .gz is gzip-compressed "
                          "(with --model all: one file per model, OUTPUT_<model>.csv)")
-    ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all"], help="filter (default se2se2)")
+    ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all", "imm"], help="filter (default se2se2); imm: an IMM of --imm-modes")
+    ap.add_argument("--imm-modes", default=None, metavar="LIST",
+                    help="--model imm: modes MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3:calm,se2r3:manoeuvre)")
+    ap.add_argument("--imm-switch", type=float, default=None, metavar="P",
+                    help="--model imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
     ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the CSV's t column, converted to seconds (default s)")
@@ -172,6 +176,11 @@ def cmd_track(argv) -> int:
 
         return cmd_track_multi(argv)
     a = track_parser().parse_args(argv)
+    from .track_imm import check_imm_options, cmd_track_imm
+
+    check_imm_options(a)
+    if a.model == "imm":
+        return cmd_track_imm(a)
     models = list(MODELS) if a.model == "all" else [a.model]
     given_q = parse_accel_std(a.accel_std, models)
     # validate the given values before any reading (the estimated ones are valid by construction)

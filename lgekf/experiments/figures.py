@@ -16,8 +16,8 @@ __all__ = [
     "study_figure", "banana_figure", "banana_panel", "highest_density_region", "trajectories_figure", "COLORS", "LABELS",
 ]
 
-COLORS = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "black"}
-LABELS = {**{name: spec.display_name for name, spec in MODELS.items()}, "measurements": "measurements"}
+COLORS = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "black", "imm": "tab:brown"}
+LABELS = {**{name: spec.display_name for name, spec in MODELS.items()}, "measurements": "measurements", "imm": "IMM"}
 
 
 def _plt():

@@ -35,6 +35,7 @@ from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
+from .imm_study import IMM_FILTER, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
 
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
@@ -88,7 +89,8 @@ class StudyConfig:
         if not self.filters:
             raise ValueError("filters: choose at least one filter")
         for f in self.filters:
-            get_model(f)
+            if f != IMM_FILTER:
+                get_model(f)
         if self.measurement != "position":
             get_model(self.truth).measurement(self.measurement)
             positive_scalar("heading_std", self.heading_std)
@@ -104,6 +106,8 @@ class StudyConfig:
 
     def filter_measurement(self, name: str) -> str:
         """The measurement a filter gets: the study's, or position where the filter cannot take it (CV, pose)."""
+        if name == IMM_FILTER:
+            return self.measurement
         return self.measurement if self.measurement in get_model(name).measurements else "position"
 
     def meas_noise(self, measurement: str):
@@ -138,13 +142,14 @@ class StudyResult:
         return self.rmse[name].std(axis=1, ddof=1)
 
 
-def run_study(cfg: StudyConfig, progress=None) -> StudyResult:
+def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = None) -> StudyResult:
     """Run the whole protocol; the same config (seed included) gives the same numbers.
 
     ``progress``: None, or a callable ``progress(done, total)`` called after each σ_ω value (the CLI
-    passes a tqdm bar's update).
+    passes a tqdm bar's update). ``imm``: the IMM's options when ``cfg.filters`` has "imm".
     """
     cfg.validate()
+    imm = ImmStudyOptions() if imm is None else imm
     rng = np.random.default_rng(cfg.seed)
     B, K = cfg.trajectories, cfg.steps
     truth = get_model(cfg.truth)
@@ -162,6 +167,8 @@ def run_study(cfg: StudyConfig, progress=None) -> StudyResult:
     # each filter's initial state and covariance in its own coordinates
     inits = {}
     for name in cfg.filters:
+        if name == IMM_FILTER:
+            continue
         spec = get_model(name)
         e0 = est0.copy()
         for i, bound in spec.bounds.items():  # a filter that cannot represent the estimate starts wrapped
@@ -176,7 +183,7 @@ def run_study(cfg: StudyConfig, progress=None) -> StudyResult:
     S = len(sigmas)
     rmse = {name: np.empty((S, B)) for name in (*cfg.filters, "measurements")}
     wrapped = np.zeros(S, dtype=int)
-    aliased = {name: np.zeros(S, dtype=int) for name in cfg.filters if get_model(name).bounds}
+    aliased = {name: np.zeros(S, dtype=int) for name in cfg.filters if name != IMM_FILTER and get_model(name).bounds}
     t0 = time.perf_counter()
     for i, sw in enumerate(sigmas):
         sim = simulate(
@@ -190,6 +197,9 @@ def run_study(cfg: StudyConfig, progress=None) -> StudyResult:
             b = get_model(name).bounds
             aliased[name][i] = int(np.any([np.abs(sim.truth[:, :, int(j)]) > v for j, v in b.items()], axis=(0, 2)).sum())
         for name in cfg.filters:
+            if name == IMM_FILTER:
+                rmse[name][i] = imm_study_rmse(cfg, imm, sim, sw, est0, P0_phys, pos)
+                continue
             x0, P0 = inits[name]
             meas = cfg.filter_measurement(name)
             z = sim.z if meas == cfg.measurement else np.ascontiguousarray(sim.z[..., :2])

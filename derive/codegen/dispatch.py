@@ -1,0 +1,116 @@
+"""Kernels for estimators that combine several models (the IMM): the common coordinates read off a state,
+and ``generated/dispatch.py``, which calls any registry model's kernels by its index with one signature.
+
+Per model (appended to ``generated/<model>.py``):
+
+* ``physical_to_common(x)``: c = (x, y, θ, v_x, v_y, ω) of a physical state (``MotionModel.common_of_physical``);
+* ``physical_to_common_jacobian(x)``: ∂c/∂ε (6 × n) at x, for X = μ·exp(ε);
+* ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0.
+
+``generated/dispatch.py``: ``predict(model, s, p, dt, q)``, ``update_<meas>(model, s, p, z, r)``,
+``calH_<meas>(model, s)``, ``meas_cov_<meas>(r)`` (R of the measurement), and the conversions and group
+operations, each an ``if model == i`` chain over the registry (sorted names), so that one compiled numba loop
+runs any mixture of models. The chain is generated, so no runtime code knows a model by name.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .emitter import matrix_kernel, vec_inputs, vector_kernel
+from dataclasses import replace
+
+from .printer import HEADER, Kernel
+
+__all__ = ["common_readout_kernels", "render_dispatch"]
+
+
+#: kernels that also get an allocation-free ``<name>_into(..., out)`` variant (the IMM's inner loop)
+INTO = ("state_from_physical", "between", "right_jacobian_inv", "calH_position", "calH_pose", "common_to_state",
+        "common_jacobian", "physical_to_common", "physical_to_common_jacobian")
+
+
+def into_variant(k: Kernel) -> Kernel:
+    """The same kernel writing into a caller's ``out`` (zeroed first) instead of allocating it."""
+    matrix = any("np.zeros((" in line for line in k.prologue)
+    return replace(k, name=f"{k.name}_into", params=[*k.params, "out"], ret=None,
+                   prologue=["out[:, :] = 0.0" if matrix else "out[:] = 0.0"],
+                   doc=f"{k.doc.rstrip()}\nWritten into ``out`` (no allocation).")
+
+
+def common_readout_kernels(model, kernels=()) -> list:
+    """``physical_to_common``, ``physical_to_common_jacobian`` and ``common_missing`` of one model, and the
+    ``_into`` variants (``INTO``) of those and of ``kernels`` (the model's other kernels)."""
+    xin = vec_inputs("xp", model.physical)
+    missing = [1.0 if i in model.common_missing else 0.0 for i in range(6)]
+    own = [
+        vector_kernel("physical_to_common", "c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model\n"
+                      "without a heading; 0 for the coordinates of common_missing).", ["xp"], xin, model.common_of_physical),
+        matrix_kernel("physical_to_common_jacobian", "A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.",
+                      ["xp"], xin, model.common_of_physical_jacobian),
+        ("common_missing", "@nb.njit(cache=True)\ndef common_missing():\n"
+         "    \"\"\"1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on.\"\"\"\n"
+         f"    return np.array({missing!r})\n"),
+    ]
+    every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
+    return own + [into_variant(k) for k in every]
+
+
+def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
+    lines = ["@nb.njit(cache=True)", f"def {fname}(model, {params}):"]
+    first = True
+    for i, name in enumerate(names):
+        body = call(name)
+        if body is None:
+            continue
+        lines.append(f"    {'if' if first else 'elif'} model == {i}:")
+        lines.append(f"        {'return ' if ret else ''}{body}")
+        first = False
+    if ret:
+        lines.append("    raise ValueError('dispatch: model index out of range')")
+    return "\n".join(lines) + "\n"
+
+
+def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
+    """generated/dispatch.py for the models (sorted names = model indices) and the measurements they fit."""
+    names = sorted(models)
+    out = [HEADER.format(title="Every model's kernels behind one signature, selected by the model index (sorted names).",
+                         source="derive/codegen/dispatch.py (from the model table)")]
+    out.append("import numba as nb\nimport numpy as np\n\n")
+    out.append("from . import " + ", ".join(names) + "\n\n")
+    out.append(f"MODEL_NAMES = {tuple(names)!r}\n")
+    out.append(f"N_TANGENT = np.array({[models[n].n for n in names]!r})\n")
+    out.append(f"N_INTERNAL = np.array({[len(models[n].internal) for n in names]!r})\n")
+    funcs = []
+    funcs.append(_chain("predict", "s, p, dt, q", names,
+                        lambda n: f"{n}.predict(s, p, dt, {', '.join(f'q[{i}]' for i in range(len(models[n].noise_names)))})", False))
+    for mname, meas in sorted(measurements.items()):
+        k = len(meas.noise_names)
+        funcs.append(_chain(f"update_{mname}", "s, p, z, r", names,
+                            lambda n, mname=mname, meas=meas, k=k: None if mname not in fits[n] else
+                            f"{n}.update_{mname}(s, p, {', '.join(f'z[{i}]' for i in range(meas.m))}, {', '.join(f'r[{i}]' for i in range(k))})",
+                            True))
+        funcs.append(_chain(f"calH_{mname}", "s", names,
+                            lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}(s)", True))
+        R = meas.R().subs({sym: sp.Symbol(f"r[{i}]") for i, sym in enumerate(meas.noise_symbols)}, simultaneous=True)
+        rows = ", ".join("[" + ", ".join(str(R[i, j]) if R[i, j] != 0 else "0.0" for j in range(meas.m)) + "]"
+                         for i in range(meas.m))
+        funcs.append(f"@nb.njit(cache=True)\ndef meas_cov_{mname}(r):\n    \"\"\"R of the {mname} measurement from its noise stds r.\"\"\"\n"
+                     f"    return np.array([{rows}], dtype=np.float64)\n")
+    for fname, params in [("state_from_physical", "x"), ("state_to_physical", "s"), ("physical_to_common", "x"),
+                          ("physical_to_common_jacobian", "x"), ("common_to_state", "c"), ("common_jacobian", "c"),
+                          ("common_missing", ""), ("between", "s, t"), ("right_jacobian_inv", "eps"),
+                          ("tangent_error", "s, c")]:
+        funcs.append(_chain(fname, params, names, lambda n, fname=fname, params=params: f"{n}.{fname}({params})", True)
+                     .replace("(model, )", "(model)"))
+    funcs.append(_chain("retract", "s, eps", names, lambda n: f"{n}.retract(s, eps)", False))
+    into_params = {"state_from_physical": "x", "between": "s, t", "right_jacobian_inv": "eps", "common_to_state": "c",
+                   "common_jacobian": "c", "physical_to_common": "x", "physical_to_common_jacobian": "x"}
+    for fname, params in into_params.items():
+        funcs.append(_chain(f"{fname}_into", f"{params}, out", names, lambda n, fname=fname, params=params: f"{n}.{fname}_into({params}, out)", False))
+    funcs.append(_chain("physical_into", "s, out", names, lambda n: f"{n}.physical_into(s, out)", False))
+    for mname in sorted(measurements):
+        funcs.append(_chain(f"calH_{mname}_into", "s, out", names,
+                            lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}_into(s, out)", False))
+    out.append("\n\n" + "\n\n".join(funcs))
+    return "".join(out)

@@ -1,0 +1,398 @@
+"""Every model's kernels behind one signature, selected by the model index (sorted names).
+
+GENERATED FILE: DO NOT EDIT.
+Source: derive/codegen/dispatch.py (from the model table)
+Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
+"""
+import numba as nb
+import numpy as np
+
+from . import ctrv, cv, se2r2, se2r3, se2se2
+
+MODEL_NAMES = ('ctrv', 'cv', 'se2r2', 'se2r3', 'se2se2')
+N_TANGENT = np.array([5, 4, 5, 6, 6])
+N_INTERNAL = np.array([5, 4, 6, 7, 9])
+
+
+@nb.njit(cache=True)
+def predict(model, s, p, dt, q):
+    if model == 0:
+        ctrv.predict(s, p, dt, q[0], q[1])
+    elif model == 1:
+        cv.predict(s, p, dt, q[0])
+    elif model == 2:
+        se2r2.predict(s, p, dt, q[0], q[1])
+    elif model == 3:
+        se2r3.predict(s, p, dt, q[0], q[1], q[2])
+    elif model == 4:
+        se2se2.predict(s, p, dt, q[0], q[1], q[2])
+
+
+@nb.njit(cache=True)
+def update_pose(model, s, p, z, r):
+    if model == 0:
+        return ctrv.update_pose(s, p, z[0], z[1], z[2], r[0], r[1], r[2])
+    elif model == 2:
+        return se2r2.update_pose(s, p, z[0], z[1], z[2], r[0], r[1], r[2])
+    elif model == 3:
+        return se2r3.update_pose(s, p, z[0], z[1], z[2], r[0], r[1], r[2])
+    elif model == 4:
+        return se2se2.update_pose(s, p, z[0], z[1], z[2], r[0], r[1], r[2])
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def calH_pose(model, s):
+    if model == 0:
+        return ctrv.calH_pose(s)
+    elif model == 2:
+        return se2r2.calH_pose(s)
+    elif model == 3:
+        return se2r3.calH_pose(s)
+    elif model == 4:
+        return se2se2.calH_pose(s)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def meas_cov_pose(r):
+    """R of the pose measurement from its noise stds r."""
+    return np.array([[r[0]**2, 0.0, 0.0], [0.0, r[1]**2, 0.0], [0.0, 0.0, r[2]**2]], dtype=np.float64)
+
+
+@nb.njit(cache=True)
+def update_position(model, s, p, z, r):
+    if model == 0:
+        return ctrv.update_position(s, p, z[0], z[1], r[0])
+    elif model == 1:
+        return cv.update_position(s, p, z[0], z[1], r[0])
+    elif model == 2:
+        return se2r2.update_position(s, p, z[0], z[1], r[0])
+    elif model == 3:
+        return se2r3.update_position(s, p, z[0], z[1], r[0])
+    elif model == 4:
+        return se2se2.update_position(s, p, z[0], z[1], r[0])
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def calH_position(model, s):
+    if model == 0:
+        return ctrv.calH_position(s)
+    elif model == 1:
+        return cv.calH_position(s)
+    elif model == 2:
+        return se2r2.calH_position(s)
+    elif model == 3:
+        return se2r3.calH_position(s)
+    elif model == 4:
+        return se2se2.calH_position(s)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def meas_cov_position(r):
+    """R of the position measurement from its noise stds r."""
+    return np.array([[r[0]**2, 0.0], [0.0, r[0]**2]], dtype=np.float64)
+
+
+@nb.njit(cache=True)
+def state_from_physical(model, x):
+    if model == 0:
+        return ctrv.state_from_physical(x)
+    elif model == 1:
+        return cv.state_from_physical(x)
+    elif model == 2:
+        return se2r2.state_from_physical(x)
+    elif model == 3:
+        return se2r3.state_from_physical(x)
+    elif model == 4:
+        return se2se2.state_from_physical(x)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def state_to_physical(model, s):
+    if model == 0:
+        return ctrv.state_to_physical(s)
+    elif model == 1:
+        return cv.state_to_physical(s)
+    elif model == 2:
+        return se2r2.state_to_physical(s)
+    elif model == 3:
+        return se2r3.state_to_physical(s)
+    elif model == 4:
+        return se2se2.state_to_physical(s)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def physical_to_common(model, x):
+    if model == 0:
+        return ctrv.physical_to_common(x)
+    elif model == 1:
+        return cv.physical_to_common(x)
+    elif model == 2:
+        return se2r2.physical_to_common(x)
+    elif model == 3:
+        return se2r3.physical_to_common(x)
+    elif model == 4:
+        return se2se2.physical_to_common(x)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian(model, x):
+    if model == 0:
+        return ctrv.physical_to_common_jacobian(x)
+    elif model == 1:
+        return cv.physical_to_common_jacobian(x)
+    elif model == 2:
+        return se2r2.physical_to_common_jacobian(x)
+    elif model == 3:
+        return se2r3.physical_to_common_jacobian(x)
+    elif model == 4:
+        return se2se2.physical_to_common_jacobian(x)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def common_to_state(model, c):
+    if model == 0:
+        return ctrv.common_to_state(c)
+    elif model == 1:
+        return cv.common_to_state(c)
+    elif model == 2:
+        return se2r2.common_to_state(c)
+    elif model == 3:
+        return se2r3.common_to_state(c)
+    elif model == 4:
+        return se2se2.common_to_state(c)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def common_jacobian(model, c):
+    if model == 0:
+        return ctrv.common_jacobian(c)
+    elif model == 1:
+        return cv.common_jacobian(c)
+    elif model == 2:
+        return se2r2.common_jacobian(c)
+    elif model == 3:
+        return se2r3.common_jacobian(c)
+    elif model == 4:
+        return se2se2.common_jacobian(c)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def common_missing(model):
+    if model == 0:
+        return ctrv.common_missing()
+    elif model == 1:
+        return cv.common_missing()
+    elif model == 2:
+        return se2r2.common_missing()
+    elif model == 3:
+        return se2r3.common_missing()
+    elif model == 4:
+        return se2se2.common_missing()
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def between(model, s, t):
+    if model == 0:
+        return ctrv.between(s, t)
+    elif model == 1:
+        return cv.between(s, t)
+    elif model == 2:
+        return se2r2.between(s, t)
+    elif model == 3:
+        return se2r3.between(s, t)
+    elif model == 4:
+        return se2se2.between(s, t)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv(model, eps):
+    if model == 0:
+        return ctrv.right_jacobian_inv(eps)
+    elif model == 1:
+        return cv.right_jacobian_inv(eps)
+    elif model == 2:
+        return se2r2.right_jacobian_inv(eps)
+    elif model == 3:
+        return se2r3.right_jacobian_inv(eps)
+    elif model == 4:
+        return se2se2.right_jacobian_inv(eps)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def tangent_error(model, s, c):
+    if model == 0:
+        return ctrv.tangent_error(s, c)
+    elif model == 1:
+        return cv.tangent_error(s, c)
+    elif model == 2:
+        return se2r2.tangent_error(s, c)
+    elif model == 3:
+        return se2r3.tangent_error(s, c)
+    elif model == 4:
+        return se2se2.tangent_error(s, c)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True)
+def retract(model, s, eps):
+    if model == 0:
+        ctrv.retract(s, eps)
+    elif model == 1:
+        cv.retract(s, eps)
+    elif model == 2:
+        se2r2.retract(s, eps)
+    elif model == 3:
+        se2r3.retract(s, eps)
+    elif model == 4:
+        se2se2.retract(s, eps)
+
+
+@nb.njit(cache=True)
+def state_from_physical_into(model, x, out):
+    if model == 0:
+        ctrv.state_from_physical_into(x, out)
+    elif model == 1:
+        cv.state_from_physical_into(x, out)
+    elif model == 2:
+        se2r2.state_from_physical_into(x, out)
+    elif model == 3:
+        se2r3.state_from_physical_into(x, out)
+    elif model == 4:
+        se2se2.state_from_physical_into(x, out)
+
+
+@nb.njit(cache=True)
+def between_into(model, s, t, out):
+    if model == 0:
+        ctrv.between_into(s, t, out)
+    elif model == 1:
+        cv.between_into(s, t, out)
+    elif model == 2:
+        se2r2.between_into(s, t, out)
+    elif model == 3:
+        se2r3.between_into(s, t, out)
+    elif model == 4:
+        se2se2.between_into(s, t, out)
+
+
+@nb.njit(cache=True)
+def right_jacobian_inv_into(model, eps, out):
+    if model == 0:
+        ctrv.right_jacobian_inv_into(eps, out)
+    elif model == 1:
+        cv.right_jacobian_inv_into(eps, out)
+    elif model == 2:
+        se2r2.right_jacobian_inv_into(eps, out)
+    elif model == 3:
+        se2r3.right_jacobian_inv_into(eps, out)
+    elif model == 4:
+        se2se2.right_jacobian_inv_into(eps, out)
+
+
+@nb.njit(cache=True)
+def common_to_state_into(model, c, out):
+    if model == 0:
+        ctrv.common_to_state_into(c, out)
+    elif model == 1:
+        cv.common_to_state_into(c, out)
+    elif model == 2:
+        se2r2.common_to_state_into(c, out)
+    elif model == 3:
+        se2r3.common_to_state_into(c, out)
+    elif model == 4:
+        se2se2.common_to_state_into(c, out)
+
+
+@nb.njit(cache=True)
+def common_jacobian_into(model, c, out):
+    if model == 0:
+        ctrv.common_jacobian_into(c, out)
+    elif model == 1:
+        cv.common_jacobian_into(c, out)
+    elif model == 2:
+        se2r2.common_jacobian_into(c, out)
+    elif model == 3:
+        se2r3.common_jacobian_into(c, out)
+    elif model == 4:
+        se2se2.common_jacobian_into(c, out)
+
+
+@nb.njit(cache=True)
+def physical_to_common_into(model, x, out):
+    if model == 0:
+        ctrv.physical_to_common_into(x, out)
+    elif model == 1:
+        cv.physical_to_common_into(x, out)
+    elif model == 2:
+        se2r2.physical_to_common_into(x, out)
+    elif model == 3:
+        se2r3.physical_to_common_into(x, out)
+    elif model == 4:
+        se2se2.physical_to_common_into(x, out)
+
+
+@nb.njit(cache=True)
+def physical_to_common_jacobian_into(model, x, out):
+    if model == 0:
+        ctrv.physical_to_common_jacobian_into(x, out)
+    elif model == 1:
+        cv.physical_to_common_jacobian_into(x, out)
+    elif model == 2:
+        se2r2.physical_to_common_jacobian_into(x, out)
+    elif model == 3:
+        se2r3.physical_to_common_jacobian_into(x, out)
+    elif model == 4:
+        se2se2.physical_to_common_jacobian_into(x, out)
+
+
+@nb.njit(cache=True)
+def physical_into(model, s, out):
+    if model == 0:
+        ctrv.physical_into(s, out)
+    elif model == 1:
+        cv.physical_into(s, out)
+    elif model == 2:
+        se2r2.physical_into(s, out)
+    elif model == 3:
+        se2r3.physical_into(s, out)
+    elif model == 4:
+        se2se2.physical_into(s, out)
+
+
+@nb.njit(cache=True)
+def calH_pose_into(model, s, out):
+    if model == 0:
+        ctrv.calH_pose_into(s, out)
+    elif model == 2:
+        se2r2.calH_pose_into(s, out)
+    elif model == 3:
+        se2r3.calH_pose_into(s, out)
+    elif model == 4:
+        se2se2.calH_pose_into(s, out)
+
+
+@nb.njit(cache=True)
+def calH_position_into(model, s, out):
+    if model == 0:
+        ctrv.calH_position_into(s, out)
+    elif model == 1:
+        cv.calH_position_into(s, out)
+    elif model == 2:
+        se2r2.calH_position_into(s, out)
+    elif model == 3:
+        se2r3.calH_position_into(s, out)
+    elif model == 4:
+        se2se2.calH_position_into(s, out)

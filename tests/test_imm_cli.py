@@ -1,0 +1,83 @@
+"""`lgekf track --model imm`, `lgekf evaluate --imm` and `lgekf study --filters ...,imm` from the command line."""
+
+from __future__ import annotations
+
+import csv
+
+import numpy as np
+import pytest
+
+from lgekf.cli import main
+
+
+def _tracks_csv(path, n_obj=3, K=60, seed=0):
+    rng = np.random.default_rng(seed)
+    rows = ["t,x,y,id"]
+    for obj in range(n_obj):
+        th = x = y = 0.0
+        for k in range(K):
+            th += (0.0 if k < K // 2 else 0.6) * 0.1
+            x += 4 * 0.1 * np.cos(th)
+            y += 4 * 0.1 * np.sin(th)
+            rows.append(f"{k * 0.1:.1f},{x + 0.2 * rng.standard_normal():.4f},{y + 0.2 * rng.standard_normal():.4f},o{obj}")
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_track_imm_writes_mode_probabilities(tmp_path, capsys):
+    src = _tracks_csv(tmp_path / "in.csv")
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), "--model", "imm", "--imm-modes", "cv,se2r3:calm,se2r3:manoeuvre", "--imm-switch", "0.02",
+                 "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "imm: modes cv (0.5), se2r3:calm (0.1,0.1,0.2), se2r3:manoeuvre (2,2,4); switch 0.02" in err
+    rows = list(csv.DictReader(out.open()))
+    assert len(rows) == 180
+    assert list(rows[0])[-4:] == ["mu_cv", "mu_se2r3_calm", "mu_se2r3_manoeuvre", "flag"]
+    mu = np.array([[float(r[c]) for c in ("mu_cv", "mu_se2r3_calm", "mu_se2r3_manoeuvre")] for r in rows])
+    np.testing.assert_allclose(mu.sum(axis=1), 1.0, atol=1e-9)
+    assert np.all(np.isfinite([float(r["x"]) for r in rows]))
+
+
+@pytest.mark.parametrize("args, msg", [
+    (["--model", "imm", "--imm-switch", "2"], "imm-switch: must be in [0, 1)"),
+    (["--model", "imm", "--imm-modes", "se2r3:1/2"], "expected 3 non-negative numbers"),
+    (["--model", "cv", "--imm-modes", "cv"], "only with --model imm"),
+    (["--model", "imm", "--accel-std", "1,1,1"], "--accel-std"),
+])
+def test_track_imm_bad_options(tmp_path, capsys, args, msg):
+    src = _tracks_csv(tmp_path / "in.csv", n_obj=1, K=10)
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), *args, "-o", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and msg in err[0], err
+    assert not out.exists()
+
+
+def test_evaluate_imm_row(tmp_path, capsys):
+    src = _tracks_csv(tmp_path / "truth.csv", n_obj=5, K=40)
+    out = tmp_path / "ev"
+    assert main(["evaluate", str(src), "--imm", "--seeds", "2", "--no-figure", "--out", str(out), "--quiet"]) == 0
+    rows = {r["filter"]: r for r in csv.DictReader((out / "summary.csv").open())}
+    assert "imm" in rows and "cv" in rows
+    assert 0 < float(rows["imm"]["pos_rmse"]) < float(rows["measurements"]["pos_rmse"])
+
+
+def test_study_with_imm(tmp_path, capsys):
+    out = tmp_path / "st"
+    assert main(["study", "--trajectories", "4", "--steps", "20", "--sigmas", "0,1", "--filters", "cv,se2r3,imm",
+                 "--imm-modes", "cv,se2r3", "--no-figure", "--out", str(out), "--quiet"]) == 0
+    rows = [r for r in csv.DictReader((out / "summary.csv").open()) if r["filter"] == "imm"]
+    assert len(rows) == 2 and all(float(r["mean_rmse"]) > 0 for r in rows)
+
+
+def test_readme_imm_example_runs():
+    from pathlib import Path
+    import re
+
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = re.search(r"## Interacting multiple models \(IMM\)\n.*?```python\n(.*?)```", readme, re.S).group(1)
+    ns: dict = {}
+    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
+    imm = ns["imm"]
+    assert imm.x.shape == (6,) and imm.P.shape == (6, 6) and abs(imm.mu.sum() - 1) < 1e-12
