@@ -23,6 +23,7 @@ from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
+from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
@@ -118,6 +119,7 @@ def _check_arguments(a, models):
         check_output_path(o, option=None)
     if not is_stdio(a.input) and any(not is_stdio(o) and Path(o).resolve() == Path(a.input).resolve() for o in outs):
         raise ValueError(f"--output: {a.output} would overwrite the input file")
+    check_parquet_arguments(a, outs)
     return outs
 
 
@@ -191,7 +193,10 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
                           TRACK_HEADING_CAP).validate()
         return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
-    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
+    if is_parquet(a.input):
+        meas = read_parquet(a.input, a.use_heading or a.measure == "pose")
+    else:
+        meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
     meas, starts, _ = meas.grouped(min_length=2)
     meas.t = to_seconds(meas.t, a.time_unit)
     t_read = time.perf_counter() - t0
@@ -220,7 +225,8 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             for fh, m in zip(handles, models):
-                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m], monitor)
+                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfg, a.full_cov, a.precision, bar, measure[m], monitor,
+                                                    parquet=is_parquet(outs[models.index(m)]))
                 for line in _divergence_warnings(m, meas, alarms, flagged[m]):
                     print(f"lgekf track: warning: {line}", file=sys.stderr)
         files.commit()
