@@ -24,6 +24,7 @@ from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
+from .warmup import compile_estimate, track_jobs, warm_up
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
@@ -209,8 +210,12 @@ def cmd_track(argv) -> int:
     total = meas.t.size * len(models)
     show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
     flagged = {}
-    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
+    jobs = track_jobs(models, measure, a.full_cov)
+    estimate = compile_estimate([j.cost for j in jobs], workers=None if len(models) > 1 else 1)
+    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet, seconds=estimate):
         handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
+        if len(models) > 1:
+            warm_up(jobs)  # a cold cache: the models' kernels compile in parallel processes; warm: milliseconds
         plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
                           heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure,
                           monitor=monitor)

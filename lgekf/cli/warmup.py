@@ -29,7 +29,7 @@ import subprocess
 import sys
 from dataclasses import dataclass, field
 
-__all__ = ["Job", "warm_up", "study_jobs", "model_compile_seconds", "compile_estimate", "worker_count"]
+__all__ = ["Job", "warm_up", "study_jobs", "track_jobs", "tiny_track", "model_compile_seconds", "compile_estimate", "worker_count"]
 
 # compile seconds per byte of a generated model module (its predict/update/run kernels), measured on a
 # 2-core x86-64 machine: about 5 s for se2se2 (51 kB) in the study, 2 s for cv (17 kB)
@@ -199,6 +199,64 @@ def study_jobs(cfg) -> list:
         small = replace(cfg, filters=(name,), trajectories=2, steps=2, sigmas=list(cfg.sigmas)[:1])
         jobs.append(Job("lgekf.experiments.study", "run_study", (small,), cost=model_compile_seconds(name)))
     return jobs
+
+
+def tiny_track(model: str, measure: str = "position", full_cov: bool = False) -> None:
+    """``lgekf track`` on a small made-up file (3 turning objects of 40 measurements): compiles what a
+    real ``track`` run of ``model`` compiles (the kernels' types do not depend on the file's size).
+
+    Parameters
+    ----------
+    model : str
+        A registry model name.
+    measure : str
+        ``position`` or ``pose`` (the file has a heading column).
+    full_cov : bool
+        Write every covariance entry (``--full-cov``).
+    """
+    import contextlib
+    import io
+    import tempfile
+    from pathlib import Path
+
+    import numpy as np
+
+    from .track import cmd_track
+
+    rng = np.random.default_rng(0)
+    lines = ["id,t,x,y,heading"]
+    for o in range(3):
+        t = 0.1 * np.arange(40) + 0.013 * rng.random(40)
+        th = 0.3 * o + 0.4 * t
+        x, y = 20 * o + 3 * np.cumsum(np.cos(th)) * 0.1, 3 * np.cumsum(np.sin(th)) * 0.1
+        lines += [f"{o},{a!r},{b!r},{c!r},{d!r}" for a, b, c, d in zip(t.tolist(), (x + 0.05 * rng.standard_normal(40)).tolist(),
+                                                                       (y + 0.05 * rng.standard_normal(40)).tolist(), th.tolist())]
+    with tempfile.TemporaryDirectory(prefix="lgekf-warmup.") as d:
+        inp = Path(d) / "in.csv"
+        inp.write_text("\n".join(lines) + "\n")
+        argv = [str(inp), "-o", str(Path(d) / "out.csv"), "--model", model, "--measure", measure, "--quiet"]
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+            cmd_track(argv + (["--full-cov"] if full_cov else []))
+
+
+def track_jobs(models, measure: dict, full_cov: bool = False) -> list:
+    """``lgekf track --model all``'s warm-up: one ``tiny_track`` per model.
+
+    Parameters
+    ----------
+    models : sequence of str
+        The models tracked.
+    measure : dict
+        Model -> the measurement it gets (``position`` or ``pose``).
+    full_cov : bool
+        ``--full-cov``.
+
+    Returns
+    -------
+    list of Job
+    """
+    return [Job("lgekf.cli.warmup", "tiny_track", (m, measure.get(m, "position"), full_cov), cost=model_compile_seconds(m))
+            for m in models]
 
 
 def _worker() -> int:
