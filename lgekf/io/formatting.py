@@ -25,6 +25,10 @@ def _two_prod(a, b):
     return p, e
 
 
+# 10^0 .. 10^22: every one exactly representable (a table lookup instead of pow: the same doubles)
+_P10F = np.array([10.0**i for i in range(23)])
+
+
 @nb.njit(cache=True)
 def _round_scaled(a, k):
     """round(a * 10^k) as an int64 (a > 0), ties to even.
@@ -39,9 +43,9 @@ def _round_scaled(a, k):
         a /= 1e22
         k += 22
     if k >= 0:
-        hi, lo = _two_prod(a, 10.0**k)
+        hi, lo = _two_prod(a, _P10F[k])
     else:
-        d = 10.0 ** (-k)
+        d = _P10F[-k]
         hi = a / d
         p, e = _two_prod(hi, d)
         lo = ((a - p) - e) / d
