@@ -63,17 +63,17 @@ def cli_command():
 
 
 def measured_run(cmd) -> tuple:
-    """(seconds, max RSS in MB, stderr) of ``cmd`` run in a fresh process (through a Python wrapper, so
+    """(seconds, max RSS in MB, stderr, CPU seconds (user + system)) of ``cmd`` run in a fresh process (through a Python wrapper, so
     that RUSAGE_CHILDREN holds that command alone)."""
     wrapper = ("import resource, subprocess, sys, time; t = time.perf_counter(); "
                "r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE); "
                "dt = time.perf_counter() - t; sys.stderr.buffer.write(r.stderr); "
-               "print(r.returncode, dt, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)")
+               "u = resource.getrusage(resource.RUSAGE_CHILDREN); print(r.returncode, dt, u.ru_maxrss, u.ru_utime + u.ru_stime)")
     r = subprocess.run([sys.executable, "-c", wrapper, *cmd], capture_output=True, text=True)
-    rc, sec, kb = r.stdout.split()
+    rc, sec, kb, cpu = r.stdout.split()
     if int(rc) != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed: {r.stderr}")
-    return float(sec), int(kb) / 1024, r.stderr
+    return float(sec), int(kb) / 1024, r.stderr, float(cpu)
 
 
 def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
@@ -90,11 +90,11 @@ def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
         runs += [(model, "parquet", inp), ("all", "parquet", inp), (model, "parquet", pq_in)]
     for m, kind, src in runs:
         out = tmp / f"tracks.{kind}"
-        sec, mb, _ = measured_run([*cli_command(), "track", str(src), "-o", str(out), "--model", m, "--quiet"])
+        sec, mb, _, cpu = measured_run([*cli_command(), "track", str(src), "-o", str(out), "--model", m, "--quiet"])
         outs = [out] if m != "all" else sorted(tmp.glob(f"tracks_*.{kind}"))
         size = sum(o.stat().st_size for o in outs) / 1e6
         what = f"--model {m}, {src.suffix[1:]} in, {kind} out"
-        rows.append((what, sec, mb, size))
+        rows.append((what, sec, cpu, mb, size))
         for o in outs:
             o.unlink()
     return rows
@@ -103,9 +103,9 @@ def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
 def print_end_to_end(title, inp: Path, rows, base_mb: float) -> None:
     mb_in = inp.stat().st_size / 1e6
     print(f"\n{title}: input {mb_in:.1f} MB CSV; baseline RSS (python -c 'import numpy, numba') {base_mb:.0f} MB")
-    print(f"{'end to end':<40}{'seconds':>9}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}{'output MB':>11}")
-    for what, sec, mb, size in rows:
-        print(f"{what:<40}{sec:9.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}{size:11.1f}")
+    print(f"{'end to end':<40}{'seconds':>9}{'CPU s':>8}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}{'output MB':>11}")
+    for what, sec, cpu, mb, size in rows:
+        print(f"{what:<40}{sec:9.2f}{cpu:8.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}{size:11.1f}")
 
 
 def main(argv=None) -> int:
@@ -148,6 +148,7 @@ def main(argv=None) -> int:
         subprocess.run([*cli_command(), "track", str(inp), "-o", str(tmp / "warm.csv"), "--model", "all", "--quiet"],
                        capture_output=True)
         base_mb = measured_run([sys.executable, "-c", "import numpy, numba"])[1]
+        print(f"load average {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
         if not a.parts:
             return _end_to_end_only(a, inp, tmp, n, base_mb)
         small = read_csv(inp).grouped()
