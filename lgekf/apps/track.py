@@ -74,8 +74,8 @@ SIDESLIP_FRACTION = 0.1
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
-ROWS_PER_CHUNK = 1 << 17
-FORMAT_ROWS = 1 << 16  # rows of output text (or of a Parquet row group) made at a time
+ROWS_PER_CHUNK = 1 << 16  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs
+FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
 SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
