@@ -58,6 +58,7 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
 # README command -> the commands run for it (None: run as written)
 README_TO_RUN = {
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,
+    "lgekf track detections.parquet -o tracks.parquet --model all": None,
     "lgekf track biwi_eth.txt --format pedestrian --frame-dt 0.06667 -o eth.csv --model all": None,
     "lgekf track phone.csv.gz --time-unit ms -o phone_tracks.csv.gz": None,
     "lgekf track - -o - --model cv < detections.csv > tracks_cv.csv": None,

@@ -221,7 +221,7 @@ def tiny_track(model: str, measure: str = "position", full_cov: bool = False) ->
 
     import numpy as np
 
-    from .track import cmd_track
+    from . import main  # the command table, not lgekf.cli.track itself (which imports this module)
 
     rng = np.random.default_rng(0)
     lines = ["id,t,x,y,heading"]
@@ -236,7 +236,7 @@ def tiny_track(model: str, measure: str = "position", full_cov: bool = False) ->
         inp.write_text("\n".join(lines) + "\n")
         argv = [str(inp), "-o", str(Path(d) / "out.csv"), "--model", model, "--measure", measure, "--quiet"]
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-            cmd_track(argv + (["--full-cov"] if full_cov else []))
+            main(["track", *argv, *(["--full-cov"] if full_cov else [])])
 
 
 def track_jobs(models, measure: dict, full_cov: bool = False) -> list:
