@@ -16,7 +16,9 @@ cache here in milliseconds. ``warm_up`` exploits that:
 * this process waits for them, and the real run then loads every kernel from the cache.
 
 A warm cache costs nothing: no compile event, no worker. A worker that fails changes nothing but the
-time (the real run compiles what is missing itself). ``LGEKF_COMPILE_WORKERS=1`` turns the workers off.
+time (the real run compiles what is missing itself). On a busy machine (load average at least the CPU
+count) a worker would only compete for the same cores, so there is none (``worker_count``).
+``LGEKF_COMPILE_WORKERS=N`` sets the number of processes (1: no workers).
 """
 
 from __future__ import annotations
@@ -73,15 +75,21 @@ def model_compile_seconds(model: str) -> float:
 
 
 def worker_count() -> int:
-    """How many processes compile at once: the CPUs this process may use (``LGEKF_COMPILE_WORKERS`` caps it)."""
+    """How many processes compile at once: the CPUs this process may use, minus those the load average says
+    are busy (compiling in a second process only pays on a free core), at least 1; ``LGEKF_COMPILE_WORKERS``
+    sets it."""
     try:
         n = len(os.sched_getaffinity(0))
     except (AttributeError, OSError):
         n = os.cpu_count() or 1
-    cap = os.environ.get("LGEKF_COMPILE_WORKERS", "")
-    if cap.strip().isdigit():
-        n = min(n, max(1, int(cap)))
-    return max(1, n)
+    given = os.environ.get("LGEKF_COMPILE_WORKERS", "").strip()
+    if given.isdigit():
+        return max(1, int(given))
+    try:
+        busy = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        busy = 0.0
+    return max(1, min(n, int(n - busy + 1)))
 
 
 def _groups(jobs: list, n: int) -> list:
