@@ -127,3 +127,40 @@ def test_windowed_rerun_after_an_alarm_equals_one_rerun_to_the_end(monkeypatch):
     assert [(a.row, a.kind) for a in windowed.alarms] == [(a.row, a.kind) for a in whole.alarms]
     for name in ("x", "p", "nis", "flag"):
         np.testing.assert_array_equal(getattr(windowed, name), getattr(whole, name))
+
+
+def test_worker_count_follows_free_cpus_and_the_variable(monkeypatch):
+    import lgekf.cli.warmup as warmup
+
+    monkeypatch.delenv("LGEKF_COMPILE_WORKERS", raising=False)
+    monkeypatch.setattr(warmup.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3}, raising=False)
+    monkeypatch.setattr(warmup.os, "getloadavg", lambda: (0.2, 0.2, 0.2))
+    assert warmup.worker_count() == 4  # a quiet machine: every CPU
+    monkeypatch.setattr(warmup.os, "getloadavg", lambda: (2.5, 2.5, 2.5))
+    assert warmup.worker_count() == 2  # two and a half CPUs busy
+    monkeypatch.setattr(warmup.os, "getloadavg", lambda: (9.0, 9.0, 9.0))
+    assert warmup.worker_count() == 1  # busy: no worker
+    monkeypatch.setenv("LGEKF_COMPILE_WORKERS", "3")
+    assert warmup.worker_count() == 3
+
+
+def test_output_in_blocks_and_threads_is_the_same_bytes(tmp_path, monkeypatch):
+    """Text made FORMAT_ROWS rows at a time, each block split over threads: the bytes of one piece."""
+    import lgekf.apps.track as track
+    import lgekf.io.formatting as formatting
+    from lgekf.cli.track import cmd_track
+
+    rng = np.random.default_rng(2)
+    lines = ["id,t,x,y"]
+    for o in range(4):
+        t = np.cumsum(rng.uniform(0.08, 0.12, 60))
+        lines += [f"{o},{a!r},{b!r},{c!r}" for a, b, c in zip(t.tolist(), (2 * t + 0.1 * rng.standard_normal(60)).tolist(),
+                                                            (0.1 * t**2 + 0.1 * rng.standard_normal(60)).tolist())]
+    (tmp_path / "in.csv").write_text("\n".join(lines) + "\n")
+    args = ["--model", "se2r3", "--meas-std", "0.1", "--accel-std", "0.5,0.5,1", "--quiet"]
+    assert cmd_track([str(tmp_path / "in.csv"), "-o", str(tmp_path / "one.csv"), *args]) == 0
+    monkeypatch.setattr(track, "FORMAT_ROWS", 7)
+    monkeypatch.setattr(formatting, "PARALLEL_ROWS", 2)
+    monkeypatch.setattr(formatting, "_cpus", lambda: 3)
+    assert cmd_track([str(tmp_path / "in.csv"), "-o", str(tmp_path / "blocks.csv"), *args]) == 0
+    assert (tmp_path / "blocks.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()
