@@ -1,16 +1,22 @@
 """Time `lgekf track` on 10⁶ measurements: end to end (a subprocess, as a user runs it) and its parts.
 
     python benchmarks/bench_track.py [--objects 10000] [--steps 100] [--model se2se2] [--keep DIR]
+                                     [--one-object] [--no-parts] [--no-parquet]
 
 Writes a CSV of OBJECTS x STEPS rows (``id,t,x,y``; objects interleaved in time order, irregular steps
-around 0.1 s, turning trajectories with 0.2 m noise) to a temporary folder, then reports:
+around 0.1 s, turning trajectories (turn rate a mean-reverting random walk) with 0.2 m noise) to a
+temporary folder, then reports:
   read     lgekf.io.read_csv + grouping/validation
   init     two-point initialisation of every object (x0, P0 via common_jacobian)
   noise    the noise from the data (lgekf.apps.defaults.plan_noise: measurement std, process-noise search)
   filter   the filter over all objects (generated run_batch kernels, objects bucketed by length)
   monitor  the divergence monitor and any re-initialisations (track_monitored minus the filter)
   format   CSV text of the output (numba formatter) and writing it
-  end2end  `lgekf track IN -o OUT --model M` in a fresh process (imports and numba cache loading included)
+  end2end  `lgekf track IN -o OUT --model M` in a fresh process (imports and numba cache loading included),
+           for M and for `--model all`, CSV out and (with pyarrow) Parquet out and in, on the same file and
+           (``--one-object``, default on) on one object of the same number of measurements; each with its
+           peak memory (max RSS of the process) next to the baseline RSS of ``python -c "import numpy, numba"``
+           and the input file's size.
 """
 
 from __future__ import annotations
@@ -33,7 +39,10 @@ def generate(path: Path, objects: int, steps: int, seed: int = 0) -> None:
     rng = np.random.default_rng(seed)
     dt = rng.uniform(0.07, 0.13, (objects, steps))
     t = np.cumsum(dt, axis=1) + rng.uniform(0, 5, (objects, 1))
-    w = rng.uniform(-0.5, 0.5, (objects, 1)) + np.cumsum(0.05 * rng.standard_normal((objects, steps)), axis=1)
+    # turn rate: mean-reverting (AR(1), stationary std ~0.35 rad/s), so that a long object stays a plausible one
+    from scipy.signal import lfilter
+
+    w = lfilter([1.0], [1.0, -0.99], 0.05 * rng.standard_normal((objects, steps)), axis=1) + rng.uniform(-0.5, 0.5, (objects, 1))
     th = rng.uniform(-np.pi, np.pi, (objects, 1)) + np.cumsum(w * dt, axis=1)
     speed = rng.uniform(0.5, 15.0, (objects, 1))
     x = np.cumsum(speed * np.cos(th) * dt, axis=1) + rng.uniform(-500, 500, (objects, 1))
@@ -53,13 +62,69 @@ def cli_command():
     return [str(exe)] if exe.exists() else [sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())"]
 
 
+def measured_run(cmd) -> tuple:
+    """(seconds, max RSS in MB, stderr, CPU seconds (user + system)) of ``cmd`` run in a fresh process (through a Python wrapper, so
+    that RUSAGE_CHILDREN holds that command alone)."""
+    wrapper = ("import resource, subprocess, sys, time; t = time.perf_counter(); "
+               "r = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE); "
+               "dt = time.perf_counter() - t; sys.stderr.buffer.write(r.stderr); "
+               "u = resource.getrusage(resource.RUSAGE_CHILDREN); print(r.returncode, dt, u.ru_maxrss, u.ru_utime + u.ru_stime)")
+    r = subprocess.run([sys.executable, "-c", wrapper, *cmd], capture_output=True, text=True)
+    rc, sec, kb, cpu = r.stdout.split()
+    if int(rc) != 0:
+        raise RuntimeError(f"{' '.join(cmd)} failed: {r.stderr}")
+    return float(sec), int(kb) / 1024, r.stderr, float(cpu)
+
+
+def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
+    """Rows (what, seconds, max RSS MB, output MB) of `lgekf track` on ``inp``: the model, ``all``, Parquet."""
+    rows = []
+    runs = [(model, "csv", inp), ("all", "csv", inp)]
+    if parquet:
+        pq_in = inp.with_suffix(".parquet")
+        import pyarrow as pa
+        import pyarrow.csv as pc
+        import pyarrow.parquet as pq
+
+        pq.write_table(pc.read_csv(inp, convert_options=pc.ConvertOptions(column_types={"id": pa.string()})), pq_in)
+        runs += [(model, "parquet", inp), ("all", "parquet", inp), (model, "parquet", pq_in)]
+    for m, kind, src in runs:
+        out = tmp / f"tracks.{kind}"
+        sec, mb, _, cpu = measured_run([*cli_command(), "track", str(src), "-o", str(out), "--model", m, "--quiet"])
+        outs = [out] if m != "all" else sorted(tmp.glob(f"tracks_*.{kind}"))
+        size = sum(o.stat().st_size for o in outs) / 1e6
+        what = f"--model {m}, {src.suffix[1:]} in, {kind} out"
+        rows.append((what, sec, cpu, mb, size))
+        for o in outs:
+            o.unlink()
+    return rows
+
+
+def print_end_to_end(title, inp: Path, rows, base_mb: float) -> None:
+    mb_in = inp.stat().st_size / 1e6
+    print(f"\n{title}: input {mb_in:.1f} MB CSV; baseline RSS (python -c 'import numpy, numba') {base_mb:.0f} MB")
+    print(f"{'end to end':<40}{'seconds':>9}{'CPU s':>8}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}{'output MB':>11}")
+    for what, sec, cpu, mb, size in rows:
+        print(f"{what:<40}{sec:9.2f}{cpu:8.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}{size:11.1f}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--objects", type=int, default=10_000)
     ap.add_argument("--steps", type=int, default=100)
     ap.add_argument("--model", default="se2se2")
     ap.add_argument("--keep", type=Path, default=None, help="write the files here and keep them")
+    ap.add_argument("--no-one-object", dest="one_object", action="store_false",
+                    help="skip the end-to-end runs on one object of OBJECTS x STEPS measurements")
+    ap.add_argument("--no-parts", dest="parts", action="store_false", help="skip the in-process timing of the parts")
+    ap.add_argument("--no-parquet", dest="parquet", action="store_false", help="skip the Parquet runs")
     a = ap.parse_args(argv)
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        if a.parquet:
+            print("pyarrow is not installed: no Parquet runs (pip install \"lgekf[parquet]\")")
+        a.parquet = False
 
     from lgekf.io.formatting import format_rows, label_bytes
     from lgekf.io.readers import read_csv
@@ -80,6 +145,12 @@ def main(argv=None) -> int:
               f"generated in {time.perf_counter() - t0:.2f} s; {os.cpu_count()} CPUs")
 
         # warm the numba caches (not timed), then each part once
+        subprocess.run([*cli_command(), "track", str(inp), "-o", str(tmp / "warm.csv"), "--model", "all", "--quiet"],
+                       capture_output=True)
+        base_mb = measured_run([sys.executable, "-c", "import numpy, numba"])[1]
+        print(f"load average {' '.join(f'{v:.1f}' for v in os.getloadavg())}")
+        if not a.parts:
+            return _end_to_end_only(a, inp, tmp, n, base_mb)
         small = read_csv(inp).grouped()
         track_arrays(a.model, small[0].t[:1000], small[0].z[:1000], np.array([0, 1000]), TrackConfig())
         track_monitored(a.model, small[0].t[:1000], small[0].z[:1000], np.array([0, 1000]), TrackConfig())
@@ -125,9 +196,19 @@ def main(argv=None) -> int:
         print(f"{'part':<24}{'seconds':>9}{'ns/measurement':>16}")
         for name, sec in rows:
             print(f"{name:<24}{sec:9.3f}{1e9 * sec / n:16.0f}")
+        _end_to_end_only(a, inp, tmp, n, base_mb)
     finally:
         if a.keep is None:
             shutil.rmtree(tmp, ignore_errors=True)
+    return 0
+
+
+def _end_to_end_only(a, inp, tmp, n, base_mb) -> int:
+    print_end_to_end(f"{a.objects} objects x {a.steps} steps", inp, end_to_end(inp, tmp, a.model, a.parquet), base_mb)
+    if a.one_object:
+        one = tmp / "one_object.csv"
+        generate(one, 1, n)
+        print_end_to_end(f"one object of {n} measurements", one, end_to_end(one, tmp, a.model, a.parquet), base_mb)
     return 0
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from ..core.registry import get_model
 from .divergence import MonitorConfig
 from .noise import (
-    NoiseEstimate, measurement_std, one_step_errors, process_noise_search, subsample_objects, typical_speed,
+    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, process_noise_search, subsample_objects, typical_speed,
 )
 from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
@@ -109,8 +109,8 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         return plan
     plan.v_typ = typical_speed(t, z, starts)
     objs = subsample_objects(starts)
-    rows = np.concatenate([np.arange(starts[o], starts[o + 1]) for o in objs])
-    lens = np.diff(starts)[objs]
+    lens = np.minimum(np.diff(starts)[objs], SEARCH_ROWS)  # an object longer than that: its first SEARCH_ROWS rows
+    rows = np.concatenate([np.arange(starts[o], starts[o] + n) for o, n in zip(objs, lens)])
     sub_starts = np.zeros(len(objs) + 1, dtype=np.int64)
     np.cumsum(lens, out=sub_starts[1:])
     ts, zs = t[rows], z[rows]

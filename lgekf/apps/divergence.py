@@ -49,6 +49,7 @@ from .noise import CHORD_S, chi2_quantile, chord_speeds
 __all__ = ["MonitorConfig", "Alarm", "speed_limits", "speeds", "speed_std", "first_alarms", "KIND_NAMES"]
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
+RERUN_ROWS = 1 << 12  # the first window of rows filtered again after a re-initialisation (then doubled)
 
 
 @dataclass(frozen=True)
@@ -271,15 +272,23 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     seg_obj = np.flatnonzero(np.diff(starts) > 2)
     seg_first = starts[seg_obj] + 2
     seg_end = starts[seg_obj + 1]
+    # after a re-initialisation the filter is rerun over a window of rows that doubles until the next alarm
+    # (or the object's end): each rerun restarts from the re-initialisation, so the numbers are those of one
+    # rerun to the end, at a cost linear in the rows instead of (alarms x rows) on a long object
+    scan_end = seg_end.copy()
+    seg_x0 = seg_p0 = None
+    seg_scale = np.ones(seg_obj.size)
     count = np.zeros(B, np.int64)
     scale = np.ones(B)
     last = np.full(B, -(10**18), dtype=np.int64)  # row of each object's last re-initialisation
     while seg_obj.size:
-        row, kind, val, start, lim = first_alarms(model, x, p, nis, seg_first, seg_end, limits[seg_obj], m, cfg)
+        row, kind, val, start, lim = first_alarms(model, x, p, nis, seg_first, scan_end, limits[seg_obj], m, cfg)
         hit = np.flatnonzero(row >= 0)
-        if hit.size == 0:
+        grow = np.flatnonzero((row < 0) & (scan_end < seg_end))
+        if hit.size == 0 and grow.size == 0:
             break
         keep = []
+        finish = []  # monitoring stops at this alarm: the current run must still reach the object's end
         for i in hit:
             o = int(seg_obj[i])
             g = int(row[i])
@@ -295,18 +304,30 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
             if count[o] <= cfg.max_reinit:
                 keep.append(i)
                 last[o] = g
+            elif scan_end[i] < seg_end[i]:
+                finish.append(i)
+        finish = np.asarray(finish, dtype=np.int64)
+        if finish.size:
+            rerun(seg_first[finish], seg_end[finish] - seg_first[finish], seg_x0[finish], seg_p0[finish], seg_scale[finish])
         keep = np.asarray(keep, dtype=np.int64)
-        if keep.size == 0:
-            break
         g = row[keep]
         obj = seg_obj[keep]
-        x0, p0 = reinit(g, scale[obj])
-        x[g] = x0
-        p[g] = p0
-        nis[g] = np.nan
+        if keep.size:
+            x0, p0 = reinit(g, scale[obj])
+            x[g] = x0
+            p[g] = p0
+            nis[g] = np.nan
+        else:
+            x0, p0 = x[:0], p[:0]
         end = seg_end[keep]
         more = g + 1 < end
-        seg_obj, seg_first, seg_end = obj[more], g[more] + 1, end[more]
+        new_first = g[more] + 1
+        nxt = [(obj[more], new_first, end[more], np.minimum(end[more], new_first + RERUN_ROWS), x0[more], p0[more], scale[obj[more]])]
+        if grow.size:
+            width = scan_end[grow] - seg_first[grow]
+            nxt.append((seg_obj[grow], seg_first[grow], seg_end[grow], np.minimum(seg_end[grow], seg_first[grow] + 2 * width),
+                        seg_x0[grow], seg_p0[grow], seg_scale[grow]))
+        seg_obj, seg_first, seg_end, scan_end, seg_x0, seg_p0, seg_scale = (np.concatenate(parts) for parts in zip(*nxt))
         if seg_obj.size:
-            rerun(seg_first, seg_end - seg_first, x0[more], p0[more], scale[seg_obj])
+            rerun(seg_first, scan_end - seg_first, seg_x0, seg_p0, seg_scale)
     return flag, alarms

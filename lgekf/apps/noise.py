@@ -133,7 +133,7 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     e = _third_divided_differences(np.asarray(t, float), np.asarray(z, float)[:, :2], np.asarray(starts, np.int64))
     if e.shape[0] == 0:
         return NoiseEstimate(float("nan"), 0)
-    s = float(np.median(np.abs(e))) / MAD_SCALE
+    s = float(np.median(np.abs(e, out=e), overwrite_input=True)) / MAD_SCALE  # in place: no copies of 2 x N values
     if s < MIN_MEAS_STD:
         return NoiseEstimate(MIN_MEAS_STD, e.shape[0], floored=True)
     return NoiseEstimate(s, e.shape[0])

@@ -1,8 +1,9 @@
 """What a long command tells the user while it works (on stderr): a one-line notice when numba
 compiles, and a tqdm progress bar.
 
-* ``compile_notice(prog)``: a context manager; the first time numba *compiles* a function inside it,
-  one line ``{prog}: compiling numba kernels (first run only, ...)`` goes to stderr. Numba broadcasts its
+* ``compile_notice(prog, seconds)``: a context manager; the first time numba *compiles* a function inside
+  it, one line ``{prog}: compiling kernels, once, about N s (...)`` goes to stderr (N the command's
+  estimate, ``lgekf.cli.warmup.compile_estimate``; without one, the general range). Numba broadcasts its
   ``"numba:compile"`` event (``numba.core.event``, a documented API) only on a cache miss — a kernel
   found in the cache (next to the module in ``__pycache__`` or in ``NUMBA_CACHE_DIR``) is loaded
   without it — so the notice appears exactly when the cache is cold and never when it is warm, and
@@ -16,9 +17,16 @@ from __future__ import annotations
 import sys
 from contextlib import contextmanager
 
-__all__ = ["COMPILE_NOTICE", "compile_notice", "progress_bar", "stderr_is_terminal"]
+__all__ = ["COMPILE_NOTICE", "compile_notice", "compile_notice_text", "progress_bar", "stderr_is_terminal"]
 
-COMPILE_NOTICE = "compiling numba kernels (first run only, about 10-60 s; later runs load them from the cache)..."
+COMPILE_NOTICE = "compiling kernels, once, about 10-60 s (later runs load them from the cache)..."
+
+
+def compile_notice_text(seconds: float | None = None) -> str:
+    """The notice, with an estimate of the compile time in seconds (rounded to 5 s) when one is given."""
+    if seconds is None:
+        return COMPILE_NOTICE
+    return f"compiling kernels, once, about {max(5, 5 * round(seconds / 5))} s (later runs load them from the cache)..."
 
 
 def stderr_is_terminal() -> bool:
@@ -36,8 +44,8 @@ def _write_line(text, stream):
 
 
 @contextmanager
-def compile_notice(prog: str, enabled: bool = True, stream=None):
-    """Print ``{prog}: COMPILE_NOTICE`` once if numba compiles anything inside the block.
+def compile_notice(prog: str, enabled: bool = True, stream=None, seconds: float | None = None):
+    """Print ``{prog}: compiling kernels, once, about N s ...`` once if numba compiles anything inside the block.
 
     Parameters
     ----------
@@ -47,6 +55,8 @@ def compile_notice(prog: str, enabled: bool = True, stream=None):
         False (``--quiet``) prints nothing.
     stream : file, optional
         Where to write (default: ``sys.stderr`` at the time of the compilation).
+    seconds : float, optional
+        The estimated compile time (``compile_notice_text``); None gives the general range.
     """
     if not enabled:
         yield
@@ -59,7 +69,7 @@ def compile_notice(prog: str, enabled: bool = True, stream=None):
         def on_start(self, ev):
             if not self.said:
                 self.said = True
-                _write_line(f"{prog}: {COMPILE_NOTICE}", stream or sys.stderr)
+                _write_line(f"{prog}: {compile_notice_text(seconds)}", stream or sys.stderr)
 
         def on_end(self, ev):
             pass

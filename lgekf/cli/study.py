@@ -134,7 +134,11 @@ def cmd_study(argv) -> int:
 
     imm = imm_options_from_args(a.imm_modes, a.imm_switch)
     t0 = time.perf_counter()
-    with compile_notice("lgekf study", enabled=not a.quiet):
+    from .warmup import compile_estimate, study_jobs, warm_up
+
+    jobs = study_jobs(cfg)
+    with compile_notice("lgekf study", enabled=not a.quiet, seconds=compile_estimate(j.cost for j in jobs)):
+        warm_up(jobs)  # a cold cache: the kernels compile in parallel processes; warm: milliseconds
         with progress_bar(len(cfg.sigmas), "lgekf study", not a.quiet and stderr_is_terminal(), unit="σ_ω") as bar:
             res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
     claims = claims_check(res)

@@ -23,6 +23,8 @@ from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
+from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
+from .warmup import compile_estimate, track_jobs, warm_up
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
@@ -129,6 +131,7 @@ def _check_arguments(a, models):
         check_output_path(o, option=None)
     if not is_stdio(a.input) and any(not is_stdio(o) and Path(o).resolve() == Path(a.input).resolve() for o in outs):
         raise ValueError(f"--output: {a.output} would overwrite the input file")
+    check_parquet_arguments(a, outs)
     return outs
 
 
@@ -213,7 +216,10 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
                           TRACK_HEADING_CAP).validate()
         return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
-    meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
+    if is_parquet(a.input):
+        meas = read_parquet(a.input, a.use_heading or a.measure == "pose")
+    else:
+        meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
     meas, starts, _ = meas.grouped(min_length=2)
     meas.t = to_seconds(meas.t, a.time_unit)
     t_read = time.perf_counter() - t0
@@ -226,8 +232,12 @@ def cmd_track(argv) -> int:
     total = meas.t.size * len(models)
     show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
     flagged = {}
-    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet):
+    jobs = track_jobs(models, measure, a.full_cov)
+    estimate = compile_estimate([j.cost for j in jobs], workers=None if len(models) > 1 else 1)
+    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet, seconds=estimate):
         handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
+        if len(models) > 1:
+            warm_up(jobs)  # a cold cache: the models' kernels compile in parallel processes; warm: milliseconds
         plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
                           heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure,
                           monitor=monitor)
@@ -253,7 +263,7 @@ def cmd_track(argv) -> int:
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             for fh, m in zip(handles, models):
                 _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfgs[m], a.full_cov, a.precision, bar, measure[m], monitor,
-                                                    smooth=a.smooth)
+                                                    smooth=a.smooth, parquet=is_parquet(outs[models.index(m)]))
                 for line in _divergence_warnings(m, meas, alarms, flagged[m]):
                     print(f"lgekf track: warning: {line}", file=sys.stderr)
         files.commit()

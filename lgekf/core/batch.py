@@ -11,7 +11,12 @@ from .registry import get_model
 from .rts import forward_store, smooth_stored
 from .validate import as_float_array, positive_vector, spd_matrix
 
-__all__ = ["filter_batch", "step_lengths"]
+__all__ = ["filter_batch", "step_lengths", "SERIAL_STEPS"]
+
+# batches of at most this many trajectory-steps run through the serial ``run_one`` kernel trajectory by
+# trajectory (the same numbers): below it numba's threads cost more than they save, and a command that
+# only filters small batches (the study: 100 x 100 per call) never compiles the parallel kernel (~1 s a model)
+SERIAL_STEPS = 1 << 15
 
 
 def step_lengths(dt, B: int, K: int) -> np.ndarray:
@@ -94,7 +99,12 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     out_x = np.empty((B, K, n))
     out_p = np.empty((B, K if return_cov else 0, spec.n_packed))
     out_nis = np.empty((B, K))
-    getattr(spec.kernels, f"run_batch_{measurement}")(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+    if B * K <= SERIAL_STEPS:  # small work: the serial kernel, no thread start-up, no parallel kernel to compile
+        one = getattr(spec.kernels, f"run_one_{measurement}")
+        for b in range(B):
+            one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
+    else:
+        getattr(spec.kernels, f"run_batch_{measurement}")(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
     result = [out_x]
     if return_cov:
         result.append(unpack(out_p, n))

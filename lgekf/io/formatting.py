@@ -4,11 +4,15 @@ labels and rows assembled into one byte buffer."""
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
 import numpy as np
 
 __all__ = ["format_rows", "format_g", "label_bytes"]
+
+PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 
 
 @nb.njit(cache=True)
@@ -25,6 +29,10 @@ def _two_prod(a, b):
     return p, e
 
 
+# 10^0 .. 10^22: every one exactly representable (a table lookup instead of pow: the same doubles)
+_P10F = np.array([10.0**i for i in range(23)])
+
+
 @nb.njit(cache=True)
 def _round_scaled(a, k):
     """round(a * 10^k) as an int64 (a > 0), ties to even.
@@ -39,9 +47,9 @@ def _round_scaled(a, k):
         a /= 1e22
         k += 22
     if k >= 0:
-        hi, lo = _two_prod(a, 10.0**k)
+        hi, lo = _two_prod(a, _P10F[k])
     else:
-        d = 10.0 ** (-k)
+        d = _P10F[-k]
         hi = a / d
         p, e = _two_prod(hi, d)
         lo = ((a - p) - e) / d
@@ -158,7 +166,7 @@ def _put_g(buf, pos, v, p, digits):
     return pos
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)  # nogil: format_rows runs it on parts of the rows in several threads
 def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
     n, m = vals.shape
     maxlab = 0
@@ -207,9 +215,26 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
     d = np.broadcast_to(np.asarray(digits, dtype=np.int64), (values.shape[1],)).copy()
     if np.any(d < 1) or np.any(d > 17) or not 1 <= t_digits <= 17:
         raise ValueError("digits: must be between 1 and 17")
-    out = _format_rows(lab[0], lab[1], np.ascontiguousarray(row_label, dtype=np.int64),
-                       np.ascontiguousarray(t, dtype=float), int(t_digits), values, d)
-    return out.tobytes()
+    row_label = np.ascontiguousarray(row_label, dtype=np.int64)
+    t = np.ascontiguousarray(t, dtype=float)
+    n = values.shape[0]
+    threads = min(_cpus(), n // PARALLEL_ROWS)
+    if threads < 2:
+        return _format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d).tobytes()
+    # contiguous parts of the rows in parallel threads (the kernel releases the GIL), joined in order:
+    # the same bytes as one call
+    cut = np.linspace(0, n, threads + 1).astype(np.int64)
+    with ThreadPoolExecutor(threads) as pool:
+        parts = list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
+                                                     int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
+    return b"".join(parts)
+
+
+def _cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
 
 
 def format_g(values, digits: int) -> list:
