@@ -13,7 +13,7 @@ from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_da
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv']
 
 
 @nb.njit(cache=True)
@@ -166,7 +166,7 @@ def predict(s, p, dt, sigma_a):
     """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
     P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
     s: internal state [x, y, w_x, w_y], p: packed covariance (10), dt > 0.
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -228,7 +228,7 @@ def update_position(s, p, z_x, z_y, r):
     z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
     K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
     P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -326,6 +326,125 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
+@nb.njit(cache=True, fastmath=FASTMATH)
+def step_position(s, p, dt, sigma_a, z_x, z_y, r):
+    """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p11 = p[4]
+    p12 = p[5]
+    p13 = p[6]
+    p22 = p[7]
+    p23 = p[8]
+    p33 = p[9]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    p[0] = pj00
+    p[1] = pj01
+    p[2] = pj02
+    p[3] = pj03
+    p[4] = pj11
+    p[5] = pj12
+    p[6] = pj13
+    p[7] = pj22
+    p[8] = pj23
+    p[9] = pj33
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    if not covariance_is_pd(p):
+        p[0] = pp00
+        p[1] = pp01
+        p[2] = pp02
+        p[3] = pp03
+        p[4] = pp11
+        p[5] = pp12
+        p[6] = pp13
+        p[7] = pp22
+        p[8] = pp23
+        p[9] = pp33
+        s[0] = x_p
+        s[1] = y_p
+        s[2] = w_x
+        s[3] = w_y
+        nis = update_position(s, p, z_x, z_y, r)
+    return nis
+
+
 @nb.njit(cache=True)
 def measure_position(s, m0, m1):
     """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
@@ -349,11 +468,11 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
-        predict(s, p, dts[k], q[0])
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            predict(s, p, dts[k], q[0])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = step_position(s, p, dts[k], q[0], z[k, 0], z[k, 1], r[0])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(10):

@@ -9,7 +9,9 @@
  * (I - aKH) P (I - aKH)^T + a^2 K R K^T for the damped gain aK, because K S K^T = K H P; only the upper triangle is
  * computed (symmetric by construction).  omega is carried as omega + nu_omega wrapped to (-pi, pi] (exact: the angle
  * of R_omega R_nu), no atan2 in the step.  The Taylor branches of sinc, cosc, sinc2, cosc2 are those of
- * generated/special.py.  No LDL^T positive-definiteness check here (see benchmarks/c_baseline.py).
+ * generated/special.py.  After the update the LDL^T positive-definiteness test of generated covariance_is_pd runs,
+ * as in the generated step; on failure the C adds the diagonal jitter of repair_pd (the generated step first redoes
+ * the update in Joseph form): never triggered in the benchmark.
  *
  * State s: [x, y, cos th, sin th, vx, vy, omega, cos omega, sin omega]; p: packed upper triangle (21), row-major.
  * Compiled at benchmark time: cc -O3 -march=native -fopenmp -shared -fPIC.
@@ -37,6 +39,50 @@ static inline double wrap_(double a) {
     if (a > M_PI) a -= 2.0 * M_PI;
     else if (a <= -M_PI) a += 2.0 * M_PI;
     return a;
+}
+
+/* LDL^T test of generated covariance_is_pd: every pivot > 1e-13 max_i P_ii (NaN fails) */
+static inline int covariance_is_pd(const double *p) {
+    const double p00 = p[0], p01 = p[1], p02 = p[2], p03 = p[3], p04 = p[4], p05 = p[5], p11 = p[6], p12 = p[7],
+                 p13 = p[8], p14 = p[9], p15 = p[10], p22 = p[11], p23 = p[12], p24 = p[13], p25 = p[14], p33 = p[15],
+                 p34 = p[16], p35 = p[17], p44 = p[18], p45 = p[19], p55 = p[20];
+    const double tol = 1e-13 * fmax(fmax(fmax(p00, p11), fmax(p22, p33)), fmax(p44, p55));
+    const double d0 = p00;
+    if (!(d0 > tol)) return 0;
+    const double r0 = 1.0 / d0;
+    const double l10 = p01 * r0, l20 = p02 * r0, l30 = p03 * r0, l40 = p04 * r0, l50 = p05 * r0;
+    const double d1 = p11 - l10 * l10 * d0;
+    if (!(d1 > tol)) return 0;
+    const double r1 = 1.0 / d1;
+    const double l21 = (p12 - l20 * l10 * d0) * r1, l31 = (p13 - l30 * l10 * d0) * r1, l41 = (p14 - l40 * l10 * d0) * r1,
+                 l51 = (p15 - l50 * l10 * d0) * r1;
+    const double d2 = p22 - l20 * l20 * d0 - l21 * l21 * d1;
+    if (!(d2 > tol)) return 0;
+    const double r2 = 1.0 / d2;
+    const double l32 = (p23 - l30 * l20 * d0 - l31 * l21 * d1) * r2, l42 = (p24 - l40 * l20 * d0 - l41 * l21 * d1) * r2,
+                 l52 = (p25 - l50 * l20 * d0 - l51 * l21 * d1) * r2;
+    const double d3 = p33 - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2;
+    if (!(d3 > tol)) return 0;
+    const double r3 = 1.0 / d3;
+    const double l43 = (p34 - l40 * l30 * d0 - l41 * l31 * d1 - l42 * l32 * d2) * r3,
+                 l53 = (p35 - l50 * l30 * d0 - l51 * l31 * d1 - l52 * l32 * d2) * r3;
+    const double d4 = p44 - l40 * l40 * d0 - l41 * l41 * d1 - l42 * l42 * d2 - l43 * l43 * d3;
+    if (!(d4 > tol)) return 0;
+    const double r4 = 1.0 / d4;
+    const double l54 = (p45 - l50 * l40 * d0 - l51 * l41 * d1 - l52 * l42 * d2 - l53 * l43 * d3) * r4;
+    const double d5 = p55 - l50 * l50 * d0 - l51 * l51 * d1 - l52 * l52 * d2 - l53 * l53 * d3 - l54 * l54 * d4;
+    return d5 > tol;
+}
+
+static void repair_pd(double *p) {
+    static const int diag[6] = {0, 6, 11, 15, 18, 20};
+    double scale = 0.0;
+    for (int i = 0; i < 6; i++) scale = fmax(scale, fabs(p[diag[i]]));
+    double delta = 1e-13 * scale;
+    for (int it = 0; it < 60 && !covariance_is_pd(p); it++) {
+        for (int i = 0; i < 6; i++) p[diag[i]] += delta;
+        delta *= 4.0;
+    }
 }
 
 static inline void predict(double *restrict s, double *restrict p, double dt, double sx2, double sy2, double sw2) {
@@ -198,6 +244,7 @@ static inline double update_position(double *restrict s, double *restrict p, dou
     p[18] = q44 * sb - q43 * cb + q45 * d12;
     p[19] = q45;
     p[20] = j55;
+    if (!covariance_is_pd(p)) repair_pd(p);
     return nis;
 }
 
