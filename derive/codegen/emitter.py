@@ -305,7 +305,11 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
         from .fused import fused_step_kernel
 
-        kernels.insert(2, fused_step_kernel(model, meas, P, pin, sin_, predict_parts, sp.Symbol("dt", positive=True)))
+        from .soa import soa_measurement_kernels
+
+        step = fused_step_kernel(model, meas, P, pin, sin_, predict_parts, sp.Symbol("dt", positive=True))
+        kernels.insert(2, step)
+        kernels.extend(soa_measurement_kernels(model, meas, step))  # SIMD across trajectories (derive/codegen/soa.py)
     return kernels
 
 
@@ -361,6 +365,9 @@ def model_kernels(model, measurements: dict) -> list:
     for meas in measurements.values():
         ks.extend(_measurement_kernels(model, meas, P, pin, sin_, (stages, outs, Pn)))
     ks.extend(pd_check_kernels(n))
+    from .soa import soa_model_kernels
+
+    ks.extend(soa_model_kernels(model, ks[2]))  # covariance_is_pd_lane, physical_lane (ks[2] = physical_into)
     # ---- exact motion for simulation
     nn = sp.symbols(f"n0:{len(model.noise_stds())}", real=True)
     new = {i: e for i, e in enumerate(model.internal_of(model.propagated(nn).applyfunc(sub)))}

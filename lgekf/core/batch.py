@@ -10,7 +10,21 @@ from .filters import measurement_std
 from .registry import get_model
 from .validate import as_float_array, positive_vector, spd_matrix
 
-__all__ = ["filter_batch", "step_lengths"]
+__all__ = ["filter_batch", "step_lengths", "batch_kernel", "SOA_MIN_BATCH"]
+
+#: from this many trajectories on, filter_batch runs the SIMD kernel run_batch_soa_<meas> (trajectories in the vector
+#: lanes, blocks of 64; derive/codegen/soa.py); below, the scalar run_batch_<meas> (prange over trajectories): a
+#: block needs enough trajectories to fill its lanes, and small batches keep the first call's compile time low
+SOA_MIN_BATCH = 64
+
+
+def batch_kernel(spec, measurement: str, B: int):
+    """The loop filter_batch runs for ``B`` trajectories: ``run_batch_soa_<meas>`` where generated and
+    B ≥ SOA_MIN_BATCH, else ``run_batch_<meas>``; both take the same arguments and agree to 1e-12."""
+    soa = getattr(spec.kernels, f"run_batch_soa_{measurement}", None)
+    if soa is not None and B >= SOA_MIN_BATCH:
+        return soa
+    return getattr(spec.kernels, f"run_batch_{measurement}")
 
 
 def step_lengths(dt, B: int, K: int) -> np.ndarray:
@@ -64,6 +78,11 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     return_cov, return_nis : bool
         Also return the covariances (B, K, n, n) and the NIS of every update (B, K).
 
+    Notes
+    -----
+    From ``SOA_MIN_BATCH`` (64) trajectories on the SIMD kernel runs (trajectories in the vector lanes), below it the
+    scalar prange kernel (``batch_kernel``); the two agree to 1e-12.
+
     Returns
     -------
     states : ndarray, (B, K, n)
@@ -86,7 +105,7 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     out_x = np.empty((B, K, n))
     out_p = np.empty((B, K if return_cov else 0, spec.n_packed))
     out_nis = np.empty((B, K))
-    getattr(spec.kernels, f"run_batch_{measurement}")(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+    batch_kernel(spec, measurement, B)(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
     result = [out_x]
     if return_cov:
         result.append(unpack(out_p, n))
