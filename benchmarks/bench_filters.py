@@ -6,8 +6,8 @@ Per model, interleaved (every round times every kernel once; the best of N round
 trajectory-step (one predict + update + output conversion):
 
 * ``batch``: the generated ``run_batch_position`` over 3000 trajectories × 200 steps, numba prange over trajectories;
-* ``SIMD``: the structure-of-arrays kernel ``run_batch_soa_position`` (trajectories in the vector lanes), where the
-  model has one (``-`` otherwise); ``filter_batch`` picks between the two;
+* ``SIMD``: the structure-of-arrays kernel ``run_batch_soa_position`` (trajectories in the vector lanes; ``-`` where a
+  model has none); ``filter_batch`` picks between the two (``lgekf.core.batch.batch_kernel``);
 * ``one``: ``run_one_position`` over one trajectory of 200 000 steps (one core);
 * ``flops``: operations of one step counted from the generated code (benchmarks/flops.py says what counts);
 * ``÷C``: the ratio to the hand-written scalar C kernel of the SE(2)×SE(2) step (benchmarks/c/se2se2_step.c,
@@ -85,10 +85,7 @@ def kernel_timers(model, B, K, Kone, meas="position"):
               "one": (lambda: one(z1, d1, X0[0], p0[0], q, r, ox1, op1, on1), Kone)}
     soa = getattr(kern, f"run_batch_soa_{meas}", None)
     if soa is not None:
-        from lgekf.core.batch import soa_arrays
-
-        args = soa_arrays(z, dts, X0, p0)
-        timers["SIMD"] = (lambda: soa(*args, q, r), B * K)
+        timers["SIMD"] = (lambda: soa(z, dts, X0, p0, q, r, ox, op, on), B * K)
     return timers
 
 
