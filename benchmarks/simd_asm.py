@@ -10,11 +10,9 @@ so this takes ~10-30 s per model) and counts the vector instructions of ``kernel
 from __future__ import annotations
 
 import os
-import re
 import subprocess
 import sys
 import tempfile
-from collections import Counter
 
 CHILD = r"""
 import re, sys, numpy as np

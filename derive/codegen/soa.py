@@ -26,7 +26,6 @@ import math
 import re
 from dataclasses import replace
 
-import sympy as sp
 
 from ..algebra import packed_index
 from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
