@@ -13,9 +13,11 @@ from .validate import as_float_array, positive_vector, spd_matrix
 __all__ = ["filter_batch", "step_lengths", "batch_kernel", "SOA_MIN_BATCH"]
 
 #: from this many trajectories on, filter_batch runs the SIMD kernel run_batch_soa_<meas> (trajectories in the vector
-#: lanes, blocks of 64; derive/codegen/soa.py); below, the scalar run_batch_<meas> (prange over trajectories): a
-#: block needs enough trajectories to fill its lanes, and small batches keep the first call's compile time low
-SOA_MIN_BATCH = 64
+#: lanes, blocks of 64; derive/codegen/soa.py; ~3.5× faster per trajectory-step than the scalar batch here); below,
+#: the scalar run_batch_<meas> (prange over trajectories).  The SIMD kernel costs ~15 s of compilation per model and
+#: measurement on its first use (cached after), which only a large batch repays: the Monte Carlo study's 100
+#: trajectories per point stay on the scalar kernel, so a first ``lgekf study`` does not compile it
+SOA_MIN_BATCH = 1000
 
 
 def batch_kernel(spec, measurement: str, B: int):
@@ -80,7 +82,7 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
 
     Notes
     -----
-    From ``SOA_MIN_BATCH`` (64) trajectories on the SIMD kernel runs (trajectories in the vector lanes), below it the
+    From ``SOA_MIN_BATCH`` (1000) trajectories on the SIMD kernel runs (trajectories in the vector lanes), below it the
     scalar prange kernel (``batch_kernel``); the two agree to 1e-12.
 
     Returns
