@@ -1,18 +1,31 @@
 """Speed of every registry model, measured in one run (ratios are only meaningful within one run).
 
-    .venv/bin/python benchmarks/bench_filters.py [--quick]
+    .venv/bin/python benchmarks/bench_filters.py [--quick] [--repeat N]
 
-Reports ns per predict+update step: generated kernels over a batch (3000 trajectories × 200 steps,
-numba prange over trajectories, all cores), over one long trajectory (one core), through the Python
-classes (one call per step), the dense-numpy SE(2)×SE(2) LG-EKF, and FilterPy's KalmanFilter /
-ExtendedKalmanFilter (CV resp. CTRV written in numpy) where FilterPy is installed; then the JIT cost: the first
-call in a fresh process with an empty numba cache, and with a warm cache.
+Per model, interleaved (every round times every kernel once; the best of N rounds is reported), in ns per
+trajectory-step (one predict + update + output conversion):
+
+* ``batch``: the generated ``run_batch_position`` over 3000 trajectories × 200 steps, numba prange over trajectories;
+* ``SIMD``: the structure-of-arrays kernel ``run_batch_soa_position`` (trajectories in the vector lanes; ``-`` where a
+  model has none); ``filter_batch`` picks between the two (``lgekf.core.batch.batch_kernel``);
+* ``one``: ``run_one_position`` over one trajectory of 200 000 steps (one core);
+* ``flops``: operations of one step counted from the generated code (benchmarks/flops.py says what counts);
+* ``÷C``: the ratio to the hand-written scalar C kernel of the SE(2)×SE(2) step (benchmarks/c/se2se2_step.c,
+  compiled now with ``cc -O3 -march=native -fopenmp``; OpenMP over 2 threads for the batch), batch and one trajectory.
+  The C kernel implements SE(2)×SE(2) only: the other models' ratios use it as a yardstick.
+
+The kernels are called directly with preallocated arrays (no ``filter_batch`` validation), like the C through ctypes.
+Then, as before: the Python classes (one call per step), the dense-numpy SE(2)×SE(2) LG-EKF, FilterPy (where
+installed), and the JIT cost (first call in a fresh process, empty and warm numba cache).
+The header gives the date, the load (``uptime``) and the CPU: quote ratios, never absolute times, from a loaded machine.
 """
 
 from __future__ import annotations
 
 import argparse
+import datetime
 import os
+import platform
 import subprocess
 import sys
 import tempfile
@@ -22,9 +35,14 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+# idle OpenMP threads (numba's omp layer and the C baseline's libgomp) sleep instead of spinning after a parallel
+# loop: spinning threads would steal the core from the one-trajectory timings that follow
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 import lgekf  # noqa: E402
+from c_baseline import CompilerMissing, load_c_baseline  # noqa: E402
 from dense_numpy import run_dense  # noqa: E402
+from flops import step_flops  # noqa: E402
 
 # every registry model: its default noise, started at the same common state (3 m/s, ω = 0.1)
 MODELS = {name: (spec.default_accel_std, lgekf.state_from_common(name, [0, 0, 0, 3, 0, 0.1]).tolist())
@@ -47,18 +65,66 @@ def data(B, K, seed=0):
     return truth[None] + 0.5 * rng.standard_normal((B, K, 2))
 
 
-def kernel_ns(model, B, K):
+def kernel_timers(model, B, K, Kone, meas="position"):
+    """{column: zero-argument callable} running the model's generated loops on preallocated arrays."""
+    spec = lgekf.get_model(model)
+    kern = spec.kernels
     q, x0 = MODELS[model]
-    n = len(x0)
+    n, npk = spec.n, spec.n_packed
     z = data(B, K)
-    X0 = np.tile(x0, (B, 1)).astype(float)
-    P0 = np.eye(n) * 0.1
+    dts = np.full((B, K), 0.1)
+    X0 = np.ascontiguousarray(np.tile(x0, (B, 1)), dtype=float)
+    p0 = np.tile(np.eye(n)[np.triu_indices(n)] * 0.1, (B, 1))
+    q, r = np.asarray(q, dtype=float), np.array([0.5])
+    ox, on, op = np.empty((B, K, n)), np.empty((B, K)), np.empty((B, 0, npk))
+    z1, d1 = data(1, Kone, seed=1)[0], np.full(Kone, 0.1)
+    ox1, on1, op1 = np.empty((Kone, n)), np.empty(Kone), np.empty((0, npk))
+    batch = getattr(kern, f"run_batch_{meas}")
+    one = getattr(kern, f"run_one_{meas}")
+    timers = {"batch": (lambda: batch(z, dts, X0, p0, q, r, ox, op, on), B * K),
+              "one": (lambda: one(z1, d1, X0[0], p0[0], q, r, ox1, op1, on1), Kone)}
+    soa = getattr(kern, f"run_batch_soa_{meas}", None)
+    if soa is not None:
+        timers["SIMD"] = (lambda: soa(z, dts, X0, p0, q, r, ox, op, on), B * K)
+    return timers
 
-    def run():
-        lgekf.filter_batch(model, z, dt=0.1, accel_std=q, meas_std=0.5, x0=X0, P0=P0)
 
-    run()
-    return best_of(run) / (B * K) * 1e9
+def c_timers(B, K, Kone):
+    """The C baseline's batch and one-trajectory loops on the SE(2)×SE(2) problem (None: no compiler, with why)."""
+    try:
+        c = load_c_baseline()
+    except CompilerMissing as e:
+        return None, str(e)
+    _, x0 = MODELS["se2se2"]
+    z = data(B, K)
+    dts = np.full((B, K), 0.1)
+    X0 = np.ascontiguousarray(np.tile(x0, (B, 1)), dtype=float)
+    p0 = np.tile(np.eye(6)[np.triu_indices(6)] * 0.1, (B, 1))
+    q, r = np.asarray(MODELS["se2se2"][0], dtype=float), np.array([0.5])
+    ox, on = np.empty((B, K, 6)), np.empty((B, K))
+    z1, d1 = data(1, Kone, seed=1)[0], np.full(Kone, 0.1)
+    ox1, on1 = np.empty((Kone, 6)), np.empty(Kone)
+    return {"batch": (lambda: c.run_batch(z, dts, X0, p0, q, r, ox, on), B * K),
+            "one": (lambda: c.run_one(z1, d1, X0[0], p0[0], q, r, ox1, on1), Kone)}, f"{c.compiler} {' '.join(c_flags())}"
+
+
+def c_flags():
+    from c_baseline import FLAGS
+
+    return FLAGS
+
+
+def interleaved(timers: dict, repeat: int) -> dict:
+    """Best-of-``repeat`` ns per trajectory-step of every timer, rounds interleaved over all of them."""
+    for fn, _ in timers.values():
+        fn()  # compile / warm
+    best = {k: float("inf") for k in timers}
+    for _ in range(repeat):
+        for k, (fn, steps) in timers.items():
+            t = time.perf_counter()
+            fn()
+            best[k] = min(best[k], (time.perf_counter() - t) / steps * 1e9)
+    return best
 
 
 def class_ns(model, K):
@@ -176,26 +242,86 @@ def jit_cost():
     return out
 
 
+def header(threads: int) -> list[str]:
+    """Date, load, CPU and versions: the context every ratio of this run belongs to."""
+    import numba
+
+    cpu = platform.processor() or "?"
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    try:
+        load = subprocess.run(["uptime"], capture_output=True, text=True).stdout.strip()
+    except OSError:
+        load = "uptime not available: load " + " ".join(f"{v:.2f}" for v in os.getloadavg())
+    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
+    simd = "AVX-512" if " avx512f" in flags else "AVX2" if " avx2" in flags else "no AVX2"
+    return [f"date: {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC",
+            f"load: {load}",
+            f"cpu: {cpu} ({os.cpu_count()} cores, {simd}); numba {numba.__version__}, {threads} threads; "
+            f"numpy {np.__version__}; python {platform.python_version()}"]
+
+
+def speed_table(B, K, Kone, repeat):
+    """Rows per model (ns per trajectory-step, flops, ratios to C) and the C line, all measured in one run."""
+    timers = {}
+    for m in MODELS:
+        for col, t in kernel_timers(m, B, K, Kone).items():
+            timers[(m, col)] = t
+    ct, cinfo = c_timers(B, K, Kone)
+    if ct is not None:
+        for col, t in ct.items():
+            timers[("C", col)] = t
+    best = interleaved(timers, repeat)
+    return best, ct is not None, cinfo
+
+
+def markdown(best, have_c, B, K, Kone):
+    fmt = lambda v: "-" if v is None else f"{v:.0f}"  # noqa: E731
+    rat = lambda v, c: "-" if v is None or c is None else f"{v / c:.2f}×"  # noqa: E731
+    cb, co = (best[("C", "batch")], best[("C", "one")]) if have_c else (None, None)
+    lines = [f"| model | batch ns | SIMD ns | one ns | flops/step (div, sincos) | batch ÷ C | SIMD ÷ C | one ÷ C |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    for m in MODELS:
+        b, s, o = best[(m, "batch")], best.get((m, "SIMD")), best[(m, "one")]
+        fc = step_flops(m)
+        lines.append(f"| {m} | {fmt(b)} | {fmt(s)} | {fmt(o)} | {fc.flops} ({fc.div}, {fc.sincos}) | {rat(b, cb)} | "
+                     f"{rat(s, cb)} | {rat(o, co)} |")
+    if have_c:
+        lines.append(f"| C se2se2 | {fmt(cb)} | - | {fmt(co)} | | 1.00× | | 1.00× |")
+    lines.append(f"\nbatch {B}×{K}, one trajectory {Kone} steps; ns per trajectory-step, best of the interleaved rounds.")
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--quick", action="store_true", help="smaller sizes (for a smoke run)")
+    ap.add_argument("--repeat", type=int, default=7, help="interleaved rounds (best of)")
     a = ap.parse_args()
     B, K = (300, 200) if a.quick else (3000, 200)
     Kone = 20000 if a.quick else 200000
     import numba
 
-    print(f"machine: {os.cpu_count()} cores, numba threads {numba.get_num_threads()}")
-    rows = {}
-    for m in MODELS:
-        rows[m] = (kernel_ns(m, B, K), kernel_ns(m, 1, Kone), class_ns(m, 2000 if a.quick else 20000))
+    for line in header(numba.get_num_threads()):
+        print(line)
+    best, have_c, cinfo = speed_table(B, K, Kone, 3 if a.quick else a.repeat)
+    print(f"C baseline: {cinfo}" if have_c else f"C baseline skipped: {cinfo}")
+    print()
+    for line in markdown(best, have_c, B, K, Kone):
+        print(line)
+    print()
+    rows = {m: (best[(m, "batch")], best[(m, "one")]) for m in MODELS}
+    cls = {m: class_ns(m, 2000 if a.quick else 20000) for m in MODELS}
     dense = dense_ns(3 if a.quick else 10, 200)
     fp = filterpy_ns(2000 if a.quick else 20000)
     fpe = filterpy_ekf_ctrv_ns(2000 if a.quick else 20000)
-    print(f"\nns per predict+update step (batch {B}x{K}; single trajectory {Kone} steps; class API)")
-    print(f"{'model':8} {'batch':>10} {'single':>10} {'class API':>10}")
-    for m, (b, s, c) in rows.items():
-        print(f"{m:8} {b:10.1f} {s:10.1f} {c:10.0f}")
-    print(f"\ndense numpy SE(2)xSE(2) LG-EKF: {dense:,.0f} ns/step")
+    print("class API (one Python call per predict / update), ns per step: "
+          + ", ".join(f"{m} {v:,.0f}" for m, v in cls.items()))
+    print(f"dense numpy SE(2)xSE(2) LG-EKF: {dense:,.0f} ns/step")
     print(f"  ratio dense / generated batch   : {dense / rows['se2se2'][0]:8.0f}x")
     print(f"  ratio dense / generated single  : {dense / rows['se2se2'][1]:8.0f}x")
     if fp is not None:
@@ -207,9 +333,10 @@ def main():
         print(f"  ratio FilterPy EKF / generated CTRV single: {fpe / rows['ctrv'][1]:8.0f}x")
     else:
         print("FilterPy not installed: no FilterPy comparison")
-    (imp0, jit0), (imp1, jit1) = jit_cost()
-    print(f"\nJIT, first call of every model in a fresh process: empty cache {jit0:.2f} s, warm cache {jit1:.2f} s"
-          f" (import lgekf {imp0:.2f} s / {imp1:.2f} s)")
+    if not a.quick or os.environ.get("BENCH_JIT"):
+        (imp0, jit0), (imp1, jit1) = jit_cost()
+        print(f"\nJIT, first call of every model in a fresh process: empty cache {jit0:.2f} s, warm cache {jit1:.2f} s"
+              f" (import lgekf {imp0:.2f} s / {imp1:.2f} s)")
 
 
 if __name__ == "__main__":

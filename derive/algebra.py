@@ -5,13 +5,19 @@ Paper (Sec. "EKF on matrix Lie groups"), right perturbation X = μ·exp(ε):
 * prediction: μ ← μ·exp(Ω(μ)) (eq:pred_mu); P ← F P Fᵀ + Φ(Ω) Q Φ(Ω)ᵀ (eq:pred_cov),
   F = Ad(exp(−Ω)) + Φ(Ω)·𝒞, Q = G diag(σ²) Gᵀ;
 * update: K = P ℋᵀ (ℋ P ℋᵀ + R)⁻¹, ν = K·[log_G'(h(μ)⁻¹ Z)]^∨ (eq:K), μ ← μ·exp(ν) (eq:up_mu),
-  P ← Φ(ν) (I − Kℋ) P Φ(ν)ᵀ (eq:up_P), here in Joseph form Φ(ν) [(I − Kℋ) P (I − Kℋ)ᵀ + K R Kᵀ] Φ(ν)ᵀ
-  (equal for the optimal gain, positive semidefinite by construction).
+  P ← Φ(ν) (I − Kℋ) P Φ(ν)ᵀ (eq:up_P).  For the applied gain K' = αK (α the gain damping, 1 in regular steps)
+  the Joseph form (I − K'ℋ) P (I − K'ℋ)ᵀ + K' R K'ᵀ equals P − β K (ℋP), β = α(2 − α), exactly, because
+  K S Kᵀ = P ℋᵀ S⁻¹ ℋ P = K (ℋP).  ``form="symmetric"`` computes that right-hand side on the upper triangle only
+  (symmetric by construction, m multiply-adds per entry), ``form="joseph"`` the Joseph products.  Equal in regular
+  steps to rounding; in a diverging filter (R ≪ ℋPℋᵀ, measured: tests/test_covariance_health.py extreme cases) the
+  symmetric form cancels and can lose positive definiteness where the Joseph form keeps it.  So ``update_<meas>``
+  uses the Joseph form and the fused ``step_<meas>`` the symmetric one, falling back to ``update_<meas>`` when a
+  cheap screen flags the step (derive/codegen/fused.py).
 
 Each function returns *stages* of named definitions (symbol, expression) for ``derive.codegen``; the
 names are the legend of the generated kernels: ``cc`` 𝒞, ``f`` F, ``g`` Φ(Ω)G, ``hh`` ℋ, ``hp`` ℋP,
 ``inn`` the innovation, ``S``/``Si`` S and S⁻¹, ``k`` K, ``nk`` Kν before damping, ``nu`` ν, ``phi`` Φ(ν),
-``a`` I − αKℋ, ``b`` A P, ``pj`` the Joseph-form P, ``cp`` Φ(ν) P_J, ``mu``/``e`` the new mean.
+``a`` I − αKℋ, ``b`` A P, ``pj`` the Joseph-form P, ``beta``/``kb`` β and βK, ``cp`` Φ(ν) P_J, ``mu``/``e`` the new mean.
 """
 
 from __future__ import annotations
@@ -20,14 +26,15 @@ import itertools
 
 import sympy as sp
 
-from .lie.special import gain_damping
+from .lie.special import gain_damping, wrap
 
 __all__ = ["packed_index", "sym_cov", "symbolize", "kalman_gain", "lg_predict", "lg_update", "LEGEND"]
 
 LEGEND = (
     "legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), "
     "hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, "
-    "nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean"
+    "nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P "
+    "(= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean"
 )
 
 
@@ -90,6 +97,7 @@ def kalman_gain(H: sp.Matrix, P: sp.Matrix, e: sp.Matrix, R: sp.Matrix, scale=1)
                         kdefs + [(nis, sp.expand((Es.T * Is * Es)[0, 0]))]],
         "joseph_stages": [adefs, bdefs],
         "K": Ks,
+        "HP": HPs,
         "e": Es,
         "PJ": Bs * As.T + scale**2 * Ks * R * Ks.T,
     }
@@ -99,10 +107,36 @@ def _changed(model, exprs):
     """{internal index: expression} of the internal state entries an expression list changes."""
     out = {}
     for i, (sym, e) in enumerate(zip(model.internal, exprs)):
-        e = model.to_internal(e)
+        e = angle_sums(model, model.to_internal(e))
         if e != sym:
             out[i] = e
     return out
+
+
+def angle_sums(model, e):
+    """atan2(sin(a + b), cos(a + b)) → wrap(a + b) where a is a carried angle that the internal state stores.
+
+    A new stored angle is read off a composed rotation R_a R_b as atan2 of its entries (``internal_of``); the angle
+    of R_a R_b is a + b modulo 2π, so wrap(a + b) is the same number up to rounding, without atan2.  Applies only
+    when the atan2 arguments simplify to sin/cos of one sum and every carried angle in it is stored.
+    """
+    e = sp.sympify(e)
+    atoms = e.atoms(sp.atan2)
+    if not atoms:
+        return e
+    back = {}
+    for a, c, s_ in model.carried:
+        back[c], back[s_] = sp.cos(a), sp.sin(a)
+    stored = set(model.internal)
+    carried = {a for a, _, _ in model.carried}
+    rep = {}
+    for at in atoms:
+        Y, X = (sp.trigsimp(sp.expand(v.xreplace(back))) for v in at.args)
+        if isinstance(Y, sp.sin) and isinstance(X, sp.cos) and Y.args == X.args:
+            u = Y.args[0]
+            if (u.free_symbols & carried) and (u.free_symbols & carried) <= stored:
+                rep[at] = wrap(u)
+    return e.xreplace(rep)
 
 
 def lg_predict(model, P: sp.Matrix):
@@ -124,10 +158,11 @@ def lg_predict(model, P: sp.Matrix):
     return [cdefs, fdefs + ndefs + edefs, mdefs], outs, Pn
 
 
-def lg_update(model, meas, P: sp.Matrix, z, noise):
+def lg_update(model, meas, P: sp.Matrix, z, noise, form: str = "joseph"):
     """Stages and outputs of the fused update (eq:K, eq:up_mu, eq:up_P) of ``model`` with ``meas``.
 
-    ``z``: the measured vector's symbols; ``noise``: the measurement's noise symbols.
+    ``z``: the measured vector's symbols; ``noise``: the measurement's noise symbols; ``form``: "joseph" or
+    "symmetric", how the Joseph-form covariance is written (see the module docstring).
     Returns (stages, {internal index: new value}, P_new, nis symbol, transported) where
     ``transported`` tells whether Φ(ν) ≠ I (then rounding can cost positive definiteness).
 
@@ -159,14 +194,25 @@ def lg_update(model, meas, P: sp.Matrix, z, noise):
     phidefs, Phis = symbolize(Phi, "phi")
     new_mean = _changed(model, model.internal_of(mu * G.exp(nu)))
     mudefs, Mus = symbolize(sp.Matrix([list(new_mean.values())]), "mu")
-    jdefs, PJs = symbolize(kg["PJ"], "pj", only_upper=True)
+    if form == "joseph":
+        jdefs, PJs = symbolize(kg["PJ"], "pj", only_upper=True)
+        cov_stages = kg["joseph_stages"] + [jdefs]
+    else:  # P − β K (ℋP), β = α(2 − α): the Joseph form for the gain αK (see the module docstring)
+        if periodic:
+            beta = sp.Symbol("beta", positive=True)
+            kbdefs, KBs = symbolize(beta * kg["K"], "kb")
+            cov_stages = [[(beta, alpha * (2 - alpha))], kbdefs]
+        else:
+            KBs, cov_stages = kg["K"], []
+        jdefs, PJs = symbolize(P - KBs * kg["HP"], "pj", only_upper=True)
+        cov_stages = cov_stages + [jdefs]
     transported = Phi != sp.eye(n)
     if transported:
         cdefs, Cs = symbolize(Phis * PJs, "cp")
         Pu = Cs * Phis.T
-        stages += [phidefs + mudefs] + kg["joseph_stages"] + [jdefs, cdefs]
+        stages += [phidefs + mudefs] + cov_stages + [cdefs]
     else:
         Pu = PJs
-        stages += [mudefs] + kg["joseph_stages"] + [jdefs]
+        stages += [mudefs] + cov_stages
     outs = {i: Mus[0, k] for k, i in enumerate(new_mean)}
     return stages, outs, Pu, sp.Symbol("nis", real=True), transported

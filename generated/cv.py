@@ -9,11 +9,12 @@ import math
 import numba as nb
 import numpy as np
 from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle  # noqa: F401
+from .special import sin_v, cos_v, atan2_v, wrap_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -166,7 +167,7 @@ def predict(s, p, dt, sigma_a):
     """Fused LG-EKF prediction, in place: μ ← μ exp(Ω(μ)) (eq:pred_mu),
     P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
     s: internal state [x, y, w_x, w_y], p: packed covariance (10), dt > 0.
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -228,7 +229,7 @@ def update_position(s, p, z_x, z_y, r):
     z = (z_x, z_y), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
     K = P ℋ^T (ℋ P ℋ^T + R)^-1, ν = K [log_G'(h(μ)^-1 Z)]^∨ (eq:K), μ ← μ exp(ν) (eq:up_mu),
     P ← Φ(ν) [(I - Kℋ) P (I - Kℋ)^T + K R K^T] Φ(ν)^T: eq:up_P in Joseph form. Returns the NIS e^T S^-1 e.
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -326,6 +327,125 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
+@nb.njit(cache=True, fastmath=FASTMATH)
+def step_position(s, p, dt, sigma_a, z_x, z_y, r):
+    """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p11 = p[4]
+    p12 = p[5]
+    p13 = p[6]
+    p22 = p[7]
+    p23 = p[8]
+    p33 = p[9]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    p[0] = pj00
+    p[1] = pj01
+    p[2] = pj02
+    p[3] = pj03
+    p[4] = pj11
+    p[5] = pj12
+    p[6] = pj13
+    p[7] = pj22
+    p[8] = pj23
+    p[9] = pj33
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    if not covariance_is_pd(p):
+        p[0] = pp00
+        p[1] = pp01
+        p[2] = pp02
+        p[3] = pp03
+        p[4] = pp11
+        p[5] = pp12
+        p[6] = pp13
+        p[7] = pp22
+        p[8] = pp23
+        p[9] = pp33
+        s[0] = x_p
+        s[1] = y_p
+        s[2] = w_x
+        s[3] = w_y
+        nis = update_position(s, p, z_x, z_y, r)
+    return nis
+
+
 @nb.njit(cache=True)
 def measure_position(s, m0, m1):
     """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
@@ -349,11 +469,11 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
-        predict(s, p, dts[k], q[0])
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            predict(s, p, dts[k], q[0])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = step_position(s, p, dts[k], q[0], z[k, 0], z[k, 1], r[0])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(10):
@@ -417,6 +537,170 @@ def calH_bank_position(s, live, out):
                     out[i, a, b] = h[a, b]
 
 
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_position(W, j, sigma_a, r):
+    """step_position on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    w_x = W[128 + j]
+    w_y = W[192 + j]
+    p00 = W[256 + j]
+    p01 = W[320 + j]
+    p02 = W[384 + j]
+    p03 = W[448 + j]
+    p11 = W[512 + j]
+    p12 = W[576 + j]
+    p13 = W[640 + j]
+    p22 = W[704 + j]
+    p23 = W[768 + j]
+    p33 = W[832 + j]
+    dt = W[1792 + j]
+    z_x = W[1984 + j]
+    z_y = W[2048 + j]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    W[1152 + j] = pj00
+    W[1216 + j] = pj01
+    W[1280 + j] = pj02
+    W[1344 + j] = pj03
+    W[1408 + j] = pj11
+    W[1472 + j] = pj12
+    W[1536 + j] = pj13
+    W[1600 + j] = pj22
+    W[1664 + j] = pj23
+    W[1728 + j] = pj33
+    W[896 + j] = mu00
+    W[960 + j] = mu01
+    W[1024 + j] = mu02
+    W[1088 + j] = mu03
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_soa_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """run_batch_position with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
+    work array (rows × 64) and lane_position runs vectorised over the lanes; a lane failing the LDLᵀ test or with
+    a NaN row (NaN NIS) is redone by the scalar predict / update_position.
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(33 * 64)
+        s = np.empty(4)
+        p = np.empty(10)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(4):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(10):
+                W[(4 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[28 * 64 + j] = dts[lo + j, k]
+                W[31 * 64 + j] = z[lo + j, k, 0]
+                W[32 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[29 * 64 + j] = lane_position(W, j, q[0], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[29 * 64 + j] == W[29 * 64 + j])
+                W[30 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                if W[30 * 64 + j] == 0.0:
+                    b = lo + j
+                    for i in range(4):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(10):
+                        p[i] = W[(4 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0])
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[29 * 64 + j] = np.nan
+                    else:
+                        W[29 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(4):
+                        W[(14 + i) * 64 + j] = s[i]
+                    for i in range(10):
+                        W[(18 + i) * 64 + j] = p[i]
+            for j in range(L):
+                out_nis[lo + j, k] = W[29 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            if keep_p:
+                for j in range(L):
+                    for i in range(10):
+                        out_p[lo + j, k, i] = W[(18 + i) * 64 + j]
+            for i in range(4 + 10):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(14 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def covariance_is_pd(p):
     """LDLᵀ test of the packed covariance: every pivot d_j > 1e-13 · max_i P_ii (NaN fails)."""
@@ -468,6 +752,50 @@ def repair_pd(p):
         for i in (0, 4, 7, 9):
             p[i] += delta
         delta *= 4.0
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def covariance_is_pd_lane(W, j):
+    """covariance_is_pd of lane j of the new covariance rows of W, without branches (all pivots)."""
+    p0_0 = W[1152 + j]
+    p0_1 = W[1216 + j]
+    p0_2 = W[1280 + j]
+    p0_3 = W[1344 + j]
+    p1_1 = W[1408 + j]
+    p1_2 = W[1472 + j]
+    p1_3 = W[1536 + j]
+    p2_2 = W[1600 + j]
+    p2_3 = W[1664 + j]
+    p3_3 = W[1728 + j]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3)
+    d0 = p0_0
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    return (d0 > tol) & (d1 > tol) & (d2 > tol) & (d3 > tol)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def physical_lane(W, j, out, b, k):
+    """Physical [x, y, vx, vy] from the internal state, written into ``out`` (no allocation).
+    """
+    x = W[896 + j]
+    y = W[960 + j]
+    w_x = W[1024 + j]
+    w_y = W[1088 + j]
+    out[b, k, 0] = x
+    out[b, k, 1] = y
+    out[b, k, 2] = w_x
+    out[b, k, 3] = w_y
 
 
 @nb.njit(cache=True)

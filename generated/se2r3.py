@@ -9,11 +9,12 @@ import math
 import numba as nb
 import numpy as np
 from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle  # noqa: F401
+from .special import sin_v, cos_v, atan2_v, wrap_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'calH_position', 'update_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'covariance_is_pd', 'repair_pd', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -249,7 +250,7 @@ def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     P ← F P F^T + Φ(Ω) Q Φ(Ω)^T (eq:pred_cov), Q = G diag(σ²) G^T.
     s: internal state [x, y, c_theta, s_theta, v_x, v_y, omega], p: packed covariance (21), dt > 0.
     Then the std of the tangent angles is capped at π (limit_angle_variance; inactive while ≤ π).
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -394,7 +395,7 @@ def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
     Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
     (derive.lie.special.gain_damping; α = 1 in every regular step).
     If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -637,6 +638,334 @@ def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
     return nis
 
 
+@nb.njit(cache=True, fastmath=FASTMATH)
+def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """One fused LG-EKF step with a pose measurement, in place: ``predict`` then ``update_pose``
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_pose (Joseph form; derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p05 = p[5]
+    p11 = p[6]
+    p12 = p[7]
+    p13 = p[8]
+    p14 = p[9]
+    p15 = p[10]
+    p22 = p[11]
+    p23 = p[12]
+    p24 = p[13]
+    p25 = p[14]
+    p33 = p[15]
+    p34 = p[16]
+    p35 = p[17]
+    p44 = p[18]
+    p45 = p[19]
+    p55 = p[20]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a1 = math.atan2(c_theta_p*math.sin(z_theta) - s_theta_p*math.cos(z_theta), c_theta_p*math.cos(z_theta) + s_theta_p*math.sin(z_theta))
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t21 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t22 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t23 = math.atan2(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t24 = _t23/2.0
+    inn00 = _halfcot__a1*_t21 + _t22*_t24
+    inn10 = _halfcot__a1*_t22 - _t21*_t24
+    inn20 = _t23
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t25 = Si01*pp01
+    _t26 = Si02*pp02
+    _t27 = Si12*pp12
+    _t28 = 2.0*inn00
+    k00 = Si00*pp00 + _t25 + _t26
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t25 + _t27
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t26 + _t27
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    k50 = Si00*pp05 + Si01*pp15 + Si02*pp25
+    k51 = Si01*pp05 + Si11*pp15 + Si12*pp25
+    k52 = Si02*pp05 + Si12*pp15 + Si22*pp25
+    nis = Si00*(inn00*inn00) + Si01*_t28*inn10 + Si02*_t28*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    nk5 = inn00*k50 + inn10*k51 + inn20*k52
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t29 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t30 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t29*c_theta_p - _t30*s_theta_p + x_p
+    mu01 = _t29*s_theta_p + _t30*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    kb50 = beta*k50
+    kb51 = beta*k51
+    kb52 = beta*k52
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj05 = -(kb00*pp05) - kb01*pp15 - kb02*pp25 + pp05
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj15 = -(kb10*pp05) - kb11*pp15 - kb12*pp25 + pp15
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj25 = -(kb20*pp05) - kb21*pp15 - kb22*pp25 + pp25
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj35 = -(kb30*pp05) - kb31*pp15 - kb32*pp25 + pp35
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    pj45 = -(kb40*pp05) - kb41*pp15 - kb42*pp25 + pp45
+    pj55 = -(kb50*pp05) - kb51*pp15 - kb52*pp25 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp05
+    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[7] = cp12
+    p[8] = cp13
+    p[9] = cp14
+    p[10] = cp15
+    p[11] = pj22
+    p[12] = pj23
+    p[13] = pj24
+    p[14] = pj25
+    p[15] = pj33
+    p[16] = pj34
+    p[17] = pj35
+    p[18] = pj44
+    p[19] = pj45
+    p[20] = pj55
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    s[6] = mu06
+    if not covariance_is_pd(p):
+        p[0] = pp00
+        p[1] = pp01
+        p[2] = pp02
+        p[3] = pp03
+        p[4] = pp04
+        p[5] = pp05
+        p[6] = pp11
+        p[7] = pp12
+        p[8] = pp13
+        p[9] = pp14
+        p[10] = pp15
+        p[11] = pp22
+        p[12] = pp23
+        p[13] = pp24
+        p[14] = pp25
+        p[15] = pp33
+        p[16] = pp34
+        p[17] = pp35
+        p[18] = pp44
+        p[19] = pp45
+        p[20] = pp55
+        s[0] = x_p
+        s[1] = y_p
+        s[2] = c_theta_p
+        s[3] = s_theta_p
+        s[4] = v_x
+        s[5] = v_y
+        s[6] = omega
+        nis = update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta)
+    return nis
+
+
 @nb.njit(cache=True)
 def measure_pose(s, m0, m1, m2):
     """Simulated pose measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
@@ -669,11 +998,11 @@ def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
-        predict(s, p, dts[k], q[0], q[1], q[2])
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]) or np.isnan(z[k, 2]):
+            predict(s, p, dts[k], q[0], q[1], q[2])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            out_nis[k] = step_pose(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(21):
@@ -750,6 +1079,367 @@ def calH_bank_pose(s, live, out):
                     out[i, a, b] = h[a, b]
 
 
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
+    """step_pose on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    p00 = W[448 + j]
+    p01 = W[512 + j]
+    p02 = W[576 + j]
+    p03 = W[640 + j]
+    p04 = W[704 + j]
+    p05 = W[768 + j]
+    p11 = W[832 + j]
+    p12 = W[896 + j]
+    p13 = W[960 + j]
+    p14 = W[1024 + j]
+    p15 = W[1088 + j]
+    p22 = W[1152 + j]
+    p23 = W[1216 + j]
+    p24 = W[1280 + j]
+    p25 = W[1344 + j]
+    p33 = W[1408 + j]
+    p34 = W[1472 + j]
+    p35 = W[1536 + j]
+    p44 = W[1600 + j]
+    p45 = W[1664 + j]
+    p55 = W[1728 + j]
+    dt = W[3584 + j]
+    z_x = W[3776 + j]
+    z_y = W[3840 + j]
+    z_theta = W[3904 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    _sin_z_theta = sin_v(z_theta)
+    _cos_z_theta = cos_v(z_theta)
+    _a1 = atan2_v(c_theta_p*sin_v(z_theta) - s_theta_p*cos_v(z_theta), c_theta_p*cos_v(z_theta) + s_theta_p*sin_v(z_theta))
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t21 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t22 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t23 = atan2_v(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t24 = _t23/2.0
+    inn00 = _halfcot__a1*_t21 + _t22*_t24
+    inn10 = _halfcot__a1*_t22 - _t21*_t24
+    inn20 = _t23
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t25 = Si01*pp01
+    _t26 = Si02*pp02
+    _t27 = Si12*pp12
+    _t28 = 2.0*inn00
+    k00 = Si00*pp00 + _t25 + _t26
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t25 + _t27
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t26 + _t27
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    k50 = Si00*pp05 + Si01*pp15 + Si02*pp25
+    k51 = Si01*pp05 + Si11*pp15 + Si12*pp25
+    k52 = Si02*pp05 + Si12*pp15 + Si22*pp25
+    nis = Si00*(inn00*inn00) + Si01*_t28*inn10 + Si02*_t28*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    nk5 = inn00*k50 + inn10*k51 + inn20*k52
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _t29 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t30 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t29*c_theta_p - _t30*s_theta_p + x_p
+    mu01 = _t29*s_theta_p + _t30*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    kb50 = beta*k50
+    kb51 = beta*k51
+    kb52 = beta*k52
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj05 = -(kb00*pp05) - kb01*pp15 - kb02*pp25 + pp05
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj15 = -(kb10*pp05) - kb11*pp15 - kb12*pp25 + pp15
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj25 = -(kb20*pp05) - kb21*pp15 - kb22*pp25 + pp25
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj35 = -(kb30*pp05) - kb31*pp15 - kb32*pp25 + pp35
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    pj45 = -(kb40*pp05) - kb41*pp15 - kb42*pp25 + pp45
+    pj55 = -(kb50*pp05) - kb51*pp15 - kb52*pp25 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    W[2240 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2304 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2368 + j] = cp02
+    W[2432 + j] = cp03
+    W[2496 + j] = cp04
+    W[2560 + j] = cp05
+    W[2624 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2688 + j] = cp12
+    W[2752 + j] = cp13
+    W[2816 + j] = cp14
+    W[2880 + j] = cp15
+    W[2944 + j] = pj22
+    W[3008 + j] = pj23
+    W[3072 + j] = pj24
+    W[3136 + j] = pj25
+    W[3200 + j] = pj33
+    W[3264 + j] = pj34
+    W[3328 + j] = pj35
+    W[3392 + j] = pj44
+    W[3456 + j] = pj45
+    W[3520 + j] = pj55
+    W[1792 + j] = mu00
+    W[1856 + j] = mu01
+    W[1920 + j] = mu02
+    W[1984 + j] = mu03
+    W[2048 + j] = mu04
+    W[2112 + j] = mu05
+    W[2176 + j] = mu06
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_soa_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """run_batch_pose with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
+    work array (rows × 64) and lane_pose runs vectorised over the lanes; a lane failing the LDLᵀ test or with
+    a NaN row (NaN NIS) is redone by the scalar predict / update_pose.
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(62 * 64)
+        s = np.empty(7)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(7):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(7 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[56 * 64 + j] = dts[lo + j, k]
+                W[59 * 64 + j] = z[lo + j, k, 0]
+                W[60 * 64 + j] = z[lo + j, k, 1]
+                W[61 * 64 + j] = z[lo + j, k, 2]
+            for j in range(L):
+                W[57 * 64 + j] = lane_pose(W, j, q[0], q[1], q[2], r[0], r[1], r[2])
+                good = covariance_is_pd_lane(W, j) & (W[57 * 64 + j] == W[57 * 64 + j])
+                W[58 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                if W[58 * 64 + j] == 0.0:
+                    b = lo + j
+                    for i in range(7):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(7 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]) or np.isnan(z[b, k, 2]):
+                        W[57 * 64 + j] = np.nan
+                    else:
+                        W[57 * 64 + j] = update_pose(s, p, z[b, k, 0], z[b, k, 1], z[b, k, 2], r[0], r[1], r[2])
+                    for i in range(7):
+                        W[(28 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(35 + i) * 64 + j] = p[i]
+            for j in range(L):
+                out_nis[lo + j, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            if keep_p:
+                for j in range(L):
+                    for i in range(21):
+                        out_p[lo + j, k, i] = W[(35 + i) * 64 + j]
+            for i in range(7 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def calH_position(s):
     """ℋ = ∂[log_G'(h(μ)^-1 h(μ exp ε))]^∨/∂ε at ε = 0 (eq:calH, eq:calH_model) for position measurements.
@@ -773,7 +1463,7 @@ def update_position(s, p, z_x, z_y, r):
     Safeguard: if a rotation angle of ν exceeds π the gain is damped, K → αK, α = π/|angle|
     (derive.lie.special.gain_damping; α = 1 in every regular step).
     If rounding leaves P not positive definite (condition numbers ≳ 1e15) a rounding-level jitter restores it (repair_pd).
-    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, pj = Joseph-form P, cp = Φ(ν)·pj, mu/e = new mean
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
     y = s[1]
@@ -994,6 +1684,319 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
+@nb.njit(cache=True, fastmath=FASTMATH)
+def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
+    """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p05 = p[5]
+    p11 = p[6]
+    p12 = p[7]
+    p13 = p[8]
+    p14 = p[9]
+    p15 = p[10]
+    p22 = p[11]
+    p23 = p[12]
+    p24 = p[13]
+    p25 = p[14]
+    p33 = p[15]
+    p34 = p[16]
+    p35 = p[17]
+    p44 = p[18]
+    p45 = p[19]
+    p55 = p[20]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t21 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t21 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp05 = c_theta_p*pp05 + hh01*pp15
+    hp10 = _t21 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    hp15 = c_theta_p*pp15 + pp05*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t22 = r*r
+    S00 = _t22 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t22 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _t23 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t24 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t23*c_theta_p - _t24*s_theta_p + x_p
+    mu01 = _t23*s_theta_p + _t24*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb50 = beta*k50
+    kb51 = beta*k51
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj05 = -(hp05*kb00) - hp15*kb01 + pp05
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj15 = -(hp05*kb10) - hp15*kb11 + pp15
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj25 = -(hp05*kb20) - hp15*kb21 + pp25
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj35 = -(hp05*kb30) - hp15*kb31 + pp35
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    pj45 = -(hp05*kb40) - hp15*kb41 + pp45
+    pj55 = -(hp05*kb50) - hp15*kb51 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    p[2] = cp02
+    p[3] = cp03
+    p[4] = cp04
+    p[5] = cp05
+    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    p[7] = cp12
+    p[8] = cp13
+    p[9] = cp14
+    p[10] = cp15
+    p[11] = pj22
+    p[12] = pj23
+    p[13] = pj24
+    p[14] = pj25
+    p[15] = pj33
+    p[16] = pj34
+    p[17] = pj35
+    p[18] = pj44
+    p[19] = pj45
+    p[20] = pj55
+    s[0] = mu00
+    s[1] = mu01
+    s[2] = mu02
+    s[3] = mu03
+    s[4] = mu04
+    s[5] = mu05
+    s[6] = mu06
+    if not covariance_is_pd(p):
+        p[0] = pp00
+        p[1] = pp01
+        p[2] = pp02
+        p[3] = pp03
+        p[4] = pp04
+        p[5] = pp05
+        p[6] = pp11
+        p[7] = pp12
+        p[8] = pp13
+        p[9] = pp14
+        p[10] = pp15
+        p[11] = pp22
+        p[12] = pp23
+        p[13] = pp24
+        p[14] = pp25
+        p[15] = pp33
+        p[16] = pp34
+        p[17] = pp35
+        p[18] = pp44
+        p[19] = pp45
+        p[20] = pp55
+        s[0] = x_p
+        s[1] = y_p
+        s[2] = c_theta_p
+        s[3] = s_theta_p
+        s[4] = v_x
+        s[5] = v_y
+        s[6] = omega
+        nis = update_position(s, p, z_x, z_y, r)
+    return nis
+
+
 @nb.njit(cache=True)
 def measure_position(s, m0, m1):
     """Simulated position measurement vector(h(X)·exp(m)) of the state s for a noise sample m.
@@ -1017,11 +2020,11 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
-        predict(s, p, dts[k], q[0], q[1], q[2])
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            predict(s, p, dts[k], q[0], q[1], q[2])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = step_position(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], r[0])
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(21):
@@ -1083,6 +2086,350 @@ def calH_bank_position(s, live, out):
             for a in range(2):
                 for b in range(6):
                     out[i, a, b] = h[a, b]
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_position(W, j, sigma_x, sigma_y, sigma_omega, r):
+    """step_position on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    p00 = W[448 + j]
+    p01 = W[512 + j]
+    p02 = W[576 + j]
+    p03 = W[640 + j]
+    p04 = W[704 + j]
+    p05 = W[768 + j]
+    p11 = W[832 + j]
+    p12 = W[896 + j]
+    p13 = W[960 + j]
+    p14 = W[1024 + j]
+    p15 = W[1088 + j]
+    p22 = W[1152 + j]
+    p23 = W[1216 + j]
+    p24 = W[1280 + j]
+    p25 = W[1344 + j]
+    p33 = W[1408 + j]
+    p34 = W[1472 + j]
+    p35 = W[1536 + j]
+    p44 = W[1600 + j]
+    p45 = W[1664 + j]
+    p55 = W[1728 + j]
+    dt = W[3584 + j]
+    z_x = W[3776 + j]
+    z_y = W[3840 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t21 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t21 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp05 = c_theta_p*pp05 + hh01*pp15
+    hp10 = _t21 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    hp15 = c_theta_p*pp15 + pp05*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t22 = r*r
+    S00 = _t22 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t22 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _t23 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t24 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t23*c_theta_p - _t24*s_theta_p + x_p
+    mu01 = _t23*s_theta_p + _t24*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb50 = beta*k50
+    kb51 = beta*k51
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj05 = -(hp05*kb00) - hp15*kb01 + pp05
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj15 = -(hp05*kb10) - hp15*kb11 + pp15
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj25 = -(hp05*kb20) - hp15*kb21 + pp25
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj35 = -(hp05*kb30) - hp15*kb31 + pp35
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    pj45 = -(hp05*kb40) - hp15*kb41 + pp45
+    pj55 = -(hp05*kb50) - hp15*kb51 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    W[2240 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2304 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2368 + j] = cp02
+    W[2432 + j] = cp03
+    W[2496 + j] = cp04
+    W[2560 + j] = cp05
+    W[2624 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2688 + j] = cp12
+    W[2752 + j] = cp13
+    W[2816 + j] = cp14
+    W[2880 + j] = cp15
+    W[2944 + j] = pj22
+    W[3008 + j] = pj23
+    W[3072 + j] = pj24
+    W[3136 + j] = pj25
+    W[3200 + j] = pj33
+    W[3264 + j] = pj34
+    W[3328 + j] = pj35
+    W[3392 + j] = pj44
+    W[3456 + j] = pj45
+    W[3520 + j] = pj55
+    W[1792 + j] = mu00
+    W[1856 + j] = mu01
+    W[1920 + j] = mu02
+    W[1984 + j] = mu03
+    W[2048 + j] = mu04
+    W[2112 + j] = mu05
+    W[2176 + j] = mu06
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_soa_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """run_batch_position with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
+    work array (rows × 64) and lane_position runs vectorised over the lanes; a lane failing the LDLᵀ test or with
+    a NaN row (NaN NIS) is redone by the scalar predict / update_position.
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(61 * 64)
+        s = np.empty(7)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(7):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(7 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[56 * 64 + j] = dts[lo + j, k]
+                W[59 * 64 + j] = z[lo + j, k, 0]
+                W[60 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[57 * 64 + j] = lane_position(W, j, q[0], q[1], q[2], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[57 * 64 + j] == W[57 * 64 + j])
+                W[58 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                if W[58 * 64 + j] == 0.0:
+                    b = lo + j
+                    for i in range(7):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(7 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[57 * 64 + j] = np.nan
+                    else:
+                        W[57 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(7):
+                        W[(28 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(35 + i) * 64 + j] = p[i]
+            for j in range(L):
+                out_nis[lo + j, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            if keep_p:
+                for j in range(L):
+                    for i in range(21):
+                        out_p[lo + j, k, i] = W[(35 + i) * 64 + j]
+            for i in range(7 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
 
 
 @nb.njit(cache=True)
@@ -1164,6 +2511,79 @@ def repair_pd(p):
         for i in (0, 6, 11, 15, 18, 20):
             p[i] += delta
         delta *= 4.0
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def covariance_is_pd_lane(W, j):
+    """covariance_is_pd of lane j of the new covariance rows of W, without branches (all pivots)."""
+    p0_0 = W[2240 + j]
+    p0_1 = W[2304 + j]
+    p0_2 = W[2368 + j]
+    p0_3 = W[2432 + j]
+    p0_4 = W[2496 + j]
+    p0_5 = W[2560 + j]
+    p1_1 = W[2624 + j]
+    p1_2 = W[2688 + j]
+    p1_3 = W[2752 + j]
+    p1_4 = W[2816 + j]
+    p1_5 = W[2880 + j]
+    p2_2 = W[2944 + j]
+    p2_3 = W[3008 + j]
+    p2_4 = W[3072 + j]
+    p2_5 = W[3136 + j]
+    p3_3 = W[3200 + j]
+    p3_4 = W[3264 + j]
+    p3_5 = W[3328 + j]
+    p4_4 = W[3392 + j]
+    p4_5 = W[3456 + j]
+    p5_5 = W[3520 + j]
+    tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3, p4_4, p5_5)
+    d0 = p0_0
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    l5_0 = (p0_5) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    l5_1 = (p1_5 - l5_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    l5_2 = (p2_5 - l5_0 * l2_0 * d0 - l5_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    r3 = 1.0 / d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    l5_3 = (p3_5 - l5_0 * l3_0 * d0 - l5_1 * l3_1 * d1 - l5_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
+    r4 = 1.0 / d4
+    l5_4 = (p4_5 - l5_0 * l4_0 * d0 - l5_1 * l4_1 * d1 - l5_2 * l4_2 * d2 - l5_3 * l4_3 * d3) * r4
+    d5 = p5_5 - l5_0 * l5_0 * d0 - l5_1 * l5_1 * d1 - l5_2 * l5_2 * d2 - l5_3 * l5_3 * d3 - l5_4 * l5_4 * d4
+    return (d0 > tol) & (d1 > tol) & (d2 > tol) & (d3 > tol) & (d4 > tol) & (d5 > tol)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def physical_lane(W, j, out, b, k):
+    """Physical [x, y, theta, vx, vy, omega] from the internal state, written into ``out`` (no allocation).
+    """
+    x = W[1792 + j]
+    y = W[1856 + j]
+    c_theta = W[1920 + j]
+    s_theta = W[1984 + j]
+    v_x = W[2048 + j]
+    v_y = W[2112 + j]
+    omega = W[2176 + j]
+    out[b, k, 0] = x
+    out[b, k, 1] = y
+    out[b, k, 2] = wrap_v(atan2_v(s_theta, c_theta))
+    out[b, k, 3] = v_x
+    out[b, k, 4] = v_y
+    out[b, k, 5] = omega
 
 
 @nb.njit(cache=True)

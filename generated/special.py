@@ -8,7 +8,7 @@ import math
 
 import numba as nb
 
-__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'gain_damping']
+__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
 
 
 @nb.njit(cache=True)
@@ -121,3 +121,119 @@ def gain_damping(a, b):
     if m <= math.pi:
         return 1.0
     return math.pi / m
+
+
+# ---------------------------------------------------------------- branch-free helpers of the SIMD kernels
+# (derive/codegen/soa.py): both sides of every branch are evaluated and selected, so LLVM can vectorise a loop
+# whose body calls them (they are inlined by numba).
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def _sin_cos_r(x):
+    """(r, q): x = q·π/2 + r, |r| ≤ π/4 (Cody–Waite, π/2 in three parts), q mod 4 as a float."""
+    kf = math.floor(x * 0.6366197723675814 + 0.5)
+    r = ((x - kf * 1.5707963267341256) - kf * 6.077100506506192e-11) - kf * 2.0222662487959506e-21
+    return r, kf - 4.0 * math.floor(kf * 0.25)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def sin_v(x):
+    """sin x without branches: degree-17/18 Taylor polynomials on the reduced argument (error bound: soa.py)."""
+    r, q = _sin_cos_r(x)
+    r2 = r * r
+    sp = r + r * r2 * (-0.16666666666666666 + r2 * (0.008333333333333333 + r2 * (-0.0001984126984126984 + r2 * (2.7557319223985893e-06 + r2 * (-2.505210838544172e-08 + r2 * (1.6059043836821613e-10 + r2 * (-7.647163731819816e-13 + r2 * (2.8114572543455206e-15))))))))
+    cp = 1.0 + r2 * (-0.5 + r2 * (0.041666666666666664 + r2 * (-0.001388888888888889 + r2 * (2.48015873015873e-05 + r2 * (-2.755731922398589e-07 + r2 * (2.08767569878681e-09 + r2 * (-1.1470745597729725e-11 + r2 * (4.779477332387385e-14 + r2 * (-1.5619206968586225e-16)))))))))
+    v = cp if (q == 1.0) | (q == 3.0) else sp
+    return -v if q >= 2.0 else v
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def cos_v(x):
+    """cos x without branches (as sin_v)."""
+    r, q = _sin_cos_r(x)
+    r2 = r * r
+    sp = r + r * r2 * (-0.16666666666666666 + r2 * (0.008333333333333333 + r2 * (-0.0001984126984126984 + r2 * (2.7557319223985893e-06 + r2 * (-2.505210838544172e-08 + r2 * (1.6059043836821613e-10 + r2 * (-7.647163731819816e-13 + r2 * (2.8114572543455206e-15))))))))
+    cp = 1.0 + r2 * (-0.5 + r2 * (0.041666666666666664 + r2 * (-0.001388888888888889 + r2 * (2.48015873015873e-05 + r2 * (-2.755731922398589e-07 + r2 * (2.08767569878681e-09 + r2 * (-1.1470745597729725e-11 + r2 * (4.779477332387385e-14 + r2 * (-1.5619206968586225e-16)))))))))
+    v = sp if (q == 1.0) | (q == 3.0) else cp
+    return -v if (q == 1.0) | (q == 2.0) else v
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def atan2_v(y, x):
+    """atan2(y, x) ∈ [-π, π] without branches: t = min/max(|x|, |y|) ∈ [0, 1] reduced by the nearest tan(kπ/16),
+    k = 0..4, to |t'| ≤ tan(π/32), Taylor polynomial of degree 17 (truncation < 1e-18)."""
+    ax = abs(x)
+    ay = abs(y)
+    mx = max(ax, ay)
+    t = min(ax, ay) / mx if mx > 0.0 else 0.0
+    k = (1.0 if t > 0.09849140335716425 else 0.0) + (1.0 if t > 0.3033466836073424 else 0.0) + (1.0 if t > 0.5345111359507916 else 0.0) + (1.0 if t > 0.8206787908286602 else 0.0)
+    c = 0.198912367379658 if k == 1.0 else (0.41421356237309503 if k == 2.0 else (0.6681786379192989 if k == 3.0 else (1.0 if k == 4.0 else 0.0)))
+    u = (t - c) / (1.0 + t * c)
+    u2 = u * u
+    a = k * 0.19634954084936207 + u * (1.0 + u2 * (-0.3333333333333333 + u2 * (0.2 + u2 * (-0.14285714285714285 + u2 * (0.1111111111111111 + u2 * (-0.09090909090909091 + u2 * (0.07692307692307693 + u2 * (-0.06666666666666667 + u2 * (0.058823529411764705)))))))))
+    a = 1.5707963267948966 - a if ay > ax else a
+    a = 3.141592653589793 - a if x < 0.0 else a
+    return -a if (y < 0.0) | ((y == 0.0) & (math.copysign(1.0, y) < 0.0)) else a
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def wrap_v(a):
+    """a wrapped to (-π, π] without branches (wrap_angle's formula, selected)."""
+    r = a - 6.283185307179586 * math.floor((a + 3.141592653589793) / 6.283185307179586)
+    r = r + 6.283185307179586 if r <= -3.141592653589793 else r
+    return a if (a > -3.141592653589793) & (a <= 3.141592653589793) else r
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def gain_damping_v(a, b):
+    """min(1, π / max(|a|, |b|)) without branches (gain_damping)."""
+    m = max(abs(a), abs(b))
+    return 1.0 if m <= 3.141592653589793 else 3.141592653589793 / m
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def sinc_v(x, s, c):
+    """sinc without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.0001."""
+    x2 = x * x
+    return (1.0 + x2 * (-0.16666666666666666 + x2 * (0.008333333333333333 + x2 * (-0.0001984126984126984)))) if abs(x) < 0.0001 else (s / x)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def cosc_v(x, s, c):
+    """cosc without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.0001."""
+    x2 = x * x
+    return (x * (0.5 + x2 * (-0.041666666666666664 + x2 * (0.001388888888888889 + x2 * (-2.48015873015873e-05))))) if abs(x) < 0.0001 else ((s * s / (1.0 + c)) / x if c > 0.0 else (1.0 - c) / x)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def sinc2_v(x, s, c):
+    """sinc2 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.75."""
+    x2 = x * x
+    return (x * (0.16666666666666666 + x2 * (-0.008333333333333333 + x2 * (0.0001984126984126984 + x2 * (-2.7557319223985893e-06 + x2 * (2.505210838544172e-08 + x2 * (-1.6059043836821613e-10 + x2 * (7.647163731819816e-13 + x2 * (-2.8114572543455206e-15))))))))) if abs(x) < 0.75 else ((x - s) / (x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def cosc2_v(x, s, c):
+    """cosc2 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.0001."""
+    x2 = x * x
+    return (0.5 + x2 * (-0.041666666666666664 + x2 * (0.001388888888888889 + x2 * (-2.48015873015873e-05)))) if abs(x) < 0.0001 else ((s / x) * (s / x) / (1.0 + c) if c > 0.0 else (1.0 - c) / (x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def dsinc_v(x, s, c):
+    """dsinc without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.75."""
+    x2 = x * x
+    return (x * (0.3333333333333333 + x2 * (-0.03333333333333333 + x2 * (0.0011904761904761906 + x2 * (-2.2045855379188714e-05 + x2 * (2.505210838544172e-07 + x2 * (-1.9270852604185937e-09 + x2 * (1.0706029224547743e-11 + x2 * (-4.498331606952833e-14))))))))) if abs(x) < 0.75 else ((s - x * c) / (x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def halfcot_v(x, s, c):
+    """halfcot without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.0001."""
+    x2 = x * x
+    return (1.0 + x2 * (-0.08333333333333333 + x2 * (-0.001388888888888889 + x2 * (-3.306878306878307e-05)))) if abs(x) < 0.0001 else (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def halfcot1_v(x, s, c):
+    """halfcot1 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 1.5."""
+    x2 = x * x
+    return (x * (0.08333333333333333 + x2 * (0.001388888888888889 + x2 * (3.306878306878307e-05 + x2 * (8.267195767195768e-07 + x2 * (2.08767569878681e-08 + x2 * (5.284190138687493e-10 + x2 * (1.3382536530684679e-11 + x2 * (3.3896802963225827e-13 + x2 * (8.586062056277845e-15 + x2 * (2.174868698558062e-16 + x2 * (5.5090028283602295e-18 + x2 * (1.3954464685812522e-19 + x2 * (3.534707039629467e-21 + x2 * (8.953517427037546e-23 + x2 * (2.267952452337683e-24)))))))))))))))) if abs(x) < 1.5 else ((1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / x)

@@ -16,6 +16,7 @@ from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
 from .printer import HEADER, render_module
+from .soa import VECTOR_NAMES, vector_helpers_source
 
 __all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
 
@@ -38,7 +39,7 @@ def _horner(coeffs, var="x2"):
 def render_special() -> str:
     out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/lie/special.py")]
     out.append("import math\n\nimport numba as nb\n")
-    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "gain_damping"]
+    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "gain_damping"] + VECTOR_NAMES
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
     for f in ANGLE_FUNCTIONS:
         coeffs = taylor_coefficients(f)
@@ -81,10 +82,12 @@ def render_special() -> str:
         "        return 1.0\n"
         "    return math.pi / m\n"
     )
+    out.append(vector_helpers_source())
     return "".join(out)
 
 
 IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle  # noqa: F401"]
+IMPORTS.append("from .special import " + ", ".join(VECTOR_NAMES) + "  # noqa: F401")  # SIMD kernels (codegen/soa.py)
 
 
 def _fitting(model, measurements):

@@ -11,7 +11,8 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   ``common_to_state``, ``common_jacobian``, ``world_velocity``, ``world_velocities``, ``tangent_error``;
 * the paper's quantities: ``motion_omega`` (Ω), ``calC`` (𝒞), ``transition`` (F), ``process_noise`` (Q),
   ``calH_<meas>`` (ℋ);
-* the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), safeguards
+* the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
+  kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
@@ -193,11 +194,11 @@ def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
-        predict(s, p, dts[k], {qargs})
         if {nan_test}:
+            predict(s, p, dts[k], {qargs})
             out_nis[k] = np.nan
         else:
-            out_nis[k] = update_{meas}(s, p, {zargs}, {rargs})
+            out_nis[k] = step_{meas}(s, p, dts[k], {qargs}, {zargs}, {rargs})
         physical_into(s, out_x[k])
         if keep_p:
             for i in range({npk}):
@@ -260,7 +261,7 @@ def world_velocities(X, out):
 
 
 # --------------------------------------------------------------------------- one model
-def _measurement_kernels(model, meas, P, pin, sin_):
+def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     m = meas.m
     z = meas.z_symbols
     noise = meas.noise_symbols
@@ -306,7 +307,16 @@ def _measurement_kernels(model, meas, P, pin, sin_):
         rargs=_args("r", len(meas.noise_names)), nan_test=nan_test,
     ))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
-    return [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
+    kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
+    if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
+        from .fused import fused_step_kernel
+
+        from .soa import soa_measurement_kernels
+
+        step = fused_step_kernel(model, meas, P, pin, sin_, predict_parts, sp.Symbol("dt", positive=True))
+        kernels.insert(2, step)
+        kernels.extend(soa_measurement_kernels(model, meas, step))  # SIMD across trajectories (derive/codegen/soa.py)
+    return kernels
 
 
 def model_kernels(model, measurements: dict) -> list:
@@ -359,8 +369,11 @@ def model_kernels(model, measurements: dict) -> list:
         epilogue=["limit_angle_variance(p)"] if periodic else [], fastmath=True,
     ))
     for meas in measurements.values():
-        ks.extend(_measurement_kernels(model, meas, P, pin, sin_))
+        ks.extend(_measurement_kernels(model, meas, P, pin, sin_, (stages, outs, Pn)))
     ks.extend(pd_check_kernels(n))
+    from .soa import soa_model_kernels
+
+    ks.extend(soa_model_kernels(model, ks[2]))  # covariance_is_pd_lane, physical_lane (ks[2] = physical_into)
     # ---- exact motion for simulation
     nn = sp.symbols(f"n0:{len(model.noise_stds())}", real=True)
     new = {i: e for i, e in enumerate(model.internal_of(model.propagated(nn).applyfunc(sub)))}

@@ -23,7 +23,7 @@ import sympy as sp
 
 from ..lie.special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
 
-__all__ = ["Kernel", "Printer", "render_kernel", "render_module", "HEADER"]
+__all__ = ["Kernel", "RawStage", "Printer", "render_kernel", "render_module", "HEADER"]
 
 HEADER = '''"""{title}
 
@@ -120,6 +120,17 @@ class Printer:
 
 
 @dataclass
+class RawStage:
+    """Literal source lines between two stages (e.g. a safeguard that branches), printed as they are.
+
+    ``uses``: the symbols the lines read or rewrite (kept alive by dead-code pruning).
+    """
+
+    lines: list[str]
+    uses: tuple = ()
+
+
+@dataclass
 class Kernel:
     """One generated function.
 
@@ -151,11 +162,15 @@ def _prune_dead(stages, outputs, ret):
         needed |= set(re.findall(r"[A-Za-z_]\w*", ret))
     kept = []
     for st in reversed(stages):
+        if isinstance(st, RawStage):
+            needed |= {u.name for u in st.uses}
+            kept.append(st)
+            continue
         keep = [(s, e) for s, e in st if getattr(s, "name", s) in needed]
         for _, e in keep:
             needed |= {x.name for x in sp.sympify(e).free_symbols}
         kept.append(keep)
-    return [st for st in reversed(kept) if st]
+    return [st for st in reversed(kept) if isinstance(st, RawStage) or st]
 
 
 def _sort_key(e):
@@ -177,14 +192,15 @@ def _safe(name: str) -> str:
 
 def render_kernel(k: Kernel) -> str:
     subs = k.substitutions
-    stages = [[(s, sp.sympify(e).subs(subs)) for s, e in st] for st in k.stages]
+    stages = [st if isinstance(st, RawStage) else [(s, sp.sympify(e).subs(subs)) for s, e in st] for st in k.stages]
     outputs = [(t, sp.sympify(e).subs(subs)) for t, e in k.outputs]
     if k.skip_zero_outputs:
         outputs = [(t, e) for t, e in outputs if e != 0]
     stages = _prune_dead(stages, outputs, k.ret)
 
-    all_exprs = [e for st in stages for _, e in st] + [e for _, e in outputs]
+    all_exprs = [e for st in stages if not isinstance(st, RawStage) for _, e in st] + [e for _, e in outputs]
     used = set().union(*[sp.sympify(e).free_symbols for e in all_exprs]) if all_exprs else set()
+    used |= {u for st in stages if isinstance(st, RawStage) for u in st.uses}
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
@@ -251,7 +267,10 @@ def render_kernel(k: Kernel) -> str:
             body.append(f"{tcode} = {pr(e)}")
 
     for st in stages:
-        emit_stage(st, False)
+        if isinstance(st, RawStage):
+            body.extend(st.lines)
+        else:
+            emit_stage(st, False)
     body.extend(k.prologue)
     if outputs:
         emit_stage(outputs, True)

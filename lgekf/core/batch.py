@@ -11,12 +11,29 @@ from .registry import get_model
 from .rts import forward_store, smooth_stored
 from .validate import as_float_array, positive_vector, spd_matrix
 
-__all__ = ["filter_batch", "step_lengths", "SERIAL_STEPS"]
+__all__ = ["filter_batch", "step_lengths", "batch_kernel", "SOA_MIN_BATCH", "SERIAL_STEPS"]
 
 # batches of at most this many trajectory-steps run through the serial ``run_one`` kernel trajectory by
 # trajectory (the same numbers): below it numba's threads cost more than they save, and a command that
 # only filters small batches (the study: 100 x 100 per call) never compiles the parallel kernel (~1 s a model)
 SERIAL_STEPS = 1 << 15
+
+
+#: from this many trajectories on, filter_batch runs the SIMD kernel run_batch_soa_<meas> (trajectories in the vector
+#: lanes, blocks of 64; derive/codegen/soa.py; ~3.5× faster per trajectory-step than the scalar batch here); below,
+#: the scalar run_batch_<meas> (prange over trajectories).  The SIMD kernel costs ~15 s of compilation per model and
+#: measurement on its first use (cached after), which only a large batch repays: the Monte Carlo study's 100
+#: trajectories per point stay on the scalar kernel, so a first ``lgekf study`` does not compile it
+SOA_MIN_BATCH = 1000
+
+
+def batch_kernel(spec, measurement: str, B: int):
+    """The loop filter_batch runs for ``B`` trajectories: ``run_batch_soa_<meas>`` where generated and
+    B ≥ SOA_MIN_BATCH, else ``run_batch_<meas>``; both take the same arguments and agree to 1e-12."""
+    soa = getattr(spec.kernels, f"run_batch_soa_{measurement}", None)
+    if soa is not None and B >= SOA_MIN_BATCH:
+        return soa
+    return getattr(spec.kernels, f"run_batch_{measurement}")
 
 
 def step_lengths(dt, B: int, K: int) -> np.ndarray:
@@ -74,6 +91,11 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
         return the smoothed states (B, K, n) (and, with ``return_cov``, their covariances (B, K, n, n)),
         after the filter's outputs. Missed detections (NaN rows) are smoothed like any other step.
 
+    Notes
+    -----
+    From ``SOA_MIN_BATCH`` (1000) trajectories on the SIMD kernel runs (trajectories in the vector lanes), below it the
+    scalar prange kernel (``batch_kernel``); the two agree to 1e-12.
+
     Returns
     -------
     states : ndarray, (B, K, n)
@@ -104,7 +126,7 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
         for b in range(B):
             one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
     else:
-        getattr(spec.kernels, f"run_batch_{measurement}")(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+        batch_kernel(spec, measurement, B)(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
     result = [out_x]
     if return_cov:
         result.append(unpack(out_p, n))

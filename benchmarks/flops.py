@@ -1,0 +1,161 @@
+"""Floating-point operations per filter step, counted from the generated source (``ast``), not measured.
+
+    from flops import step_flops
+    step_flops("se2se2", "position")   # -> Counts(flops=..., div=..., sincos=..., sqrt=..., atan2=...)
+
+What is counted: the fused step a loop runs per trajectory-step — ``step_<meas>`` when the module has one, else
+``predict`` + ``update_<meas>`` — with every function it calls expanded (the angle functions of
+generated/special.py, the safeguards), plus the output conversion ``physical_into``.
+
+* ``flops``: every +, −, ×, ÷ of a binary operation (an FMA the compiler forms from a × and a + counts 2);
+  unary minus, comparisons, abs/max/min are not counted;  ``x**k`` counts k − 1 multiplications;
+* ``div``: the divisions among them (also in ``flops``);
+* ``sincos``: sin and cos of one argument count as one sincos; ``sqrt``, ``atan2`` separately (not in ``flops``);
+* branches: a two-way branch (Taylor series vs closed form, ``if ...: return``, ``a if c else b``) counts its more
+  expensive side; an ``if`` without ``else`` whose body does not return is a safeguard for irregular steps (angle-variance
+  cap, gain damping beyond π, PD repair) and counts as not taken (its test is counted).
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+__all__ = ["Counts", "step_flops", "function_flops"]
+
+
+@dataclass
+class Counts:
+    """Operation counts of one code path."""
+
+    flops: int = 0
+    div: int = 0
+    sincos: int = 0
+    sqrt: int = 0
+    atan2: int = 0
+    _trig: set = field(default_factory=set, repr=False)
+
+    def __add__(self, o: "Counts") -> "Counts":
+        return Counts(self.flops + o.flops, self.div + o.div, self.sincos + o.sincos, self.sqrt + o.sqrt,
+                      self.atan2 + o.atan2)
+
+    def key(self):
+        return (self.flops + 20 * (self.sincos + self.sqrt + self.atan2), self.div)
+
+
+def _max(a: Counts, b: Counts) -> Counts:
+    return a if a.key() >= b.key() else b
+
+
+class _Counter:
+    def __init__(self, modules):
+        self.defs = {}
+        for mod in modules:
+            tree = ast.parse(Path(mod.__file__).read_text())
+            for node in tree.body:
+                if isinstance(node, ast.FunctionDef):
+                    self.defs.setdefault(node.name, node)
+
+    # -------------------------------------------------------------- expressions
+    def expr(self, e, trig) -> Counts:
+        c = Counts()
+        if isinstance(e, ast.BinOp):
+            c = self.expr(e.left, trig) + self.expr(e.right, trig)
+            if isinstance(e.op, ast.Pow) and isinstance(e.right, ast.Constant):
+                c.flops += int(e.right.value) - 1
+            else:
+                c.flops += 1
+                if isinstance(e.op, ast.Div):
+                    c.div += 1
+            return c
+        if isinstance(e, ast.UnaryOp):
+            return self.expr(e.operand, trig)
+        if isinstance(e, ast.BoolOp):
+            for v in e.values:
+                c = c + self.expr(v, trig)
+            return c
+        if isinstance(e, ast.Compare):
+            c = self.expr(e.left, trig)
+            for v in e.comparators:
+                c = c + self.expr(v, trig)
+            return c
+        if isinstance(e, ast.IfExp):
+            return self.expr(e.test, trig) + _max(self.expr(e.body, trig), self.expr(e.orelse, trig))
+        if isinstance(e, ast.Call):
+            for a in e.args:
+                c = c + self.expr(a, trig)
+            f = e.func
+            name = f.attr if isinstance(f, ast.Attribute) else getattr(f, "id", "")
+            if name in ("sin", "cos"):
+                arg = ast.dump(e.args[0])
+                if arg not in trig:
+                    trig.add(arg)
+                    c.sincos += 1
+            elif name == "sqrt":
+                c.sqrt += 1
+            elif name == "atan2":
+                c.atan2 += 1
+            elif name in self.defs:
+                c = c + self.function(name)
+            return c
+        if isinstance(e, (ast.Tuple, ast.List)):
+            for v in e.elts:
+                c = c + self.expr(v, trig)
+        if isinstance(e, ast.Subscript):
+            return self.expr(e.slice, trig) if not isinstance(e.slice, (ast.Constant, ast.Tuple)) else c
+        return c
+
+    # -------------------------------------------------------------- statements
+    def block(self, stmts, trig) -> Counts:
+        c = Counts()
+        for i, s in enumerate(stmts):
+            if isinstance(s, ast.If):
+                c = c + self.expr(s.test, trig)
+                returns = any(isinstance(b, ast.Return) for b in s.body)
+                if returns and not s.orelse:
+                    return c + _max(self.block(s.body, set(trig)), self.block(stmts[i + 1:], trig))
+                if s.orelse:
+                    c = c + _max(self.block(s.body, set(trig)), self.block(s.orelse, set(trig)))
+                # if without else: a safeguard of irregular steps, not taken
+                continue
+            if isinstance(s, (ast.Assign, ast.AugAssign, ast.AnnAssign)):
+                c = c + self.expr(s.value, trig)
+                if isinstance(s, ast.AugAssign):
+                    c.flops += 1
+                    c.div += isinstance(s.op, ast.Div)
+            elif isinstance(s, ast.Return) and s.value is not None:
+                c = c + self.expr(s.value, trig)
+            elif isinstance(s, ast.Expr):
+                c = c + self.expr(s.value, trig)
+            elif isinstance(s, ast.For):
+                raise ValueError("loops are not counted: count a straight-line kernel")
+        return c
+
+    def function(self, name) -> Counts:
+        return self.block(self.defs[name].body, set())
+
+
+def function_flops(module, names) -> Counts:
+    """Summed counts of the functions ``names`` of a generated module (calls expanded, see the module docstring)."""
+    special = importlib.import_module(module.__name__.rsplit(".", 1)[0] + ".special")
+    cnt = _Counter([module, special])
+    total = Counts()
+    for n in names:
+        total = total + cnt.function(n)
+    return total
+
+
+def step_names(module, meas: str) -> list[str]:
+    """The kernels one trajectory-step runs: the fused ``step_<meas>`` if generated, else predict + update."""
+    names = [f"step_{meas}"] if hasattr(module, f"step_{meas}") else ["predict", f"update_{meas}"]
+    return names + ["physical_into"]
+
+
+def step_flops(model: str, meas: str = "position") -> Counts:
+    """Counts of one predict + update + output step of a registry model (see the module docstring)."""
+    from lgekf.core.registry import get_model
+
+    mod = get_model(model).kernels
+    return function_flops(mod, step_names(mod, meas))
