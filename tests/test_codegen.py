@@ -33,16 +33,47 @@ def _run(code_or_args, env_extra=None, timeout=600):
 
 
 # ------------------------------------------------------------------ freshness
-@pytest.mark.slow
-def test_derive_check_passes():
-    """`lgekf derive --check`: generated/ equals a fresh regeneration (exit status 0)."""
-    r = _run(["-m", "lgekf.derive.codegen.build", "--check"])
-    assert r.returncode == 0, f"generated/ is stale or check failed:\n{r.stdout[-5000:]}\n{r.stderr[-3000:]}"
-    assert "up to date" in r.stdout
+_RENDER = textwrap.dedent(
+    """
+    import json, sys
+    from lgekf.derive.codegen.build import render_all
+    files = render_all(jobs=int(sys.argv[2]))
+    with open(sys.argv[1], "w", encoding="utf-8") as fh:
+        json.dump(files, fh)
+    """
+)
+
+
+def _render_in_subprocess(out: Path, seed: str, jobs: int) -> subprocess.Popen:
+    """render_all in a fresh interpreter with PYTHONHASHSEED=seed, written to ``out`` as JSON."""
+    return subprocess.Popen([sys.executable, "-c", _RENDER, str(out), str(jobs)], env={**os.environ, "PYTHONHASHSEED": seed},
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+@pytest.fixture(scope="module")
+def rendered(tmp_path_factory):
+    """One regeneration of every generated module (PYTHONHASHSEED=0), shared by the freshness tests: the
+    SymPy derivation is the suite's most expensive step (the CLI's own `lgekf derive --check` runs in
+    tests/test_readme_commands.py)."""
+    out = tmp_path_factory.mktemp("render") / "render_0.json"
+    p = _render_in_subprocess(out, "0", 2)
+    _, err = p.communicate(timeout=900)
+    assert p.returncode == 0, err[-3000:]
+    return json.loads(out.read_text(encoding="utf-8"))
 
 
 @pytest.mark.slow
-def test_check_detects_stale_and_extra_files(tmp_path):
+def test_derive_check_passes(rendered):
+    """generated/ equals a fresh regeneration (what `lgekf derive --check` tests; exit status 0)."""
+    from lgekf.derive.codegen.build import check
+
+    buf = io.StringIO()
+    assert check(GENERATED, stream=buf, rendered=rendered) == 0, f"generated/ is stale:\n{buf.getvalue()[-5000:]}"
+    assert "up to date" in buf.getvalue()
+
+
+@pytest.mark.slow
+def test_check_detects_stale_and_extra_files(tmp_path, rendered):
     from lgekf.derive.codegen.build import check
 
     for f in GENERATED_FILES:
@@ -55,7 +86,7 @@ def test_check_detects_stale_and_extra_files(tmp_path):
     (tmp_path / "leftover.py").write_text("# an old module derive no longer produces\n", encoding="utf-8")
 
     buf = io.StringIO()
-    rc = check(tmp_path, stream=buf)
+    rc = check(tmp_path, stream=buf, rendered=rendered)
     out = buf.getvalue()
     assert rc == 1, out
     assert "generated/se2.py (checked in)" in out and "generated/se2.py (regenerated)" in out, out
@@ -87,37 +118,16 @@ def test_generated_files_cover_the_models():
 
 
 @pytest.mark.slow
-def test_render_all_is_deterministic(tmp_path):
-    """render_all(jobs=1) in two interpreters with different hash seeds: byte-identical output."""
-    script = textwrap.dedent(
-        """
-        import json, sys
-        from lgekf.derive.codegen.build import render_all
-        files = render_all(jobs=1)
-        with open(sys.argv[1], "w", encoding="utf-8") as fh:
-            json.dump(files, fh)
-        """
-    )
-    procs, outs = [], []
-    env = dict(os.environ)
-    for seed in ("0", "4242"):
-        out = tmp_path / f"render_{seed}.json"
-        outs.append(out)
-        procs.append(
-            subprocess.Popen(
-                [sys.executable, "-c", script, str(out)],
-                env={**env, "PYTHONHASHSEED": seed},
-                stdout=subprocess.PIPE,
-                stderr=subprocess.PIPE,
-                text=True,
-            )
-        )
-    for p in procs:
-        _, err = p.communicate(timeout=900)
-        assert p.returncode == 0, err[-3000:]
-    a, b = (json.loads(o.read_text(encoding="utf-8")) for o in outs)
-    assert sorted(a) == sorted(b)
-    differ = [name for name in a if a[name].encode() != b[name].encode()]
+def test_render_all_is_deterministic(tmp_path, rendered):
+    """render_all in two interpreters with different hash seeds (0: the shared render; 4242, one process
+    here): byte-identical output."""
+    out = tmp_path / "render_4242.json"
+    p = _render_in_subprocess(out, "4242", 2)
+    _, err = p.communicate(timeout=900)
+    assert p.returncode == 0, err[-3000:]
+    b = json.loads(out.read_text(encoding="utf-8"))
+    assert sorted(rendered) == sorted(b)
+    differ = [name for name in rendered if rendered[name].encode() != b[name].encode()]
     assert not differ, f"render_all output depends on PYTHONHASHSEED: {differ}"
 
 

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import difflib
 import sys
-import tempfile
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -198,25 +197,28 @@ def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2, models_dir=None, meas
     return list(files)
 
 
-def check(outdir: Path = GENERATED_DIR, jobs: int = 2, stream=sys.stdout) -> int:
-    """0 if ``outdir`` equals a fresh regeneration, else 1 with a unified diff."""
-    with tempfile.TemporaryDirectory() as tmp:
-        write_all(Path(tmp), jobs)
-        stale = 0
-        for f in sorted(Path(tmp).iterdir()):
-            new = f.read_text(encoding="utf-8")
-            old_path = Path(outdir) / f.name
-            old = old_path.read_text(encoding="utf-8") if old_path.exists() else ""
-            if new != old:
-                stale += 1
-                diff = difflib.unified_diff(
-                    old.splitlines(True), new.splitlines(True), f"generated/{f.name} (checked in)", f"generated/{f.name} (regenerated)"
-                )
-                stream.writelines(list(diff)[:200])
-        extra = {p.name for p in Path(outdir).glob("*.py")} - {p.name for p in Path(tmp).iterdir()}
-        for name in sorted(extra):
+def check(outdir: Path = GENERATED_DIR, jobs: int = 2, stream=sys.stdout, rendered: dict[str, str] | None = None) -> int:
+    """0 if ``outdir`` equals a fresh regeneration, else 1 with a unified diff.
+
+    ``rendered``: the regeneration ({file name: text}, as ``render_all`` returns it) when the caller has it
+    already (the tests render once per session); None renders now.
+    """
+    files = render_all(jobs) if rendered is None else rendered
+    stale = 0
+    for name in sorted(files):
+        new = files[name]
+        old_path = Path(outdir) / name
+        old = old_path.read_text(encoding="utf-8") if old_path.exists() else ""
+        if new != old:
             stale += 1
-            stream.write(f"generated/{name}: not produced by derive (stale file)\n")
+            diff = difflib.unified_diff(
+                old.splitlines(True), new.splitlines(True), f"generated/{name} (checked in)", f"generated/{name} (regenerated)"
+            )
+            stream.writelines(list(diff)[:200])
+    extra = {p.name for p in Path(outdir).glob("*.py")} - set(files)
+    for name in sorted(extra):
+        stale += 1
+        stream.write(f"generated/{name}: not produced by derive (stale file)\n")
     if stale:
         stream.write(f"generated/ is stale: {stale} file(s) differ; run `lgekf derive`\n")
         return 1
