@@ -33,9 +33,10 @@ from dataclasses import dataclass, field
 
 __all__ = ["Job", "warm_up", "study_jobs", "track_jobs", "tiny_track", "model_compile_seconds", "compile_estimate", "worker_count"]
 
-# compile seconds per byte of a generated model module (its predict/update/run kernels), measured on a
-# 2-core x86-64 machine: about 5 s for se2se2 (51 kB) in the study, 2 s for cv (17 kB)
-SECONDS_PER_BYTE = 1.0e-4
+# compile seconds per byte of a generated model module (only its predict/update/run kernels compile in a
+# study, but they grow with the module), measured on the 2-core x86-64 machine on 2026-11-24 (load < 1): the
+# first `lgekf study` took 12.8 s cold with two workers and 19.3 s with one (1.7 s warm), for 481 kB of modules
+SECONDS_PER_BYTE = 0.4e-4
 # numba's own start in a worker and the kernels every job shares (special functions, helpers)
 WORKER_OVERHEAD_SECONDS = 1.5
 
