@@ -26,7 +26,10 @@ def cmd_track_imm(a) -> int:
     unsupported = [(a.accel_std, "--accel-std (give the modes' noise in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
                    (a.measure != "position", "--measure pose"), (a.full_cov, "--full-cov"),
                    (getattr(a, "workers", None) or getattr(a, "scheduler", None), "--workers/--scheduler"),
-                   (a.use_heading, "--use-heading")]
+                   (a.use_heading, "--use-heading"),
+                   (getattr(a, "tune", False), "--tune (learn one model's noise with --model MODEL --tune and give it to its mode "
+                                               "in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
+                   (getattr(a, "smooth", False), "--smooth (there is no IMM smoother yet; --smooth works with a single model)")]
     for given, name in unsupported:
         if given:
             raise ValueError(f"--model imm: {name} is not supported")
