@@ -26,7 +26,7 @@ import itertools
 
 import sympy as sp
 
-from .lie.special import gain_damping, wrap
+from .lie.special import angle_sum, gain_damping, wrap
 
 __all__ = ["packed_index", "sym_cov", "symbolize", "kalman_gain", "lg_predict", "lg_update", "LEGEND"]
 
@@ -114,10 +114,11 @@ def _changed(model, exprs):
 
 
 def angle_sums(model, e):
-    """atan2(sin(a + b), cos(a + b)) → wrap(a + b) where a is a carried angle that the internal state stores.
+    """atan2(sin(a + b), cos(a + b)) → angle_sum(a + b, sin(a + b)) where a is a carried angle that the internal state stores.
 
     A new stored angle is read off a composed rotation R_a R_b as atan2 of its entries (``internal_of``); the angle
-    of R_a R_b is a + b modulo 2π, so wrap(a + b) is the same number up to rounding, without atan2.  Applies only
+    of R_a R_b is a + b modulo 2π, so wrap(a + b) is the same number up to rounding, without atan2; at the branch
+    cut ±π its sign is taken from the composed sine, as atan2 would (``derive.lie.special.angle_sum``).  Applies only
     when the atan2 arguments simplify to sin/cos of one sum and every carried angle in it is stored.
     """
     e = sp.sympify(e)
@@ -135,7 +136,7 @@ def angle_sums(model, e):
         if isinstance(Y, sp.sin) and isinstance(X, sp.cos) and Y.args == X.args:
             u = Y.args[0]
             if (u.free_symbols & carried) and (u.free_symbols & carried) <= stored:
-                rep[at] = wrap(u)
+                rep[at] = angle_sum(u, at.args[0])
     return e.xreplace(rep)
 
 

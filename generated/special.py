@@ -8,7 +8,7 @@ import math
 
 import numba as nb
 
-__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
+__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'wrap_angle_sum', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'wrap_sum_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
 
 
 @nb.njit(cache=True)
@@ -114,6 +114,16 @@ def wrap_angle(a):
 
 
 @nb.njit(cache=True)
+def wrap_angle_sum(a, y):
+    """wrap(a) with the sign of y beyond ±π/2: the angle of a composed rotation whose sine is y, as atan2 of
+    its entries would give it, also at the branch cut (see derive.lie.special.angle_sum)."""
+    w = wrap_angle(a)
+    if abs(w) > 0.5 * math.pi:
+        return math.copysign(abs(w), y)
+    return w
+
+
+@nb.njit(cache=True)
 def gain_damping(a, b):
     """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]
     (see derive.special.gain_damping)."""
@@ -181,6 +191,13 @@ def wrap_v(a):
     r = a - 6.283185307179586 * math.floor((a + 3.141592653589793) / 6.283185307179586)
     r = r + 6.283185307179586 if r <= -3.141592653589793 else r
     return a if (a > -3.141592653589793) & (a <= 3.141592653589793) else r
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def wrap_sum_v(a, y):
+    """wrap_angle_sum without branches: wrap(a), with the sign of y beyond ±π/2."""
+    w = wrap_v(a)
+    return math.copysign(abs(w), y) if abs(w) > 1.5707963267948966 else w
 
 
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")

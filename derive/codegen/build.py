@@ -38,7 +38,7 @@ def _horner(coeffs, var="x2"):
 def render_special() -> str:
     out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/lie/special.py")]
     out.append("import math\n\nimport numba as nb\n")
-    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "gain_damping"] + VECTOR_NAMES
+    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "wrap_angle_sum", "gain_damping"] + VECTOR_NAMES
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
     for f in ANGLE_FUNCTIONS:
         coeffs = taylor_coefficients(f)
@@ -73,6 +73,15 @@ def render_special() -> str:
         "    return r\n"
     )
     out.append(
+        "\n\n@nb.njit(cache=True)\ndef wrap_angle_sum(a, y):\n"
+        '    """wrap(a) with the sign of y beyond ±π/2: the angle of a composed rotation whose sine is y, as atan2 of\n'
+        '    its entries would give it, also at the branch cut (see derive.lie.special.angle_sum)."""\n'
+        "    w = wrap_angle(a)\n"
+        "    if abs(w) > 0.5 * math.pi:\n"
+        "        return math.copysign(abs(w), y)\n"
+        "    return w\n"
+    )
+    out.append(
         "\n\n@nb.njit(cache=True)\ndef gain_damping(a, b):\n"
         '    """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]\n'
         '    (see derive.special.gain_damping)."""\n'
@@ -85,7 +94,7 @@ def render_special() -> str:
     return "".join(out)
 
 
-IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle  # noqa: F401"]
+IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401"]
 IMPORTS.append("from .special import " + ", ".join(VECTOR_NAMES) + "  # noqa: F401")  # SIMD kernels (codegen/soa.py)
 
 

@@ -34,7 +34,7 @@ from .printer import render_kernel
 __all__ = ["LANES", "vector_helpers_source", "VECTOR_NAMES", "soa_model_kernels", "soa_measurement_kernels"]
 
 LANES = 64
-VECTOR_NAMES = ["sin_v", "cos_v", "atan2_v", "wrap_v", "gain_damping_v"] + [f"{f.__name__}_v" for f in ANGLE_FUNCTIONS]
+VECTOR_NAMES = ["sin_v", "cos_v", "atan2_v", "wrap_v", "wrap_sum_v", "gain_damping_v"] + [f"{f.__name__}_v" for f in ANGLE_FUNCTIONS]
 _DECO = '@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")'
 
 
@@ -115,6 +115,13 @@ def wrap_v(a):
 
 
 {_DECO}
+def wrap_sum_v(a, y):
+    """wrap_angle_sum without branches: wrap(a), with the sign of y beyond ±π/2."""
+    w = wrap_v(a)
+    return math.copysign(abs(w), y) if abs(w) > 1.5707963267948966 else w
+
+
+{_DECO}
 def gain_damping_v(a, b):
     """min(1, π / max(|a|, |b|)) without branches (gain_damping)."""
     m = max(abs(a), abs(b))
@@ -138,7 +145,7 @@ def {f.__name__}_v(x, s, c):
 
 
 _REPL = [(r"\bmath\.sin\(", "sin_v("), (r"\bmath\.cos\(", "cos_v("), (r"\bmath\.atan2\(", "atan2_v("),
-         (r"\bwrap_angle\(", "wrap_v("), (r"\bgain_damping\(", "gain_damping_v(")]
+         (r"\bwrap_angle\(", "wrap_v("), (r"\bwrap_angle_sum\(", "wrap_sum_v("), (r"\bgain_damping\(", "gain_damping_v(")]
 _REPL += [(rf"\b{f.__name__}\(", f"{f.__name__}_v(") for f in ANGLE_FUNCTIONS]
 
 

@@ -218,6 +218,21 @@ class wrap(sp.Function):
     numba_name = "wrap_angle"
 
 
+class angle_sum(sp.Function):
+    """angle_sum(a, y) = wrap(a), the stored angle of a composed rotation whose sine is y (printed as the
+    generated helper ``wrap_angle_sum``).
+
+    The fused steps store the angle of R_a R_b as wrap(a + b) instead of atan2(sin, cos) of the composed
+    entries (``derive.algebra.angle_sums``); the two agree to rounding except at the branch cut, where
+    wrap gives +π and atan2 gives -π for a sine of -0.0 or -1e-16.  Beyond |wrap(a)| > π/2 the sign of the
+    angle is that of its sine, so copysign(|wrap(a)|, y) is exactly what atan2 returns there: the stored
+    angle stays the log of the stored rotation (an ω of -π stays -π through an update with ν = 0).
+    """
+
+    nargs = 2
+    numba_name = "wrap_angle_sum"
+
+
 class gain_damping(sp.Function):
     """gain_damping(a, b) = min(1, π / max(|a|, |b|)): the factor that keeps the rotation angles a, b of
     a Kalman correction ν within [-π, π] (printed as the generated helper ``gain_damping``).
@@ -233,7 +248,7 @@ class gain_damping(sp.Function):
     numba_name = "gain_damping"
 
 
-RUNTIME_FUNCTIONS = (wrap, gain_damping)
+RUNTIME_FUNCTIONS = (wrap, angle_sum, gain_damping)
 
 
 def to_exact(expr):
