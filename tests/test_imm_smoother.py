@@ -108,3 +108,59 @@ def test_smoother_beats_filter_on_a_manoeuvre():
           f"starts: filtered {lag_f:.2f}, smoothed {lag_s:.2f}")
     assert acc_s > acc_f + 0.02
     assert lag_s < lag_f
+
+
+def _turning_csv(path, n_obj=3, K=60, seed=0):
+    rng = np.random.default_rng(seed)
+    rows = ["t,x,y,id"]
+    for obj in range(n_obj):
+        th = x = y = 0.0
+        for k in range(K):
+            th += (0.0 if k < K // 3 or k > 2 * K // 3 else 0.8) * 0.1
+            x += 5 * 0.1 * np.cos(th)
+            y += 5 * 0.1 * np.sin(th)
+            rows.append(f"{k * 0.1:.1f},{x + 0.2 * rng.standard_normal():.4f},{y + 0.2 * rng.standard_normal():.4f},o{obj}")
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_track_imm_tune_smooth_cli(tmp_path, capsys):
+    import csv
+
+    from lgekf.apps.track_imm import COMMON_NAMES
+    from lgekf.cli import main
+
+    src = _turning_csv(tmp_path / "data.csv")
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), "--model", "imm", "--tune", "--smooth", "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    line = next(ln for ln in err.splitlines() if "imm --tune: learned" in ln)
+    assert "cv accel-std" in line and "se2r3 accel-std" in line and "meas-std" in line
+    # the modes ran with the learned noise: se2r3:calm = 0.2 x and se2r3:manoeuvre = 4 x the learned se2r3 noise
+    learned = [float(v) for v in line.split("se2r3 accel-std ")[1].split(" ")[0].split(",")]
+    calm = [float(v) for v in line.split("se2r3:calm (")[1].split(")")[0].split(",")]
+    man = [float(v) for v in line.split("se2r3:manoeuvre (")[1].split(")")[0].split(",")]
+    np.testing.assert_allclose(calm, [0.2 * v for v in learned], rtol=2e-2)
+    np.testing.assert_allclose(man, [4 * v for v in learned], rtol=2e-2)
+    rows = list(csv.DictReader(out.open()))
+    assert len(rows) == 180
+    cols = list(rows[0])
+    want = ([f"smooth_{c}" for c in COMMON_NAMES] + [f"smooth_std_{c}" for c in COMMON_NAMES]
+            + ["smooth_mu_cv", "smooth_mu_se2r3_calm", "smooth_mu_se2r3_manoeuvre"])
+    assert cols[cols.index("flag") + 1:] == want
+    vals = np.array([[float(r[c]) for c in want] for r in rows])
+    assert np.all(np.isfinite(vals))
+    np.testing.assert_allclose(vals[:, -3:].sum(axis=1), 1.0, atol=1e-9)
+    # a quiet run prints nothing about the tuning; explicit numbers stay as given
+    assert main(["track", str(src), "--model", "imm", "--tune", "--imm-modes", "cv,se2r3:0.3/0.3/0.6", "--quiet",
+                 "-o", str(out)]) == 0
+    assert capsys.readouterr().err == ""
+
+
+def test_with_learned_noise_factors():
+    from lgekf.apps.track_imm import ImmTrackOptions
+
+    o = ImmTrackOptions("cv,se2r3:calm,se2r3:manoeuvre,se2r3:1/2/3")
+    assert o.tunable_models() == ["cv", "se2r3"]
+    o.with_learned_noise({"cv": (0.7,), "se2r3": (1.0, 2.0, 5.0)})
+    assert [m.accel_std for m in o.modes] == [(0.7,), (0.2, 0.4, 1.0), (4.0, 8.0, 20.0), (1.0, 2.0, 3.0)]
