@@ -44,8 +44,8 @@ def test_track_imm_writes_mode_probabilities(tmp_path, capsys):
     (["--model", "imm", "--imm-modes", "se2r3:1/2"], "expected 3 non-negative numbers"),
     (["--model", "cv", "--imm-modes", "cv"], "only with --model imm"),
     (["--model", "imm", "--accel-std", "1,1,1"], "--accel-std"),
-    (["--model", "imm", "--tune"], "--model imm: --tune (learn one model's noise"),
-    (["--model", "imm", "--smooth"], "--model imm: --smooth (there is no IMM smoother yet"),
+    (["--model", "imm", "--tune", "--imm-modes", "cv:0.5,se2r3:1/1/2"], "--tune: every mode's noise is given as numbers"),
+    (["--model", "imm", "--smooth", "--full-cov"], "--model imm: --full-cov is not supported"),
 ])
 def test_track_imm_bad_options(tmp_path, capsys, args, msg):
     src = _tracks_csv(tmp_path / "in.csv", n_obj=1, K=10)

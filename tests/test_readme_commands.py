@@ -110,6 +110,11 @@ README_TO_RUN = {
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
+    # as above: too few stand-in detections to learn SE(2)xR3's noise; CV modes tuned, the default modes smoothed
+    # (tests/test_imm_smoother.py runs the command as written on a larger file)
+    "lgekf track data.csv --model imm --tune --smooth -o out.csv": [
+        "lgekf track detections.csv --model imm --imm-modes cv,cv:calm,cv:manoeuvre --tune --smooth -o out.csv",
+        "lgekf track detections.csv --model imm --smooth -o out.csv"],
     "lgekf evaluate ethucy kitti cyclists dut --imm": None,
     "lgekf evaluate ethucy kitti cyclists dut --imm --tune": None,
 }

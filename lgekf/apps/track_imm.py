@@ -8,17 +8,29 @@ process noise is given in ``--imm-modes`` (named levels × the model's default n
 divergence monitor (the ``flag`` column is 0). Output columns: id, t, the combined estimate in the common
 coordinates x, y, theta, vx, vy (body frame), omega, their stds, mu_<mode> (mode probabilities), and
 origin_lat, origin_lon for lat/lon input, flag.
+
+``--tune`` (:func:`tune_imm`): every distinct model of the modes whose noise is not given as numbers is fitted by
+maximum likelihood on the file's own tracks (``lgekf.apps.smooth_track.tune_models``, as ``lgekf track MODEL
+--tune``); a plain mode ``MODEL`` runs with the learned process noise, ``MODEL:calm`` / ``MODEL:manoeuvre`` with
+the learned noise × their level factor (0.2, 4; ``lgekf.estimators.imm.NOISE_LEVELS``), ``MODEL:a/b/c`` keeps
+its numbers. The measurement std is ``--meas-std`` when given (then held fixed in the fits), else the one
+learned by the fit with the highest log-likelihood.
+
+``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm_smoother``) combined estimate
+``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
+``smooth_mu_<mode>``; rows 0 and 1 of an object (its two-point start) repeat the filter columns, as for
+``lgekf track --smooth``.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..estimators.imm import DEFAULT_SWITCH, imm_batch, parse_modes, transition_matrix
+from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, imm_batch, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes
 from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, initial_common
 
-__all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm", "imm_track_common",
+__all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm", "imm_track_common", "tune_imm",
            "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
@@ -38,26 +50,56 @@ class ImmTrackOptions:
         self.modes = parse_modes(self.modes_text)
         transition_matrix(len(self.modes), self.switch)
 
+    def tunable_models(self) -> list:
+        """The distinct models of modes whose noise is a named level or the default (not given as numbers)."""
+        out = []
+        for m in self.modes:
+            if (not m.label or m.label in NOISE_LEVELS) and m.model not in out:
+                out.append(m.model)
+        return out
 
-def imm_columns(opts: ImmTrackOptions, origin: bool = False) -> list:
-    """The header of an IMM track file (module docstring); mode columns are named mu_<model>[_<label>]."""
+    def with_learned_noise(self, learned: dict) -> None:
+        """Replace the noise of the modes of the models in ``learned`` ({model: accel_std}): a plain mode gets
+        the learned values, a named level the learned values × its factor; modes given as numbers are kept."""
+        modes = []
+        for m in self.modes:
+            if m.model in learned and (not m.label or m.label in NOISE_LEVELS):
+                f = NOISE_LEVELS[m.label] if m.label else 1.0
+                modes.append(Mode(m.model, tuple(f * float(v) for v in learned[m.model]), m.label))
+            else:
+                modes.append(m)
+        self.modes = modes
+
+
+def _mode_columns(opts: ImmTrackOptions, prefix: str) -> list:
     mode_cols = []
     for m in opts.modes:
-        base = f"mu_{m.name.replace(':', '_').replace('/', '-')}"
+        base = f"{prefix}{m.name.replace(':', '_').replace('/', '-')}"
         name, k = base, 2
         while name in mode_cols:
             name, k = f"{base}_{k}", k + 1
         mode_cols.append(name)
-    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *mode_cols]
-            + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"])
+    return mode_cols
 
 
-def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions):
+def imm_columns(opts: ImmTrackOptions, origin: bool = False, smooth: bool = False) -> list:
+    """The header of an IMM track file (module docstring); mode columns are named mu_<model>[_<label>]
+    (the labels of modes given as numbers: their labels at the time of parsing, i.e. the numbers)."""
+    smoothed = ([*(f"smooth_{s}" for s in COMMON_NAMES), *(f"smooth_std_{s}" for s in COMMON_NAMES),
+                 *_mode_columns(opts, "smooth_mu_")] if smooth else [])
+    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *_mode_columns(opts, "mu_")]
+            + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"] + smoothed)
+
+
+def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions, smooth: bool = False):
     """Every object's IMM estimate in the common coordinates: c (N, 6), their stds (N, 6), mode probabilities (N, M).
 
     Row 0 of an object is the two-point estimate at its first measurement's position, row 1 the two-point estimate
     (uniform mode probabilities), rows >= 2 the IMM's posteriors (as ``lgekf.apps.track.track_arrays``).
+    With ``smooth`` also the smoothed (c, stds, mode probabilities) (rows 0, 1: the filter's), a 6-tuple.
     """
+    if smooth:
+        return _imm_track_smoothed(t, z, starts, meas_std, omega_std, opts)
     t = np.ascontiguousarray(t, float)
     z = np.ascontiguousarray(z, float)[:, :2]
     N, M = t.size, len(opts.modes)
@@ -80,27 +122,87 @@ def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmT
     return c, sd, mu
 
 
+def _imm_track_smoothed(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions):
+    from ..estimators.imm_smoother import imm_smooth_batch
+
+    t = np.ascontiguousarray(t, float)
+    z = np.ascontiguousarray(z, float)[:, :2]
+    N, M = t.size, len(opts.modes)
+    c, sd, mu = np.full((N, 6), np.nan), np.full((N, 6), np.nan), np.full((N, M), 1.0 / M)
+    c0, var0 = initial_common(t, z, starts, meas_std, omega_std)
+    for b in range(len(starts) - 1):
+        a, e = int(starts[b]), int(starts[b + 1])
+        c[a] = c0[b]
+        c[a, :2] = z[a]
+        c[a + 1] = c0[b]
+        sd[a:a + 2] = np.sqrt(var0[b])
+    cs, sds, mus = c.copy(), sd.copy(), mu.copy()
+    for b in range(len(starts) - 1):
+        a, e = int(starts[b]), int(starts[b + 1])
+        if e - a > 2:
+            out = imm_smooth_batch(z[None, a + 2:e], opts.modes, opts.switch, dt=np.diff(t[a + 1:e])[None],
+                                   meas_std=meas_std, x0=c0[b], P0=np.diag(var0[b]))
+            for dst, dsd, dmu, key in ((c, sd, mu, "filt"), (cs, sds, mus, "smooth")):
+                dst[a + 2:e] = out[f"c_{key}"][0]
+                dsd[a + 2:e] = np.sqrt(np.maximum(np.diagonal(out[f"P_{key}"][0], axis1=1, axis2=2), 0.0))
+                dmu[a + 2:e] = out[f"mu_{key}"][0]
+    return c, sd, mu, cs, sds, mus
+
+
+def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float):
+    """Learn the noise of ``opts``'s tunable models from the file (module docstring) and set the modes' noise.
+
+    Returns
+    -------
+    r : float
+        The measurement std to run with.
+    fits : dict
+        {model: NoiseFit}.
+    summary : str
+        One line: what was learned and used.
+    """
+    from .smooth_track import tune_models
+
+    models = opts.tunable_models()
+    if not models:
+        raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
+    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std)
+    opts.with_learned_noise({m: f.accel_std for m, f in fits.items()})
+    best = max(fits, key=lambda m: fits[m].loglik)
+    r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
+    learned = "; ".join(f"{m} accel-std {','.join(f'{v:.3g}' for v in f.accel_std)} (log-likelihood {f.loglik:.6g}"
+                        + (f"; not identified: {', '.join(f.problems)}" if f.problems else "") + ")" for m, f in fits.items())
+    src = "given" if meas_std is not None else f"learned with {best}, the best log-likelihood"
+    modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
+    return r, fits, f"imm --tune: learned {learned}; meas-std {r:.3g} m ({src}); modes {modes}"
+
+
 def common_world_velocity(c: np.ndarray) -> np.ndarray:
     """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
     ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
     return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
 
 
-def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_std: float, digits: int, bar=None) -> int:
-    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) and write the CSV to ``fh``."""
+def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_std: float, digits: int, bar=None,
+              smooth: bool = False) -> int:
+    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) and write the CSV to ``fh``
+    (with ``smooth``: the smoothed columns after ``flag``, module docstring)."""
     origin = meas.origin is not None
-    fh.write((",".join(imm_columns(opts, origin)) + "\n").encode())
+    fh.write((",".join(imm_columns(opts, origin, smooth)) + "\n").encode())
     lab = label_bytes(meas.labels)
     M = len(opts.modes)
     t = np.ascontiguousarray(meas.t, float)
-    c, sd, mu = imm_track_common(t, meas.z, starts, meas_std, omega_std, opts)
-    ncol = 12 + M + (2 if origin else 0) + 1
+    res = imm_track_common(t, meas.z, starts, meas_std, omega_std, opts, smooth)
+    c, sd, mu = res[:3]
+    ncol = 12 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
     parts = [c, sd, mu]
     if origin:
         col_digits[12 + M:12 + M + 2] = 17
         parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
     parts.append(np.zeros((t.size, 1)))
+    if smooth:
+        parts.extend(res[3:])
     fh.write(format_rows(lab, meas.obj, t, np.hstack(parts), col_digits))
     if bar is not None:
         bar.update(t.size)

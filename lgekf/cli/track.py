@@ -108,7 +108,8 @@ def track_parser():
                     help="learn each model's process noise (and the measurement std unless --meas-std) by maximum likelihood "
                          "on the file's own tracks, print it with 95 %% intervals to stderr, then track with it")
     ap.add_argument("--smooth", action="store_true",
-                    help="also write RTS-smoothed columns smooth_<state>, smooth_std_<state> (after flag)")
+                    help="also write RTS-smoothed columns smooth_<state>, smooth_std_<state> (after flag; "
+                         "with --model imm also smooth_mu_<mode>)")
     add_cluster_options(ap)
     ap.add_argument("--partition-rows", type=int, default=PARTITION_ROWS, metavar="N",
                     help=f"with --workers/--scheduler: rows per partition (whole objects; default {PARTITION_ROWS})")

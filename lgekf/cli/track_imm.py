@@ -5,7 +5,7 @@ from __future__ import annotations
 import sys
 import time
 
-from ..apps.track_imm import ImmTrackOptions, imm_meas_std, write_imm
+from ..apps.track_imm import ImmTrackOptions, imm_meas_std, tune_imm, write_imm
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import to_seconds, unit_warnings
@@ -26,10 +26,7 @@ def cmd_track_imm(a) -> int:
     unsupported = [(a.accel_std, "--accel-std (give the modes' noise in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
                    (a.measure != "position", "--measure pose"), (a.full_cov, "--full-cov"),
                    (getattr(a, "workers", None) or getattr(a, "scheduler", None), "--workers/--scheduler"),
-                   (a.use_heading, "--use-heading"),
-                   (getattr(a, "tune", False), "--tune (learn one model's noise with --model MODEL --tune and give it to its mode "
-                                               "in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
-                   (getattr(a, "smooth", False), "--smooth (there is no IMM smoother yet; --smooth works with a single model)")]
+                   (a.use_heading, "--use-heading")]
     for given, name in unsupported:
         if given:
             raise ValueError(f"--model imm: {name} is not supported")
@@ -43,12 +40,18 @@ def cmd_track_imm(a) -> int:
     meas.t = to_seconds(meas.t, a.time_unit)
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
-    r, source = imm_meas_std(meas, starts, a.meas_std)
+    if getattr(a, "tune", False):
+        r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std)
+        say(summary)
+        source = "tuned"
+    else:
+        r, source = imm_meas_std(meas, starts, a.meas_std)
     modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
-    say(f"imm: modes {modes}; switch {opts.switch:g} per step; meas-std {r:.3g} m ({source})")
+    say(f"imm: modes {modes}; switch {opts.switch:g} per step; meas-std {r:.3g} m ({source})"
+        + ("; smoothed columns after flag" if getattr(a, "smooth", False) else ""))
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
-        write_imm(fh, meas, starts, opts, r, a.omega_std, a.precision)
+        write_imm(fh, meas, starts, opts, r, a.omega_std, a.precision, smooth=getattr(a, "smooth", False))
         files.commit()
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout
