@@ -55,9 +55,16 @@ def calH_pose(model, s):
 
 
 @nb.njit(cache=True)
-def meas_cov_pose(r):
-    """R of the pose measurement from its noise stds r."""
-    return np.array([[r[0]**2, 0.0, 0.0], [0.0, r[1]**2, 0.0], [0.0, 0.0, r[2]**2]], dtype=np.float64)
+def innovation_logdet_pose(model, s, p, r):
+    if model == 0:
+        return ctrv.innovation_logdet_pose(s, p, r[0], r[1], r[2])
+    elif model == 2:
+        return se2r2.innovation_logdet_pose(s, p, r[0], r[1], r[2])
+    elif model == 3:
+        return se2r3.innovation_logdet_pose(s, p, r[0], r[1], r[2])
+    elif model == 4:
+        return se2se2.innovation_logdet_pose(s, p, r[0], r[1], r[2])
+    raise ValueError('dispatch: model index out of range')
 
 
 @nb.njit(cache=True)
@@ -91,9 +98,18 @@ def calH_position(model, s):
 
 
 @nb.njit(cache=True)
-def meas_cov_position(r):
-    """R of the position measurement from its noise stds r."""
-    return np.array([[r[0]**2, 0.0], [0.0, r[0]**2]], dtype=np.float64)
+def innovation_logdet_position(model, s, p, r):
+    if model == 0:
+        return ctrv.innovation_logdet_position(s, p, r[0])
+    elif model == 1:
+        return cv.innovation_logdet_position(s, p, r[0])
+    elif model == 2:
+        return se2r2.innovation_logdet_position(s, p, r[0])
+    elif model == 3:
+        return se2r3.innovation_logdet_position(s, p, r[0])
+    elif model == 4:
+        return se2se2.innovation_logdet_position(s, p, r[0])
+    raise ValueError('dispatch: model index out of range')
 
 
 @nb.njit(cache=True)

@@ -8,14 +8,13 @@ Per model (appended to ``generated/<model>.py``):
 * ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0.
 
 ``generated/dispatch.py``: ``predict(model, s, p, dt, q)``, ``update_<meas>(model, s, p, z, r)``,
-``calH_<meas>(model, s)``, ``meas_cov_<meas>(r)`` (R of the measurement), and the conversions and group
+``calH_<meas>(model, s)``, ``innovation_logdet_<meas>(model, s, p, r)`` (log det S), and the conversions and group
 operations, each an ``if model == i`` chain over the registry (sorted names), so that one compiled numba loop
 runs any mixture of models. The chain is generated, so no runtime code knows a model by name.
 """
 
 from __future__ import annotations
 
-import sympy as sp
 
 from .emitter import matrix_kernel, vec_inputs, vector_kernel
 from dataclasses import replace
@@ -92,11 +91,9 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
                             True))
         funcs.append(_chain(f"calH_{mname}", "s", names,
                             lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}(s)", True))
-        R = meas.R().subs({sym: sp.Symbol(f"r[{i}]") for i, sym in enumerate(meas.noise_symbols)}, simultaneous=True)
-        rows = ", ".join("[" + ", ".join(str(R[i, j]) if R[i, j] != 0 else "0.0" for j in range(meas.m)) + "]"
-                         for i in range(meas.m))
-        funcs.append(f"@nb.njit(cache=True)\ndef meas_cov_{mname}(r):\n    \"\"\"R of the {mname} measurement from its noise stds r.\"\"\"\n"
-                     f"    return np.array([{rows}], dtype=np.float64)\n")
+        funcs.append(_chain(f"innovation_logdet_{mname}", "s, p, r", names,
+                            lambda n, mname=mname, k=k: None if mname not in fits[n] else
+                            f"{n}.innovation_logdet_{mname}(s, p, {', '.join(f'r[{i}]' for i in range(k))})", True))
     for fname, params in [("state_from_physical", "x"), ("state_to_physical", "s"), ("physical_to_common", "x"),
                           ("physical_to_common_jacobian", "x"), ("common_to_state", "c"), ("common_jacobian", "c"),
                           ("common_missing", ""), ("between", "s, t"), ("right_jacobian_inv", "eps"),

@@ -260,11 +260,9 @@ class IMM:
         self._m = get_model(self._set.modes[0].model).measurement(measurement).dim
         self.nis = np.full(self._set.M, np.nan)
         self.log_likelihood = float("nan")
-        from ..generated import dispatch
         from .imm_kernels import workspace
 
         self._ws = workspace(self._set.M)
-        self._R = dispatch.meas_cov_pose(self._set.r) if self._set.meas_pose else dispatch.meas_cov_position(self._set.r)
 
     @property
     def modes(self) -> list:
@@ -290,7 +288,7 @@ class IMM:
 
         z = as_float_array("z", z, (self._m,))
         s = self._set
-        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, self._R, z, s.meas_pose, self.nis,
+        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas_pose, self.nis,
                                                self._ws))
         return self.log_likelihood
 

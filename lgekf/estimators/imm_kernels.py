@@ -31,8 +31,8 @@ A heading read off a velocity (CV) is singular at speed 0: the Jacobians are tak
 (``SPEED_FLOOR``) and the std of the common θ is capped at π (congruence scaling, as the filters'
 ``limit_angle_variance``), so a stopped CV mode hands on "heading unknown", not an infinite variance.
 
-Likelihood of mode j: N(ν; 0, S) with S = ℋ P ℋᵀ + R (generated ``calH_<meas>``, ``meas_cov_<meas>``) from
-the predicted P, and νᵀS⁻¹ν the NIS returned by the fused update; a missed detection (NaN in z) leaves the
+Likelihood of mode j: N(ν; 0, S) with log det S, S = ℋ P ℋᵀ + R, from the generated ``innovation_logdet_<meas>`` at
+the predicted state, and νᵀS⁻¹ν the NIS returned by the fused update; a missed detection (NaN in z) leaves the
 predicted probabilities. The combined output is in the common coordinates (the same reduction with the
 mode probabilities, on the group when ``same_group``, then converted to c).
 """
@@ -52,7 +52,6 @@ __all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batc
 LOG_2PI = math.log(2.0 * math.pi)
 NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
 LMAX = int(np.max(D.N_INTERNAL))
-MMAX = 3  # the largest measurement dimension (pose)
 NW = max(NMAX, 6)  # square scratch matrices hold n × n and n × 6 blocks
 SPEED_FLOOR = 1e-9  # m/s: conversions' Jacobians are evaluated at least this far from speed 0
 
@@ -61,7 +60,7 @@ SPEED_FLOOR = 1e-9  # m/s: conversions' Jacobians are evaluated at least this fa
 def workspace(M):
     """The scratch arrays of one IMM of M modes (no allocation inside the step loop)."""
     return (np.empty(NMAX), np.empty(NMAX), np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW),
-            np.empty((MMAX, NMAX)), np.empty((MMAX, MMAX)), np.empty((MMAX, MMAX)), np.empty(NMAX), np.empty(6),
+            np.empty(NMAX), np.empty(6),
             np.empty((6, NMAX)), np.empty((M, 6)), np.empty((M, 6, 6)), np.empty((M, 6)), np.empty((M, M)),
             np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
             np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
@@ -149,7 +148,7 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance; ws: ``workspace(M)``.
     Returns the iterations used.
     """
-    return _mix_on_group(model, S, Pp, w, s_out, P_out, ws[0], ws[1], ws[2], ws[4], ws[25])
+    return _mix_on_group(model, S, Pp, w, s_out, P_out, ws[0], ws[1], ws[2], ws[4], ws[22])
 
 
 @nb.njit(cache=True)
@@ -292,9 +291,9 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
 @nb.njit(cache=True)
 def _all_common(models, S, Pp, ws):
     """Every mode in the common coordinates: ws C (M, 6), PC (M, 6, 6), miss (M, 6)."""
-    C, PC, miss = ws[11], ws[12], ws[13]
+    C, PC, miss = ws[8], ws[9], ws[10]
     for i in range(models.shape[0]):
-        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[8], ws[10], ws[4], ws[25], ws[9])
+        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[5], ws[7], ws[4], ws[22], ws[6])
         mi = D.common_missing(models[i])
         for a in range(6):
             miss[i, a] = mi[a]
@@ -305,20 +304,20 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
     M = models.shape[0]
     if M == 1:
-        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[8], ws[10], ws[4], ws[25], ws[9])
+        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
         return
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
-        s, P, p = ws[17], ws[3], ws[18]
-        _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[25])
+        s, P, p = ws[14], ws[3], ws[15]
+        _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[22])
         pack_from(P, n, p)
-        _to_common(model, s, p, c_out, P_out, ws[8], ws[10], ws[4], ws[25], ws[9])
+        _to_common(model, s, p, c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
         return
     _all_common(models, S, Pp, ws)
-    C, PC, miss = ws[11], ws[12], ws[13]
+    C, PC, miss = ws[8], ws[9], ws[10]
     # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
-    fill_c, fill_P = ws[21], ws[22]
+    fill_c, fill_P = ws[18], ws[19]
     for a in range(6):
         fill_c[a] = 0.0
         for b in range(6):
@@ -336,7 +335,7 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
                 if miss[i, a] < 0.5:
                     e = C[i, a] - fill_c[a]
                     fill_P[a, a] += mu[i] / tot * (PC[i, a, a] + e * e)
-    mix_common(C, PC, miss, mu, fill_c, fill_P, c_out, P_out, ws[23], ws[24], ws[9])
+    mix_common(C, PC, miss, mu, fill_c, fill_P, c_out, P_out, ws[20], ws[21], ws[6])
 
 
 @nb.njit(cache=True)
@@ -349,25 +348,25 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
             cbar[j] += PI[i, j] * mu[i]
     if M == 1:
         return
-    W = ws[14]  # W[j, i] = w_{i|j}
+    W = ws[11]  # W[j, i] = w_{i|j}
     for j in range(M):
         for i in range(M):
             W[j, i] = PI[i, j] * mu[i] / cbar[j] if cbar[j] > 0.0 else (1.0 if i == j else 0.0)
-    S_new, P_new, P = ws[15], ws[16], ws[3]
+    S_new, P_new, P = ws[12], ws[13], ws[3]
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
         for j in range(M):
-            _mix_on_group(model, S, Pp, W[j], S_new[j], P, ws[0], ws[1], ws[2], ws[4], ws[25])
+            _mix_on_group(model, S, Pp, W[j], S_new[j], P, ws[0], ws[1], ws[2], ws[4], ws[22])
             pack_from(P, n, P_new[j])
     else:
         _all_common(models, S, Pp, ws)
-        C, PC, miss = ws[11], ws[12], ws[13]
-        c, Pc, x, J, row = ws[21], ws[22], ws[8], ws[10], ws[4]
-        # (ws[10] is 6 × NMAX; J of common_jacobian is n × 6: use ws[2] (NMAX × NMAX) instead)
+        C, PC, miss = ws[8], ws[9], ws[10]
+        c, Pc, x, J, row = ws[18], ws[19], ws[5], ws[7], ws[4]
+        # (ws[7] is 6 × NMAX; J of common_jacobian is n × 6: use ws[2] (NMAX × NMAX) instead)
         J = ws[2]
         for j in range(M):
-            mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[23], ws[24], ws[9])
+            mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[20], ws[21], ws[6])
             model = models[j]
             n = D.N_TANGENT[model]
             D.common_to_state_into(model, c, x)
@@ -387,40 +386,12 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
 
 
 @nb.njit(cache=True)
-def _log_det_S(model, s, p, R, meas_pose, H, Sm, L, row, Pd):
-    """log det S of the innovation covariance S = ℋ P ℋᵀ + R of mode (model, s, p) (Cholesky; -inf if not PD);
-    H, Sm, L, row, Pd scratch."""
-    n = D.N_TANGENT[model]
-    if meas_pose:
-        D.calH_pose_into(model, s, H)
-    else:
-        D.calH_position_into(model, s, H)
-    m = R.shape[0]
-    _congruence_packed(H, m, p, n, row, Pd, Sm, 1.0, False)
-    out = 0.0
-    for j in range(m):
-        dd = Sm[j, j] + R[j, j]
-        for k in range(j):
-            dd -= L[j, k] * L[j, k]
-        if not dd > 0.0:
-            return -np.inf
-        L[j, j] = math.sqrt(dd)
-        out += math.log(dd)
-        for i in range(j + 1, m):
-            v = Sm[i, j] + R[i, j]
-            for k in range(j):
-                v -= L[i, k] * L[j, k]
-            L[i, j] = v / L[j, j]
-    return out
-
-
-@nb.njit(cache=True)
 def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws):
     """Mixing, then every mode's prediction by dt, in place; mu becomes the predicted probabilities Σ_i PI_ij μ_i.
 
     Q (M, q): the modes' process-noise stds; ws: ``workspace(M)``.
     """
-    cbar = ws[19]
+    cbar = ws[16]
     _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
     for j in range(models.shape[0]):
         D.predict(models[j], S[j], Pp[j], dt, Q[j])
@@ -428,11 +399,11 @@ def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws):
 
 
 @nb.njit(cache=True)
-def imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws):
+def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
     """Every mode's update with z, in place, and μ_j ∝ μ_j N(ν_j; 0, S_j); a NaN in z: nothing changes.
 
-    R: the measurement covariance (``meas_cov_<meas>(r)``); nis_out (M,) receives each mode's NIS (NaN when
-    missed). Returns the log-likelihood log Σ_j μ_j N_j.
+    r: the measurement noise stds; nis_out (M,) receives each mode's NIS (NaN when missed). Returns the
+    log-likelihood log Σ_j μ_j N_j.
     """
     M = models.shape[0]
     for k in range(z.shape[0]):
@@ -440,13 +411,14 @@ def imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws):
             for j in range(M):
                 nis_out[j] = np.nan
             return np.nan
-    loglik, prior = ws[20], ws[19]
-    m = R.shape[0]
+    loglik, prior = ws[17], ws[16]
+    m = z.shape[0]
     for j in range(M):
-        logdet = _log_det_S(models[j], S[j], Pp[j], R, meas_pose, ws[5], ws[6], ws[7], ws[4], ws[25])
-        if meas_pose:
+        if meas_pose:  # log det S at the predicted state (generated innovation_logdet_<meas>), then the update
+            logdet = D.innovation_logdet_pose(models[j], S[j], Pp[j], r)
             nis = D.update_pose(models[j], S[j], Pp[j], z, r)
         else:
+            logdet = D.innovation_logdet_position(models[j], S[j], Pp[j], r)
             nis = D.update_position(models[j], S[j], Pp[j], z, r)
         nis_out[j] = nis
         loglik[j] = -0.5 * (nis + logdet + m * LOG_2PI)
@@ -470,10 +442,10 @@ def imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws):
 
 
 @nb.njit(cache=True)
-def imm_step(models, S, Pp, mu, PI, Q, r, R, z, dt, same_group, meas_pose, nis_out, ws):
+def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out, ws):
     """One IMM cycle in place: imm_predict by dt, then imm_update with z (NaN: missed detection)."""
     imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws)
-    return imm_update(models, S, Pp, mu, r, R, z, meas_pose, nis_out, ws)
+    return imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws)
 
 
 @nb.njit(cache=True)
@@ -487,11 +459,10 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
     M = models.shape[0]
     keep_P = out_P.shape[0] == K
     ws = workspace(M)
-    R = D.meas_cov_pose(r) if meas_pose else D.meas_cov_position(r)
     Pc = np.empty((6, 6))
     nis = np.empty(M)
     for k in range(K):
-        imm_step(models, S, Pp, mu, PI, Q, r, R, z[k], dts[k], same_group, meas_pose, nis, ws)
+        imm_step(models, S, Pp, mu, PI, Q, r, z[k], dts[k], same_group, meas_pose, nis, ws)
         combined_common(models, S, Pp, mu, same_group, out_c[k], Pc, ws)
         if keep_P:
             out_P[k, :, :] = Pc

@@ -64,7 +64,6 @@ def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose
     K = z.shape[0]
     M = models.shape[0]
     ws = workspace(M)
-    R = D.meas_cov_pose(r) if meas_pose else D.meas_cov_position(r)
     nis = np.empty(M)
     cbar = np.empty(M)
     for k in range(K):
@@ -77,7 +76,7 @@ def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose
         S_pred[k] = S
         P_pred[k] = Pp
         mu_pred[k] = mu
-        imm_update(models, S, Pp, mu, r, R, z[k], meas_pose, nis, ws)
+        imm_update(models, S, Pp, mu, r, z[k], meas_pose, nis, ws)
         S_filt[k] = S
         P_filt[k] = Pp
         mu_filt[k] = mu
