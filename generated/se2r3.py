@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -3080,18 +3080,22 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     G = np.empty((n, n))
     T = np.empty((n, n))
     D = np.empty((n, n))
+    F = np.empty((n, n))
+    Ji = np.empty((n, n))
+    Phi = np.empty((n, n))
+    d = np.empty(n)
     dl = np.empty(n)
     for i in range(7):
         s_sm[K - 1, i] = s_filt[K - 1, i]
     for i in range(21):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        F = transition(s_filt[k], dts[k + 1])
+        transition_into(s_filt[k], dts[k + 1], F)
         unpack_into(p_filt[k], Pf)
         unpack_into(p_pred[k + 1], Pp)
         unpack_into(p_sm[k + 1], Ps)
-        d = between(s_pred[k + 1], s_sm[k + 1])
-        Ji = right_jacobian_inv(d)
+        between_into(s_pred[k + 1], s_sm[k + 1], d)
+        right_jacobian_inv_into(d, Ji)
         # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
         for i in range(n):
             for j in range(n):
@@ -3160,7 +3164,7 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
         for i in range(7):
             s_sm[k, i] = s_filt[k, i]
         retract(s_sm[k], dl)
-        Phi = right_jacobian(dl)
+        right_jacobian_into(dl, Phi)
         for i in range(n):
             for j in range(n):
                 acc = 0.0
@@ -3256,6 +3260,44 @@ def state_from_physical_into(xp, out):
     out[4] = v_x
     out[5] = v_y
     out[6] = omega
+
+
+@nb.njit(cache=True)
+def transition_into(s, dt, out):
+    """F = Ad_G(exp(-Ω)) + Φ_G(Ω) 𝒞 (paper, below eq:pred_cov).
+    Written into ``out`` (no allocation).
+    """
+    v_x = s[4]
+    v_y = s[5]
+    omega = s[6]
+    out[:, :] = 0.0
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = dt*v_y
+    out[0, 0] = _cos__a0
+    out[0, 1] = _sin__a0
+    out[0, 2] = _t0*v_x - _t1*v_y
+    out[0, 3] = _t1
+    out[0, 4] = _t0
+    out[0, 5] = dt*(-(_cosc2__a0*_t2) + _sinc2__a0*dt*v_x)
+    out[1, 0] = -_sin__a0
+    out[1, 1] = _cos__a0
+    out[1, 2] = _t0*v_y + _t1*v_x
+    out[1, 3] = -_t0
+    out[1, 4] = _t1
+    out[1, 5] = dt*(_cosc2__a0*dt*v_x + _sinc2__a0*_t2)
+    out[2, 2] = 1.0
+    out[2, 5] = dt
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
 
 
 @nb.njit(cache=True)
@@ -3357,6 +3399,34 @@ def between_into(s, t, out):
     out[3] = t_v_x - v_x
     out[4] = t_v_y - v_y
     out[5] = -omega + t_omega
+
+
+@nb.njit(cache=True)
+def right_jacobian_into(eps, out):
+    """Φ_G(ε) of the whole group (block-diagonal over its factors, I for Rⁿ);
+    log(exp(-ε) exp(ε + δ)) ≈ Φ_G(ε) δ.
+    Written into ``out`` (no allocation).
+    """
+    eps0 = eps[0]
+    eps1 = eps[1]
+    eps2 = eps[2]
+    out[:, :] = 0.0
+    _sin_eps2 = math.sin(eps2)
+    _cos_eps2 = math.cos(eps2)
+    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
+    _cosc2_eps2 = cosc2(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
+    _sinc2_eps2 = sinc2(eps2, _sin_eps2, _cos_eps2)
+    out[0, 0] = _sinc_eps2
+    out[0, 1] = _cosc_eps2
+    out[0, 2] = -(_cosc2_eps2*eps1) + _sinc2_eps2*eps0
+    out[1, 0] = -_cosc_eps2
+    out[1, 1] = _sinc_eps2
+    out[1, 2] = _cosc2_eps2*eps0 + _sinc2_eps2*eps1
+    out[2, 2] = 1.0
+    out[3, 3] = 1.0
+    out[4, 4] = 1.0
+    out[5, 5] = 1.0
 
 
 @nb.njit(cache=True)

@@ -24,9 +24,10 @@ from .printer import HEADER, Kernel
 __all__ = ["common_readout_kernels", "render_dispatch"]
 
 
-#: kernels that also get an allocation-free ``<name>_into(..., out)`` variant (the IMM's inner loop)
-INTO = ("state_from_physical", "between", "right_jacobian_inv", "calH_position", "calH_pose", "common_to_state",
-        "common_jacobian", "physical_to_common", "physical_to_common_jacobian")
+#: kernels that also get an allocation-free ``<name>_into(..., out)`` variant (the IMM's inner loop, the smoother's
+#: backward step)
+INTO = ("state_from_physical", "between", "right_jacobian", "right_jacobian_inv", "transition", "calH_position",
+        "calH_pose", "common_to_state", "common_jacobian", "physical_to_common", "physical_to_common_jacobian")
 
 
 def into_variant(k: Kernel) -> Kernel:

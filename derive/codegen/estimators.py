@@ -113,18 +113,22 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     G = np.empty((n, n))
     T = np.empty((n, n))
     D = np.empty((n, n))
+    F = np.empty((n, n))
+    Ji = np.empty((n, n))
+    Phi = np.empty((n, n))
+    d = np.empty(n)
     dl = np.empty(n)
     for i in range({ni}):
         s_sm[K - 1, i] = s_filt[K - 1, i]
     for i in range({npk}):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        F = transition(s_filt[k], dts[k + 1])
+        transition_into(s_filt[k], dts[k + 1], F)
         unpack_into(p_filt[k], Pf)
         unpack_into(p_pred[k + 1], Pp)
         unpack_into(p_sm[k + 1], Ps)
-        d = between(s_pred[k + 1], s_sm[k + 1])
-        Ji = right_jacobian_inv(d)
+        between_into(s_pred[k + 1], s_sm[k + 1], d)
+        right_jacobian_inv_into(d, Ji)
         # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
         for i in range(n):
             for j in range(n):
@@ -193,7 +197,7 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
         for i in range({ni}):
             s_sm[k, i] = s_filt[k, i]
         retract(s_sm[k], dl)
-        Phi = right_jacobian(dl)
+        right_jacobian_into(dl, Phi)
         for i in range(n):
             for j in range(n):
                 acc = 0.0
