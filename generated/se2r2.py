@@ -2406,11 +2406,10 @@ def between(s, t):
     _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
     _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
     _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
-    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
-    _t3 = _t2/2.0
-    out[0] = _halfcot__a0*_t0 + _t1*_t3
-    out[1] = _halfcot__a0*_t1 - _t0*_t3
-    out[2] = _t2
+    _t2 = _a0/2.0
+    out[0] = _halfcot__a0*_t0 + _t1*_t2
+    out[1] = _halfcot__a0*_t1 - _t0*_t2
+    out[2] = _a0
     out[3] = t_v - v
     out[4] = -omega + t_omega
     return out
@@ -2991,11 +2990,10 @@ def between_into(s, t, out):
     _halfcot__a0 = halfcot(_a0, _sin__a0, _cos__a0)
     _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
     _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
-    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
-    _t3 = _t2/2.0
-    out[0] = _halfcot__a0*_t0 + _t1*_t3
-    out[1] = _halfcot__a0*_t1 - _t0*_t3
-    out[2] = _t2
+    _t2 = _a0/2.0
+    out[0] = _halfcot__a0*_t0 + _t1*_t2
+    out[1] = _halfcot__a0*_t1 - _t0*_t2
+    out[2] = _a0
     out[3] = t_v - v
     out[4] = -omega + t_omega
 

@@ -3100,18 +3100,16 @@ def between(s, t):
     _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
     _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
     _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
-    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
-    _t3 = _t2/2.0
-    _t4 = c_omega*t_v_x - c_omega*v_x + s_omega*t_v_y - s_omega*v_y
-    _t5 = c_omega*t_v_y - c_omega*v_y - s_omega*t_v_x + s_omega*v_x
-    _t6 = math.atan2(c_omega*t_s_omega - s_omega*t_c_omega, c_omega*t_c_omega + s_omega*t_s_omega)
-    _t7 = _t6/2.0
-    out[0] = _halfcot__a1*_t0 + _t1*_t3
-    out[1] = _halfcot__a1*_t1 - _t0*_t3
-    out[2] = _t2
-    out[3] = _halfcot__a0*_t4 + _t5*_t7
-    out[4] = _halfcot__a0*_t5 - _t4*_t7
-    out[5] = _t6
+    _t2 = _a1/2.0
+    _t3 = c_omega*t_v_x - c_omega*v_x + s_omega*t_v_y - s_omega*v_y
+    _t4 = c_omega*t_v_y - c_omega*v_y - s_omega*t_v_x + s_omega*v_x
+    _t5 = _a0/2.0
+    out[0] = _halfcot__a1*_t0 + _t1*_t2
+    out[1] = _halfcot__a1*_t1 - _t0*_t2
+    out[2] = _a1
+    out[3] = _halfcot__a0*_t3 + _t4*_t5
+    out[4] = _halfcot__a0*_t4 - _t3*_t5
+    out[5] = _a0
     return out
 
 
@@ -3745,18 +3743,16 @@ def between_into(s, t, out):
     _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
     _t0 = c_theta*t_x - c_theta*x + s_theta*t_y - s_theta*y
     _t1 = c_theta*t_y - c_theta*y - s_theta*t_x + s_theta*x
-    _t2 = math.atan2(c_theta*t_s_theta - s_theta*t_c_theta, c_theta*t_c_theta + s_theta*t_s_theta)
-    _t3 = _t2/2.0
-    _t4 = c_omega*t_v_x - c_omega*v_x + s_omega*t_v_y - s_omega*v_y
-    _t5 = c_omega*t_v_y - c_omega*v_y - s_omega*t_v_x + s_omega*v_x
-    _t6 = math.atan2(c_omega*t_s_omega - s_omega*t_c_omega, c_omega*t_c_omega + s_omega*t_s_omega)
-    _t7 = _t6/2.0
-    out[0] = _halfcot__a1*_t0 + _t1*_t3
-    out[1] = _halfcot__a1*_t1 - _t0*_t3
-    out[2] = _t2
-    out[3] = _halfcot__a0*_t4 + _t5*_t7
-    out[4] = _halfcot__a0*_t5 - _t4*_t7
-    out[5] = _t6
+    _t2 = _a1/2.0
+    _t3 = c_omega*t_v_x - c_omega*v_x + s_omega*t_v_y - s_omega*v_y
+    _t4 = c_omega*t_v_y - c_omega*v_y - s_omega*t_v_x + s_omega*v_x
+    _t5 = _a0/2.0
+    out[0] = _halfcot__a1*_t0 + _t1*_t2
+    out[1] = _halfcot__a1*_t1 - _t0*_t2
+    out[2] = _a1
+    out[3] = _halfcot__a0*_t3 + _t4*_t5
+    out[4] = _halfcot__a0*_t4 - _t3*_t5
+    out[5] = _a0
 
 
 @nb.njit(cache=True)

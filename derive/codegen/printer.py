@@ -219,6 +219,9 @@ def render_kernel(k: Kernel) -> str:
     # angles already evaluated in an earlier stage: arg -> (base, arg code, {emitted names}); a later
     # stage reuses their sin/cos/angle-function values instead of calling math.sin again
     seen_angles: dict = {}
+    # compound angle arguments held in ``_aK``: arg -> Symbol("_aK"), so that the stage's other uses of the
+    # argument (a bare atan2 beside halfcot(atan2(...)), say) read the variable instead of computing it again
+    arg_names: dict = {}
 
     def emit_stage(defs, is_output):
         exprs = [e for _, e in defs]
@@ -235,6 +238,7 @@ def render_kernel(k: Kernel) -> str:
                     angle_count[0] += 1
                     body.append(f"{base} = {pr(arg)}")
                     arg_code = base
+                    arg_names[arg] = sp.Symbol(base, real=True)
                 done = set()
                 seen_angles[arg] = (base, arg_code, done)
             s_sym, c_sym = sp.Symbol(f"_sin_{base}"), sp.Symbol(f"_cos_{base}")
@@ -258,7 +262,7 @@ def render_kernel(k: Kernel) -> str:
                         body.append(f"{fs.name} = {fname}({arg_code}, {s_sym.name}, {c_sym.name})")
                         done.add(fname)
                     repl[atom] = fs
-        exprs = [e.xreplace(repl) for e in exprs]
+        exprs = [e.xreplace(repl).xreplace(arg_names) for e in exprs]
         reps, reduced = sp.cse(exprs, symbols=tmp, order="canonical")
         for s, e in reps:
             body.append(f"{s.name} = {pr(e)}")
