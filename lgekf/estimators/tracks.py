@@ -1,8 +1,8 @@
 """Tracks as padded batches for the generated loops, and the two-point prior of each track.
 
 A *track* is one object's measurements: times t (K,) and measurements z (K, m). The estimators start each
-track from its first two measurements (the rule of ``lgekf.apps.track.two_point``, repeated here in the
-layer below the apps) and filter the rest.
+track from its first two measurements (``lgekf.core.initiation``, the rule of ``lgekf track``) and filter the
+rest.
 """
 
 from __future__ import annotations
@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
 from ..core.registry import ModelSpec
 
 __all__ = ["TrackBatch", "batch_tracks", "two_point_prior"]
@@ -80,60 +81,30 @@ def batch_tracks(tracks, m: int, dt: float | None = None, baseline: float = 0.0)
     return TrackBatch(zb, dts, lengths, z01, t01)
 
 
-def two_point_prior(spec: ModelSpec, batch: TrackBatch, angle_index: int | None = None, omega_std: float = 0.5,
+def two_point_prior(spec: ModelSpec, batch: TrackBatch, angle_index: int | None = None, omega_std: float = DEFAULT_OMEGA_STD,
                     heading_cap: float = math.pi):
     """The two-point start of every track as a function of the measurement std.
 
     Returns ``(x0 (B, n), prior)`` where ``prior(r, r_angle=None)`` gives P0 (B, n, n) for a position std r (and the
-    std of the measured heading when the measurement has one, entry ``angle_index`` of z): the estimate at the
-    second measurement, position z1 (variance r²), world velocity (z1 − z0)/Δ (variance σ_v² = 2r²/Δ² per
-    axis), heading atan2(v) with variance min(σ_v²/|v|², cap²) (or the measured heading), body velocity (|v|, 0)
-    with var v_x = σ_v², var v_y = max(σ_v² − |v|² var θ, (0.1 σ_v)²), ω = 0 with std ``omega_std``; converted
-    to the model by the generated ``common_to_state`` / ``common_jacobian`` (P0 = J P_c Jᵀ, angle variances
-    capped at π²) as ``lgekf.apps.track.two_point`` does.
+    std of the measured heading when the measurement has one, entry ``angle_index`` of z): the estimate at each
+    track's second measurement by the rule of ``lgekf track`` (``lgekf.core.initiation.two_point`` and
+    ``initial_estimates``: position z1, world velocity (z1 − z0)/Δ, heading atan2(v) or the measured one, ω = 0
+    with std ``omega_std``; P0 = J P_c Jᵀ through the generated ``common_jacobian``, angle variances capped at π²).
     """
-    k = spec.kernels
-    z0, z1 = batch.z01[:, 0], batch.z01[:, 1]
-    dt = batch.t01[:, 1] - batch.t01[:, 0]
-    v = (z1[:, :2] - z0[:, :2]) / dt[:, None]
-    speed = np.hypot(v[:, 0], v[:, 1])
-    B = len(dt)
-    c = np.zeros((B, 6))
-    c[:, :2] = z1[:, :2]
-    if angle_index is None:
-        c[:, 2] = np.where(speed > 0, np.arctan2(v[:, 1], v[:, 0]), 0.0)
-        c[:, 3] = speed
-    else:
-        h = z1[:, angle_index]
-        c[:, 2] = np.arctan2(np.sin(h), np.cos(h))
-        c[:, 3] = v[:, 0] * np.cos(h) + v[:, 1] * np.sin(h)
-    cj = c.copy()
-    cj[:, 3] = np.where(np.abs(cj[:, 3]) < 1e-9, 1e-9, cj[:, 3])
-    x0 = np.array([k.common_to_state(ci) for ci in c]).reshape(B, spec.n)
-    J = np.array([k.common_jacobian(ci) for ci in cj]).reshape(B, spec.n, 6)
+    B, _, m = batch.z01.shape
+    t = batch.t01.reshape(2 * B)
+    z = batch.z01.reshape(2 * B, m)
+    rows = np.arange(1, 2 * B, 2)
+    heading = None if angle_index is None else z[:, angle_index]
+
+    def estimates(r: float, r_angle: float | None = None):
+        c, var = two_point(t, z[:, :2], rows, r, omega_std, heading, DEFAULT_HEADING_STD if r_angle is None else r_angle,
+                           heading_cap)
+        return initial_estimates(spec.name, c, var)
+
+    x0, _ = estimates(1.0)  # the mean does not depend on the stds
 
     def prior(r: float, r_angle: float | None = None) -> np.ndarray:
-        var_v = 2.0 * r**2 / dt**2
-        var = np.empty((B, 6))
-        var[:, 0] = var[:, 1] = r**2
-        var[:, 3] = var_v
-        var[:, 5] = omega_std**2
-        if angle_index is None:
-            with np.errstate(divide="ignore"):
-                var_th = np.minimum(np.where(speed > 0, var_v / np.where(speed > 0, speed, 1.0) ** 2, np.inf), heading_cap**2)
-            var[:, 2] = var_th
-            var[:, 4] = np.maximum(var_v - speed**2 * var_th, 0.01 * var_v)
-        else:
-            var[:, 2] = (r_angle if r_angle is not None else 0.1) ** 2
-            var[:, 4] = 0.01 * var_v
-        P0 = np.einsum("bij,bj,bkj->bik", J, var, J)
-        P0 = 0.5 * (P0 + np.swapaxes(P0, 1, 2))
-        for a in spec.angles:
-            big = P0[:, a, a] > math.pi**2
-            if big.any():
-                s = np.ones((int(big.sum()), spec.n))
-                s[:, a] = math.pi / np.sqrt(P0[big, a, a])
-                P0[big] *= s[:, :, None] * s[:, None, :]
-        return P0
+        return estimates(r, r_angle)[1]
 
     return x0, prior
