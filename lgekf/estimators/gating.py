@@ -16,7 +16,9 @@ import numba as nb
 import numpy as np
 from scipy.special import gammaincinv
 
-__all__ = ["gate_threshold", "innovation_covariances", "gate_scores", "unpack_into"]
+from .packed import unpack_into
+
+__all__ = ["gate_threshold", "innovation_covariances", "gate_scores"]
 
 
 def gate_threshold(gate_prob: float, m: int) -> float:
@@ -42,17 +44,6 @@ def gate_threshold(gate_prob: float, m: int) -> float:
     if not 0.0 < gate_prob < 1.0:
         raise ValueError(f"gate probability: must be in (0, 1), got {gate_prob}")
     return float(2.0 * gammaincinv(0.5 * m, gate_prob))  # the χ²_m quantile
-
-
-@nb.njit(cache=True)
-def unpack_into(p, n, out):
-    """Packed upper triangle p (row-major) -> full symmetric out (n, n)."""
-    k = 0
-    for i in range(n):
-        for j in range(i, n):
-            out[i, j] = p[k]
-            out[j, i] = p[k]
-            k += 1
 
 
 @nb.njit(cache=True)

@@ -45,6 +45,7 @@ import numba as nb
 import numpy as np
 
 from ..generated import dispatch as D
+from .packed import pack_from, unpack_into
 
 __all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "mix_on_group", "combined_common",
            "workspace"]
@@ -65,27 +66,6 @@ def workspace(M):
             np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
             np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
             np.empty((NW, NW)))
-
-
-@nb.njit(cache=True)
-def unpack_into(p, n, out):
-    """Packed upper triangle (row-major) -> dense symmetric out[:n, :n]."""
-    k = 0
-    for i in range(n):
-        for j in range(i, n):
-            out[i, j] = p[k]
-            out[j, i] = p[k]
-            k += 1
-
-
-@nb.njit(cache=True)
-def pack_from(P, n, p):
-    """Dense P[:n, :n] -> packed upper triangle p (symmetrised)."""
-    k = 0
-    for i in range(n):
-        for j in range(i, n):
-            p[k] = 0.5 * (P[i, j] + P[j, i])
-            k += 1
 
 
 @nb.njit(cache=True)
