@@ -148,8 +148,10 @@ def function_flops(module, names) -> Counts:
 
 
 def step_names(module, meas: str) -> list[str]:
-    """The kernels one trajectory-step runs: the fused ``step_<meas>`` if generated, else predict + update."""
-    names = [f"step_{meas}"] if hasattr(module, f"step_{meas}") else ["predict", f"update_{meas}"]
+    """The kernels one trajectory-step runs: the fused ``step_try_<meas>`` (``step_<meas>`` in older modules) if
+    generated, else predict + update (the rare fallback to ``update_<meas>`` is not counted)."""
+    fused = [f for f in (f"step_try_{meas}", f"step_{meas}") if hasattr(module, f)]
+    names = fused[:1] if fused else ["predict", f"update_{meas}"]
     return names + ["physical_into"]
 
 

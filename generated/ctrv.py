@@ -8,13 +8,13 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -541,11 +541,13 @@ def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
     return nis
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def step_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_try_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
     """One fused LG-EKF step with a pose measurement, in place: ``predict`` then ``update_pose``
     (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
-    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_pose (Joseph form; derive/codegen/fused.py).
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_pose (Joseph form;
+    derive/codegen/fused.py).
     legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
@@ -713,47 +715,78 @@ def step_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_the
     pj33 = -(hp03*k30) - hp13*k31 - k32*pp23 + pp33
     pj34 = -(hp04*k30) - hp14*k31 - k32*pp24 + pp34
     pj44 = -(hp04*k40) - hp14*k41 - k42*pp24 + pp44
-    p[0] = pj00
-    p[1] = pj01
-    p[2] = pj02
-    p[3] = pj03
-    p[4] = pj04
-    p[5] = pj11
-    p[6] = pj12
-    p[7] = pj13
-    p[8] = pj14
-    p[9] = pj22
-    p[10] = pj23
-    p[11] = pj24
-    p[12] = pj33
-    p[13] = pj34
-    p[14] = pj44
-    s[0] = mu00
-    s[1] = mu01
-    s[2] = mu02
-    s[3] = mu03
-    s[4] = mu04
-    if not covariance_is_pd(p):
-        p[0] = pp00
-        p[1] = pp01
-        p[2] = pp02
-        p[3] = pp03
-        p[4] = pp04
-        p[5] = pp11
-        p[6] = pp12
-        p[7] = pp13
-        p[8] = pp14
-        p[9] = pp22
-        p[10] = pp23
-        p[11] = pp24
-        p[12] = pp33
-        p[13] = pp34
-        p[14] = pp44
-        s[0] = x_p
-        s[1] = y_p
-        s[2] = psi_p
-        s[3] = v
-        s[4] = omega
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj04
+    out_p5 = pj11
+    out_p6 = pj12
+    out_p7 = pj13
+    out_p8 = pj14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = psi_p
+        out_s3 = v
+        out_s4 = omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    return nis
+
+
+@nb.njit(cache=True)
+def step_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """One LG-EKF step with a pose measurement, in place; returns the NIS: ``step_try_pose``, and on the rare
+    step whose cheap covariance fails the LDLᵀ test, ``update_pose`` (Joseph form) from the prediction
+    (derive/codegen/fused.py)."""
+    nis = step_try_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta)
+    if nis < 0.0:
         nis = update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta)
     return nis
 
@@ -768,8 +801,7 @@ def measure_pose(s, m0, m1, m2):
     out = np.zeros(3)
     _sin_m2 = math.sin(m2)
     _cos_m2 = math.cos(m2)
-    _cosc_m2 = cosc(m2, _sin_m2, _cos_m2)
-    _sinc_m2 = sinc(m2, _sin_m2, _cos_m2)
+    _sinc_m2, _cosc_m2, _sinc2_m2, _cosc2_m2 = sinc_family(m2, _sin_m2, _cos_m2)
     _sin_psi = math.sin(psi)
     _cos_psi = math.cos(psi)
     _t0 = -(_cosc_m2*m1) + _sinc_m2*m0
@@ -795,7 +827,10 @@ def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], q[0], q[1])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_pose(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            nis = step_try_pose(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(15):
@@ -1277,11 +1312,13 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def step_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r):
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_try_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r):
     """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
     (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
-    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_position (Joseph form;
+    derive/codegen/fused.py).
     legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
@@ -1413,47 +1450,78 @@ def step_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r):
     pj33 = -(k30*pp03) - k31*pp13 + pp33
     pj34 = -(k30*pp04) - k31*pp14 + pp34
     pj44 = -(k40*pp04) - k41*pp14 + pp44
-    p[0] = pj00
-    p[1] = pj01
-    p[2] = pj02
-    p[3] = pj03
-    p[4] = pj04
-    p[5] = pj11
-    p[6] = pj12
-    p[7] = pj13
-    p[8] = pj14
-    p[9] = pj22
-    p[10] = pj23
-    p[11] = pj24
-    p[12] = pj33
-    p[13] = pj34
-    p[14] = pj44
-    s[0] = mu00
-    s[1] = mu01
-    s[2] = mu02
-    s[3] = mu03
-    s[4] = mu04
-    if not covariance_is_pd(p):
-        p[0] = pp00
-        p[1] = pp01
-        p[2] = pp02
-        p[3] = pp03
-        p[4] = pp04
-        p[5] = pp11
-        p[6] = pp12
-        p[7] = pp13
-        p[8] = pp14
-        p[9] = pp22
-        p[10] = pp23
-        p[11] = pp24
-        p[12] = pp33
-        p[13] = pp34
-        p[14] = pp44
-        s[0] = x_p
-        s[1] = y_p
-        s[2] = psi_p
-        s[3] = v
-        s[4] = omega
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj04
+    out_p5 = pj11
+    out_p6 = pj12
+    out_p7 = pj13
+    out_p8 = pj14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = psi_p
+        out_s3 = v
+        out_s4 = omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    return nis
+
+
+@nb.njit(cache=True)
+def step_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r):
+    """One LG-EKF step with a position measurement, in place; returns the NIS: ``step_try_position``, and on the rare
+    step whose cheap covariance fails the LDLᵀ test, ``update_position`` (Joseph form) from the prediction
+    (derive/codegen/fused.py)."""
+    nis = step_try_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r)
+    if nis < 0.0:
         nis = update_position(s, p, z_x, z_y, r)
     return nis
 
@@ -1485,7 +1553,10 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], q[0], q[1])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_position(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], r[0])
+            nis = step_try_position(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], r[0])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(15):
@@ -1788,6 +1859,43 @@ def covariance_is_pd(p):
     p3_4 = p[13]
     p4_4 = p[14]
     tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3, p4_4)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    r3 = 1.0 / d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
+    if not d4 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True, inline="always", error_model="numpy")
+def covariance_is_pd_fused(p0_0, p0_1, p0_2, p0_3, p0_4, p1_1, p1_2, p1_3, p1_4, p2_2, p2_3, p2_4, p3_3, p3_4, p4_4):
+    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused
+    steps (derive/codegen/fused.py), with pivots > 1e-11 · max_i P_ii."""
+    tol = 1e-11 * max(p0_0, p1_1, p2_2, p3_3, p4_4)
     d0 = p0_0
     if not d0 > tol:
         return False

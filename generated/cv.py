@@ -8,13 +8,13 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -327,11 +327,13 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def step_position(s, p, dt, sigma_a, z_x, z_y, r):
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_try_position(s, p, dt, sigma_a, z_x, z_y, r):
     """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
     (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
-    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_position (Joseph form;
+    derive/codegen/fused.py).
     legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
@@ -413,35 +415,60 @@ def step_position(s, p, dt, sigma_a, z_x, z_y, r):
     pj22 = -(k20*pp02) - k21*pp12 + pp22
     pj23 = -(k20*pp03) - k21*pp13 + pp23
     pj33 = -(k30*pp03) - k31*pp13 + pp33
-    p[0] = pj00
-    p[1] = pj01
-    p[2] = pj02
-    p[3] = pj03
-    p[4] = pj11
-    p[5] = pj12
-    p[6] = pj13
-    p[7] = pj22
-    p[8] = pj23
-    p[9] = pj33
-    s[0] = mu00
-    s[1] = mu01
-    s[2] = mu02
-    s[3] = mu03
-    if not covariance_is_pd(p):
-        p[0] = pp00
-        p[1] = pp01
-        p[2] = pp02
-        p[3] = pp03
-        p[4] = pp11
-        p[5] = pp12
-        p[6] = pp13
-        p[7] = pp22
-        p[8] = pp23
-        p[9] = pp33
-        s[0] = x_p
-        s[1] = y_p
-        s[2] = w_x
-        s[3] = w_y
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj11
+    out_p5 = pj12
+    out_p6 = pj13
+    out_p7 = pj22
+    out_p8 = pj23
+    out_p9 = pj33
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp11
+        out_p5 = pp12
+        out_p6 = pp13
+        out_p7 = pp22
+        out_p8 = pp23
+        out_p9 = pp33
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = w_x
+        out_s3 = w_y
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    return nis
+
+
+@nb.njit(cache=True)
+def step_position(s, p, dt, sigma_a, z_x, z_y, r):
+    """One LG-EKF step with a position measurement, in place; returns the NIS: ``step_try_position``, and on the rare
+    step whose cheap covariance fails the LDLᵀ test, ``update_position`` (Joseph form) from the prediction
+    (derive/codegen/fused.py)."""
+    nis = step_try_position(s, p, dt, sigma_a, z_x, z_y, r)
+    if nis < 0.0:
         nis = update_position(s, p, z_x, z_y, r)
     return nis
 
@@ -473,7 +500,10 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], q[0])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_position(s, p, dts[k], q[0], z[k, 0], z[k, 1], r[0])
+            nis = step_try_position(s, p, dts[k], q[0], z[k, 0], z[k, 1], r[0])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(10):
@@ -715,6 +745,35 @@ def covariance_is_pd(p):
     p2_3 = p[8]
     p3_3 = p[9]
     tol = 1e-13 * max(p0_0, p1_1, p2_2, p3_3)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    return True
+
+
+@nb.njit(cache=True, inline="always", error_model="numpy")
+def covariance_is_pd_fused(p0_0, p0_1, p0_2, p0_3, p1_1, p1_2, p1_3, p2_2, p2_3, p3_3):
+    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused
+    steps (derive/codegen/fused.py), with pivots > 1e-11 · max_i P_ii."""
+    tol = 1e-11 * max(p0_0, p1_1, p2_2, p3_3)
     d0 = p0_0
     if not d0 > tol:
         return False

@@ -8,7 +8,7 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
@@ -56,8 +56,7 @@ def se2_exp(xi):
     out = np.zeros((3, 3))
     _sin_theta = math.sin(theta)
     _cos_theta = math.cos(theta)
-    _cosc_theta = cosc(theta, _sin_theta, _cos_theta)
-    _sinc_theta = sinc(theta, _sin_theta, _cos_theta)
+    _sinc_theta, _cosc_theta, _sinc2_theta, _cosc2_theta = sinc_family(theta, _sin_theta, _cos_theta)
     out[0, 0] = _cos_theta
     out[0, 1] = -_sin_theta
     out[0, 2] = -(_cosc_theta*y) + _sinc_theta*x
@@ -155,10 +154,7 @@ def right_jacobian(xi):
     out = np.zeros((3, 3))
     _sin_theta = math.sin(theta)
     _cos_theta = math.cos(theta)
-    _cosc_theta = cosc(theta, _sin_theta, _cos_theta)
-    _cosc2_theta = cosc2(theta, _sin_theta, _cos_theta)
-    _sinc_theta = sinc(theta, _sin_theta, _cos_theta)
-    _sinc2_theta = sinc2(theta, _sin_theta, _cos_theta)
+    _sinc_theta, _cosc_theta, _sinc2_theta, _cosc2_theta = sinc_family(theta, _sin_theta, _cos_theta)
     out[0, 0] = _sinc_theta
     out[0, 1] = _cosc_theta
     out[0, 2] = -(_cosc2_theta*y) + _sinc2_theta*x

@@ -8,13 +8,13 @@ import math
 
 import numba as nb
 import numpy as np
-from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
+from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -145,8 +145,7 @@ def motion(s, dt):
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t0 = dt*v_y
     _t1 = -(_cosc__a0*_t0) + _sinc__a0*dt*v_x
     _t2 = _cosc__a0*dt*v_x + _sinc__a0*_t0
@@ -192,10 +191,7 @@ def transition(s, dt):
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t0 = _cosc__a0*dt
     _t1 = _sinc__a0*dt
     _t2 = _t0*s_omega + _t1*c_omega
@@ -318,10 +314,7 @@ def predict(s, p, dt, sigma_x, sigma_y, sigma_omega):
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t2 = dt*v_x
     _t3 = _cosc__a0*_t2
     _t4 = dt*v_y
@@ -522,16 +515,10 @@ def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
     nu5 = alpha*nk5
     _sin_nu2 = math.sin(nu2)
     _cos_nu2 = math.cos(nu2)
-    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = math.sin(nu5)
     _cos_nu5 = math.cos(nu5)
-    _cosc_nu5 = cosc(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t8 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t9 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t10 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -699,11 +686,13 @@ def update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta):
     return nis
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r_y, r_theta):
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_try_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r_y, r_theta):
     """One fused LG-EKF step with a pose measurement, in place: ``predict`` then ``update_pose``
     (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
-    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_pose (Joseph form; derive/codegen/fused.py).
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_pose (Joseph form;
+    derive/codegen/fused.py).
     legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
@@ -745,10 +734,7 @@ def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t2 = dt*v_x
     _t3 = _cosc__a0*_t2
     _t4 = dt*v_y
@@ -910,16 +896,10 @@ def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r
     nu5 = alpha*nk5
     _sin_nu2 = math.sin(nu2)
     _cos_nu2 = math.cos(nu2)
-    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = math.sin(nu5)
     _cos_nu5 = math.cos(nu5)
-    _cosc_nu5 = cosc(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t30 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t31 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t32 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -1004,67 +984,108 @@ def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r
     cp43 = phi43*pj33 + phi44*pj34 + phi45*pj35
     cp44 = phi43*pj34 + phi44*pj44 + phi45*pj45
     cp45 = phi43*pj35 + phi44*pj45 + phi45*pj55
-    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
-    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
-    p[2] = cp02
-    p[3] = cp03*phi33 + cp04*phi34 + cp05*phi35
-    p[4] = cp03*phi43 + cp04*phi44 + cp05*phi45
-    p[5] = cp05
-    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
-    p[7] = cp12
-    p[8] = cp13*phi33 + cp14*phi34 + cp15*phi35
-    p[9] = cp13*phi43 + cp14*phi44 + cp15*phi45
-    p[10] = cp15
-    p[11] = pj22
-    p[12] = phi33*pj23 + phi34*pj24 + phi35*pj25
-    p[13] = phi43*pj23 + phi44*pj24 + phi45*pj25
-    p[14] = pj25
-    p[15] = cp33*phi33 + cp34*phi34 + cp35*phi35
-    p[16] = cp33*phi43 + cp34*phi44 + cp35*phi45
-    p[17] = cp35
-    p[18] = cp43*phi43 + cp44*phi44 + cp45*phi45
-    p[19] = cp45
-    p[20] = pj55
-    s[0] = mu00
-    s[1] = mu01
-    s[2] = mu02
-    s[3] = mu03
-    s[4] = mu04
-    s[5] = mu05
-    s[6] = mu06
-    s[7] = mu07
-    s[8] = mu08
-    if not covariance_is_pd(p):
-        p[0] = pp00
-        p[1] = pp01
-        p[2] = pp02
-        p[3] = pp03
-        p[4] = pp04
-        p[5] = pp05
-        p[6] = pp11
-        p[7] = pp12
-        p[8] = pp13
-        p[9] = pp14
-        p[10] = pp15
-        p[11] = pp22
-        p[12] = pp23
-        p[13] = pp24
-        p[14] = pp25
-        p[15] = pp33
-        p[16] = pp34
-        p[17] = pp35
-        p[18] = pp44
-        p[19] = pp45
-        p[20] = pp55
-        s[0] = x_p
-        s[1] = y_p
-        s[2] = c_theta_p
-        s[3] = s_theta_p
-        s[4] = v_x
-        s[5] = v_y
-        s[6] = omega
-        s[7] = c_omega
-        s[8] = s_omega
+    out_p0 = cp00*phi00 + cp01*phi01 + cp02*phi02
+    out_p1 = cp00*phi10 + cp01*phi11 + cp02*phi12
+    out_p2 = cp02
+    out_p3 = cp03*phi33 + cp04*phi34 + cp05*phi35
+    out_p4 = cp03*phi43 + cp04*phi44 + cp05*phi45
+    out_p5 = cp05
+    out_p6 = cp10*phi10 + cp11*phi11 + cp12*phi12
+    out_p7 = cp12
+    out_p8 = cp13*phi33 + cp14*phi34 + cp15*phi35
+    out_p9 = cp13*phi43 + cp14*phi44 + cp15*phi45
+    out_p10 = cp15
+    out_p11 = pj22
+    out_p12 = phi33*pj23 + phi34*pj24 + phi35*pj25
+    out_p13 = phi43*pj23 + phi44*pj24 + phi45*pj25
+    out_p14 = pj25
+    out_p15 = cp33*phi33 + cp34*phi34 + cp35*phi35
+    out_p16 = cp33*phi43 + cp34*phi44 + cp35*phi45
+    out_p17 = cp35
+    out_p18 = cp43*phi43 + cp44*phi44 + cp45*phi45
+    out_p19 = cp45
+    out_p20 = pj55
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    out_s5 = mu05
+    out_s6 = mu06
+    out_s7 = mu07
+    out_s8 = mu08
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14, out_p15, out_p16, out_p17, out_p18, out_p19, out_p20):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp05
+        out_p6 = pp11
+        out_p7 = pp12
+        out_p8 = pp13
+        out_p9 = pp14
+        out_p10 = pp15
+        out_p11 = pp22
+        out_p12 = pp23
+        out_p13 = pp24
+        out_p14 = pp25
+        out_p15 = pp33
+        out_p16 = pp34
+        out_p17 = pp35
+        out_p18 = pp44
+        out_p19 = pp45
+        out_p20 = pp55
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = c_theta_p
+        out_s3 = s_theta_p
+        out_s4 = v_x
+        out_s5 = v_y
+        out_s6 = omega
+        out_s7 = c_omega
+        out_s8 = s_omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    p[15] = out_p15
+    p[16] = out_p16
+    p[17] = out_p17
+    p[18] = out_p18
+    p[19] = out_p19
+    p[20] = out_p20
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    s[5] = out_s5
+    s[6] = out_s6
+    s[7] = out_s7
+    s[8] = out_s8
+    return nis
+
+
+@nb.njit(cache=True)
+def step_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """One LG-EKF step with a pose measurement, in place; returns the NIS: ``step_try_pose``, and on the rare
+    step whose cheap covariance fails the LDLᵀ test, ``update_pose`` (Joseph form) from the prediction
+    (derive/codegen/fused.py)."""
+    nis = step_try_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, r_x, r_y, r_theta)
+    if nis < 0.0:
         nis = update_pose(s, p, z_x, z_y, z_theta, r_x, r_y, r_theta)
     return nis
 
@@ -1080,8 +1101,7 @@ def measure_pose(s, m0, m1, m2):
     out = np.zeros(3)
     _sin_m2 = math.sin(m2)
     _cos_m2 = math.cos(m2)
-    _cosc_m2 = cosc(m2, _sin_m2, _cos_m2)
-    _sinc_m2 = sinc(m2, _sin_m2, _cos_m2)
+    _sinc_m2, _cosc_m2, _sinc2_m2, _cosc2_m2 = sinc_family(m2, _sin_m2, _cos_m2)
     _t0 = -(_cosc_m2*m1) + _sinc_m2*m0
     _t1 = _cosc_m2*m0 + _sinc_m2*m1
     out[0] = _t0*c_theta - _t1*s_theta + x
@@ -1105,7 +1125,10 @@ def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], q[0], q[1], q[2])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_pose(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            nis = step_try_pose(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(21):
@@ -1229,10 +1252,7 @@ def lane_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
     _a0 = dt*omega
     _sin__a0 = sin_v(_a0)
     _cos__a0 = cos_v(_a0)
-    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t2 = dt*v_x
     _t3 = _cosc__a0*_t2
     _t4 = dt*v_y
@@ -1394,16 +1414,10 @@ def lane_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
     nu5 = alpha*nk5
     _sin_nu2 = sin_v(nu2)
     _cos_nu2 = cos_v(nu2)
-    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = sin_v(nu5)
     _cos_nu5 = cos_v(nu5)
-    _cosc_nu5 = cosc_v(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2_v(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc_v(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t30 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t31 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t32 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -1690,16 +1704,10 @@ def update_position(s, p, z_x, z_y, r):
     nu5 = alpha*nk5
     _sin_nu2 = math.sin(nu2)
     _cos_nu2 = math.cos(nu2)
-    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = math.sin(nu5)
     _cos_nu5 = math.cos(nu5)
-    _cosc_nu5 = cosc(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t2 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t3 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t4 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -1854,11 +1862,13 @@ def update_position(s, p, z_x, z_y, r):
     return nis
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_try_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
     """One fused LG-EKF step with a position measurement, in place: ``predict`` then ``update_position``
     (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
-    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test is redone by update_position (Joseph form; derive/codegen/fused.py).
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_position (Joseph form;
+    derive/codegen/fused.py).
     legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
     """
     x = s[0]
@@ -1900,10 +1910,7 @@ def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t2 = dt*v_x
     _t3 = _cosc__a0*_t2
     _t4 = dt*v_y
@@ -2056,16 +2063,10 @@ def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
     nu5 = alpha*nk5
     _sin_nu2 = math.sin(nu2)
     _cos_nu2 = math.cos(nu2)
-    _cosc_nu2 = cosc(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = math.sin(nu5)
     _cos_nu5 = math.cos(nu5)
-    _cosc_nu5 = cosc(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t24 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t25 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t26 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -2144,67 +2145,108 @@ def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
     cp43 = phi43*pj33 + phi44*pj34 + phi45*pj35
     cp44 = phi43*pj34 + phi44*pj44 + phi45*pj45
     cp45 = phi43*pj35 + phi44*pj45 + phi45*pj55
-    p[0] = cp00*phi00 + cp01*phi01 + cp02*phi02
-    p[1] = cp00*phi10 + cp01*phi11 + cp02*phi12
-    p[2] = cp02
-    p[3] = cp03*phi33 + cp04*phi34 + cp05*phi35
-    p[4] = cp03*phi43 + cp04*phi44 + cp05*phi45
-    p[5] = cp05
-    p[6] = cp10*phi10 + cp11*phi11 + cp12*phi12
-    p[7] = cp12
-    p[8] = cp13*phi33 + cp14*phi34 + cp15*phi35
-    p[9] = cp13*phi43 + cp14*phi44 + cp15*phi45
-    p[10] = cp15
-    p[11] = pj22
-    p[12] = phi33*pj23 + phi34*pj24 + phi35*pj25
-    p[13] = phi43*pj23 + phi44*pj24 + phi45*pj25
-    p[14] = pj25
-    p[15] = cp33*phi33 + cp34*phi34 + cp35*phi35
-    p[16] = cp33*phi43 + cp34*phi44 + cp35*phi45
-    p[17] = cp35
-    p[18] = cp43*phi43 + cp44*phi44 + cp45*phi45
-    p[19] = cp45
-    p[20] = pj55
-    s[0] = mu00
-    s[1] = mu01
-    s[2] = mu02
-    s[3] = mu03
-    s[4] = mu04
-    s[5] = mu05
-    s[6] = mu06
-    s[7] = mu07
-    s[8] = mu08
-    if not covariance_is_pd(p):
-        p[0] = pp00
-        p[1] = pp01
-        p[2] = pp02
-        p[3] = pp03
-        p[4] = pp04
-        p[5] = pp05
-        p[6] = pp11
-        p[7] = pp12
-        p[8] = pp13
-        p[9] = pp14
-        p[10] = pp15
-        p[11] = pp22
-        p[12] = pp23
-        p[13] = pp24
-        p[14] = pp25
-        p[15] = pp33
-        p[16] = pp34
-        p[17] = pp35
-        p[18] = pp44
-        p[19] = pp45
-        p[20] = pp55
-        s[0] = x_p
-        s[1] = y_p
-        s[2] = c_theta_p
-        s[3] = s_theta_p
-        s[4] = v_x
-        s[5] = v_y
-        s[6] = omega
-        s[7] = c_omega
-        s[8] = s_omega
+    out_p0 = cp00*phi00 + cp01*phi01 + cp02*phi02
+    out_p1 = cp00*phi10 + cp01*phi11 + cp02*phi12
+    out_p2 = cp02
+    out_p3 = cp03*phi33 + cp04*phi34 + cp05*phi35
+    out_p4 = cp03*phi43 + cp04*phi44 + cp05*phi45
+    out_p5 = cp05
+    out_p6 = cp10*phi10 + cp11*phi11 + cp12*phi12
+    out_p7 = cp12
+    out_p8 = cp13*phi33 + cp14*phi34 + cp15*phi35
+    out_p9 = cp13*phi43 + cp14*phi44 + cp15*phi45
+    out_p10 = cp15
+    out_p11 = pj22
+    out_p12 = phi33*pj23 + phi34*pj24 + phi35*pj25
+    out_p13 = phi43*pj23 + phi44*pj24 + phi45*pj25
+    out_p14 = pj25
+    out_p15 = cp33*phi33 + cp34*phi34 + cp35*phi35
+    out_p16 = cp33*phi43 + cp34*phi44 + cp35*phi45
+    out_p17 = cp35
+    out_p18 = cp43*phi43 + cp44*phi44 + cp45*phi45
+    out_p19 = cp45
+    out_p20 = pj55
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    out_s5 = mu05
+    out_s6 = mu06
+    out_s7 = mu07
+    out_s8 = mu08
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14, out_p15, out_p16, out_p17, out_p18, out_p19, out_p20):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp05
+        out_p6 = pp11
+        out_p7 = pp12
+        out_p8 = pp13
+        out_p9 = pp14
+        out_p10 = pp15
+        out_p11 = pp22
+        out_p12 = pp23
+        out_p13 = pp24
+        out_p14 = pp25
+        out_p15 = pp33
+        out_p16 = pp34
+        out_p17 = pp35
+        out_p18 = pp44
+        out_p19 = pp45
+        out_p20 = pp55
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = c_theta_p
+        out_s3 = s_theta_p
+        out_s4 = v_x
+        out_s5 = v_y
+        out_s6 = omega
+        out_s7 = c_omega
+        out_s8 = s_omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    p[15] = out_p15
+    p[16] = out_p16
+    p[17] = out_p17
+    p[18] = out_p18
+    p[19] = out_p19
+    p[20] = out_p20
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    s[5] = out_s5
+    s[6] = out_s6
+    s[7] = out_s7
+    s[8] = out_s8
+    return nis
+
+
+@nb.njit(cache=True)
+def step_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r):
+    """One LG-EKF step with a position measurement, in place; returns the NIS: ``step_try_position``, and on the rare
+    step whose cheap covariance fails the LDLᵀ test, ``update_position`` (Joseph form) from the prediction
+    (derive/codegen/fused.py)."""
+    nis = step_try_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r)
+    if nis < 0.0:
         nis = update_position(s, p, z_x, z_y, r)
     return nis
 
@@ -2236,7 +2278,10 @@ def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], q[0], q[1], q[2])
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_position(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], r[0])
+            nis = step_try_position(s, p, dts[k], q[0], q[1], q[2], z[k, 0], z[k, 1], r[0])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range(21):
@@ -2346,10 +2391,7 @@ def lane_position(W, j, sigma_x, sigma_y, sigma_omega, r):
     _a0 = dt*omega
     _sin__a0 = sin_v(_a0)
     _cos__a0 = cos_v(_a0)
-    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t2 = dt*v_x
     _t3 = _cosc__a0*_t2
     _t4 = dt*v_y
@@ -2502,16 +2544,10 @@ def lane_position(W, j, sigma_x, sigma_y, sigma_omega, r):
     nu5 = alpha*nk5
     _sin_nu2 = sin_v(nu2)
     _cos_nu2 = cos_v(nu2)
-    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
-    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
-    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
-    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
     _sin_nu5 = sin_v(nu5)
     _cos_nu5 = cos_v(nu5)
-    _cosc_nu5 = cosc_v(nu5, _sin_nu5, _cos_nu5)
-    _cosc2_nu5 = cosc2_v(nu5, _sin_nu5, _cos_nu5)
-    _sinc_nu5 = sinc_v(nu5, _sin_nu5, _cos_nu5)
-    _sinc2_nu5 = sinc2_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5, _cosc_nu5, _sinc2_nu5, _cosc2_nu5 = sinc_family(nu5, _sin_nu5, _cos_nu5)
     _t24 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
     _t25 = _cosc_nu2*nu0 + _sinc_nu2*nu1
     _t26 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
@@ -2750,6 +2786,52 @@ def covariance_is_pd(p):
     return True
 
 
+@nb.njit(cache=True, inline="always", error_model="numpy")
+def covariance_is_pd_fused(p0_0, p0_1, p0_2, p0_3, p0_4, p0_5, p1_1, p1_2, p1_3, p1_4, p1_5, p2_2, p2_3, p2_4, p2_5, p3_3, p3_4, p3_5, p4_4, p4_5, p5_5):
+    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused
+    steps (derive/codegen/fused.py), with pivots > 1e-11 · max_i P_ii."""
+    tol = 1e-11 * max(p0_0, p1_1, p2_2, p3_3, p4_4, p5_5)
+    d0 = p0_0
+    if not d0 > tol:
+        return False
+    r0 = 1.0 / d0
+    l1_0 = (p0_1) * r0
+    l2_0 = (p0_2) * r0
+    l3_0 = (p0_3) * r0
+    l4_0 = (p0_4) * r0
+    l5_0 = (p0_5) * r0
+    d1 = p1_1 - l1_0 * l1_0 * d0
+    if not d1 > tol:
+        return False
+    r1 = 1.0 / d1
+    l2_1 = (p1_2 - l2_0 * l1_0 * d0) * r1
+    l3_1 = (p1_3 - l3_0 * l1_0 * d0) * r1
+    l4_1 = (p1_4 - l4_0 * l1_0 * d0) * r1
+    l5_1 = (p1_5 - l5_0 * l1_0 * d0) * r1
+    d2 = p2_2 - l2_0 * l2_0 * d0 - l2_1 * l2_1 * d1
+    if not d2 > tol:
+        return False
+    r2 = 1.0 / d2
+    l3_2 = (p2_3 - l3_0 * l2_0 * d0 - l3_1 * l2_1 * d1) * r2
+    l4_2 = (p2_4 - l4_0 * l2_0 * d0 - l4_1 * l2_1 * d1) * r2
+    l5_2 = (p2_5 - l5_0 * l2_0 * d0 - l5_1 * l2_1 * d1) * r2
+    d3 = p3_3 - l3_0 * l3_0 * d0 - l3_1 * l3_1 * d1 - l3_2 * l3_2 * d2
+    if not d3 > tol:
+        return False
+    r3 = 1.0 / d3
+    l4_3 = (p3_4 - l4_0 * l3_0 * d0 - l4_1 * l3_1 * d1 - l4_2 * l3_2 * d2) * r3
+    l5_3 = (p3_5 - l5_0 * l3_0 * d0 - l5_1 * l3_1 * d1 - l5_2 * l3_2 * d2) * r3
+    d4 = p4_4 - l4_0 * l4_0 * d0 - l4_1 * l4_1 * d1 - l4_2 * l4_2 * d2 - l4_3 * l4_3 * d3
+    if not d4 > tol:
+        return False
+    r4 = 1.0 / d4
+    l5_4 = (p4_5 - l5_0 * l4_0 * d0 - l5_1 * l4_1 * d1 - l5_2 * l4_2 * d2 - l5_3 * l4_3 * d3) * r4
+    d5 = p5_5 - l5_0 * l5_0 * d0 - l5_1 * l5_1 * d1 - l5_2 * l5_2 * d2 - l5_3 * l5_3 * d3 - l5_4 * l5_4 * d4
+    if not d5 > tol:
+        return False
+    return True
+
+
 @nb.njit(cache=True)
 def repair_pd(p):
     """Add the smallest diagonal jitter (1e-13 · max_i P_ii, growing ×4) that makes covariance_is_pd pass."""
@@ -2854,13 +2936,11 @@ def propagate(s, dt, n0, n1, n2):
     _a0 = dt*n2
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _a1 = (dt*dt)*n2/2.0 + dt*omega
     _sin__a1 = math.sin(_a1)
     _cos__a1 = math.cos(_a1)
-    _cosc__a1 = cosc(_a1, _sin__a1, _cos__a1)
-    _sinc__a1 = sinc(_a1, _sin__a1, _cos__a1)
+    _sinc__a1, _cosc__a1, _sinc2__a1, _cosc2__a1 = sinc_family(_a1, _sin__a1, _cos__a1)
     _t0 = (dt*dt)/2.0
     _t1 = _t0*n1 + dt*v_y
     _t2 = _t0*n0 + dt*v_x
@@ -3046,12 +3126,10 @@ def retract(s, eps):
     eps5 = eps[5]
     _sin_eps2 = math.sin(eps2)
     _cos_eps2 = math.cos(eps2)
-    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
-    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2, _cosc_eps2, _sinc2_eps2, _cosc2_eps2 = sinc_family(eps2, _sin_eps2, _cos_eps2)
     _sin_eps5 = math.sin(eps5)
     _cos_eps5 = math.cos(eps5)
-    _cosc_eps5 = cosc(eps5, _sin_eps5, _cos_eps5)
-    _sinc_eps5 = sinc(eps5, _sin_eps5, _cos_eps5)
+    _sinc_eps5, _cosc_eps5, _sinc2_eps5, _cosc2_eps5 = sinc_family(eps5, _sin_eps5, _cos_eps5)
     _t0 = -(_cosc_eps2*eps1) + _sinc_eps2*eps0
     _t1 = _cosc_eps2*eps0 + _sinc_eps2*eps1
     _t2 = -(_cosc_eps5*eps4) + _sinc_eps5*eps3
@@ -3127,16 +3205,10 @@ def right_jacobian(eps):
     out = np.zeros((6, 6))
     _sin_eps2 = math.sin(eps2)
     _cos_eps2 = math.cos(eps2)
-    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
-    _cosc2_eps2 = cosc2(eps2, _sin_eps2, _cos_eps2)
-    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
-    _sinc2_eps2 = sinc2(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2, _cosc_eps2, _sinc2_eps2, _cosc2_eps2 = sinc_family(eps2, _sin_eps2, _cos_eps2)
     _sin_eps5 = math.sin(eps5)
     _cos_eps5 = math.cos(eps5)
-    _cosc_eps5 = cosc(eps5, _sin_eps5, _cos_eps5)
-    _cosc2_eps5 = cosc2(eps5, _sin_eps5, _cos_eps5)
-    _sinc_eps5 = sinc(eps5, _sin_eps5, _cos_eps5)
-    _sinc2_eps5 = sinc2(eps5, _sin_eps5, _cos_eps5)
+    _sinc_eps5, _cosc_eps5, _sinc2_eps5, _cosc2_eps5 = sinc_family(eps5, _sin_eps5, _cos_eps5)
     out[0, 0] = _sinc_eps2
     out[0, 1] = _cosc_eps2
     out[0, 2] = -(_cosc2_eps2*eps1) + _sinc2_eps2*eps0
@@ -3613,10 +3685,7 @@ def transition_into(s, dt, out):
     _a0 = dt*omega
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
-    _cosc__a0 = cosc(_a0, _sin__a0, _cos__a0)
-    _cosc2__a0 = cosc2(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _sinc2__a0 = sinc2(_a0, _sin__a0, _cos__a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
     _t0 = _cosc__a0*dt
     _t1 = _sinc__a0*dt
     _t2 = _t0*s_omega + _t1*c_omega
@@ -3770,16 +3839,10 @@ def right_jacobian_into(eps, out):
     out[:, :] = 0.0
     _sin_eps2 = math.sin(eps2)
     _cos_eps2 = math.cos(eps2)
-    _cosc_eps2 = cosc(eps2, _sin_eps2, _cos_eps2)
-    _cosc2_eps2 = cosc2(eps2, _sin_eps2, _cos_eps2)
-    _sinc_eps2 = sinc(eps2, _sin_eps2, _cos_eps2)
-    _sinc2_eps2 = sinc2(eps2, _sin_eps2, _cos_eps2)
+    _sinc_eps2, _cosc_eps2, _sinc2_eps2, _cosc2_eps2 = sinc_family(eps2, _sin_eps2, _cos_eps2)
     _sin_eps5 = math.sin(eps5)
     _cos_eps5 = math.cos(eps5)
-    _cosc_eps5 = cosc(eps5, _sin_eps5, _cos_eps5)
-    _cosc2_eps5 = cosc2(eps5, _sin_eps5, _cos_eps5)
-    _sinc_eps5 = sinc(eps5, _sin_eps5, _cos_eps5)
-    _sinc2_eps5 = sinc2(eps5, _sin_eps5, _cos_eps5)
+    _sinc_eps5, _cosc_eps5, _sinc2_eps5, _cosc2_eps5 = sinc_family(eps5, _sin_eps5, _cos_eps5)
     out[0, 0] = _sinc_eps2
     out[0, 1] = _cosc_eps2
     out[0, 2] = -(_cosc2_eps2*eps1) + _sinc2_eps2*eps0

@@ -8,10 +8,12 @@ import math
 
 import numba as nb
 
-__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'wrap_angle', 'wrap_angle_sum', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'wrap_sum_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
+SCALAR_ERRORS = "numpy"
+
+__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'sinc_family', 'wrap_angle', 'wrap_angle_sum', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'wrap_sum_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def sinc(x, s, c):
     """sinc(x) = sin(x)/x; s = sin x, c = cos x.
 
@@ -24,7 +26,7 @@ def sinc(x, s, c):
     return s / x
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def cosc(x, s, c):
     """cosc(x) = (1 - cos(x))/x; s = sin x, c = cos x.
 
@@ -37,7 +39,7 @@ def cosc(x, s, c):
     return (s * s / (1.0 + c)) / x if c > 0.0 else (1.0 - c) / x
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def sinc2(x, s, c):
     """sinc2(x) = (x - sin(x))/x**2; s = sin x, c = cos x.
 
@@ -50,7 +52,7 @@ def sinc2(x, s, c):
     return (x - s) / (x * x)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def cosc2(x, s, c):
     """cosc2(x) = (1 - cos(x))/x**2; s = sin x, c = cos x.
 
@@ -63,7 +65,7 @@ def cosc2(x, s, c):
     return (s / x) * (s / x) / (1.0 + c) if c > 0.0 else (1.0 - c) / (x * x)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def dsinc(x, s, c):
     """dsinc(x) = (-x*cos(x) + sin(x))/x**2; s = sin x, c = cos x.
 
@@ -76,7 +78,7 @@ def dsinc(x, s, c):
     return (s - x * c) / (x * x)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def halfcot(x, s, c):
     """halfcot(x) = x*sin(x)/(2 - 2*cos(x)); s = sin x, c = cos x.
 
@@ -89,7 +91,7 @@ def halfcot(x, s, c):
     return 0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def halfcot1(x, s, c):
     """halfcot1(x) = (-x*sin(x)/(2 - 2*cos(x)) + 1)/x; s = sin x, c = cos x.
 
@@ -102,7 +104,30 @@ def halfcot1(x, s, c):
     return (1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / x
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always", error_model=SCALAR_ERRORS)
+def sinc_family(x, s, c):
+    """(sinc, cosc, sinc2, cosc2)(x) with s = sin x, c = cos x, sharing 1/x and 1/(1 + c)
+    (derive/codegen/build.py family_source; the same polynomials and thresholds as the four functions)."""
+    x2 = x * x
+    if abs(x) < 0.0001:
+        a = 1.0 + x2 * (-0.16666666666666666 + x2 * (0.008333333333333333 + x2 * (-0.0001984126984126984)))
+        b = x * (0.5 + x2 * (-0.041666666666666664 + x2 * (0.001388888888888889 + x2 * (-2.48015873015873e-05))))
+        d = 0.5 + x2 * (-0.041666666666666664 + x2 * (0.001388888888888889 + x2 * (-2.48015873015873e-05)))
+        e = x * (0.16666666666666666 + x2 * (-0.008333333333333333 + x2 * (0.0001984126984126984 + x2 * (-2.7557319223985893e-06 + x2 * (2.505210838544172e-08 + x2 * (-1.6059043836821613e-10 + x2 * (7.647163731819816e-13 + x2 * (-2.8114572543455206e-15))))))))
+        return a, b, e, d
+    rx = 1.0 / x
+    h = s * s / (1.0 + c) if c > 0.0 else 1.0 - c
+    a = s * rx
+    b = h * rx
+    d = b * rx
+    if abs(x) < 0.75:
+        e = x * (0.16666666666666666 + x2 * (-0.008333333333333333 + x2 * (0.0001984126984126984 + x2 * (-2.7557319223985893e-06 + x2 * (2.505210838544172e-08 + x2 * (-1.6059043836821613e-10 + x2 * (7.647163731819816e-13 + x2 * (-2.8114572543455206e-15))))))))
+    else:
+        e = (x - s) * (rx * rx)
+    return a, b, e, d
+
+
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def wrap_angle(a):
     """a wrapped to (-π, π]."""
     if -math.pi < a <= math.pi:
@@ -113,7 +138,7 @@ def wrap_angle(a):
     return r
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def wrap_angle_sum(a, y):
     """wrap(a) with the sign of y beyond ±π/2: the angle of a composed rotation whose sine is y, as atan2 of
     its entries would give it, also at the branch cut (see derive.lie.special.angle_sum)."""
@@ -123,7 +148,7 @@ def wrap_angle_sum(a, y):
     return w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
 def gain_damping(a, b):
     """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]
     (see derive.special.gain_damping)."""

@@ -130,7 +130,14 @@ def _special_case(f):
     return case
 
 
+def _family_case(a):
+    """sinc_family: (sinc, cosc, sinc2, cosc2) with shared reciprocals, against the four definitions."""
+    got = np.array(gspecial.sinc_family(a, math.sin(a), math.cos(a)))
+    return got, reference(sp.Matrix([S.sinc(Q(a)), S.cosc(Q(a)), S.sinc2(Q(a)), S.cosc2(Q(a))]), None)
+
+
 KERNELS = {f"special.{f.__name__}": _special_case(f) for f in S.ANGLE_FUNCTIONS}
+KERNELS["special.sinc_family"] = _family_case
 KERNEL_ANGLES = {"ctrv.motion": CTRV_ANGLES, "ctrv.transition": CTRV_ANGLES}
 KERNELS.update(
     {

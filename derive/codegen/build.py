@@ -14,7 +14,7 @@ from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
-from .printer import HEADER, render_module
+from .printer import HEADER, SINC_FAMILY, render_module
 from .soa import VECTOR_NAMES, vector_helpers_source
 
 __all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
@@ -35,11 +35,58 @@ def _horner(coeffs, var="x2"):
     return s
 
 
+FAMILY = SINC_FAMILY  # the angle functions of Φ and of the SE(2) exponential, computed together (printer.py)
+
+
+def family_source(polys: dict) -> str:
+    """``sinc_family(x, s, c) -> (sinc, cosc, sinc2, cosc2)`` with one reciprocal of x and one division by 1 + c.
+
+    The same Taylor polynomials and thresholds as the four functions (their ``tau``; the code asserts that sinc,
+    cosc and cosc2 share theirs), and the same closed forms with the divisions shared: h = 1 − cos x (as
+    sin²x/(1 + cos x) when cos x > 0), sinc = s·(1/x), cosc = h·(1/x), cosc2 = h·(1/x)², sinc2 = (x − s)·(1/x)².
+    A multiplication by a rounded reciprocal adds at most half an ulp to each (tests/test_special_accuracy.py
+    checks the family against mpmath on both sides of every threshold). The printer calls it when a stage needs
+    two or more of the four for one angle (derive/codegen/printer.py). Inlined by numba (``inline="always"``):
+    LLVM would not inline it by itself, and a call left in a fused step keeps numba's reference counting of the
+    step's arrays (derive/codegen/fused.py).
+    """
+    from ..lie.special import cosc, cosc2, sinc, sinc2
+
+    small = sinc.tau
+    assert cosc.tau == small and cosc2.tau == small and sinc2.tau > small
+    return (
+        f"\n\n@nb.njit(cache=True, inline=\"always\", error_model=SCALAR_ERRORS)\ndef {FAMILY}(x, s, c):\n"
+        '    """(sinc, cosc, sinc2, cosc2)(x) with s = sin x, c = cos x, sharing 1/x and 1/(1 + c)\n'
+        '    (derive/codegen/build.py family_source; the same polynomials and thresholds as the four functions)."""\n'
+        "    x2 = x * x\n"
+        f"    if abs(x) < {small!r}:\n"
+        f"        a = {polys['sinc']}\n"
+        f"        b = {polys['cosc']}\n"
+        f"        d = {polys['cosc2']}\n"
+        f"        e = {polys['sinc2']}\n"
+        "        return a, b, e, d\n"
+        "    rx = 1.0 / x\n"
+        "    h = s * s / (1.0 + c) if c > 0.0 else 1.0 - c\n"
+        "    a = s * rx\n"
+        "    b = h * rx\n"
+        "    d = b * rx\n"
+        f"    if abs(x) < {sinc2.tau!r}:\n"
+        f"        e = {polys['sinc2']}\n"
+        "    else:\n"
+        "        e = (x - s) * (rx * rx)\n"
+        "    return a, b, e, d\n"
+    )
+
+
 def render_special() -> str:
     out = [HEADER.format(title="Angle functions with removable singularities, Taylor-safe near 0.", source="derive/lie/special.py")]
     out.append("import math\n\nimport numba as nb\n")
-    names = [f.__name__ for f in ANGLE_FUNCTIONS] + ["wrap_angle", "wrap_angle_sum", "gain_damping"] + VECTOR_NAMES
+    # IEEE division (inf/NaN) instead of ZeroDivisionError paths: the closed forms divide only away from 0, and the
+    # fused steps that inline these functions need no exception exits (derive/codegen/fused.py)
+    out.append('\nSCALAR_ERRORS = "numpy"\n')
+    names = [f.__name__ for f in ANGLE_FUNCTIONS] + [FAMILY, "wrap_angle", "wrap_angle_sum", "gain_damping"] + VECTOR_NAMES
     out.append("\n__all__ = [" + ", ".join(repr(n) for n in names) + "]\n")
+    polys = {}
     for f in ANGLE_FUNCTIONS:
         coeffs = taylor_coefficients(f)
         parity = f.parity
@@ -54,16 +101,18 @@ def render_special() -> str:
         doc = f"{f.__name__}(x) = {sp.sstr(f.definition(xs))}; s = sin x, c = cos x.\n\n"
         doc += f"    |x| < {f.tau!r}: Taylor polynomial of degree {f.order} (coefficients from SymPy);\n"
         doc += f"    otherwise the cancellation-free closed form `{f.stable}`."
+        polys[f.__name__] = poly
         out.append(
-            f"\n\n@nb.njit(cache=True)\ndef {f.__name__}(x, s, c):\n"
+            f"\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef {f.__name__}(x, s, c):\n"
             f'    """{doc}\n    """\n'
             f"    if abs(x) < {f.tau!r}:\n"
             f"        x2 = x * x\n"
             f"        return {poly}\n"
             f"    return {f.stable}\n"
         )
+    out.append(family_source(polys))
     out.append(
-        "\n\n@nb.njit(cache=True)\ndef wrap_angle(a):\n"
+        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef wrap_angle(a):\n"
         '    """a wrapped to (-π, π]."""\n'
         "    if -math.pi < a <= math.pi:\n"
         "        return a\n"
@@ -73,7 +122,7 @@ def render_special() -> str:
         "    return r\n"
     )
     out.append(
-        "\n\n@nb.njit(cache=True)\ndef wrap_angle_sum(a, y):\n"
+        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef wrap_angle_sum(a, y):\n"
         '    """wrap(a) with the sign of y beyond ±π/2: the angle of a composed rotation whose sine is y, as atan2 of\n'
         '    its entries would give it, also at the branch cut (see derive.lie.special.angle_sum)."""\n'
         "    w = wrap_angle(a)\n"
@@ -82,7 +131,7 @@ def render_special() -> str:
         "    return w\n"
     )
     out.append(
-        "\n\n@nb.njit(cache=True)\ndef gain_damping(a, b):\n"
+        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef gain_damping(a, b):\n"
         '    """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]\n'
         '    (see derive.special.gain_damping)."""\n'
         "    m = max(abs(a), abs(b))\n"
@@ -94,7 +143,7 @@ def render_special() -> str:
     return "".join(out)
 
 
-IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + ", gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401"]
+IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + f", {SINC_FAMILY}, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401"]
 IMPORTS.append("from .special import " + ", ".join(VECTOR_NAMES) + "  # noqa: F401")  # SIMD kernels (codegen/soa.py)
 
 

@@ -109,6 +109,10 @@ def se2_kernels():
 
 # --------------------------------------------------------------------------- safeguards
 PD_TOL = 1e-13  # LDLᵀ pivot / largest variance below which a covariance counts as lost to rounding
+# the same test inlined into the fused steps runs under their FMA contraction, whose rounding differs from the IEEE
+# test's; it asks for 100× larger pivots, so that it accepts no covariance that covariance_is_pd rejects (measured on
+# tests/test_covariance_health.py; derive/codegen/fused.py)
+PD_TOL_FUSED = 1e-11
 
 
 def pd_check_kernels(n: int):
@@ -153,7 +157,13 @@ def repair_pd(p):
             p[i] += delta
         delta *= 4.0
 '''
-    return [("covariance_is_pd", "\n".join(lines)), ("repair_pd", repair)]
+    names = [f"p{i}_{j}" for i in range(n) for j in range(i, n)]
+    fused = [ln.replace(f"{PD_TOL!r} * max(", f"{PD_TOL_FUSED!r} * max(") for ln in lines[3 + len(names):]]
+    fused = ['@nb.njit(cache=True, inline="always", error_model="numpy")',
+             f"def covariance_is_pd_fused({', '.join(names)}):",
+             f'    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused\n'
+             f'    steps (derive/codegen/fused.py), with pivots > {PD_TOL_FUSED!r} · max_i P_ii."""'] + fused
+    return [("covariance_is_pd", "\n".join(lines)), ("covariance_is_pd_fused", "\n".join(fused)), ("repair_pd", repair)]
 
 
 def angle_limit_kernel(n: int, angles: tuple):
@@ -198,7 +208,10 @@ def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
             predict(s, p, dts[k], {qargs})
             out_nis[k] = np.nan
         else:
-            out_nis[k] = step_{meas}(s, p, dts[k], {qargs}, {zargs}, {rargs})
+            nis = step_try_{meas}(s, p, dts[k], {qargs}, {zargs}, {rargs})
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_{meas}(s, p, {zargs}, {rargs})
+            out_nis[k] = nis
         physical_into(s, out_x[k])
         if keep_p:
             for i in range({npk}):
@@ -302,19 +315,20 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     )
     nan_test = " or ".join(f"np.isnan(z[k, {i}])" for i in range(m))
     batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(
-        meas=meas.name, m=m, n=model.n, npk=model.n * (model.n + 1) // 2, nq=len(model.noise_names),
+        meas=meas.name, m=m, n=model.n, npk=model.n * (model.n + 1) // 2, ni=len(model.internal), nq=len(model.noise_names),
         nr=len(meas.noise_names), qargs=_args("q", len(model.noise_names)), zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
         rargs=_args("r", len(meas.noise_names)), nan_test=nan_test,
     ))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
-        from .fused import fused_step_kernel
+        from .fused import fused_step_kernel, step_wrapper
 
         from .soa import soa_measurement_kernels
 
         step = fused_step_kernel(model, meas, P, pin, sin_, predict_parts, sp.Symbol("dt", positive=True))
         kernels.insert(2, step)
+        kernels.insert(3, step_wrapper(model, meas))
         kernels.extend(soa_measurement_kernels(model, meas, step))  # SIMD across trajectories (derive/codegen/soa.py)
     return kernels
 

@@ -23,6 +23,11 @@ import sympy as sp
 
 from ..lie.special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
 
+#: the generated special function that returns (sinc, cosc, sinc2, cosc2) of one angle with shared reciprocals
+#: (derive/codegen/build.py ``family_source``); a stage that needs two or more of them for an angle calls it once
+SINC_FAMILY = "sinc_family"
+SINC_FAMILY_MEMBERS = ("sinc", "cosc", "sinc2", "cosc2")
+
 __all__ = ["Kernel", "RawStage", "Printer", "render_kernel", "render_module", "HEADER"]
 
 HEADER = '''"""{title}
@@ -153,6 +158,7 @@ class Kernel:
     substitutions: dict = field(default_factory=dict)
     skip_zero_outputs: bool = False
     fastmath: bool = False
+    error_model: str | None = None
 
 
 def _prune_dead(stages, outputs, ret):
@@ -204,6 +210,8 @@ def render_kernel(k: Kernel) -> str:
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
+    if k.error_model:
+        deco = deco[:-1] + f', error_model="{k.error_model}")'
     lines.append(deco)
     lines.append(f"def {k.name}({', '.join(k.params)}):")
     doc = k.doc.strip("\n")
@@ -250,6 +258,11 @@ def render_kernel(k: Kernel) -> str:
             if (need_sc or sp.cos in kinds) and "cos" not in done:
                 body.append(f"{c_sym.name} = math.cos({arg_code})")
                 done.add("cos")
+            family = [f for f in SINC_FAMILY_MEMBERS if f in {type(a).__name__ for a in atoms} and f not in done]
+            if len(family) >= 2:
+                names = ", ".join(f"_{f}_{base}" for f in SINC_FAMILY_MEMBERS)
+                body.append(f"{names} = {SINC_FAMILY}({arg_code}, {s_sym.name}, {c_sym.name})")
+                done.update(SINC_FAMILY_MEMBERS)
             for atom in sorted(atoms, key=_sort_key):
                 if isinstance(atom, sp.sin):
                     repl[atom] = s_sym

@@ -285,11 +285,11 @@ def soa_measurement_kernels(model, meas, step_kernel) -> list:
     extra.update({zp: lay.at(lay.Z + i) for i, zp in enumerate(z_params)})
     outputs = []
     for t, e in step_kernel.outputs:
-        mm = re.fullmatch(r"([sp])\[(\d+)\]", t)
+        mm = re.fullmatch(r"([sp])\[(\d+)\]", t) or re.fullmatch(r"out_([sp])(\d+)", t)  # the fused step's p[i] / out_p<i>
         outputs.append((lay.at((lay.SN if mm.group(1) == "s" else lay.PN) + int(mm.group(2))), e))
     params = [x for x in step_kernel.params[2:] if x != "dt" and x not in z_params]
     lane = replace(step_kernel, name=f"lane_{meas.name}", params=["W", "j", *params],
-                   inputs=_soa_sources(step_kernel.inputs, lay, extra), outputs=outputs, epilogue=[],
+                   inputs=_soa_sources(step_kernel.inputs, lay, extra), outputs=outputs, epilogue=[], error_model=None,
                    doc=f"step_{meas.name} on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).")
     src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
     args = lambda pre, k: ", ".join(f"{pre}[{i}]" for i in range(k))  # noqa: E731
