@@ -83,3 +83,20 @@ def test_readme_imm_example_runs():
     exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
     imm = ns["imm"]
     assert imm.x.shape == (6,) and imm.P.shape == (6, 6) and abs(imm.mu.sum() - 1) < 1e-12
+
+
+def test_evaluate_tuned_imm_takes_learned_noise():
+    """`evaluate --imm --tune` (MLE): the tuned run's IMM modes take their model's learned noise, times the
+    level factor of :calm / :manoeuvre; a mode given as numbers, or whose model could not be learned, keeps its own."""
+    from lgekf.apps.evaluate import _imm_with_learned
+    from lgekf.apps.track_imm import ImmTrackOptions
+
+    opts = ImmTrackOptions("cv,se2r3:calm,se2r3:manoeuvre,ctrv:0.3/0.2,se2r2", 0.05)
+    before = [m.accel_std for m in opts.modes]
+    accel = {"cv": (0.7,), "se2r3": (1.0, 2.0, 3.0), "ctrv": (9.0, 9.0), "se2r2": (5.0, 5.0)}
+    fits = {"cv": object(), "se2r3": object(), "ctrv": object(), "se2r2": "too few points"}
+    tuned = _imm_with_learned(opts, accel, fits)
+    got = [tuple(np.round(m.accel_std, 12)) for m in tuned.modes]
+    assert got == [(0.7,), (0.2, 0.4, 0.6), (4.0, 8.0, 12.0), (0.3, 0.2), tuple(before[4])]
+    assert [m.accel_std for m in opts.modes] == before  # the default run's IMM is unchanged
+    assert _imm_with_learned(None, accel, fits) is None

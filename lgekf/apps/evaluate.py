@@ -202,13 +202,27 @@ class DatasetResult:
         return rows
 
 
+def _imm_with_learned(imm, accel: dict, fits: dict):
+    """A copy of the IMM options whose modes take the noise learned for their model (``with_learned_noise``: a
+    plain mode the learned values, ``:calm``/``:manoeuvre`` those times their factor); None without an IMM."""
+    if imm is None:
+        return None
+    import copy
+
+    tuned = copy.deepcopy(imm)
+    tuned.with_learned_noise({m: accel[m] for m in imm.tunable_models() if m in fits and not isinstance(fits[m], str)})
+    return tuned
+
+
 def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
                      tune_method="mle", smooth=False, imm=None):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
     ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid" or
     "mle"; ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
-    ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row (its modes' noise as given there, not tuned).
+    ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row: with its modes' noise as given there in the
+    default run, and with ``tune`` (MLE) in the tuned run with each mode's model's learned noise (times the
+    mode's level factor; modes given as numbers keep them). The grid search does not tune the IMM.
     """
     if imm is not None and runner is not None:
         raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
@@ -229,7 +243,8 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
             progress(1)
         out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
                                                                     runner=runner, imm=imm), [], len(tune_idx))]
-        out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner), [],
+        out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner,
+                                                                      imm=_imm_with_learned(imm, accel, fits)), [],
                                  len(tune_idx), accel, fits))
         return out
     tuning = []

@@ -43,7 +43,8 @@ def evaluate_parser():
                     help="with --tune: mle = maximum-likelihood process noise learned on the tuning split (default), "
                          "grid = the RMSE grid search over k·default noise and the turn-rate ratio")
     ap.add_argument("--smooth", action="store_true", help="also rows <model>:smoothed, the RTS smoother on the group")
-    ap.add_argument("--imm", action="store_true", help="add an IMM row (modes --imm-modes, not tuned; one process only)")
+    ap.add_argument("--imm", action="store_true",
+                    help="add an IMM row (modes --imm-modes; with --tune (mle) its modes take their models' learned noise; one process only)")
     ap.add_argument("--imm-modes", default=None, metavar="LIST", help="--imm: modes (default cv,se2r3:calm,se2r3:manoeuvre)")
     ap.add_argument("--imm-switch", type=float, default=None, metavar="P", help="--imm: probability of leaving a mode per step (default 0.05)")
     ap.add_argument("--out", type=Path, default=Path("evaluation"), help="output folder (default evaluation/)")
