@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport']
 
 
 @nb.njit(cache=True)
@@ -1428,3 +1428,79 @@ def physical_to_common_jacobian_into(xp, out):
     out[2, 3] = _t1*w_x
     out[3, 2] = _t2*w_x
     out[3, 3] = _t2*w_y
+
+
+@nb.njit(cache=True)
+def between_add(s, t, w, acc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    t_x = t[0]
+    t_y = t[1]
+    t_w_x = t[2]
+    t_w_y = t[3]
+    acc0 = acc[0]
+    acc1 = acc[1]
+    acc2 = acc[2]
+    acc3 = acc[3]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[0] = acc0 + d0*w
+    acc[1] = acc1 + d1*w
+    acc[2] = acc2 + d2*w
+    acc[3] = acc3 + d3*w
+
+
+@nb.njit(cache=True)
+def mix_transport(s, t, pt, w, acc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
+    one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
+    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    t_x = t[0]
+    t_y = t[1]
+    t_w_x = t[2]
+    t_w_y = t[3]
+    pt0_0 = pt[0]
+    pt0_1 = pt[1]
+    pt0_2 = pt[2]
+    pt0_3 = pt[3]
+    pt1_1 = pt[4]
+    pt1_2 = pt[5]
+    pt1_3 = pt[6]
+    pt2_2 = pt[7]
+    pt2_3 = pt[8]
+    pt3_3 = pt[9]
+    acc0 = acc[0]
+    acc1 = acc[1]
+    acc2 = acc[2]
+    acc3 = acc[3]
+    acc4 = acc[4]
+    acc5 = acc[5]
+    acc6 = acc[6]
+    acc7 = acc[7]
+    acc8 = acc[8]
+    acc9 = acc[9]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[0] = acc0 + w*(d0*d0 + pt0_0)
+    acc[1] = acc1 + w*(d0*d1 + pt0_1)
+    acc[2] = acc2 + w*(d0*d2 + pt0_2)
+    acc[3] = acc3 + w*(d0*d3 + pt0_3)
+    acc[4] = acc4 + w*(d1*d1 + pt1_1)
+    acc[5] = acc5 + w*(d1*d2 + pt1_2)
+    acc[6] = acc6 + w*(d1*d3 + pt1_3)
+    acc[7] = acc7 + w*(d2*d2 + pt2_2)
+    acc[8] = acc8 + w*(d2*d3 + pt2_3)
+    acc[9] = acc9 + w*(d3*d3 + pt3_3)

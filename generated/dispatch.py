@@ -277,6 +277,34 @@ def retract(model, s, eps):
 
 
 @nb.njit(cache=True)
+def between_add(model, s, t, w, acc):
+    if model == 0:
+        ctrv.between_add(s, t, w, acc)
+    elif model == 1:
+        cv.between_add(s, t, w, acc)
+    elif model == 2:
+        se2r2.between_add(s, t, w, acc)
+    elif model == 3:
+        se2r3.between_add(s, t, w, acc)
+    elif model == 4:
+        se2se2.between_add(s, t, w, acc)
+
+
+@nb.njit(cache=True)
+def mix_transport(model, s, t, pt, w, acc):
+    if model == 0:
+        ctrv.mix_transport(s, t, pt, w, acc)
+    elif model == 1:
+        cv.mix_transport(s, t, pt, w, acc)
+    elif model == 2:
+        se2r2.mix_transport(s, t, pt, w, acc)
+    elif model == 3:
+        se2r3.mix_transport(s, t, pt, w, acc)
+    elif model == 4:
+        se2se2.mix_transport(s, t, pt, w, acc)
+
+
+@nb.njit(cache=True)
 def state_from_physical_into(model, x, out):
     if model == 0:
         ctrv.state_from_physical_into(x, out)

@@ -5,7 +5,8 @@ Per model (appended to ``generated/<model>.py``):
 
 * ``physical_to_common(x)``: c = (x, y, θ, v_x, v_y, ω) of a physical state (``MotionModel.common_of_physical``);
 * ``physical_to_common_jacobian(x)``: ∂c/∂ε (6 × n) at x, for X = μ·exp(ε);
-* ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0.
+* ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0;
+* ``between_add``, ``mix_transport``: the fused terms of mixing on the group (``derive.codegen.mixing``).
 
 ``generated/dispatch.py``: ``predict(model, s, p, dt, q)``, ``update_<meas>(model, s, p, z, r)``,
 ``calH_<meas>(model, s)``, ``innovation_logdet_<meas>(model, s, p, r)`` (log det S), and the conversions and group
@@ -53,7 +54,9 @@ def common_readout_kernels(model, kernels=()) -> list:
          f"    return np.array({missing!r})\n"),
     ]
     every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
-    return own + [into_variant(k) for k in every]
+    from .mixing import mixing_kernels
+
+    return own + [into_variant(k) for k in every] + mixing_kernels(model)
 
 
 def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
@@ -102,6 +105,8 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
         funcs.append(_chain(fname, params, names, lambda n, fname=fname, params=params: f"{n}.{fname}({params})", True)
                      .replace("(model, )", "(model)"))
     funcs.append(_chain("retract", "s, eps", names, lambda n: f"{n}.retract(s, eps)", False))
+    funcs.append(_chain("between_add", "s, t, w, acc", names, lambda n: f"{n}.between_add(s, t, w, acc)", False))
+    funcs.append(_chain("mix_transport", "s, t, pt, w, acc", names, lambda n: f"{n}.mix_transport(s, t, pt, w, acc)", False))
     into_params = {"state_from_physical": "x", "between": "s, t", "right_jacobian_inv": "eps", "common_to_state": "c",
                    "common_jacobian": "c", "physical_to_common": "x", "physical_to_common_jacobian": "x"}
     for fname, params in into_params.items():

@@ -128,12 +128,18 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance; ws: ``workspace(M)``.
     Returns the iterations used.
     """
-    return _mix_on_group(model, S, Pp, w, s_out, P_out, ws[0], ws[1], ws[2], ws[4], ws[22])
+    p = ws[15]
+    it = _mix_on_group(model, S, Pp, w, s_out, p, ws[0])
+    unpack_into(p, D.N_TANGENT[model], P_out)
+    return it
 
 
 @nb.njit(cache=True)
-def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
-    """mix_on_group with its scratch arrays passed one by one (a tuple argument costs a reference count per array)."""
+def _mix_on_group(model, S, Pp, w, s_out, p_out, delta):
+    """mix_on_group into the packed covariance p_out; delta (n,) scratch.
+
+    The mean's terms come from the generated ``between_add``, each source's covariance term w_i [Φ(d_i)⁻¹ P_i
+    Φ(d_i)⁻ᵀ + d_i d_iᵀ] from the generated ``mix_transport`` (straight line, packed in and out)."""
     M = S.shape[0]
     n = D.N_TANGENT[model]
     ni = D.N_INTERNAL[model]
@@ -150,30 +156,23 @@ def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
                 delta[k] = 0.0
             for i in range(M):
                 if w[i] > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_into(model, s_out, S[i], d)
-                    for k in range(n):
-                        delta[k] += w[i] * d[k]
+                    D.between_add(model, s_out, S[i], w[i], delta)
             D.retract(model, s_out, delta)
             nrm = 0.0
             for k in range(n):
                 nrm += delta[k] * delta[k]
             if nrm < 1e-24:
                 break
-    for a in range(n):
-        for b in range(n):
-            P_out[a, b] = 0.0
+    npk = n * (n + 1) // 2
+    if M == 1:
+        for k in range(npk):
+            p_out[k] = Pp[0, k]
+        return it
+    for k in range(npk):
+        p_out[k] = 0.0
     for i in range(M):
-        if w[i] <= 0.0:
-            continue
-        if M == 1:
-            unpack_into(Pp[i], n, P_out)
-            continue
-        D.between_into(model, s_out, S[i], d)
-        D.right_jacobian_inv_into(model, d, T)
-        _congruence_packed(T, n, Pp[i], n, row, Pd, P_out, w[i], True)
-        for a in range(n):
-            for b in range(n):
-                P_out[a, b] += w[i] * d[a] * d[b]
+        if w[i] > 0.0:
+            D.mix_transport(model, s_out, S[i], Pp[i], w[i], p_out)
     return it
 
 
@@ -289,9 +288,8 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
-        s, P, p = ws[14], ws[3], ws[15]
-        _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[22])
-        pack_from(P, n, p)
+        s, p = ws[14], ws[15]
+        _mix_on_group(model, S, Pp, mu, s, p, ws[0])
         _to_common(model, s, p, c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
         return
     _all_common(models, S, Pp, ws)
@@ -337,8 +335,7 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
         model = models[0]
         n = D.N_TANGENT[model]
         for j in range(M):
-            _mix_on_group(model, S, Pp, W[j], S_new[j], P, ws[0], ws[1], ws[2], ws[4], ws[22])
-            pack_from(P, n, P_new[j])
+            _mix_on_group(model, S, Pp, W[j], S_new[j], P_new[j], ws[0])
     else:
         _all_common(models, S, Pp, ws)
         C, PC, miss = ws[8], ws[9], ws[10]
