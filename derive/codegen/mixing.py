@@ -25,7 +25,7 @@ from ..algebra import packed_index
 from ..lie.special import ANGLE_FUNCTIONS, wrap
 from .printer import Kernel
 
-__all__ = ["mixing_kernels"]
+__all__ = ["mixing_kernels", "common_kernels"]
 
 
 def _between(model):
@@ -107,3 +107,90 @@ def mixing_kernels(model) -> list:
         stages=[list(zip(dsyms, d_expr)), tdefs, udefs], outputs=outputs, sincos_of_atan2=True,
     )
     return [add, transport]
+
+
+def _congruence(T: sp.Matrix, P: sp.Matrix, prefix: str):
+    """(definitions of U = T P over its non-trivial entries, U Tᵀ): T P Tᵀ without the structural zeros."""
+    U = T * P
+    defs, Us = [], sp.zeros(*U.shape)
+    for i in range(U.shape[0]):
+        for j in range(U.shape[1]):
+            e = sp.expand(U[i, j])
+            if e.is_Symbol or e.is_number:
+                Us[i, j] = e
+            else:
+                Us[i, j] = sp.Symbol(f"{prefix}{i}_{j}", real=True)
+                defs.append((Us[i, j], e))
+    return defs, Us * T.T
+
+
+def _symbolic(Mx: sp.Matrix, prefix: str):
+    """Mx with each non-constant entry replaced by a symbol; returns (definitions, matrix)."""
+    defs, out = [], sp.zeros(*Mx.shape)
+    for i in range(Mx.shape[0]):
+        for j in range(Mx.shape[1]):
+            e = sp.sympify(Mx[i, j])
+            if e.is_number:
+                out[i, j] = e
+            else:
+                out[i, j] = sp.Symbol(f"{prefix}{i}_{j}", real=True)
+                defs.append((out[i, j], e))
+    return defs, out
+
+
+def common_kernels(model) -> list:
+    """``common_of_state`` and ``state_of_common``: a mode's Gaussian to and from the common coordinates in one kernel.
+
+    ``common_of_state(s, p, c, Pc)``: c = ``physical_to_common``(physical(s)) (6,), Pc = A P Aᵀ (6 × 6, dense) with
+    A = ∂c/∂ε (``physical_to_common_jacobian``) at that state; ``state_of_common(c, Pc, s, p)``: s =
+    state_from_physical(``common_to_state``(c)), p = J P_c Jᵀ packed, J = ``common_jacobian``(c).  Both evaluate
+    the Jacobian where they are called: the caller handles speed 0 (``lgekf.estimators.imm_kernels.SPEED_FLOOR``);
+    ``common_of_state`` runs with error_model="numpy" (a heading read off a zero velocity gives NaN/inf, not an
+    exception, and the caller redoes that rare case).
+    """
+    from ..models.base import COMMON
+
+    n = model.n
+    idx = packed_index(n)
+    sin_ = [(v, f"s[{i}]") for i, v in enumerate(model.internal)]
+    xs = [sp.Symbol(f"xp_{v.name}", real=True) for v in model.physical]
+    xsub = dict(zip(model.physical, xs))
+    phys = [(xi, sp.sympify(e)) for xi, e in zip(xs, model.physical_from_internal())]
+    cvals = [sp.sympify(e).xreplace(xsub) for e in model.common_of_physical]
+    adefs, A = _symbolic(model.common_of_physical_jacobian.xreplace(xsub), "A")
+    psyms = {(i, j): sp.Symbol(f"p{i}_{j}", real=True) for i in range(n) for j in range(i, n)}
+    P = sp.Matrix(n, n, lambda i, j: psyms[(min(i, j), max(i, j))])
+    p_in = [(psyms[(i, j)], f"p[{idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
+    udefs, C = _congruence(A, P, "U")
+    outs = [(f"c[{k}]", cvals[k]) for k in range(6)]
+    for i in range(6):
+        for j in range(i, 6):
+            outs.append((f"Pc[{i}, {j}]", C[i, j]))
+            if j != i:
+                outs.append((f"Pc[{j}, {i}]", C[i, j]))
+    to_common = Kernel(
+        name="common_of_state",
+        doc=("A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as\n"
+             "physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s."),
+        params=["s", "p", "c", "Pc"], inputs=sin_ + p_in, stages=[phys, adefs, udefs], outputs=outs,
+        error_model_numpy=True,
+    )
+    cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
+    csub = dict(zip(COMMON, cs))
+    cin = [(ci, f"c[{k}]") for k, ci in enumerate(cs)]
+    pcs = {(i, j): sp.Symbol(f"pc{i}_{j}", real=True) for i in range(6) for j in range(i, 6)}
+    Pc = sp.Matrix(6, 6, lambda i, j: pcs[(min(i, j), max(i, j))])
+    pc_in = [(pcs[(i, j)], f"Pc[{i}, {j}]") for i in range(6) for j in range(i, 6)]
+    phys_c = [(xi, sp.sympify(e).subs(csub, simultaneous=True)) for xi, e in zip(xs, model.from_common())]
+    internal = [sp.sympify(e).xreplace(xsub) for e in model.internal_from_physical()]
+    jdefs, J = _symbolic(model.common_jacobian.subs(csub, simultaneous=True), "J")
+    vdefs, C = _congruence(J, Pc, "V")
+    outs = [(f"s[{k}]", e) for k, e in enumerate(internal)]
+    outs += [(f"p[{idx[(i, j)]}]", C[i, j]) for i in range(n) for j in range(i, n)]
+    from_common = Kernel(
+        name="state_of_common",
+        doc=("A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state\n"
+             "s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c."),
+        params=["c", "Pc", "s", "p"], inputs=cin + pc_in, stages=[phys_c, jdefs, vdefs], outputs=outs,
+    )
+    return [to_common, from_common]

@@ -155,6 +155,8 @@ class Kernel:
     fastmath: bool = False
     #: sin/cos of an angle atan2(y, x) as y/r, x/r, r = √(x² + y²) (no math.sin/math.cos calls; equal to rounding)
     sincos_of_atan2: bool = False
+    #: numba's error_model="numpy": a division by zero gives inf/NaN instead of raising (the caller tests the result)
+    error_model_numpy: bool = False
 
 
 def _prune_dead(stages, outputs, ret):
@@ -206,6 +208,8 @@ def render_kernel(k: Kernel) -> str:
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
+    if k.error_model_numpy:
+        deco = deco[:-1] + ', error_model="numpy")'
     lines.append(deco)
     lines.append(f"def {k.name}({', '.join(k.params)}):")
     doc = k.doc.strip("\n")

@@ -183,6 +183,10 @@ def _to_common(model, s, p, c_out, P_out, x, A, row, Pd, ctmp):
     At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
     read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
     n = D.N_TANGENT[model]
+    D.common_of_state(model, s, p, c_out, P_out)  # generated, straight line: c and A P Aᵀ at s
+    if math.hypot(c_out[3], c_out[4]) >= SPEED_FLOOR:
+        _cap_heading(c_out, P_out)
+        return
     D.physical_into(model, s, x)
     D.physical_to_common_into(model, x, c_out)
     if math.hypot(c_out[3], c_out[4]) < SPEED_FLOOR:
@@ -273,9 +277,8 @@ def _all_common(models, S, Pp, ws):
     C, PC, miss = ws[8], ws[9], ws[10]
     for i in range(models.shape[0]):
         _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[5], ws[7], ws[4], ws[22], ws[6])
-        mi = D.common_missing(models[i])
         for a in range(6):
-            miss[i, a] = mi[a]
+            miss[i, a] = D.COMMON_MISSING[models[i], a]
 
 
 @nb.njit(cache=True)
@@ -346,10 +349,12 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
             mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[20], ws[21], ws[6])
             model = models[j]
             n = D.N_TANGENT[model]
+            if math.hypot(c[3], c[4]) >= SPEED_FLOOR:  # generated, straight line: the state and J Pc Jᵀ packed
+                D.state_of_common(model, c, Pc, S_new[j], P_new[j])
+                continue
             D.common_to_state_into(model, c, x)
             D.state_from_physical_into(model, x, S_new[j])
-            if math.hypot(c[3], c[4]) < SPEED_FLOOR:  # the Jacobian of a heading of motion is singular at speed 0
-                c[3] = SPEED_FLOOR
+            c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
             D.common_jacobian_into(model, c, J)
             _congruence_dense(J, n, Pc, 6, row, P)
             pack_from(P, n, P_new[j])
