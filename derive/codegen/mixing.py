@@ -173,7 +173,7 @@ def common_kernels(model) -> list:
         doc=("A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as\n"
              "physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s."),
         params=["s", "p", "c", "Pc"], inputs=sin_ + p_in, stages=[phys, adefs, udefs], outputs=outs,
-        error_model_numpy=True,
+        error_model="numpy",
     )
     cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
     csub = dict(zip(COMMON, cs))

@@ -153,10 +153,9 @@ class Kernel:
     substitutions: dict = field(default_factory=dict)
     skip_zero_outputs: bool = False
     fastmath: bool = False
+    error_model: str | None = None
     #: sin/cos of an angle atan2(y, x) as y/r, x/r, r = √(x² + y²) (no math.sin/math.cos calls; equal to rounding)
     sincos_of_atan2: bool = False
-    #: numba's error_model="numpy": a division by zero gives inf/NaN instead of raising (the caller tests the result)
-    error_model_numpy: bool = False
 
 
 def _prune_dead(stages, outputs, ret):
@@ -208,8 +207,8 @@ def render_kernel(k: Kernel) -> str:
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
-    if k.error_model_numpy:
-        deco = deco[:-1] + ', error_model="numpy")'
+    if k.error_model:
+        deco = deco[:-1] + f', error_model="{k.error_model}")'
     lines.append(deco)
     lines.append(f"def {k.name}({', '.join(k.params)}):")
     doc = k.doc.strip("\n")
