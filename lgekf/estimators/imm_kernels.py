@@ -1,8 +1,8 @@
 """The IMM's per-step loop in numba: mixing (on the group or in the common coordinates), mode-matched
 predict/update, mode probabilities from the innovation likelihoods, and the combined estimate.
 
-Every model is reached through ``lgekf.generated.dispatch`` (its kernels by model index), so one compiled
-loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (M,) model indices; ``S``
+Every model is reached through ``lgekf.generated.dispatch`` (its kernels by model index, the chains inlined), so
+one compiled loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (M,) model indices; ``S``
 (M, L) internal states (row j holds mode j's state in its first ``N_INTERNAL[models[j]]`` entries); ``Pp``
 (M, N) packed covariances (upper triangle, row-major, of each mode's own n); ``mu`` (M,) mode probabilities;
 ``PI`` (M, M) the transition matrix, PI[i, j] = P(mode j at k | mode i at k-1).
@@ -10,14 +10,15 @@ loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (
 Mixing on one group (every mode the same model, ``same_group``). Each mode i is a concentrated Gaussian
 X = μ_i·exp(ε_i), ε_i ~ N(0, P_i). The mixture Σ w_i N_G(μ_i, P_i) is reduced to one N_G(μ, P):
 
-* mean: iterate μ ← μ·exp(Σ w_i d_i), d_i = [log(μ⁻¹μ_i)]^∨ (generated ``between``, ``retract``), from
+* mean: iterate μ ← μ·exp(Σ w_i d_i), d_i = [log(μ⁻¹μ_i)]^∨ (generated ``between_add``, ``retract``), from
   the most probable μ_i, until |Σ w_i d_i| < 1e-12 (at most 50 iterations); then Σ w_i d_i = 0;
 * covariance: X = μ_i·exp(ε_i) = μ·exp(d_i)·exp(ε_i). With the right Jacobian Φ = Φ_G of the generated
   ``right_jacobian`` (log(exp(−d) exp(d + δ)) ≈ Φ(d) δ, i.e. exp(d + δ) ≈ exp(d)·exp(Φ(d) δ)), putting
   δ = Φ(d_i)⁻¹ ε_i gives exp(d_i)·exp(ε_i) ≈ exp(d_i + Φ(d_i)⁻¹ ε_i), so to first order in ε_i the error
   about μ is ε = d_i + Φ(d_i)⁻¹ ε_i and
   P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]  (``right_jacobian_inv``; tests/test_imm.py checks it
-  against samples pushed through dense expm/logm).
+  against samples pushed through dense expm/logm). Each term comes from the generated ``mix_transport``
+  (between, Φ⁻¹ and the congruence in one straight-line kernel over the packed covariances; derive/codegen/mixing.py).
 
 Mixing across models (``same_group`` false): in the common coordinates c = (x, y, θ, v_x, v_y, ω) (body
 velocity). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
@@ -26,7 +27,8 @@ A_i = ∂c/∂ε_i (``physical_to_common_jacobian``). A model carries no informa
 CTRV and SE(2)×R²): for mixing into mode j those coordinates of mode i are replaced by mode j's own
 (mean, variance; no correlation), i.e. only the shared components are mixed and each mode keeps its own
 others. The mixture is moment-matched in c (θ differences wrapped to (−π, π] about the most probable
-source) and converted to mode j: s_j = ``common_to_state``(c̄), P_j = J P̄_c Jᵀ, J = ``common_jacobian``(c̄).
+source) and converted to mode j: s_j = ``common_to_state``(c̄), P_j = J P̄_c Jᵀ, J = ``common_jacobian``(c̄) (both
+directions through the generated straight-line ``common_of_state`` / ``state_of_common``).
 A heading read off a velocity (CV) is singular at speed 0: the Jacobians are taken at speed ≥ 1e-9 m/s
 (``SPEED_FLOOR``) and the std of the common θ is capped at π (congruence scaling, as the filters'
 ``limit_angle_variance``), so a stopped CV mode hands on "heading unknown", not an infinite variance.
@@ -66,14 +68,6 @@ def workspace(M):
             np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
             np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
             np.empty((NW, NW)))
-
-
-@nb.njit(cache=True)
-def _packed_at(p, n, i, j):
-    """P[i, j] of a packed upper triangle (row-major)."""
-    if i > j:
-        i, j = j, i
-    return p[i * n - i * (i - 1) // 2 + (j - i)]
 
 
 @nb.njit(cache=True)
@@ -396,12 +390,13 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
     loglik, prior = ws[17], ws[16]
     m = z.shape[0]
     for j in range(M):
+        sj, pj = S[j], Pp[j]  # one view each (a view costs a reference count)
         if meas_pose:  # log det S at the predicted state (generated innovation_logdet_<meas>), then the update
-            logdet = D.innovation_logdet_pose(models[j], S[j], Pp[j], r)
-            nis = D.update_pose(models[j], S[j], Pp[j], z, r)
+            logdet = D.innovation_logdet_pose(models[j], sj, pj, r)
+            nis = D.update_pose(models[j], sj, pj, z, r)
         else:
-            logdet = D.innovation_logdet_position(models[j], S[j], Pp[j], r)
-            nis = D.update_position(models[j], S[j], Pp[j], z, r)
+            logdet = D.innovation_logdet_position(models[j], sj, pj, r)
+            nis = D.update_position(models[j], sj, pj, z, r)
         nis_out[j] = nis
         loglik[j] = -0.5 * (nis + logdet + m * LOG_2PI)
         prior[j] = mu[j]
