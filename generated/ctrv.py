@@ -2678,20 +2678,19 @@ def physical_to_common_jacobian_into(xp, out):
 
 
 @nb.njit(cache=True)
-def between_add(s, T, i, w, acc):
-    """acc += w·[log_G(μ_s^-1 μ_t)]^∨, μ_t the state in row i of T (a term of the iterated mean
-    μ ← μ·exp(Σ w_i d_i); d as ``between``).
+def between_add(s, t, w, acc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
     """
     x = s[0]
     y = s[1]
     psi = s[2]
     v = s[3]
     omega = s[4]
-    t_x = T[i, 0]
-    t_y = T[i, 1]
-    t_psi = T[i, 2]
-    t_v = T[i, 3]
-    t_omega = T[i, 4]
+    t_x = t[0]
+    t_y = t[1]
+    t_psi = t[2]
+    t_v = t[3]
+    t_omega = t[4]
     acc0 = acc[0]
     acc1 = acc[1]
     acc2 = acc[2]
@@ -2710,9 +2709,8 @@ def between_add(s, T, i, w, acc):
 
 
 @nb.njit(cache=True)
-def mix_transport(s, T, PT, i, w, acc):
-    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, μ_t = T[i],
-    P_t = unpack(PT[i]) (rows of the stacked states and packed covariances, read without array views):
+def mix_transport(s, t, pt, w, acc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
     to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
     """
@@ -2721,26 +2719,26 @@ def mix_transport(s, T, PT, i, w, acc):
     psi = s[2]
     v = s[3]
     omega = s[4]
-    t_x = T[i, 0]
-    t_y = T[i, 1]
-    t_psi = T[i, 2]
-    t_v = T[i, 3]
-    t_omega = T[i, 4]
-    pt0_0 = PT[i, 0]
-    pt0_1 = PT[i, 1]
-    pt0_2 = PT[i, 2]
-    pt0_3 = PT[i, 3]
-    pt0_4 = PT[i, 4]
-    pt1_1 = PT[i, 5]
-    pt1_2 = PT[i, 6]
-    pt1_3 = PT[i, 7]
-    pt1_4 = PT[i, 8]
-    pt2_2 = PT[i, 9]
-    pt2_3 = PT[i, 10]
-    pt2_4 = PT[i, 11]
-    pt3_3 = PT[i, 12]
-    pt3_4 = PT[i, 13]
-    pt4_4 = PT[i, 14]
+    t_x = t[0]
+    t_y = t[1]
+    t_psi = t[2]
+    t_v = t[3]
+    t_omega = t[4]
+    pt0_0 = pt[0]
+    pt0_1 = pt[1]
+    pt0_2 = pt[2]
+    pt0_3 = pt[3]
+    pt0_4 = pt[4]
+    pt1_1 = pt[5]
+    pt1_2 = pt[6]
+    pt1_3 = pt[7]
+    pt1_4 = pt[8]
+    pt2_2 = pt[9]
+    pt2_3 = pt[10]
+    pt2_4 = pt[11]
+    pt3_3 = pt[12]
+    pt3_4 = pt[13]
+    pt4_4 = pt[14]
     acc0 = acc[0]
     acc1 = acc[1]
     acc2 = acc[2]

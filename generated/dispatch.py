@@ -307,31 +307,31 @@ def state_of_common(model, c, Pc, s, p):
 
 
 @nb.njit(cache=True, inline="always")
-def between_add(model, s, T, i, w, acc):
+def between_add(model, s, t, w, acc):
     if model == 0:
-        ctrv.between_add(s, T, i, w, acc)
+        ctrv.between_add(s, t, w, acc)
     elif model == 1:
-        cv.between_add(s, T, i, w, acc)
+        cv.between_add(s, t, w, acc)
     elif model == 2:
-        se2r2.between_add(s, T, i, w, acc)
+        se2r2.between_add(s, t, w, acc)
     elif model == 3:
-        se2r3.between_add(s, T, i, w, acc)
+        se2r3.between_add(s, t, w, acc)
     elif model == 4:
-        se2se2.between_add(s, T, i, w, acc)
+        se2se2.between_add(s, t, w, acc)
 
 
 @nb.njit(cache=True, inline="always")
-def mix_transport(model, s, T, PT, i, w, acc):
+def mix_transport(model, s, t, pt, w, acc):
     if model == 0:
-        ctrv.mix_transport(s, T, PT, i, w, acc)
+        ctrv.mix_transport(s, t, pt, w, acc)
     elif model == 1:
-        cv.mix_transport(s, T, PT, i, w, acc)
+        cv.mix_transport(s, t, pt, w, acc)
     elif model == 2:
-        se2r2.mix_transport(s, T, PT, i, w, acc)
+        se2r2.mix_transport(s, t, pt, w, acc)
     elif model == 3:
-        se2r3.mix_transport(s, T, PT, i, w, acc)
+        se2r3.mix_transport(s, t, pt, w, acc)
     elif model == 4:
-        se2se2.mix_transport(s, T, PT, i, w, acc)
+        se2se2.mix_transport(s, t, pt, w, acc)
 
 
 @nb.njit(cache=True, inline="always")

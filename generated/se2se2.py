@@ -3880,9 +3880,8 @@ def physical_to_common_jacobian_into(xp, out):
 
 
 @nb.njit(cache=True)
-def between_add(s, T, i, w, acc):
-    """acc += w·[log_G(μ_s^-1 μ_t)]^∨, μ_t the state in row i of T (a term of the iterated mean
-    μ ← μ·exp(Σ w_i d_i); d as ``between``).
+def between_add(s, t, w, acc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
     """
     x = s[0]
     y = s[1]
@@ -3892,14 +3891,14 @@ def between_add(s, T, i, w, acc):
     v_y = s[5]
     c_omega = s[7]
     s_omega = s[8]
-    t_x = T[i, 0]
-    t_y = T[i, 1]
-    t_c_theta = T[i, 2]
-    t_s_theta = T[i, 3]
-    t_v_x = T[i, 4]
-    t_v_y = T[i, 5]
-    t_c_omega = T[i, 7]
-    t_s_omega = T[i, 8]
+    t_x = t[0]
+    t_y = t[1]
+    t_c_theta = t[2]
+    t_s_theta = t[3]
+    t_v_x = t[4]
+    t_v_y = t[5]
+    t_c_omega = t[7]
+    t_s_omega = t[8]
     acc0 = acc[0]
     acc1 = acc[1]
     acc2 = acc[2]
@@ -3941,9 +3940,8 @@ def between_add(s, T, i, w, acc):
 
 
 @nb.njit(cache=True)
-def mix_transport(s, T, PT, i, w, acc):
-    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, μ_t = T[i],
-    P_t = unpack(PT[i]) (rows of the stacked states and packed covariances, read without array views):
+def mix_transport(s, t, pt, w, acc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
     to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
     """
@@ -3955,35 +3953,35 @@ def mix_transport(s, T, PT, i, w, acc):
     v_y = s[5]
     c_omega = s[7]
     s_omega = s[8]
-    t_x = T[i, 0]
-    t_y = T[i, 1]
-    t_c_theta = T[i, 2]
-    t_s_theta = T[i, 3]
-    t_v_x = T[i, 4]
-    t_v_y = T[i, 5]
-    t_c_omega = T[i, 7]
-    t_s_omega = T[i, 8]
-    pt0_0 = PT[i, 0]
-    pt0_1 = PT[i, 1]
-    pt0_2 = PT[i, 2]
-    pt0_3 = PT[i, 3]
-    pt0_4 = PT[i, 4]
-    pt0_5 = PT[i, 5]
-    pt1_1 = PT[i, 6]
-    pt1_2 = PT[i, 7]
-    pt1_3 = PT[i, 8]
-    pt1_4 = PT[i, 9]
-    pt1_5 = PT[i, 10]
-    pt2_2 = PT[i, 11]
-    pt2_3 = PT[i, 12]
-    pt2_4 = PT[i, 13]
-    pt2_5 = PT[i, 14]
-    pt3_3 = PT[i, 15]
-    pt3_4 = PT[i, 16]
-    pt3_5 = PT[i, 17]
-    pt4_4 = PT[i, 18]
-    pt4_5 = PT[i, 19]
-    pt5_5 = PT[i, 20]
+    t_x = t[0]
+    t_y = t[1]
+    t_c_theta = t[2]
+    t_s_theta = t[3]
+    t_v_x = t[4]
+    t_v_y = t[5]
+    t_c_omega = t[7]
+    t_s_omega = t[8]
+    pt0_0 = pt[0]
+    pt0_1 = pt[1]
+    pt0_2 = pt[2]
+    pt0_3 = pt[3]
+    pt0_4 = pt[4]
+    pt0_5 = pt[5]
+    pt1_1 = pt[6]
+    pt1_2 = pt[7]
+    pt1_3 = pt[8]
+    pt1_4 = pt[9]
+    pt1_5 = pt[10]
+    pt2_2 = pt[11]
+    pt2_3 = pt[12]
+    pt2_4 = pt[13]
+    pt2_5 = pt[14]
+    pt3_3 = pt[15]
+    pt3_4 = pt[16]
+    pt3_5 = pt[17]
+    pt4_4 = pt[18]
+    pt4_5 = pt[19]
+    pt5_5 = pt[20]
     acc0 = acc[0]
     acc1 = acc[1]
     acc2 = acc[2]

@@ -46,11 +46,11 @@ def test_mix_transport_and_between_add_match_the_general_kernels(model, scale):
         T = k.right_jacobian_inv(d)
         want = unpack(acc0, n) + w * (T @ P @ T.T + np.outer(d, d))
         acc = acc0.copy()
-        k.mix_transport(s, t[None], pack(P)[None], 0, w, acc)
+        k.mix_transport(s, t, pack(P), w, acc)
         np.testing.assert_allclose(unpack(acc, n), want, rtol=1e-12, atol=1e-12)
         delta = rng.normal(size=n)
         want_d = delta + w * d
-        k.between_add(s, t[None], 0, w, delta)
+        k.between_add(s, t, w, delta)
         np.testing.assert_allclose(delta, want_d, rtol=1e-13, atol=1e-14)
 
 

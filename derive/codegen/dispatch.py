@@ -113,8 +113,8 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
     funcs.append(_chain("retract", "s, eps", names, lambda n: f"{n}.retract(s, eps)", False))
     funcs.append(_chain("common_of_state", "s, p, c, Pc", names, lambda n: f"{n}.common_of_state(s, p, c, Pc)", False))
     funcs.append(_chain("state_of_common", "c, Pc, s, p", names, lambda n: f"{n}.state_of_common(c, Pc, s, p)", False))
-    funcs.append(_chain("between_add", "s, T, i, w, acc", names, lambda n: f"{n}.between_add(s, T, i, w, acc)", False))
-    funcs.append(_chain("mix_transport", "s, T, PT, i, w, acc", names, lambda n: f"{n}.mix_transport(s, T, PT, i, w, acc)", False))
+    funcs.append(_chain("between_add", "s, t, w, acc", names, lambda n: f"{n}.between_add(s, t, w, acc)", False))
+    funcs.append(_chain("mix_transport", "s, t, pt, w, acc", names, lambda n: f"{n}.mix_transport(s, t, pt, w, acc)", False))
     into_params = {"state_from_physical": "x", "between": "s, t", "right_jacobian_inv": "eps", "common_to_state": "c",
                    "common_jacobian": "c", "physical_to_common": "x", "physical_to_common_jacobian": "x"}
     for fname, params in into_params.items():

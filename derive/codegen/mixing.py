@@ -8,14 +8,10 @@ then sin/cos of it twice (once in ``between``, once in Φ⁻¹), the n × n prod
 of Φ⁻¹ (the identity on every Rⁿ factor), and the packed covariances go through dense copies.  Emitted here,
 per model, from the same definitions (``derive.lie`` groups, the model's internal layout):
 
-* ``between_add(s, T, i, w, acc)``: acc += w·[log(μ_s⁻¹μ_t)]^∨, t = T[i] (one mean iteration's term);
-* ``mix_transport(s, T, PT, i, w, acc)``: acc (packed, upper triangle row-major, n(n+1)/2) +=
-  w·[Φ(d)⁻¹ P_t Φ(d)⁻ᵀ + d dᵀ], d = [log(μ_s⁻¹μ_t)]^∨, t = T[i], P_t the packed PT[i]; straight-line, with CSE
-  over between and Φ⁻¹ (one atan2 per SE(2) factor) and only the non-zero products.
-
-The sources are read as rows i of the stacked states T and covariances PT (the IMM's S and Pp), not as views
-T[i]: a numba array view costs an atomic reference-count increment and decrement, which profiling showed to
-be a large part of the IMM's loop.
+* ``between_add(s, t, w, acc)``: acc += w·[log(μ_s⁻¹μ_t)]^∨ (one mean iteration's term);
+* ``mix_transport(s, t, pt, w, acc)``: acc (packed, upper triangle row-major, n(n+1)/2) +=
+  w·[Φ(d)⁻¹ P_t Φ(d)⁻ᵀ + d dᵀ], d = [log(μ_s⁻¹μ_t)]^∨, P_t the packed ``pt``; straight-line, with CSE over
+  between and Φ⁻¹ (one atan2 per SE(2) factor) and only the non-zero products.
 
 Both evaluate sin/cos of a relative angle a = atan2(y, x) as y/r, x/r (r = √(x² + y²), ``Kernel.sincos_of_atan2``):
 equal to sin(a), cos(a) to rounding, without the two libm calls.
@@ -33,7 +29,7 @@ __all__ = ["mixing_kernels", "common_kernels"]
 
 
 def _between(model):
-    """(inputs of s and of t = T[i], d = [log(μ_s⁻¹μ_t)]^∨ as expressions in the internal entries of s and t)."""
+    """(inputs of s and t, d = [log(μ_s⁻¹μ_t)]^∨ as expressions in the internal entries of s and t)."""
     G = model.group
     sub = model.to_internal
     mu = model.mean().applyfunc(sub)
@@ -42,7 +38,7 @@ def _between(model):
     d = G.log(G.inverse(mu) * mu_t)
     d = [wrap(e) if i in model.angles and i not in model.periodic_tangent() else e for i, e in enumerate(d)]
     sin_ = [(v, f"s[{i}]") for i, v in enumerate(model.internal)]
-    tin = [(v, f"T[i, {k}]") for k, v in enumerate(tsyms)]  # row i of the stacked states (no array view)
+    tin = [(v, f"t[{i}]") for i, v in enumerate(tsyms)]
     return sin_ + tin, [sub(sp.sympify(e)) for e in d]
 
 
@@ -64,9 +60,8 @@ def mixing_kernels(model) -> list:
     w = sp.Symbol("w", real=True)
     add = Kernel(
         name="between_add",
-        doc=("acc += w·[log_G(μ_s^-1 μ_t)]^∨, μ_t the state in row i of T (a term of the iterated mean\n"
-             "μ ← μ·exp(Σ w_i d_i); d as ``between``)."),
-        params=["s", "T", "i", "w", "acc"], inputs=st_in + [(w, "w")] + acc_in[:n],
+        doc="acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).",
+        params=["s", "t", "w", "acc"], inputs=st_in + [(w, "w")] + acc_in[:n],
         stages=[list(zip(dsyms, d_expr))],
         outputs=[(f"acc[{k}]", acc[k] + w * dsyms[k]) for k in range(n)], sincos_of_atan2=True,
     )
@@ -86,7 +81,7 @@ def mixing_kernels(model) -> list:
                 tdefs.append((T[i, j], e))
     psyms = {(i, j): sp.Symbol(f"pt{i}_{j}", real=True) for i in range(n) for j in range(i, n)}
     Pt = sp.Matrix(n, n, lambda i, j: psyms[(min(i, j), max(i, j))])
-    p_in = [(psyms[(i, j)], f"PT[i, {idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
+    p_in = [(psyms[(i, j)], f"pt[{idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
     U = T * Pt
     udefs, Us = [], sp.zeros(n, n)
     for i in range(n):
@@ -105,11 +100,10 @@ def mixing_kernels(model) -> list:
             outputs.append((f"acc[{k}]", acc[k] + w * (C[i, j] + dsyms[i] * dsyms[j])))
     transport = Kernel(
         name="mix_transport",
-        doc=("acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, μ_t = T[i],\n"
-             "P_t = unpack(PT[i]) (rows of the stacked states and packed covariances, read without array views):\n"
+        doc=("acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):\n"
              "one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)\n"
              "to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1."),
-        params=["s", "T", "PT", "i", "w", "acc"], inputs=st_in + p_in + [(w, "w")] + acc_in,
+        params=["s", "t", "pt", "w", "acc"], inputs=st_in + p_in + [(w, "w")] + acc_in,
         stages=[list(zip(dsyms, d_expr)), tdefs, udefs], outputs=outputs, sincos_of_atan2=True,
     )
     return [add, transport]

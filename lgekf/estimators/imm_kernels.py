@@ -150,7 +150,7 @@ def _mix_on_group(model, S, Pp, w, s_out, p_out, delta):
                 delta[k] = 0.0
             for i in range(M):
                 if w[i] > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_add(model, s_out, S, i, w[i], delta)  # row i of S: no view
+                    D.between_add(model, s_out, S[i], w[i], delta)
             D.retract(model, s_out, delta)
             nrm = 0.0
             for k in range(n):
@@ -166,7 +166,7 @@ def _mix_on_group(model, S, Pp, w, s_out, p_out, delta):
         p_out[k] = 0.0
     for i in range(M):
         if w[i] > 0.0:
-            D.mix_transport(model, s_out, S, Pp, i, w[i], p_out)
+            D.mix_transport(model, s_out, S[i], Pp[i], w[i], p_out)
     return it
 
 
