@@ -6,6 +6,7 @@ For each IMM (M modes) the time of ``imm_batch`` over a batch, against ``filter_
 the same data; prints IMM / (M × one filter), "one filter" being the mean time of the modes' filters run alone
 (the issue's goal: ≤ 1.3), and IMM / Σ (the modes run alone). Both run numba prange over the batch, on one
 thread (NUMBA_NUM_THREADS=1 is set before numba loads, so other jobs on the machine matter less); best of 5.
+Where an IMM step's time goes (mixing, likelihood, combined output): benchmarks/profile_imm.py.
 """
 
 from __future__ import annotations

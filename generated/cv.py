@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
 
 
 @nb.njit(cache=True)
@@ -1487,3 +1487,221 @@ def physical_to_common_jacobian_into(xp, out):
     out[2, 3] = _t1*w_x
     out[3, 2] = _t2*w_x
     out[3, 3] = _t2*w_y
+
+
+@nb.njit(cache=True)
+def between_add(s, t, w, acc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    t_x = t[0]
+    t_y = t[1]
+    t_w_x = t[2]
+    t_w_y = t[3]
+    acc0 = acc[0]
+    acc1 = acc[1]
+    acc2 = acc[2]
+    acc3 = acc[3]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[0] = acc0 + d0*w
+    acc[1] = acc1 + d1*w
+    acc[2] = acc2 + d2*w
+    acc[3] = acc3 + d3*w
+
+
+@nb.njit(cache=True)
+def mix_transport(s, t, pt, w, acc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
+    one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
+    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    t_x = t[0]
+    t_y = t[1]
+    t_w_x = t[2]
+    t_w_y = t[3]
+    pt0_0 = pt[0]
+    pt0_1 = pt[1]
+    pt0_2 = pt[2]
+    pt0_3 = pt[3]
+    pt1_1 = pt[4]
+    pt1_2 = pt[5]
+    pt1_3 = pt[6]
+    pt2_2 = pt[7]
+    pt2_3 = pt[8]
+    pt3_3 = pt[9]
+    acc0 = acc[0]
+    acc1 = acc[1]
+    acc2 = acc[2]
+    acc3 = acc[3]
+    acc4 = acc[4]
+    acc5 = acc[5]
+    acc6 = acc[6]
+    acc7 = acc[7]
+    acc8 = acc[8]
+    acc9 = acc[9]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[0] = acc0 + w*(d0*d0 + pt0_0)
+    acc[1] = acc1 + w*(d0*d1 + pt0_1)
+    acc[2] = acc2 + w*(d0*d2 + pt0_2)
+    acc[3] = acc3 + w*(d0*d3 + pt0_3)
+    acc[4] = acc4 + w*(d1*d1 + pt1_1)
+    acc[5] = acc5 + w*(d1*d2 + pt1_2)
+    acc[6] = acc6 + w*(d1*d3 + pt1_3)
+    acc[7] = acc7 + w*(d2*d2 + pt2_2)
+    acc[8] = acc8 + w*(d2*d3 + pt2_3)
+    acc[9] = acc9 + w*(d3*d3 + pt3_3)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def common_of_state(s, p, c, Pc):
+    """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
+    physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    p0_0 = p[0]
+    p0_1 = p[1]
+    p0_2 = p[2]
+    p0_3 = p[3]
+    p1_1 = p[4]
+    p1_2 = p[5]
+    p1_3 = p[6]
+    p2_2 = p[7]
+    p2_3 = p[8]
+    p3_3 = p[9]
+    xp_x = x
+    xp_y = y
+    xp_w_x = w_x
+    xp_w_y = w_y
+    _t0 = xp_w_x*xp_w_x + xp_w_y*xp_w_y
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    A2_2 = -(_t1*xp_w_y)
+    A2_3 = _t1*xp_w_x
+    A3_2 = _t2*xp_w_x
+    A3_3 = _t2*xp_w_y
+    U2_2 = A2_2*p2_2 + A2_3*p2_3
+    U2_3 = A2_2*p2_3 + A2_3*p3_3
+    U3_2 = A3_2*p2_2 + A3_3*p2_3
+    U3_3 = A3_2*p2_3 + A3_3*p3_3
+    _t3 = A2_2*p0_2 + A2_3*p0_3
+    _t4 = A3_2*p0_2 + A3_3*p0_3
+    _t5 = A2_2*p1_2 + A2_3*p1_3
+    _t6 = A3_2*p1_2 + A3_3*p1_3
+    _t7 = A3_2*U2_2 + A3_3*U2_3
+    c[0] = xp_x
+    c[1] = xp_y
+    c[2] = math.atan2(xp_w_y, xp_w_x)
+    c[3] = math.sqrt(xp_w_x*xp_w_x + xp_w_y*xp_w_y)
+    c[4] = 0.0
+    c[5] = 0.0
+    Pc[0, 0] = p0_0
+    Pc[0, 1] = p0_1
+    Pc[1, 0] = p0_1
+    Pc[0, 2] = _t3
+    Pc[2, 0] = _t3
+    Pc[0, 3] = _t4
+    Pc[3, 0] = _t4
+    Pc[0, 4] = 0.0
+    Pc[4, 0] = 0.0
+    Pc[0, 5] = 0.0
+    Pc[5, 0] = 0.0
+    Pc[1, 1] = p1_1
+    Pc[1, 2] = _t5
+    Pc[2, 1] = _t5
+    Pc[1, 3] = _t6
+    Pc[3, 1] = _t6
+    Pc[1, 4] = 0.0
+    Pc[4, 1] = 0.0
+    Pc[1, 5] = 0.0
+    Pc[5, 1] = 0.0
+    Pc[2, 2] = A2_2*U2_2 + A2_3*U2_3
+    Pc[2, 3] = _t7
+    Pc[3, 2] = _t7
+    Pc[2, 4] = 0.0
+    Pc[4, 2] = 0.0
+    Pc[2, 5] = 0.0
+    Pc[5, 2] = 0.0
+    Pc[3, 3] = A3_2*U3_2 + A3_3*U3_3
+    Pc[3, 4] = 0.0
+    Pc[4, 3] = 0.0
+    Pc[3, 5] = 0.0
+    Pc[5, 3] = 0.0
+    Pc[4, 4] = 0.0
+    Pc[4, 5] = 0.0
+    Pc[5, 4] = 0.0
+    Pc[5, 5] = 0.0
+
+
+@nb.njit(cache=True)
+def state_of_common(c, Pc, s, p):
+    """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
+    s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
+    """
+    c0 = c[0]
+    c1 = c[1]
+    c2 = c[2]
+    c3 = c[3]
+    c4 = c[4]
+    pc0_0 = Pc[0, 0]
+    pc0_1 = Pc[0, 1]
+    pc0_2 = Pc[0, 2]
+    pc0_3 = Pc[0, 3]
+    pc0_4 = Pc[0, 4]
+    pc1_1 = Pc[1, 1]
+    pc1_2 = Pc[1, 2]
+    pc1_3 = Pc[1, 3]
+    pc1_4 = Pc[1, 4]
+    pc2_2 = Pc[2, 2]
+    pc2_3 = Pc[2, 3]
+    pc2_4 = Pc[2, 4]
+    pc3_3 = Pc[3, 3]
+    pc3_4 = Pc[3, 4]
+    pc4_4 = Pc[4, 4]
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    xp_x = c0
+    xp_y = c1
+    xp_w_x = _cos_c2*c3 - _sin_c2*c4
+    xp_w_y = _cos_c2*c4 + _sin_c2*c3
+    J2_2 = -(_cos_c2*c4) - _sin_c2*c3
+    J2_3 = _cos_c2
+    J2_4 = -_sin_c2
+    J3_2 = _cos_c2*c3 - _sin_c2*c4
+    J3_3 = _sin_c2
+    J3_4 = _cos_c2
+    V2_2 = J2_2*pc2_2 + J2_3*pc2_3 + J2_4*pc2_4
+    V2_3 = J2_2*pc2_3 + J2_3*pc3_3 + J2_4*pc3_4
+    V2_4 = J2_2*pc2_4 + J2_3*pc3_4 + J2_4*pc4_4
+    V3_2 = J3_2*pc2_2 + J3_3*pc2_3 + J3_4*pc2_4
+    V3_3 = J3_2*pc2_3 + J3_3*pc3_3 + J3_4*pc3_4
+    V3_4 = J3_2*pc2_4 + J3_3*pc3_4 + J3_4*pc4_4
+    s[0] = xp_x
+    s[1] = xp_y
+    s[2] = xp_w_x
+    s[3] = xp_w_y
+    p[0] = pc0_0
+    p[1] = pc0_1
+    p[2] = J2_2*pc0_2 + J2_3*pc0_3 + J2_4*pc0_4
+    p[3] = J3_2*pc0_2 + J3_3*pc0_3 + J3_4*pc0_4
+    p[4] = pc1_1
+    p[5] = J2_2*pc1_2 + J2_3*pc1_3 + J2_4*pc1_4
+    p[6] = J3_2*pc1_2 + J3_3*pc1_3 + J3_4*pc1_4
+    p[7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
+    p[8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
+    p[9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4

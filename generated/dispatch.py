@@ -12,9 +12,11 @@ from . import ctrv, cv, se2r2, se2r3, se2se2
 MODEL_NAMES = ('ctrv', 'cv', 'se2r2', 'se2r3', 'se2se2')
 N_TANGENT = np.array([5, 4, 5, 6, 6])
 N_INTERNAL = np.array([5, 4, 6, 7, 9])
+#: COMMON_MISSING[model, k] = 1.0 where the model carries no information on common coordinate k (common_missing)
+COMMON_MISSING = np.array([[0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 0.0, 0.0, 0.0]])
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def predict(model, s, p, dt, q):
     if model == 0:
         ctrv.predict(s, p, dt, q[0], q[1])
@@ -28,7 +30,7 @@ def predict(model, s, p, dt, q):
         se2se2.predict(s, p, dt, q[0], q[1], q[2])
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def update_pose(model, s, p, z, r):
     if model == 0:
         return ctrv.update_pose(s, p, z[0], z[1], z[2], r[0], r[1], r[2])
@@ -41,7 +43,7 @@ def update_pose(model, s, p, z, r):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def calH_pose(model, s):
     if model == 0:
         return ctrv.calH_pose(s)
@@ -54,7 +56,7 @@ def calH_pose(model, s):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def innovation_logdet_pose(model, s, p, r):
     if model == 0:
         return ctrv.innovation_logdet_pose(s, p, r[0], r[1], r[2])
@@ -67,7 +69,7 @@ def innovation_logdet_pose(model, s, p, r):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def update_position(model, s, p, z, r):
     if model == 0:
         return ctrv.update_position(s, p, z[0], z[1], r[0])
@@ -82,7 +84,7 @@ def update_position(model, s, p, z, r):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def calH_position(model, s):
     if model == 0:
         return ctrv.calH_position(s)
@@ -97,7 +99,7 @@ def calH_position(model, s):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def innovation_logdet_position(model, s, p, r):
     if model == 0:
         return ctrv.innovation_logdet_position(s, p, r[0])
@@ -112,7 +114,7 @@ def innovation_logdet_position(model, s, p, r):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def state_from_physical(model, x):
     if model == 0:
         return ctrv.state_from_physical(x)
@@ -127,7 +129,7 @@ def state_from_physical(model, x):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def state_to_physical(model, s):
     if model == 0:
         return ctrv.state_to_physical(s)
@@ -142,7 +144,7 @@ def state_to_physical(model, s):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def physical_to_common(model, x):
     if model == 0:
         return ctrv.physical_to_common(x)
@@ -157,7 +159,7 @@ def physical_to_common(model, x):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def physical_to_common_jacobian(model, x):
     if model == 0:
         return ctrv.physical_to_common_jacobian(x)
@@ -172,7 +174,7 @@ def physical_to_common_jacobian(model, x):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def common_to_state(model, c):
     if model == 0:
         return ctrv.common_to_state(c)
@@ -187,7 +189,7 @@ def common_to_state(model, c):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def common_jacobian(model, c):
     if model == 0:
         return ctrv.common_jacobian(c)
@@ -202,7 +204,7 @@ def common_jacobian(model, c):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def common_missing(model):
     if model == 0:
         return ctrv.common_missing()
@@ -217,7 +219,7 @@ def common_missing(model):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def between(model, s, t):
     if model == 0:
         return ctrv.between(s, t)
@@ -232,7 +234,7 @@ def between(model, s, t):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def right_jacobian_inv(model, eps):
     if model == 0:
         return ctrv.right_jacobian_inv(eps)
@@ -247,7 +249,7 @@ def right_jacobian_inv(model, eps):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def tangent_error(model, s, c):
     if model == 0:
         return ctrv.tangent_error(s, c)
@@ -262,7 +264,7 @@ def tangent_error(model, s, c):
     raise ValueError('dispatch: model index out of range')
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def retract(model, s, eps):
     if model == 0:
         ctrv.retract(s, eps)
@@ -276,7 +278,63 @@ def retract(model, s, eps):
         se2se2.retract(s, eps)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
+def common_of_state(model, s, p, c, Pc):
+    if model == 0:
+        ctrv.common_of_state(s, p, c, Pc)
+    elif model == 1:
+        cv.common_of_state(s, p, c, Pc)
+    elif model == 2:
+        se2r2.common_of_state(s, p, c, Pc)
+    elif model == 3:
+        se2r3.common_of_state(s, p, c, Pc)
+    elif model == 4:
+        se2se2.common_of_state(s, p, c, Pc)
+
+
+@nb.njit(cache=True, inline="always")
+def state_of_common(model, c, Pc, s, p):
+    if model == 0:
+        ctrv.state_of_common(c, Pc, s, p)
+    elif model == 1:
+        cv.state_of_common(c, Pc, s, p)
+    elif model == 2:
+        se2r2.state_of_common(c, Pc, s, p)
+    elif model == 3:
+        se2r3.state_of_common(c, Pc, s, p)
+    elif model == 4:
+        se2se2.state_of_common(c, Pc, s, p)
+
+
+@nb.njit(cache=True, inline="always")
+def between_add(model, s, t, w, acc):
+    if model == 0:
+        ctrv.between_add(s, t, w, acc)
+    elif model == 1:
+        cv.between_add(s, t, w, acc)
+    elif model == 2:
+        se2r2.between_add(s, t, w, acc)
+    elif model == 3:
+        se2r3.between_add(s, t, w, acc)
+    elif model == 4:
+        se2se2.between_add(s, t, w, acc)
+
+
+@nb.njit(cache=True, inline="always")
+def mix_transport(model, s, t, pt, w, acc):
+    if model == 0:
+        ctrv.mix_transport(s, t, pt, w, acc)
+    elif model == 1:
+        cv.mix_transport(s, t, pt, w, acc)
+    elif model == 2:
+        se2r2.mix_transport(s, t, pt, w, acc)
+    elif model == 3:
+        se2r3.mix_transport(s, t, pt, w, acc)
+    elif model == 4:
+        se2se2.mix_transport(s, t, pt, w, acc)
+
+
+@nb.njit(cache=True, inline="always")
 def state_from_physical_into(model, x, out):
     if model == 0:
         ctrv.state_from_physical_into(x, out)
@@ -290,7 +348,7 @@ def state_from_physical_into(model, x, out):
         se2se2.state_from_physical_into(x, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def between_into(model, s, t, out):
     if model == 0:
         ctrv.between_into(s, t, out)
@@ -304,7 +362,7 @@ def between_into(model, s, t, out):
         se2se2.between_into(s, t, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def right_jacobian_inv_into(model, eps, out):
     if model == 0:
         ctrv.right_jacobian_inv_into(eps, out)
@@ -318,7 +376,7 @@ def right_jacobian_inv_into(model, eps, out):
         se2se2.right_jacobian_inv_into(eps, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def common_to_state_into(model, c, out):
     if model == 0:
         ctrv.common_to_state_into(c, out)
@@ -332,7 +390,7 @@ def common_to_state_into(model, c, out):
         se2se2.common_to_state_into(c, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def common_jacobian_into(model, c, out):
     if model == 0:
         ctrv.common_jacobian_into(c, out)
@@ -346,7 +404,7 @@ def common_jacobian_into(model, c, out):
         se2se2.common_jacobian_into(c, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def physical_to_common_into(model, x, out):
     if model == 0:
         ctrv.physical_to_common_into(x, out)
@@ -360,7 +418,7 @@ def physical_to_common_into(model, x, out):
         se2se2.physical_to_common_into(x, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def physical_to_common_jacobian_into(model, x, out):
     if model == 0:
         ctrv.physical_to_common_jacobian_into(x, out)
@@ -374,7 +432,7 @@ def physical_to_common_jacobian_into(model, x, out):
         se2se2.physical_to_common_jacobian_into(x, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def physical_into(model, s, out):
     if model == 0:
         ctrv.physical_into(s, out)
@@ -388,7 +446,7 @@ def physical_into(model, s, out):
         se2se2.physical_into(s, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def calH_pose_into(model, s, out):
     if model == 0:
         ctrv.calH_pose_into(s, out)
@@ -400,7 +458,7 @@ def calH_pose_into(model, s, out):
         se2se2.calH_pose_into(s, out)
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def calH_position_into(model, s, out):
     if model == 0:
         ctrv.calH_position_into(s, out)

@@ -5,12 +5,15 @@ Per model (appended to ``generated/<model>.py``):
 
 * ``physical_to_common(x)``: c = (x, y, θ, v_x, v_y, ω) of a physical state (``MotionModel.common_of_physical``);
 * ``physical_to_common_jacobian(x)``: ∂c/∂ε (6 × n) at x, for X = μ·exp(ε);
-* ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0.
+* ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0;
+* ``between_add``, ``mix_transport``: the fused terms of mixing on the group; ``common_of_state``,
+  ``state_of_common``: a Gaussian to and from the common coordinates in one kernel (``derive.codegen.mixing``).
 
 ``generated/dispatch.py``: ``predict(model, s, p, dt, q)``, ``update_<meas>(model, s, p, z, r)``,
 ``calH_<meas>(model, s)``, ``innovation_logdet_<meas>(model, s, p, r)`` (log det S), and the conversions and group
 operations, each an ``if model == i`` chain over the registry (sorted names), so that one compiled numba loop
-runs any mixture of models. The chain is generated, so no runtime code knows a model by name.
+runs any mixture of models. The chain is generated, so no runtime code knows a model by name; it is inlined into
+its caller (``inline="always"``), so selecting the kernel costs a branch, not a call.
 """
 
 from __future__ import annotations
@@ -53,11 +56,15 @@ def common_readout_kernels(model, kernels=()) -> list:
          f"    return np.array({missing!r})\n"),
     ]
     every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
-    return own + [into_variant(k) for k in every]
+    from .mixing import common_kernels, mixing_kernels
+
+    return own + [into_variant(k) for k in every] + mixing_kernels(model) + common_kernels(model)
 
 
 def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
-    lines = ["@nb.njit(cache=True)", f"def {fname}(model, {params}):"]
+    # inlined into the caller (numba IR): the chain adds no call of its own (and no reference counting of its array
+    # arguments, ~30 ns a call in the IMM's loop); the model's kernel it selects stays one call
+    lines = ['@nb.njit(cache=True, inline="always")', f"def {fname}(model, {params}):"]
     first = True
     for i, name in enumerate(names):
         body = call(name)
@@ -81,6 +88,8 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
     out.append(f"MODEL_NAMES = {tuple(names)!r}\n")
     out.append(f"N_TANGENT = np.array({[models[n].n for n in names]!r})\n")
     out.append(f"N_INTERNAL = np.array({[len(models[n].internal) for n in names]!r})\n")
+    out.append("#: COMMON_MISSING[model, k] = 1.0 where the model carries no information on common coordinate k (common_missing)\n")
+    out.append(f"COMMON_MISSING = np.array({[[1.0 if i in models[n].common_missing else 0.0 for i in range(6)] for n in names]!r})\n")
     funcs = []
     funcs.append(_chain("predict", "s, p, dt, q", names,
                         lambda n: f"{n}.predict(s, p, dt, {', '.join(f'q[{i}]' for i in range(len(models[n].noise_names)))})", False))
@@ -102,6 +111,10 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
         funcs.append(_chain(fname, params, names, lambda n, fname=fname, params=params: f"{n}.{fname}({params})", True)
                      .replace("(model, )", "(model)"))
     funcs.append(_chain("retract", "s, eps", names, lambda n: f"{n}.retract(s, eps)", False))
+    funcs.append(_chain("common_of_state", "s, p, c, Pc", names, lambda n: f"{n}.common_of_state(s, p, c, Pc)", False))
+    funcs.append(_chain("state_of_common", "c, Pc, s, p", names, lambda n: f"{n}.state_of_common(c, Pc, s, p)", False))
+    funcs.append(_chain("between_add", "s, t, w, acc", names, lambda n: f"{n}.between_add(s, t, w, acc)", False))
+    funcs.append(_chain("mix_transport", "s, t, pt, w, acc", names, lambda n: f"{n}.mix_transport(s, t, pt, w, acc)", False))
     into_params = {"state_from_physical": "x", "between": "s, t", "right_jacobian_inv": "eps", "common_to_state": "c",
                    "common_jacobian": "c", "physical_to_common": "x", "physical_to_common_jacobian": "x"}
     for fname, params in into_params.items():

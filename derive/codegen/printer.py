@@ -159,6 +159,8 @@ class Kernel:
     skip_zero_outputs: bool = False
     fastmath: bool = False
     error_model: str | None = None
+    #: sin/cos of an angle atan2(y, x) as y/r, x/r, r = √(x² + y²) (no math.sin/math.cos calls; equal to rounding)
+    sincos_of_atan2: bool = False
 
 
 def _prune_dead(stages, outputs, ret):
@@ -238,16 +240,23 @@ def render_kernel(k: Kernel) -> str:
             if arg in seen_angles:
                 base, arg_code, done = seen_angles[arg]
             else:
+                done = set()
                 if isinstance(arg, sp.Symbol):
                     base = _safe(arg.name)
                     arg_code = pr(arg)
                 else:
                     base = f"_a{angle_count[0]}"
                     angle_count[0] += 1
-                    body.append(f"{base} = {pr(arg)}")
+                    if k.sincos_of_atan2 and isinstance(arg, sp.atan2):
+                        ya, xa = (pr(a) for a in arg.args)
+                        body.extend([f"_y_{base} = {ya}", f"_x_{base} = {xa}", f"{base} = math.atan2(_y_{base}, _x_{base})",
+                                     f"_r_{base} = math.sqrt(_x_{base}*_x_{base} + _y_{base}*_y_{base})",
+                                     f"_sin_{base} = _y_{base}/_r_{base}", f"_cos_{base} = _x_{base}/_r_{base}"])
+                        done |= {"sin", "cos"}
+                    else:
+                        body.append(f"{base} = {pr(arg)}")
                     arg_code = base
                     arg_names[arg] = sp.Symbol(base, real=True)
-                done = set()
                 seen_angles[arg] = (base, arg_code, done)
             s_sym, c_sym = sp.Symbol(f"_sin_{base}"), sp.Symbol(f"_cos_{base}")
             need_sc = any(isinstance(a, AngleFunction) for a in atoms)

@@ -1,8 +1,8 @@
 """The IMM's per-step loop in numba: mixing (on the group or in the common coordinates), mode-matched
 predict/update, mode probabilities from the innovation likelihoods, and the combined estimate.
 
-Every model is reached through ``lgekf.generated.dispatch`` (its kernels by model index), so one compiled
-loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (M,) model indices; ``S``
+Every model is reached through ``lgekf.generated.dispatch`` (its kernels by model index, the chains inlined), so
+one compiled loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (M,) model indices; ``S``
 (M, L) internal states (row j holds mode j's state in its first ``N_INTERNAL[models[j]]`` entries); ``Pp``
 (M, N) packed covariances (upper triangle, row-major, of each mode's own n); ``mu`` (M,) mode probabilities;
 ``PI`` (M, M) the transition matrix, PI[i, j] = P(mode j at k | mode i at k-1).
@@ -10,14 +10,15 @@ loop runs any set of registry models. Storage of one IMM (M modes): ``models`` (
 Mixing on one group (every mode the same model, ``same_group``). Each mode i is a concentrated Gaussian
 X = μ_i·exp(ε_i), ε_i ~ N(0, P_i). The mixture Σ w_i N_G(μ_i, P_i) is reduced to one N_G(μ, P):
 
-* mean: iterate μ ← μ·exp(Σ w_i d_i), d_i = [log(μ⁻¹μ_i)]^∨ (generated ``between``, ``retract``), from
+* mean: iterate μ ← μ·exp(Σ w_i d_i), d_i = [log(μ⁻¹μ_i)]^∨ (generated ``between_add``, ``retract``), from
   the most probable μ_i, until |Σ w_i d_i| < 1e-12 (at most 50 iterations); then Σ w_i d_i = 0;
 * covariance: X = μ_i·exp(ε_i) = μ·exp(d_i)·exp(ε_i). With the right Jacobian Φ = Φ_G of the generated
   ``right_jacobian`` (log(exp(−d) exp(d + δ)) ≈ Φ(d) δ, i.e. exp(d + δ) ≈ exp(d)·exp(Φ(d) δ)), putting
   δ = Φ(d_i)⁻¹ ε_i gives exp(d_i)·exp(ε_i) ≈ exp(d_i + Φ(d_i)⁻¹ ε_i), so to first order in ε_i the error
   about μ is ε = d_i + Φ(d_i)⁻¹ ε_i and
   P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]  (``right_jacobian_inv``; tests/test_imm.py checks it
-  against samples pushed through dense expm/logm).
+  against samples pushed through dense expm/logm). Each term comes from the generated ``mix_transport``
+  (between, Φ⁻¹ and the congruence in one straight-line kernel over the packed covariances; derive/codegen/mixing.py).
 
 Mixing across models (``same_group`` false): in the common coordinates c = (x, y, θ, v_x, v_y, ω) (body
 velocity). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
@@ -26,7 +27,8 @@ A_i = ∂c/∂ε_i (``physical_to_common_jacobian``). A model carries no informa
 CTRV and SE(2)×R²): for mixing into mode j those coordinates of mode i are replaced by mode j's own
 (mean, variance; no correlation), i.e. only the shared components are mixed and each mode keeps its own
 others. The mixture is moment-matched in c (θ differences wrapped to (−π, π] about the most probable
-source) and converted to mode j: s_j = ``common_to_state``(c̄), P_j = J P̄_c Jᵀ, J = ``common_jacobian``(c̄).
+source) and converted to mode j: s_j = ``common_to_state``(c̄), P_j = J P̄_c Jᵀ, J = ``common_jacobian``(c̄) (both
+directions through the generated straight-line ``common_of_state`` / ``state_of_common``).
 A heading read off a velocity (CV) is singular at speed 0: the Jacobians are taken at speed ≥ 1e-9 m/s
 (``SPEED_FLOOR``) and the std of the common θ is capped at π (congruence scaling, as the filters'
 ``limit_angle_variance``), so a stopped CV mode hands on "heading unknown", not an infinite variance.
@@ -66,14 +68,6 @@ def workspace(M):
             np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
             np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
             np.empty((NW, NW)))
-
-
-@nb.njit(cache=True)
-def _packed_at(p, n, i, j):
-    """P[i, j] of a packed upper triangle (row-major)."""
-    if i > j:
-        i, j = j, i
-    return p[i * n - i * (i - 1) // 2 + (j - i)]
 
 
 @nb.njit(cache=True)
@@ -128,12 +122,18 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance; ws: ``workspace(M)``.
     Returns the iterations used.
     """
-    return _mix_on_group(model, S, Pp, w, s_out, P_out, ws[0], ws[1], ws[2], ws[4], ws[22])
+    p = ws[15]
+    it = _mix_on_group(model, S, Pp, w, s_out, p, ws[0])
+    unpack_into(p, D.N_TANGENT[model], P_out)
+    return it
 
 
 @nb.njit(cache=True)
-def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
-    """mix_on_group with its scratch arrays passed one by one (a tuple argument costs a reference count per array)."""
+def _mix_on_group(model, S, Pp, w, s_out, p_out, delta):
+    """mix_on_group into the packed covariance p_out; delta (n,) scratch.
+
+    The mean's terms come from the generated ``between_add``, each source's covariance term w_i [Φ(d_i)⁻¹ P_i
+    Φ(d_i)⁻ᵀ + d_i d_iᵀ] from the generated ``mix_transport`` (straight line, packed in and out)."""
     M = S.shape[0]
     n = D.N_TANGENT[model]
     ni = D.N_INTERNAL[model]
@@ -150,30 +150,23 @@ def _mix_on_group(model, S, Pp, w, s_out, P_out, delta, d, T, row, Pd):
                 delta[k] = 0.0
             for i in range(M):
                 if w[i] > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_into(model, s_out, S[i], d)
-                    for k in range(n):
-                        delta[k] += w[i] * d[k]
+                    D.between_add(model, s_out, S[i], w[i], delta)
             D.retract(model, s_out, delta)
             nrm = 0.0
             for k in range(n):
                 nrm += delta[k] * delta[k]
             if nrm < 1e-24:
                 break
-    for a in range(n):
-        for b in range(n):
-            P_out[a, b] = 0.0
+    npk = n * (n + 1) // 2
+    if M == 1:
+        for k in range(npk):
+            p_out[k] = Pp[0, k]
+        return it
+    for k in range(npk):
+        p_out[k] = 0.0
     for i in range(M):
-        if w[i] <= 0.0:
-            continue
-        if M == 1:
-            unpack_into(Pp[i], n, P_out)
-            continue
-        D.between_into(model, s_out, S[i], d)
-        D.right_jacobian_inv_into(model, d, T)
-        _congruence_packed(T, n, Pp[i], n, row, Pd, P_out, w[i], True)
-        for a in range(n):
-            for b in range(n):
-                P_out[a, b] += w[i] * d[a] * d[b]
+        if w[i] > 0.0:
+            D.mix_transport(model, s_out, S[i], Pp[i], w[i], p_out)
     return it
 
 
@@ -184,6 +177,10 @@ def _to_common(model, s, p, c_out, P_out, x, A, row, Pd, ctmp):
     At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
     read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
     n = D.N_TANGENT[model]
+    D.common_of_state(model, s, p, c_out, P_out)  # generated, straight line: c and A P Aᵀ at s
+    if math.hypot(c_out[3], c_out[4]) >= SPEED_FLOOR:
+        _cap_heading(c_out, P_out)
+        return
     D.physical_into(model, s, x)
     D.physical_to_common_into(model, x, c_out)
     if math.hypot(c_out[3], c_out[4]) < SPEED_FLOOR:
@@ -274,9 +271,8 @@ def _all_common(models, S, Pp, ws):
     C, PC, miss = ws[8], ws[9], ws[10]
     for i in range(models.shape[0]):
         _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[5], ws[7], ws[4], ws[22], ws[6])
-        mi = D.common_missing(models[i])
         for a in range(6):
-            miss[i, a] = mi[a]
+            miss[i, a] = D.COMMON_MISSING[models[i], a]
 
 
 @nb.njit(cache=True)
@@ -289,9 +285,8 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     if same_group:
         model = models[0]
         n = D.N_TANGENT[model]
-        s, P, p = ws[14], ws[3], ws[15]
-        _mix_on_group(model, S, Pp, mu, s, P, ws[0], ws[1], ws[2], ws[4], ws[22])
-        pack_from(P, n, p)
+        s, p = ws[14], ws[15]
+        _mix_on_group(model, S, Pp, mu, s, p, ws[0])
         _to_common(model, s, p, c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
         return
     _all_common(models, S, Pp, ws)
@@ -337,8 +332,7 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
         model = models[0]
         n = D.N_TANGENT[model]
         for j in range(M):
-            _mix_on_group(model, S, Pp, W[j], S_new[j], P, ws[0], ws[1], ws[2], ws[4], ws[22])
-            pack_from(P, n, P_new[j])
+            _mix_on_group(model, S, Pp, W[j], S_new[j], P_new[j], ws[0])
     else:
         _all_common(models, S, Pp, ws)
         C, PC, miss = ws[8], ws[9], ws[10]
@@ -349,10 +343,12 @@ def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
             mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[20], ws[21], ws[6])
             model = models[j]
             n = D.N_TANGENT[model]
+            if math.hypot(c[3], c[4]) >= SPEED_FLOOR:  # generated, straight line: the state and J Pc Jᵀ packed
+                D.state_of_common(model, c, Pc, S_new[j], P_new[j])
+                continue
             D.common_to_state_into(model, c, x)
             D.state_from_physical_into(model, x, S_new[j])
-            if math.hypot(c[3], c[4]) < SPEED_FLOOR:  # the Jacobian of a heading of motion is singular at speed 0
-                c[3] = SPEED_FLOOR
+            c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
             D.common_jacobian_into(model, c, J)
             _congruence_dense(J, n, Pc, 6, row, P)
             pack_from(P, n, P_new[j])
@@ -394,12 +390,13 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
     loglik, prior = ws[17], ws[16]
     m = z.shape[0]
     for j in range(M):
+        sj, pj = S[j], Pp[j]  # one view each (a view costs a reference count)
         if meas_pose:  # log det S at the predicted state (generated innovation_logdet_<meas>), then the update
-            logdet = D.innovation_logdet_pose(models[j], S[j], Pp[j], r)
-            nis = D.update_pose(models[j], S[j], Pp[j], z, r)
+            logdet = D.innovation_logdet_pose(models[j], sj, pj, r)
+            nis = D.update_pose(models[j], sj, pj, z, r)
         else:
-            logdet = D.innovation_logdet_position(models[j], S[j], Pp[j], r)
-            nis = D.update_position(models[j], S[j], Pp[j], z, r)
+            logdet = D.innovation_logdet_position(models[j], sj, pj, r)
+            nis = D.update_position(models[j], sj, pj, z, r)
         nis_out[j] = nis
         loglik[j] = -0.5 * (nis + logdet + m * LOG_2PI)
         prior[j] = mu[j]
