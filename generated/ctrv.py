@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -2999,6 +2999,321 @@ def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
     so[2] = de2_0 + psi
     so[3] = de3_0 + v
     so[4] = de4_0 + omega
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_smooth(W, j):
+    """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    psi = W[128 + j]
+    v = W[192 + j]
+    omega = W[256 + j]
+    pf00 = W[320 + j]
+    pf01 = W[384 + j]
+    pf02 = W[448 + j]
+    pf03 = W[512 + j]
+    pf04 = W[576 + j]
+    pf11 = W[640 + j]
+    pf12 = W[704 + j]
+    pf13 = W[768 + j]
+    pf14 = W[832 + j]
+    pf22 = W[896 + j]
+    pf23 = W[960 + j]
+    pf24 = W[1024 + j]
+    pf33 = W[1088 + j]
+    pf34 = W[1152 + j]
+    pf44 = W[1216 + j]
+    q_x = W[1280 + j]
+    q_y = W[1344 + j]
+    q_psi = W[1408 + j]
+    q_v = W[1472 + j]
+    q_omega = W[1536 + j]
+    pq00 = W[1600 + j]
+    pq01 = W[1664 + j]
+    pq02 = W[1728 + j]
+    pq03 = W[1792 + j]
+    pq04 = W[1856 + j]
+    pq11 = W[1920 + j]
+    pq12 = W[1984 + j]
+    pq13 = W[2048 + j]
+    pq14 = W[2112 + j]
+    pq22 = W[2176 + j]
+    pq23 = W[2240 + j]
+    pq24 = W[2304 + j]
+    pq33 = W[2368 + j]
+    pq34 = W[2432 + j]
+    pq44 = W[2496 + j]
+    t_x = W[2560 + j]
+    t_y = W[2624 + j]
+    t_psi = W[2688 + j]
+    t_v = W[2752 + j]
+    t_omega = W[2816 + j]
+    ps00 = W[2880 + j]
+    ps01 = W[2944 + j]
+    ps02 = W[3008 + j]
+    ps03 = W[3072 + j]
+    ps04 = W[3136 + j]
+    ps11 = W[3200 + j]
+    ps12 = W[3264 + j]
+    ps13 = W[3328 + j]
+    ps14 = W[3392 + j]
+    ps22 = W[3456 + j]
+    ps23 = W[3520 + j]
+    ps24 = W[3584 + j]
+    ps33 = W[3648 + j]
+    ps34 = W[3712 + j]
+    ps44 = W[3776 + j]
+    dt = W[5120 + j]
+    _a0 = dt*omega/2.0
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _dsinc__a0 = dsinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc0_2 = -(_t1*v)
+    cc0_3 = _t3
+    cc0_4 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc1_2 = _t3*v
+    cc1_3 = _t1
+    cc1_4 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    cf0_2 = dt*pf04 + pf02
+    cf1_2 = dt*pf14 + pf12
+    cf2_2 = dt*pf24 + pf22
+    cf3_2 = dt*pf34 + pf23
+    cf4_2 = dt*pf44 + pf24
+    dd0_0 = -q_x + t_x
+    dd0_1 = -q_y + t_y
+    dd0_2 = wrap_v(-q_psi + t_psi)
+    dd0_3 = -q_v + t_v
+    dd0_4 = -q_omega + t_omega
+    dm0_0 = -pq00 + ps00
+    dm0_1 = -pq01 + ps01
+    dm0_2 = -pq02 + ps02
+    dm0_3 = -pq03 + ps03
+    dm0_4 = -pq04 + ps04
+    dm1_1 = -pq11 + ps11
+    dm1_2 = -pq12 + ps12
+    dm1_3 = -pq13 + ps13
+    dm1_4 = -pq14 + ps14
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm2_4 = -pq24 + ps24
+    dm3_3 = -pq33 + ps33
+    dm3_4 = -pq34 + ps34
+    dm4_4 = -pq44 + ps44
+    lr0 = 1.0/max(1e-300, pq00)
+    cf0_0 = cc0_2*pf02 + cc0_3*pf03 + cc0_4*pf04 + pf00
+    cf0_1 = cc1_2*pf02 + cc1_3*pf03 + cc1_4*pf04 + pf01
+    cf1_0 = cc0_2*pf12 + cc0_3*pf13 + cc0_4*pf14 + pf01
+    cf1_1 = cc1_2*pf12 + cc1_3*pf13 + cc1_4*pf14 + pf11
+    cf2_0 = cc0_2*pf22 + cc0_3*pf23 + cc0_4*pf24 + pf02
+    cf2_1 = cc1_2*pf22 + cc1_3*pf23 + cc1_4*pf24 + pf12
+    cf3_0 = cc0_2*pf23 + cc0_3*pf33 + cc0_4*pf34 + pf03
+    cf3_1 = cc1_2*pf23 + cc1_3*pf33 + cc1_4*pf34 + pf13
+    cf4_0 = cc0_2*pf24 + cc0_3*pf34 + cc0_4*pf44 + pf04
+    cf4_1 = cc1_2*pf24 + cc1_3*pf34 + cc1_4*pf44 + pf14
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    ll4_0 = lr0*pq04
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    lw4_0 = ll4_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ly4_1 = -(cf4_0*ll1_0) + cf4_1
+    ld1 = -(ll1_0*lw1_0) + pq11
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    lw4_1 = ld1*ll4_1
+    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
+    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
+    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
+    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
+    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
+    lw3_2 = ld2*ll3_2
+    lw4_2 = ld2*ll4_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
+    lw4_3 = ld3*ll4_3
+    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
+    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
+    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
+    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
+    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
+    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
+    lr4 = 1.0/max(1e-300, ld4)
+    gg0_4 = lr4*ly0_4
+    gg1_4 = lr4*ly1_4
+    gg2_4 = lr4*ly2_4
+    gg3_4 = lr4*ly3_4
+    gg4_4 = lr4*ly4_4
+    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
+    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
+    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
+    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
+    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
+    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
+    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
+    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
+    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
+    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
+    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
+    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
+    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
+    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
+    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
+    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
+    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
+    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
+    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
+    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
+    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
+    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
+    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
+    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
+    W[4160 + j] = pt0_0
+    W[4224 + j] = pt0_1
+    W[4288 + j] = pt0_2
+    W[4352 + j] = pt0_3
+    W[4416 + j] = pt0_4
+    W[4480 + j] = pt1_1
+    W[4544 + j] = pt1_2
+    W[4608 + j] = pt1_3
+    W[4672 + j] = pt1_4
+    W[4736 + j] = pt2_2
+    W[4800 + j] = pt2_3
+    W[4864 + j] = pt2_4
+    W[4928 + j] = pt3_3
+    W[4992 + j] = pt3_4
+    W[5056 + j] = pt4_4
+    W[3840 + j] = de0_0 + x
+    W[3904 + j] = de1_0 + y
+    W[3968 + j] = de2_0 + psi
+    W[4032 + j] = de3_0 + v
+    W[4096 + j] = de4_0 + omega
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
+    into the rows of one work array (rows × 64) and lane_smooth (smooth_step on lane j) runs vectorised over
+    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+    """
+    B = dts.shape[0]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(81 * 64)
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for j in range(L):
+                b = lo + j
+                Kb = lengths[b]
+                if k == Kb - 1:
+                    for i in range(5):
+                        s_sm[b, k, i] = s_filt[b, k, i]
+                        W[(40 + i) * 64 + j] = s_filt[b, k, i]
+                    for i in range(15):
+                        p_sm[b, k, i] = p_filt[b, k, i]
+                        W[(45 + i) * 64 + j] = p_filt[b, k, i]
+                elif k < Kb - 1:
+                    for i in range(5):
+                        W[(0 + i) * 64 + j] = s_filt[b, k, i]
+                        W[(20 + i) * 64 + j] = s_pred[b, k + 1, i]
+                    for i in range(15):
+                        W[(5 + i) * 64 + j] = p_filt[b, k, i]
+                        W[(25 + i) * 64 + j] = p_pred[b, k + 1, i]
+                    W[80 * 64 + j] = dts[b, k + 1]
+            if k < Kmax - 1:
+                for j in range(L):
+                    lane_smooth(W, j)
+                for j in range(L):
+                    b = lo + j
+                    if k < lengths[b] - 1:
+                        for i in range(5):
+                            v = W[(60 + i) * 64 + j]
+                            s_sm[b, k, i] = v
+                            W[(40 + i) * 64 + j] = v
+                        for i in range(15):
+                            v = W[(65 + i) * 64 + j]
+                            p_sm[b, k, i] = v
+                            W[(45 + i) * 64 + j] = v
+        for j in range(L):
+            for k in range(lengths[lo + j]):
+                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
 
 
 @nb.njit(cache=True)

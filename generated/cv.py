@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -1386,6 +1386,224 @@ def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
     so[1] = de1_0 + y
     so[2] = de2_0 + w_x
     so[3] = de3_0 + w_y
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_smooth(W, j):
+    """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    w_x = W[128 + j]
+    w_y = W[192 + j]
+    pf00 = W[256 + j]
+    pf01 = W[320 + j]
+    pf02 = W[384 + j]
+    pf03 = W[448 + j]
+    pf11 = W[512 + j]
+    pf12 = W[576 + j]
+    pf13 = W[640 + j]
+    pf22 = W[704 + j]
+    pf23 = W[768 + j]
+    pf33 = W[832 + j]
+    q_x = W[896 + j]
+    q_y = W[960 + j]
+    q_w_x = W[1024 + j]
+    q_w_y = W[1088 + j]
+    pq00 = W[1152 + j]
+    pq01 = W[1216 + j]
+    pq02 = W[1280 + j]
+    pq03 = W[1344 + j]
+    pq11 = W[1408 + j]
+    pq12 = W[1472 + j]
+    pq13 = W[1536 + j]
+    pq22 = W[1600 + j]
+    pq23 = W[1664 + j]
+    pq33 = W[1728 + j]
+    t_x = W[1792 + j]
+    t_y = W[1856 + j]
+    t_w_x = W[1920 + j]
+    t_w_y = W[1984 + j]
+    ps00 = W[2048 + j]
+    ps01 = W[2112 + j]
+    ps02 = W[2176 + j]
+    ps03 = W[2240 + j]
+    ps11 = W[2304 + j]
+    ps12 = W[2368 + j]
+    ps13 = W[2432 + j]
+    ps22 = W[2496 + j]
+    ps23 = W[2560 + j]
+    ps33 = W[2624 + j]
+    dt = W[3584 + j]
+    _t0 = dt*pf23
+    cf0_0 = dt*pf02 + pf00
+    cf0_1 = dt*pf03 + pf01
+    cf1_0 = dt*pf12 + pf01
+    cf1_1 = dt*pf13 + pf11
+    cf2_0 = dt*pf22 + pf02
+    cf2_1 = _t0 + pf12
+    cf3_0 = _t0 + pf03
+    cf3_1 = dt*pf33 + pf13
+    dd0_0 = -q_x + t_x
+    dd0_1 = -q_y + t_y
+    dd0_2 = -q_w_x + t_w_x
+    dd0_3 = -q_w_y + t_w_y
+    dm0_0 = -pq00 + ps00
+    dm0_1 = -pq01 + ps01
+    dm0_2 = -pq02 + ps02
+    dm0_3 = -pq03 + ps03
+    dm1_1 = -pq11 + ps11
+    dm1_2 = -pq12 + ps12
+    dm1_3 = -pq13 + ps13
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm3_3 = -pq33 + ps33
+    lr0 = 1.0/max(1e-300, pq00)
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ld1 = -(ll1_0*lw1_0) + pq11
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    ly0_2 = -(cf0_0*ll2_0) - ll2_1*ly0_1 + pf02
+    ly1_2 = -(cf1_0*ll2_0) - ll2_1*ly1_1 + pf12
+    ly2_2 = -(cf2_0*ll2_0) - ll2_1*ly2_1 + pf22
+    ly3_2 = -(cf3_0*ll2_0) - ll2_1*ly3_1 + pf23
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    lw3_2 = ld2*ll3_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    gg0_3 = lr3*ly0_3
+    gg1_3 = lr3*ly1_3
+    gg2_3 = lr3*ly2_3
+    gg3_3 = lr3*ly3_3
+    gg0_2 = -(gg0_3*ll3_2) + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) + lr2*ly3_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 + lr1*ly3_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + pf03
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + pf13
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + pf23
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + pf33
+    W[2944 + j] = pt0_0
+    W[3008 + j] = pt0_1
+    W[3072 + j] = pt0_2
+    W[3136 + j] = pt0_3
+    W[3200 + j] = pt1_1
+    W[3264 + j] = pt1_2
+    W[3328 + j] = pt1_3
+    W[3392 + j] = pt2_2
+    W[3456 + j] = pt2_3
+    W[3520 + j] = pt3_3
+    W[2688 + j] = de0_0 + x
+    W[2752 + j] = de1_0 + y
+    W[2816 + j] = de2_0 + w_x
+    W[2880 + j] = de3_0 + w_y
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
+    into the rows of one work array (rows × 64) and lane_smooth (smooth_step on lane j) runs vectorised over
+    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+    """
+    B = dts.shape[0]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(57 * 64)
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for j in range(L):
+                b = lo + j
+                Kb = lengths[b]
+                if k == Kb - 1:
+                    for i in range(4):
+                        s_sm[b, k, i] = s_filt[b, k, i]
+                        W[(28 + i) * 64 + j] = s_filt[b, k, i]
+                    for i in range(10):
+                        p_sm[b, k, i] = p_filt[b, k, i]
+                        W[(32 + i) * 64 + j] = p_filt[b, k, i]
+                elif k < Kb - 1:
+                    for i in range(4):
+                        W[(0 + i) * 64 + j] = s_filt[b, k, i]
+                        W[(14 + i) * 64 + j] = s_pred[b, k + 1, i]
+                    for i in range(10):
+                        W[(4 + i) * 64 + j] = p_filt[b, k, i]
+                        W[(18 + i) * 64 + j] = p_pred[b, k + 1, i]
+                    W[56 * 64 + j] = dts[b, k + 1]
+            if k < Kmax - 1:
+                for j in range(L):
+                    lane_smooth(W, j)
+                for j in range(L):
+                    b = lo + j
+                    if k < lengths[b] - 1:
+                        for i in range(4):
+                            v = W[(42 + i) * 64 + j]
+                            s_sm[b, k, i] = v
+                            W[(28 + i) * 64 + j] = v
+                        for i in range(10):
+                            v = W[(46 + i) * 64 + j]
+                            p_sm[b, k, i] = v
+                            W[(32 + i) * 64 + j] = v
+        for j in range(L):
+            for k in range(lengths[lo + j]):
+                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
 
 
 @nb.njit(cache=True)

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -3544,6 +3544,379 @@ def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
     so[3] = _cos_de2_0*s_theta + _sin_de2_0*c_theta
     so[4] = de3_0 + v
     so[5] = de4_0 + omega
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_smooth(W, j):
+    """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v = W[256 + j]
+    omega = W[320 + j]
+    pf00 = W[384 + j]
+    pf01 = W[448 + j]
+    pf02 = W[512 + j]
+    pf03 = W[576 + j]
+    pf04 = W[640 + j]
+    pf11 = W[704 + j]
+    pf12 = W[768 + j]
+    pf13 = W[832 + j]
+    pf14 = W[896 + j]
+    pf22 = W[960 + j]
+    pf23 = W[1024 + j]
+    pf24 = W[1088 + j]
+    pf33 = W[1152 + j]
+    pf34 = W[1216 + j]
+    pf44 = W[1280 + j]
+    q_x = W[1344 + j]
+    q_y = W[1408 + j]
+    q_c_theta = W[1472 + j]
+    q_s_theta = W[1536 + j]
+    q_v = W[1600 + j]
+    q_omega = W[1664 + j]
+    pq00 = W[1728 + j]
+    pq01 = W[1792 + j]
+    pq02 = W[1856 + j]
+    pq03 = W[1920 + j]
+    pq04 = W[1984 + j]
+    pq11 = W[2048 + j]
+    pq12 = W[2112 + j]
+    pq13 = W[2176 + j]
+    pq14 = W[2240 + j]
+    pq22 = W[2304 + j]
+    pq23 = W[2368 + j]
+    pq24 = W[2432 + j]
+    pq33 = W[2496 + j]
+    pq34 = W[2560 + j]
+    pq44 = W[2624 + j]
+    t_x = W[2688 + j]
+    t_y = W[2752 + j]
+    t_c_theta = W[2816 + j]
+    t_s_theta = W[2880 + j]
+    t_v = W[2944 + j]
+    t_omega = W[3008 + j]
+    ps00 = W[3072 + j]
+    ps01 = W[3136 + j]
+    ps02 = W[3200 + j]
+    ps03 = W[3264 + j]
+    ps04 = W[3328 + j]
+    ps11 = W[3392 + j]
+    ps12 = W[3456 + j]
+    ps13 = W[3520 + j]
+    ps14 = W[3584 + j]
+    ps22 = W[3648 + j]
+    ps23 = W[3712 + j]
+    ps24 = W[3776 + j]
+    ps33 = W[3840 + j]
+    ps34 = W[3904 + j]
+    ps44 = W[3968 + j]
+    dt = W[5376 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _a1 = atan2_v(q_c_theta*t_s_theta - q_s_theta*t_c_theta, q_c_theta*t_c_theta + q_s_theta*t_s_theta)
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = (dt*dt)*v
+    _t3 = -(q_c_theta*q_x) + q_c_theta*t_x - q_s_theta*q_y + q_s_theta*t_y
+    _t4 = -(q_c_theta*q_y) + q_c_theta*t_y + q_s_theta*q_x - q_s_theta*t_x
+    _t5 = _a1/2.0
+    ff0_0 = _cos__a0
+    ff0_1 = _sin__a0
+    ff0_2 = _t0*v
+    ff0_3 = _t1
+    ff0_4 = _sinc2__a0*_t2
+    ff1_0 = -_sin__a0
+    ff1_1 = _cos__a0
+    ff1_2 = _t1*v
+    ff1_3 = -_t0
+    ff1_4 = _cosc2__a0*_t2
+    cf0_2 = dt*pf04 + pf02
+    cf1_2 = dt*pf14 + pf12
+    cf2_2 = dt*pf24 + pf22
+    cf3_2 = dt*pf34 + pf23
+    cf4_2 = dt*pf44 + pf24
+    dd0_0 = _halfcot__a1*_t3 + _t4*_t5
+    dd0_1 = _halfcot__a1*_t4 - _t3*_t5
+    dd0_2 = _a1
+    dd0_3 = -q_v + t_v
+    dd0_4 = -q_omega + t_omega
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm2_4 = -pq24 + ps24
+    dm3_3 = -pq33 + ps33
+    dm3_4 = -pq34 + ps34
+    dm4_4 = -pq44 + ps44
+    lr0 = 1.0/max(1e-300, pq00)
+    _sin_dd0_2 = sin_v(dd0_2)
+    _cos_dd0_2 = cos_v(dd0_2)
+    _halfcot_dd0_2 = halfcot_v(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _halfcot1_dd0_2 = halfcot1_v(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _t6 = dd0_2/2.0
+    cf0_0 = ff0_0*pf00 + ff0_1*pf01 + ff0_2*pf02 + ff0_3*pf03 + ff0_4*pf04
+    cf0_1 = ff1_0*pf00 + ff1_1*pf01 + ff1_2*pf02 + ff1_3*pf03 + ff1_4*pf04
+    cf1_0 = ff0_0*pf01 + ff0_1*pf11 + ff0_2*pf12 + ff0_3*pf13 + ff0_4*pf14
+    cf1_1 = ff1_0*pf01 + ff1_1*pf11 + ff1_2*pf12 + ff1_3*pf13 + ff1_4*pf14
+    cf2_0 = ff0_0*pf02 + ff0_1*pf12 + ff0_2*pf22 + ff0_3*pf23 + ff0_4*pf24
+    cf2_1 = ff1_0*pf02 + ff1_1*pf12 + ff1_2*pf22 + ff1_3*pf23 + ff1_4*pf24
+    cf3_0 = ff0_0*pf03 + ff0_1*pf13 + ff0_2*pf23 + ff0_3*pf33 + ff0_4*pf34
+    cf3_1 = ff1_0*pf03 + ff1_1*pf13 + ff1_2*pf23 + ff1_3*pf33 + ff1_4*pf34
+    cf4_0 = ff0_0*pf04 + ff0_1*pf14 + ff0_2*pf24 + ff0_3*pf34 + ff0_4*pf44
+    cf4_1 = ff1_0*pf04 + ff1_1*pf14 + ff1_2*pf24 + ff1_3*pf34 + ff1_4*pf44
+    ji0_0 = _halfcot_dd0_2
+    ji0_1 = -_t6
+    ji0_2 = _halfcot1_dd0_2*dd0_0 + dd0_1/2.0
+    ji1_0 = _t6
+    ji1_1 = _halfcot_dd0_2
+    ji1_2 = _halfcot1_dd0_2*dd0_1 - dd0_0/2.0
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    ll4_0 = lr0*pq04
+    jp0_0 = ji0_0*ps00 + ji0_1*ps01 + ji0_2*ps02
+    jp0_1 = ji0_0*ps01 + ji0_1*ps11 + ji0_2*ps12
+    jp0_2 = ji0_0*ps02 + ji0_1*ps12 + ji0_2*ps22
+    jp0_3 = ji0_0*ps03 + ji0_1*ps13 + ji0_2*ps23
+    jp0_4 = ji0_0*ps04 + ji0_1*ps14 + ji0_2*ps24
+    jp1_0 = ji1_0*ps00 + ji1_1*ps01 + ji1_2*ps02
+    jp1_1 = ji1_0*ps01 + ji1_1*ps11 + ji1_2*ps12
+    jp1_2 = ji1_0*ps02 + ji1_1*ps12 + ji1_2*ps22
+    jp1_3 = ji1_0*ps03 + ji1_1*ps13 + ji1_2*ps23
+    jp1_4 = ji1_0*ps04 + ji1_1*ps14 + ji1_2*ps24
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    lw4_0 = ll4_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ly4_1 = -(cf4_0*ll1_0) + cf4_1
+    _t7 = -pq11
+    dm0_0 = ji0_0*jp0_0 + ji0_1*jp0_1 + ji0_2*jp0_2 - pq00
+    dm0_1 = ji1_0*jp0_0 + ji1_1*jp0_1 + ji1_2*jp0_2 - pq01
+    dm0_2 = jp0_2 - pq02
+    dm0_3 = jp0_3 - pq03
+    dm0_4 = jp0_4 - pq04
+    dm1_1 = _t7 + ji1_0*jp1_0 + ji1_1*jp1_1 + ji1_2*jp1_2
+    dm1_2 = jp1_2 - pq12
+    dm1_3 = jp1_3 - pq13
+    dm1_4 = jp1_4 - pq14
+    ld1 = -_t7 - ll1_0*lw1_0
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    lw4_1 = ld1*ll4_1
+    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
+    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
+    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
+    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
+    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
+    lw3_2 = ld2*ll3_2
+    lw4_2 = ld2*ll4_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
+    lw4_3 = ld3*ll4_3
+    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
+    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
+    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
+    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
+    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
+    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
+    lr4 = 1.0/max(1e-300, ld4)
+    gg0_4 = lr4*ly0_4
+    gg1_4 = lr4*ly1_4
+    gg2_4 = lr4*ly2_4
+    gg3_4 = lr4*ly3_4
+    gg4_4 = lr4*ly4_4
+    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
+    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
+    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
+    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
+    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
+    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
+    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
+    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
+    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
+    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
+    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
+    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
+    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
+    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
+    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
+    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
+    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
+    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
+    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
+    _sin_de2_0 = sin_v(de2_0)
+    _cos_de2_0 = cos_v(de2_0)
+    _cosc_de2_0 = cosc_v(de2_0, _sin_de2_0, _cos_de2_0)
+    _cosc2_de2_0 = cosc2_v(de2_0, _sin_de2_0, _cos_de2_0)
+    _sinc_de2_0 = sinc_v(de2_0, _sin_de2_0, _cos_de2_0)
+    _sinc2_de2_0 = sinc2_v(de2_0, _sin_de2_0, _cos_de2_0)
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
+    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
+    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
+    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
+    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
+    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
+    ph0_0 = _sinc_de2_0
+    ph0_1 = _cosc_de2_0
+    ph0_2 = -(_cosc2_de2_0*de1_0) + _sinc2_de2_0*de0_0
+    ph1_0 = -_cosc_de2_0
+    ph1_1 = _sinc_de2_0
+    ph1_2 = _cosc2_de2_0*de0_0 + _sinc2_de2_0*de1_0
+    tp0_0 = ph0_0*pt0_0 + ph0_1*pt0_1 + ph0_2*pt0_2
+    tp0_1 = ph0_0*pt0_1 + ph0_1*pt1_1 + ph0_2*pt1_2
+    tp0_2 = ph0_0*pt0_2 + ph0_1*pt1_2 + ph0_2*pt2_2
+    tp0_3 = ph0_0*pt0_3 + ph0_1*pt1_3 + ph0_2*pt2_3
+    tp0_4 = ph0_0*pt0_4 + ph0_1*pt1_4 + ph0_2*pt2_4
+    tp1_0 = ph1_0*pt0_0 + ph1_1*pt0_1 + ph1_2*pt0_2
+    tp1_1 = ph1_0*pt0_1 + ph1_1*pt1_1 + ph1_2*pt1_2
+    tp1_2 = ph1_0*pt0_2 + ph1_1*pt1_2 + ph1_2*pt2_2
+    tp1_3 = ph1_0*pt0_3 + ph1_1*pt1_3 + ph1_2*pt2_3
+    tp1_4 = ph1_0*pt0_4 + ph1_1*pt1_4 + ph1_2*pt2_4
+    _t8 = -(_cosc_de2_0*de1_0) + _sinc_de2_0*de0_0
+    _t9 = _cosc_de2_0*de0_0 + _sinc_de2_0*de1_0
+    W[4416 + j] = ph0_0*tp0_0 + ph0_1*tp0_1 + ph0_2*tp0_2
+    W[4480 + j] = ph1_0*tp0_0 + ph1_1*tp0_1 + ph1_2*tp0_2
+    W[4544 + j] = tp0_2
+    W[4608 + j] = tp0_3
+    W[4672 + j] = tp0_4
+    W[4736 + j] = ph1_0*tp1_0 + ph1_1*tp1_1 + ph1_2*tp1_2
+    W[4800 + j] = tp1_2
+    W[4864 + j] = tp1_3
+    W[4928 + j] = tp1_4
+    W[4992 + j] = pt2_2
+    W[5056 + j] = pt2_3
+    W[5120 + j] = pt2_4
+    W[5184 + j] = pt3_3
+    W[5248 + j] = pt3_4
+    W[5312 + j] = pt4_4
+    W[4032 + j] = _t8*c_theta - _t9*s_theta + x
+    W[4096 + j] = _t8*s_theta + _t9*c_theta + y
+    W[4160 + j] = _cos_de2_0*c_theta - _sin_de2_0*s_theta
+    W[4224 + j] = _cos_de2_0*s_theta + _sin_de2_0*c_theta
+    W[4288 + j] = de3_0 + v
+    W[4352 + j] = de4_0 + omega
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
+
+    Blocks of 64 trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
+    into the rows of one work array (rows × 64) and lane_smooth (smooth_step on lane j) runs vectorised over
+    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+    """
+    B = dts.shape[0]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(85 * 64)
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for j in range(L):
+                b = lo + j
+                Kb = lengths[b]
+                if k == Kb - 1:
+                    for i in range(6):
+                        s_sm[b, k, i] = s_filt[b, k, i]
+                        W[(42 + i) * 64 + j] = s_filt[b, k, i]
+                    for i in range(15):
+                        p_sm[b, k, i] = p_filt[b, k, i]
+                        W[(48 + i) * 64 + j] = p_filt[b, k, i]
+                elif k < Kb - 1:
+                    for i in range(6):
+                        W[(0 + i) * 64 + j] = s_filt[b, k, i]
+                        W[(21 + i) * 64 + j] = s_pred[b, k + 1, i]
+                    for i in range(15):
+                        W[(6 + i) * 64 + j] = p_filt[b, k, i]
+                        W[(27 + i) * 64 + j] = p_pred[b, k + 1, i]
+                    W[84 * 64 + j] = dts[b, k + 1]
+            if k < Kmax - 1:
+                for j in range(L):
+                    lane_smooth(W, j)
+                for j in range(L):
+                    b = lo + j
+                    if k < lengths[b] - 1:
+                        for i in range(6):
+                            v = W[(63 + i) * 64 + j]
+                            s_sm[b, k, i] = v
+                            W[(42 + i) * 64 + j] = v
+                        for i in range(15):
+                            v = W[(69 + i) * 64 + j]
+                            p_sm[b, k, i] = v
+                            W[(48 + i) * 64 + j] = v
+        for j in range(L):
+            for k in range(lengths[lo + j]):
+                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
 
 
 @nb.njit(cache=True)

@@ -22,7 +22,7 @@ import sympy as sp
 
 from ..algebra import symbolize
 from .printer import Kernel
-from .smooth_step import smooth_step_kernel, store_step_kernel
+from .smooth_step import smooth_soa_kernels, smooth_step_kernel, store_step_kernel
 
 __all__ = ["estimator_kernels"]
 
@@ -159,6 +159,8 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> li
             nan_test=" or ".join(f"np.isnan(z[k, {i}])" for i in range(m)),
             nan_test_b=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
         )))
-    ks.append(smooth_step_kernel(model))
+    step = smooth_step_kernel(model)
+    ks.append(step)
+    ks.extend(smooth_soa_kernels(model, step))  # smooth_batch_soa: the backward pass in SIMD lanes
     ks.append(("smooth_one", SMOOTH_TEMPLATE.format(n=n, ni=ni, npk=npk)))
     return ks

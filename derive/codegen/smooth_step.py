@@ -190,3 +190,89 @@ def store_step_kernel(model, step: Kernel) -> Kernel:
              "(after the angle-variance cap) into pq, and returns (NIS, log det S) (derive/codegen/smooth_step.py).\n"
              + step.doc.split("\n", 1)[1]),
     )
+
+
+SOA_SMOOTH_TEMPLATE = '''
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
+
+    Blocks of {lanes} trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
+    into the rows of one work array (rows × {lanes}) and lane_smooth (smooth_step on lane j) runs vectorised over
+    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+    """
+    B = dts.shape[0]
+    nblk = (B + {lanes} - 1) // {lanes}
+    for blk in nb.prange(nblk):
+        lo = blk * {lanes}
+        L = min({lanes}, B - lo)
+        W = np.zeros({rows} * {lanes})
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for j in range(L):
+                b = lo + j
+                Kb = lengths[b]
+                if k == Kb - 1:
+                    for i in range({ni}):
+                        s_sm[b, k, i] = s_filt[b, k, i]
+                        W[({SS} + i) * {lanes} + j] = s_filt[b, k, i]
+                    for i in range({npk}):
+                        p_sm[b, k, i] = p_filt[b, k, i]
+                        W[({PS} + i) * {lanes} + j] = p_filt[b, k, i]
+                elif k < Kb - 1:
+                    for i in range({ni}):
+                        W[({SF} + i) * {lanes} + j] = s_filt[b, k, i]
+                        W[({SQ} + i) * {lanes} + j] = s_pred[b, k + 1, i]
+                    for i in range({npk}):
+                        W[({PF} + i) * {lanes} + j] = p_filt[b, k, i]
+                        W[({PQ} + i) * {lanes} + j] = p_pred[b, k + 1, i]
+                    W[{DT} * {lanes} + j] = dts[b, k + 1]
+            if k < Kmax - 1:
+                for j in range(L):
+                    lane_smooth(W, j)
+                for j in range(L):
+                    b = lo + j
+                    if k < lengths[b] - 1:
+                        for i in range({ni}):
+                            v = W[({SO} + i) * {lanes} + j]
+                            s_sm[b, k, i] = v
+                            W[({SS} + i) * {lanes} + j] = v
+                        for i in range({npk}):
+                            v = W[({PO} + i) * {lanes} + j]
+                            p_sm[b, k, i] = v
+                            W[({PS} + i) * {lanes} + j] = v
+        for j in range(L):
+            for k in range(lengths[lo + j]):
+                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
+'''
+
+
+def smooth_soa_kernels(model, step: Kernel) -> list:
+    """``lane_smooth`` (``smooth_step`` on lane j of a work array, branch-free) and ``smooth_batch_soa`` (the
+    backward pass with trajectories in the SIMD lanes, as derive/codegen/soa.py does for the filter)."""
+    import re
+
+    from .printer import render_kernel
+    from .soa import _DECO, LANES, _vectorise
+
+    ni, npk = len(model.internal), model.n * (model.n + 1) // 2
+    rows = {}
+    at = 0
+    for name, size in (("sf", ni), ("pf", npk), ("sq", ni), ("pq", npk), ("ss", ni), ("ps", npk), ("so", ni), ("po", npk),
+                       ("dt", 1)):
+        rows[name] = at
+        at += size
+
+    def row(src: str) -> str:
+        m = re.fullmatch(r"(\w+)\[(\d+)\]", src)
+        r = rows[m.group(1)] + int(m.group(2)) if m else rows[src]
+        return f"W[{r * LANES} + j]"
+
+    lane = replace(step, name="lane_smooth", params=["W", "j"], inputs=[(s, row(src)) for s, src in step.inputs],
+                   outputs=[(row(t), e) for t, e in step.outputs],
+                   doc="smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).")
+    src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
+    driver = SOA_SMOOTH_TEMPLATE.format(lanes=LANES, rows=at, ni=ni, npk=npk, **{k.upper(): v for k, v in rows.items()})
+    return [("lane_smooth", src), ("smooth_batch_soa", driver)]
