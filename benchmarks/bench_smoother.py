@@ -11,13 +11,20 @@ For every registry model, position measurements, B trajectories × K steps (defa
   (filter_batch from SOA_MIN_BATCH trajectories on);
 * ``fwd``: the smoother's storing forward pass ``run_batch_store_<meas>`` (the fused filter step, also writing
   the predicted state and covariance; ``lgekf.core.rts.forward_store``);
-* ``bwd``: the backward pass ``smooth_batch`` (``smooth_step`` per step; ``lgekf.core.rts.smooth_stored``).
+* ``fwd_simd``: the same in the SIMD lanes, ``run_batch_store_soa_<meas>``;
+* ``bwd``: the backward pass ``smooth_batch`` (``smooth_step`` per step, prange over trajectories);
+* ``bwd_simd``: the backward pass ``smooth_batch_soa`` (``smooth_step`` in the SIMD lanes), what
+  ``lgekf.core.rts.smooth_stored`` runs from SOA_SMOOTH_MIN_BATCH trajectories on (as forward_store runs fwd_simd).
 
-Printed: ns per trajectory-step of each, and the ratios (fwd + bwd) / scalar and (fwd + bwd) / simd.
-**The issue's ratio** ("smoothing costs at most 2× filtering", issue #11) is (fwd + bwd) / scalar: filtering and
-smoothing on the same (scalar, prange) path; (fwd + bwd) / simd compares with the fastest filter there is, which
-the smoother has no SIMD counterpart of.  The machine may be shared: absolute times are noisy, the ratios of one
-interleaved run much less so.
+Printed: ns per trajectory-step of each, and three ratios of smoothing (forward pass + backward pass) to filtering:
+
+* ``same/scalar`` = (fwd + bwd) / scalar: **the issue's ratio** ("smoothing costs at most 2× filtering", issue #11),
+  filtering and smoothing on the same scalar prange path (what filter_batch does below 1000 trajectories);
+* ``simd/scalar`` = (fwd_simd + bwd_simd) / scalar;
+* ``simd/simd`` = (fwd_simd + bwd_simd) / simd: filter_batch(smooth=True) against filter_batch from 1000
+  trajectories on, both on their SIMD paths.
+
+The machine may be shared: absolute times are noisy, the ratios of one interleaved run much less so.
 """
 
 import sys
@@ -41,8 +48,10 @@ def _inputs(spec, B, K, rng):
 def main(B=2000, K=200, repeats=5):
     rng = np.random.default_rng(0)
     print(f"{B} trajectories x {K} steps, position measurements; best of {repeats} interleaved rounds (ns per trajectory-step)")
-    print(f"{'model':<8} {'scalar':>7} {'simd':>7} {'fwd':>7} {'bwd':>7}  {'(fwd+bwd)/scalar':>16} {'(fwd+bwd)/simd':>14}")
-    worst = [0.0, 0.0]
+    print(f"{'model':<8} {'scalar':>7} {'simd':>7} {'fwd':>7} {'fwd_simd':>8} {'bwd':>7} {'bwd_simd':>8}  {'same/scalar':>11}"
+          f" {'simd/scalar':>11}"
+          f" {'simd/simd':>9}")
+    worst = [0.0, 0.0, 0.0]
     for name in MODELS:
         spec = get_model(name)
         z, dts, x0, p0 = _inputs(spec, B, K, rng)
@@ -55,28 +64,36 @@ def main(B=2000, K=200, repeats=5):
         simd = spec.kernels.run_batch_soa_position
         for f in (scalar, simd):  # compile
             f(z[:4], dts[:4], x0[:4], p0[:4], q, r, out_x[:4], out_p[:4], out_nis[:4])
-        smooth_stored(spec, forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r))
-        ts = {k: [] for k in ("scalar", "simd", "fwd", "bwd")}
+        forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=True)
+        fp = forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=False)
+        smooth_stored(spec, fp, simd=False)
+        smooth_stored(spec, fp, simd=True)
+        ts = {k: [] for k in ("scalar", "simd", "fwd", "fwd_simd", "bwd", "bwd_simd")}
         for _ in range(repeats):
             t0 = time.perf_counter()
             scalar(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
             t1 = time.perf_counter()
             simd(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
             t2 = time.perf_counter()
-            fp = forward_store(spec, "position", z, dts, x0, p0, q, r)
+            fp = forward_store(spec, "position", z, dts, x0, p0, q, r, simd=False)
             t3 = time.perf_counter()
-            smooth_stored(spec, fp)
+            forward_store(spec, "position", z, dts, x0, p0, q, r, simd=True)
+            t3s = time.perf_counter()
+            smooth_stored(spec, fp, simd=False)
             t4 = time.perf_counter()
-            for k, v in zip(ts, (t1 - t0, t2 - t1, t3 - t2, t4 - t3)):
+            smooth_stored(spec, fp, simd=True)
+            t5 = time.perf_counter()
+            for k, v in zip(ts, (t1 - t0, t2 - t1, t3 - t2, t3s - t3, t4 - t3s, t5 - t4)):
                 ts[k].append(v)
         best = {k: min(v) for k, v in ts.items()}
-        sm = best["fwd"] + best["bwd"]
-        ra, rb = sm / best["scalar"], sm / best["simd"]
-        worst = [max(worst[0], ra), max(worst[1], rb)]
+        simd_sum = best["fwd_simd"] + best["bwd_simd"]
+        ratios = [(best["fwd"] + best["bwd"]) / best["scalar"], simd_sum / best["scalar"], simd_sum / best["simd"]]
+        worst = [max(w, v) for w, v in zip(worst, ratios)]
         ns = 1e9 / (B * K)
-        print(f"{name:<8} {best['scalar'] * ns:7.0f} {best['simd'] * ns:7.0f} {best['fwd'] * ns:7.0f} {best['bwd'] * ns:7.0f}"
-              f"  {ra:16.2f} {rb:14.2f}", flush=True)
-    print(f"largest (fwd+bwd)/scalar (the issue's ratio): {worst[0]:.2f}; largest (fwd+bwd)/simd: {worst[1]:.2f}")
+        print(f"{name:<8} " + " ".join(f"{best[k] * ns:{w}.0f}" for k, w in (("scalar", 7), ("simd", 7), ("fwd", 7), ("fwd_simd", 8),
+                                                                             ("bwd", 7), ("bwd_simd", 8)))
+              + f"  {ratios[0]:11.2f} {ratios[1]:11.2f} {ratios[2]:9.2f}", flush=True)
+    print(f"largest same/scalar (the issue's ratio) {worst[0]:.2f}, simd/scalar {worst[1]:.2f}, simd/simd {worst[2]:.2f}")
 
 
 if __name__ == "__main__":

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -2400,6 +2400,293 @@ def step_store_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y,
     return nis, -math.log(rdet)
 
 
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_pose(W, j, sigma_a, sigma_alpha, r_x, r_y, r_theta):
+    """step_store_pose on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    psi = W[128 + j]
+    v = W[192 + j]
+    omega = W[256 + j]
+    p00 = W[320 + j]
+    p01 = W[384 + j]
+    p02 = W[448 + j]
+    p03 = W[512 + j]
+    p04 = W[576 + j]
+    p11 = W[640 + j]
+    p12 = W[704 + j]
+    p13 = W[768 + j]
+    p14 = W[832 + j]
+    p22 = W[896 + j]
+    p23 = W[960 + j]
+    p24 = W[1024 + j]
+    p33 = W[1088 + j]
+    p34 = W[1152 + j]
+    p44 = W[1216 + j]
+    dt = W[2560 + j]
+    z_x = W[2752 + j]
+    z_y = W[2816 + j]
+    z_theta = W[2880 + j]
+    _a0 = dt*omega/2.0
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _dsinc__a0 = dsinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc02 = -(_t1*v)
+    cc03 = _t3
+    cc04 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc12 = _t3*v
+    cc13 = _t1
+    cc14 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    _sin_psi = sin_v(psi)
+    _cos_psi = cos_v(psi)
+    _t5 = (dt*dt)/2.0
+    _t6 = _sinc__a0*dt*v
+    g00 = _cos_psi*_t5
+    g10 = _sin_psi*_t5
+    g21 = _t5
+    e00 = _cos__a1*_t6 + x
+    e01 = _sin__a1*_t6 + y
+    e02 = dt*omega + psi
+    m00 = cc02*p02 + cc03*p03 + cc04*p04 + p00
+    m01 = cc02*p12 + cc03*p13 + cc04*p14 + p01
+    m02 = cc02*p22 + cc03*p23 + cc04*p24 + p02
+    m03 = cc02*p23 + cc03*p33 + cc04*p34 + p03
+    m04 = cc02*p24 + cc03*p34 + cc04*p44 + p04
+    m11 = cc12*p12 + cc13*p13 + cc14*p14 + p11
+    m12 = cc12*p22 + cc13*p23 + cc14*p24 + p12
+    m13 = cc12*p23 + cc13*p33 + cc14*p34 + p13
+    m14 = cc12*p24 + cc13*p34 + cc14*p44 + p14
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t7 = sigma_a*sigma_a
+    _t8 = _t7*g00
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = dt*dt
+    pp00 = _t7*(g00*g00) + cc02*m02 + cc03*m03 + cc04*m04 + m00
+    pp01 = _t8*g10 + cc12*m02 + cc13*m03 + cc14*m04 + m01
+    pp02 = dt*m04 + m02
+    pp03 = _t8*dt + m03
+    pp04 = m04
+    pp11 = _t7*(g10*g10) + cc12*m12 + cc13*m13 + cc14*m14 + m11
+    pp12 = dt*m14 + m12
+    pp13 = _t7*dt*g10 + m13
+    pp14 = m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t10*_t7 + p33
+    pp34 = p34
+    pp44 = _t10*_t9 + p44
+    x_p = e00
+    y_p = e01
+    psi_p = e02
+    _sin_psi_p = sin_v(psi_p)
+    _cos_psi_p = cos_v(psi_p)
+    hh00 = _cos_psi_p
+    hh01 = _sin_psi_p
+    hh10 = -_sin_psi_p
+    hh11 = _cos_psi_p
+    _sin_z_theta = sin_v(z_theta)
+    _cos_z_theta = cos_v(z_theta)
+    _a2 = atan2_v(-(sin_v(psi_p)*cos_v(z_theta)) + sin_v(z_theta)*cos_v(psi_p), sin_v(psi_p)*sin_v(z_theta) + cos_v(psi_p)*cos_v(z_theta))
+    _sin__a2 = sin_v(_a2)
+    _cos__a2 = cos_v(_a2)
+    _halfcot__a2 = halfcot_v(_a2, _sin__a2, _cos__a2)
+    _t11 = -(_cos_psi_p*x_p) + _cos_psi_p*z_x - _sin_psi_p*y_p + _sin_psi_p*z_y
+    _t12 = -(_cos_psi_p*y_p) + _cos_psi_p*z_y + _sin_psi_p*x_p - _sin_psi_p*z_x
+    _t13 = atan2_v(_cos_psi_p*_sin_z_theta - _cos_z_theta*_sin_psi_p, _cos_psi_p*_cos_z_theta + _sin_psi_p*_sin_z_theta)
+    _t14 = _t13/2.0
+    hp00 = hh00*pp00 + hh01*pp01
+    hp01 = hh00*pp01 + hh01*pp11
+    hp02 = hh00*pp02 + hh01*pp12
+    hp03 = hh00*pp03 + hh01*pp13
+    hp04 = hh00*pp04 + hh01*pp14
+    hp10 = hh10*pp00 + hh11*pp01
+    hp11 = hh10*pp01 + hh11*pp11
+    hp12 = hh10*pp02 + hh11*pp12
+    hp13 = hh10*pp03 + hh11*pp13
+    hp14 = hh10*pp04 + hh11*pp14
+    inn00 = _halfcot__a2*_t11 + _t12*_t14
+    inn10 = _halfcot__a2*_t12 - _t11*_t14
+    inn20 = _t13
+    S00 = hh00*hp00 + hh01*hp01 + r_x*r_x
+    S01 = hh10*hp00 + hh11*hp01
+    S11 = hh10*hp10 + hh11*hp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(hp12*hp12) - (S01*S01)*S22 + 2.0*S01*hp02*hp12 - S11*(hp02*hp02))
+    Si00 = rdet*(S11*S22 - hp12*hp12)
+    Si01 = rdet*(-(S01*S22) + hp02*hp12)
+    Si02 = rdet*(S01*hp12 - S11*hp02)
+    Si11 = rdet*(S00*S22 - hp02*hp02)
+    Si12 = rdet*(-(S00*hp12) + S01*hp02)
+    Si22 = rdet*(S00*S11 - S01*S01)
+    _t15 = 2.0*inn00
+    k00 = Si00*hp00 + Si01*hp10 + Si02*pp02
+    k01 = Si01*hp00 + Si11*hp10 + Si12*pp02
+    k02 = Si02*hp00 + Si12*hp10 + Si22*pp02
+    k10 = Si00*hp01 + Si01*hp11 + Si02*pp12
+    k11 = Si01*hp01 + Si11*hp11 + Si12*pp12
+    k12 = Si02*hp01 + Si12*hp11 + Si22*pp12
+    k20 = Si00*hp02 + Si01*hp12 + Si02*pp22
+    k21 = Si01*hp02 + Si11*hp12 + Si12*pp22
+    k22 = Si02*hp02 + Si12*hp12 + Si22*pp22
+    k30 = Si00*hp03 + Si01*hp13 + Si02*pp23
+    k31 = Si01*hp03 + Si11*hp13 + Si12*pp23
+    k32 = Si02*hp03 + Si12*hp13 + Si22*pp23
+    k40 = Si00*hp04 + Si01*hp14 + Si02*pp24
+    k41 = Si01*hp04 + Si11*hp14 + Si12*pp24
+    k42 = Si02*hp04 + Si12*hp14 + Si22*pp24
+    nis = Si00*(inn00*inn00) + Si01*_t15*inn10 + Si02*_t15*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + psi_p
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
+    pj00 = -(hp00*k00) - hp10*k01 - k02*pp02 + pp00
+    pj01 = -(hp01*k00) - hp11*k01 - k02*pp12 + pp01
+    pj02 = -(hp02*k00) - hp12*k01 - k02*pp22 + pp02
+    pj03 = -(hp03*k00) - hp13*k01 - k02*pp23 + pp03
+    pj04 = -(hp04*k00) - hp14*k01 - k02*pp24 + pp04
+    pj11 = -(hp01*k10) - hp11*k11 - k12*pp12 + pp11
+    pj12 = -(hp02*k10) - hp12*k11 - k12*pp22 + pp12
+    pj13 = -(hp03*k10) - hp13*k11 - k12*pp23 + pp13
+    pj14 = -(hp04*k10) - hp14*k11 - k12*pp24 + pp14
+    pj22 = -(hp02*k20) - hp12*k21 - k22*pp22 + pp22
+    pj23 = -(hp03*k20) - hp13*k21 - k22*pp23 + pp23
+    pj24 = -(hp04*k20) - hp14*k21 - k22*pp24 + pp24
+    pj33 = -(hp03*k30) - hp13*k31 - k32*pp23 + pp33
+    pj34 = -(hp04*k30) - hp14*k31 - k32*pp24 + pp34
+    pj44 = -(hp04*k40) - hp14*k41 - k42*pp24 + pp44
+    W[2944 + j] = x_p
+    W[3008 + j] = y_p
+    W[3072 + j] = psi_p
+    W[3136 + j] = v
+    W[3200 + j] = omega
+    W[3264 + j] = pp00
+    W[3328 + j] = pp01
+    W[3392 + j] = pp02
+    W[3456 + j] = pp03
+    W[3520 + j] = pp04
+    W[3584 + j] = pp11
+    W[3648 + j] = pp12
+    W[3712 + j] = pp13
+    W[3776 + j] = pp14
+    W[3840 + j] = pp22
+    W[3904 + j] = pp23
+    W[3968 + j] = pp24
+    W[4032 + j] = pp33
+    W[4096 + j] = pp34
+    W[4160 + j] = pp44
+    W[1600 + j] = pj00
+    W[1664 + j] = pj01
+    W[1728 + j] = pj02
+    W[1792 + j] = pj03
+    W[1856 + j] = pj04
+    W[1920 + j] = pj11
+    W[1984 + j] = pj12
+    W[2048 + j] = pj13
+    W[2112 + j] = pj14
+    W[2176 + j] = pj22
+    W[2240 + j] = pj23
+    W[2304 + j] = pj24
+    W[2368 + j] = pj33
+    W[2432 + j] = pj34
+    W[2496 + j] = pj44
+    W[1280 + j] = mu00
+    W[1344 + j] = mu01
+    W[1408 + j] = mu02
+    W[1472 + j] = mu03
+    W[1536 + j] = mu04
+    W[4224 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_pose (blocks of 64 trajectories, prange over blocks, lane_store_pose vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(67 * 64)
+        s = np.empty(5)
+        p = np.empty(15)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(5):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(15):
+                W[(5 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[40 * 64 + j] = dts[lo + j, k]
+                W[43 * 64 + j] = z[lo + j, k, 0]
+                W[44 * 64 + j] = z[lo + j, k, 1]
+                W[45 * 64 + j] = z[lo + j, k, 2]
+            for j in range(L):
+                W[41 * 64 + j] = lane_store_pose(W, j, q[0], q[1], r[0], r[1], r[2])
+                good = covariance_is_pd_lane(W, j) & (W[41 * 64 + j] == W[41 * 64 + j])
+                W[42 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[42 * 64 + j] == 0.0:
+                    for i in range(5):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(15):
+                        p[i] = W[(5 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1])
+                    for i in range(5):
+                        W[(46 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(51 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]) or np.isnan(z[b, k, 2]):
+                        W[41 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_pose(s, p, r[0], r[1], r[2])
+                        W[41 * 64 + j] = update_pose(s, p, z[b, k, 0], z[b, k, 1], z[b, k, 2], r[0], r[1], r[2])
+                    for i in range(5):
+                        W[(20 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(25 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[66 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[41 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(5):
+                    s_pred[b, k, i] = W[(46 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(20 + i) * 64 + j]
+                for i in range(15):
+                    p_pred[b, k, i] = W[(51 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(25 + i) * 64 + j]
+            for i in range(5 + 15):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(20 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_pose and keep every step's predicted internal state and packed
@@ -2674,6 +2961,255 @@ def step_store_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r, sq, pq):
         s[4] = omega
         nis = update_position(s, p, z_x, z_y, r)
     return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_a, sigma_alpha, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    psi = W[128 + j]
+    v = W[192 + j]
+    omega = W[256 + j]
+    p00 = W[320 + j]
+    p01 = W[384 + j]
+    p02 = W[448 + j]
+    p03 = W[512 + j]
+    p04 = W[576 + j]
+    p11 = W[640 + j]
+    p12 = W[704 + j]
+    p13 = W[768 + j]
+    p14 = W[832 + j]
+    p22 = W[896 + j]
+    p23 = W[960 + j]
+    p24 = W[1024 + j]
+    p33 = W[1088 + j]
+    p34 = W[1152 + j]
+    p44 = W[1216 + j]
+    dt = W[2560 + j]
+    z_x = W[2752 + j]
+    z_y = W[2816 + j]
+    _a0 = dt*omega/2.0
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _dsinc__a0 = dsinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc02 = -(_t1*v)
+    cc03 = _t3
+    cc04 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc12 = _t3*v
+    cc13 = _t1
+    cc14 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    _sin_psi = sin_v(psi)
+    _cos_psi = cos_v(psi)
+    _t5 = (dt*dt)/2.0
+    _t6 = _sinc__a0*dt*v
+    g00 = _cos_psi*_t5
+    g10 = _sin_psi*_t5
+    g21 = _t5
+    e00 = _cos__a1*_t6 + x
+    e01 = _sin__a1*_t6 + y
+    e02 = dt*omega + psi
+    m00 = cc02*p02 + cc03*p03 + cc04*p04 + p00
+    m01 = cc02*p12 + cc03*p13 + cc04*p14 + p01
+    m02 = cc02*p22 + cc03*p23 + cc04*p24 + p02
+    m03 = cc02*p23 + cc03*p33 + cc04*p34 + p03
+    m04 = cc02*p24 + cc03*p34 + cc04*p44 + p04
+    m11 = cc12*p12 + cc13*p13 + cc14*p14 + p11
+    m12 = cc12*p22 + cc13*p23 + cc14*p24 + p12
+    m13 = cc12*p23 + cc13*p33 + cc14*p34 + p13
+    m14 = cc12*p24 + cc13*p34 + cc14*p44 + p14
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t7 = sigma_a*sigma_a
+    _t8 = _t7*g00
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = dt*dt
+    pp00 = _t7*(g00*g00) + cc02*m02 + cc03*m03 + cc04*m04 + m00
+    pp01 = _t8*g10 + cc12*m02 + cc13*m03 + cc14*m04 + m01
+    pp02 = dt*m04 + m02
+    pp03 = _t8*dt + m03
+    pp04 = m04
+    pp11 = _t7*(g10*g10) + cc12*m12 + cc13*m13 + cc14*m14 + m11
+    pp12 = dt*m14 + m12
+    pp13 = _t7*dt*g10 + m13
+    pp14 = m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t10*_t7 + p33
+    pp34 = p34
+    pp44 = _t10*_t9 + p44
+    x_p = e00
+    y_p = e01
+    psi_p = e02
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t11 = r*r
+    S00 = _t11 + pp00
+    S11 = _t11 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t12 = Si01*pp01
+    k00 = Si00*pp00 + _t12
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t12
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    k40 = Si00*pp04 + Si01*pp14
+    k41 = Si01*pp04 + Si11*pp14
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + psi_p
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj04 = -(k00*pp04) - k01*pp14 + pp04
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj14 = -(k10*pp04) - k11*pp14 + pp14
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj24 = -(k20*pp04) - k21*pp14 + pp24
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    pj34 = -(k30*pp04) - k31*pp14 + pp34
+    pj44 = -(k40*pp04) - k41*pp14 + pp44
+    W[2880 + j] = x_p
+    W[2944 + j] = y_p
+    W[3008 + j] = psi_p
+    W[3072 + j] = v
+    W[3136 + j] = omega
+    W[3200 + j] = pp00
+    W[3264 + j] = pp01
+    W[3328 + j] = pp02
+    W[3392 + j] = pp03
+    W[3456 + j] = pp04
+    W[3520 + j] = pp11
+    W[3584 + j] = pp12
+    W[3648 + j] = pp13
+    W[3712 + j] = pp14
+    W[3776 + j] = pp22
+    W[3840 + j] = pp23
+    W[3904 + j] = pp24
+    W[3968 + j] = pp33
+    W[4032 + j] = pp34
+    W[4096 + j] = pp44
+    W[1600 + j] = pj00
+    W[1664 + j] = pj01
+    W[1728 + j] = pj02
+    W[1792 + j] = pj03
+    W[1856 + j] = pj04
+    W[1920 + j] = pj11
+    W[1984 + j] = pj12
+    W[2048 + j] = pj13
+    W[2112 + j] = pj14
+    W[2176 + j] = pj22
+    W[2240 + j] = pj23
+    W[2304 + j] = pj24
+    W[2368 + j] = pj33
+    W[2432 + j] = pj34
+    W[2496 + j] = pj44
+    W[1280 + j] = mu00
+    W[1344 + j] = mu01
+    W[1408 + j] = mu02
+    W[1472 + j] = mu03
+    W[1536 + j] = mu04
+    W[4160 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_position (blocks of 64 trajectories, prange over blocks, lane_store_position vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(66 * 64)
+        s = np.empty(5)
+        p = np.empty(15)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(5):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(15):
+                W[(5 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[40 * 64 + j] = dts[lo + j, k]
+                W[43 * 64 + j] = z[lo + j, k, 0]
+                W[44 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[41 * 64 + j] = lane_store_position(W, j, q[0], q[1], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[41 * 64 + j] == W[41 * 64 + j])
+                W[42 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[42 * 64 + j] == 0.0:
+                    for i in range(5):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(15):
+                        p[i] = W[(5 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1])
+                    for i in range(5):
+                        W[(45 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(50 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[41 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[41 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(5):
+                        W[(20 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(25 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[65 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[41 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(5):
+                    s_pred[b, k, i] = W[(45 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(20 + i) * 64 + j]
+                for i in range(15):
+                    p_pred[b, k, i] = W[(50 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(25 + i) * 64 + j]
+            for i in range(5 + 15):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(20 + i) * 64 + j]
 
 
 @nb.njit(cache=True)

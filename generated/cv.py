@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -1158,6 +1158,193 @@ def step_store_position(s, p, dt, sigma_a, z_x, z_y, r, sq, pq):
         s[3] = w_y
         nis = update_position(s, p, z_x, z_y, r)
     return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_a, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    w_x = W[128 + j]
+    w_y = W[192 + j]
+    p00 = W[256 + j]
+    p01 = W[320 + j]
+    p02 = W[384 + j]
+    p03 = W[448 + j]
+    p11 = W[512 + j]
+    p12 = W[576 + j]
+    p13 = W[640 + j]
+    p22 = W[704 + j]
+    p23 = W[768 + j]
+    p33 = W[832 + j]
+    dt = W[1792 + j]
+    z_x = W[1984 + j]
+    z_y = W[2048 + j]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    W[2112 + j] = x_p
+    W[2176 + j] = y_p
+    W[2240 + j] = w_x
+    W[2304 + j] = w_y
+    W[2368 + j] = pp00
+    W[2432 + j] = pp01
+    W[2496 + j] = pp02
+    W[2560 + j] = pp03
+    W[2624 + j] = pp11
+    W[2688 + j] = pp12
+    W[2752 + j] = pp13
+    W[2816 + j] = pp22
+    W[2880 + j] = pp23
+    W[2944 + j] = pp33
+    W[1152 + j] = pj00
+    W[1216 + j] = pj01
+    W[1280 + j] = pj02
+    W[1344 + j] = pj03
+    W[1408 + j] = pj11
+    W[1472 + j] = pj12
+    W[1536 + j] = pj13
+    W[1600 + j] = pj22
+    W[1664 + j] = pj23
+    W[1728 + j] = pj33
+    W[896 + j] = mu00
+    W[960 + j] = mu01
+    W[1024 + j] = mu02
+    W[1088 + j] = mu03
+    W[3008 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_position (blocks of 64 trajectories, prange over blocks, lane_store_position vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(48 * 64)
+        s = np.empty(4)
+        p = np.empty(10)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(4):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(10):
+                W[(4 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[28 * 64 + j] = dts[lo + j, k]
+                W[31 * 64 + j] = z[lo + j, k, 0]
+                W[32 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[29 * 64 + j] = lane_store_position(W, j, q[0], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[29 * 64 + j] == W[29 * 64 + j])
+                W[30 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[30 * 64 + j] == 0.0:
+                    for i in range(4):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(10):
+                        p[i] = W[(4 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0])
+                    for i in range(4):
+                        W[(33 + i) * 64 + j] = s[i]
+                    for i in range(10):
+                        W[(37 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[29 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[29 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(4):
+                        W[(14 + i) * 64 + j] = s[i]
+                    for i in range(10):
+                        W[(18 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[47 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[29 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(4):
+                    s_pred[b, k, i] = W[(33 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(14 + i) * 64 + j]
+                for i in range(10):
+                    p_pred[b, k, i] = W[(37 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(18 + i) * 64 + j]
+            for i in range(4 + 10):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(14 + i) * 64 + j]
 
 
 @nb.njit(cache=True)

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -3266,6 +3266,404 @@ def step_store_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, 
     return nis, -math.log(rdet)
 
 
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
+    """step_store_pose on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    p00 = W[448 + j]
+    p01 = W[512 + j]
+    p02 = W[576 + j]
+    p03 = W[640 + j]
+    p04 = W[704 + j]
+    p05 = W[768 + j]
+    p11 = W[832 + j]
+    p12 = W[896 + j]
+    p13 = W[960 + j]
+    p14 = W[1024 + j]
+    p15 = W[1088 + j]
+    p22 = W[1152 + j]
+    p23 = W[1216 + j]
+    p24 = W[1280 + j]
+    p25 = W[1344 + j]
+    p33 = W[1408 + j]
+    p34 = W[1472 + j]
+    p35 = W[1536 + j]
+    p44 = W[1600 + j]
+    p45 = W[1664 + j]
+    p55 = W[1728 + j]
+    dt = W[3584 + j]
+    z_x = W[3776 + j]
+    z_y = W[3840 + j]
+    z_theta = W[3904 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    _sin_z_theta = sin_v(z_theta)
+    _cos_z_theta = cos_v(z_theta)
+    _a1 = atan2_v(c_theta_p*sin_v(z_theta) - s_theta_p*cos_v(z_theta), c_theta_p*cos_v(z_theta) + s_theta_p*sin_v(z_theta))
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t21 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t22 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t23 = atan2_v(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t24 = _t23/2.0
+    inn00 = _halfcot__a1*_t21 + _t22*_t24
+    inn10 = _halfcot__a1*_t22 - _t21*_t24
+    inn20 = _t23
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t25 = Si01*pp01
+    _t26 = Si02*pp02
+    _t27 = Si12*pp12
+    _t28 = 2.0*inn00
+    k00 = Si00*pp00 + _t25 + _t26
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t25 + _t27
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t26 + _t27
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    k50 = Si00*pp05 + Si01*pp15 + Si02*pp25
+    k51 = Si01*pp05 + Si11*pp15 + Si12*pp25
+    k52 = Si02*pp05 + Si12*pp15 + Si22*pp25
+    nis = Si00*(inn00*inn00) + Si01*_t28*inn10 + Si02*_t28*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    nk5 = inn00*k50 + inn10*k51 + inn20*k52
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _t29 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t30 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t29*c_theta_p - _t30*s_theta_p + x_p
+    mu01 = _t29*s_theta_p + _t30*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    kb50 = beta*k50
+    kb51 = beta*k51
+    kb52 = beta*k52
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj05 = -(kb00*pp05) - kb01*pp15 - kb02*pp25 + pp05
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj15 = -(kb10*pp05) - kb11*pp15 - kb12*pp25 + pp15
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj25 = -(kb20*pp05) - kb21*pp15 - kb22*pp25 + pp25
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj35 = -(kb30*pp05) - kb31*pp15 - kb32*pp25 + pp35
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    pj45 = -(kb40*pp05) - kb41*pp15 - kb42*pp25 + pp45
+    pj55 = -(kb50*pp05) - kb51*pp15 - kb52*pp25 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    W[3968 + j] = x_p
+    W[4032 + j] = y_p
+    W[4096 + j] = c_theta_p
+    W[4160 + j] = s_theta_p
+    W[4224 + j] = v_x
+    W[4288 + j] = v_y
+    W[4352 + j] = omega
+    W[4416 + j] = pp00
+    W[4480 + j] = pp01
+    W[4544 + j] = pp02
+    W[4608 + j] = pp03
+    W[4672 + j] = pp04
+    W[4736 + j] = pp05
+    W[4800 + j] = pp11
+    W[4864 + j] = pp12
+    W[4928 + j] = pp13
+    W[4992 + j] = pp14
+    W[5056 + j] = pp15
+    W[5120 + j] = pp22
+    W[5184 + j] = pp23
+    W[5248 + j] = pp24
+    W[5312 + j] = pp25
+    W[5376 + j] = pp33
+    W[5440 + j] = pp34
+    W[5504 + j] = pp35
+    W[5568 + j] = pp44
+    W[5632 + j] = pp45
+    W[5696 + j] = pp55
+    W[2240 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2304 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2368 + j] = cp02
+    W[2432 + j] = cp03
+    W[2496 + j] = cp04
+    W[2560 + j] = cp05
+    W[2624 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2688 + j] = cp12
+    W[2752 + j] = cp13
+    W[2816 + j] = cp14
+    W[2880 + j] = cp15
+    W[2944 + j] = pj22
+    W[3008 + j] = pj23
+    W[3072 + j] = pj24
+    W[3136 + j] = pj25
+    W[3200 + j] = pj33
+    W[3264 + j] = pj34
+    W[3328 + j] = pj35
+    W[3392 + j] = pj44
+    W[3456 + j] = pj45
+    W[3520 + j] = pj55
+    W[1792 + j] = mu00
+    W[1856 + j] = mu01
+    W[1920 + j] = mu02
+    W[1984 + j] = mu03
+    W[2048 + j] = mu04
+    W[2112 + j] = mu05
+    W[2176 + j] = mu06
+    W[5760 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_pose (blocks of 64 trajectories, prange over blocks, lane_store_pose vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(91 * 64)
+        s = np.empty(7)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(7):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(7 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[56 * 64 + j] = dts[lo + j, k]
+                W[59 * 64 + j] = z[lo + j, k, 0]
+                W[60 * 64 + j] = z[lo + j, k, 1]
+                W[61 * 64 + j] = z[lo + j, k, 2]
+            for j in range(L):
+                W[57 * 64 + j] = lane_store_pose(W, j, q[0], q[1], q[2], r[0], r[1], r[2])
+                good = covariance_is_pd_lane(W, j) & (W[57 * 64 + j] == W[57 * 64 + j])
+                W[58 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[58 * 64 + j] == 0.0:
+                    for i in range(7):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(7 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    for i in range(7):
+                        W[(62 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(69 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]) or np.isnan(z[b, k, 2]):
+                        W[57 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_pose(s, p, r[0], r[1], r[2])
+                        W[57 * 64 + j] = update_pose(s, p, z[b, k, 0], z[b, k, 1], z[b, k, 2], r[0], r[1], r[2])
+                    for i in range(7):
+                        W[(28 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(35 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[90 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(7):
+                    s_pred[b, k, i] = W[(62 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(28 + i) * 64 + j]
+                for i in range(21):
+                    p_pred[b, k, i] = W[(69 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(35 + i) * 64 + j]
+            for i in range(7 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_pose and keep every step's predicted internal state and packed
@@ -3689,6 +4087,387 @@ def step_store_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r, sq
         s[6] = omega
         nis = update_position(s, p, z_x, z_y, r)
     return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_x, sigma_y, sigma_omega, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    p00 = W[448 + j]
+    p01 = W[512 + j]
+    p02 = W[576 + j]
+    p03 = W[640 + j]
+    p04 = W[704 + j]
+    p05 = W[768 + j]
+    p11 = W[832 + j]
+    p12 = W[896 + j]
+    p13 = W[960 + j]
+    p14 = W[1024 + j]
+    p15 = W[1088 + j]
+    p22 = W[1152 + j]
+    p23 = W[1216 + j]
+    p24 = W[1280 + j]
+    p25 = W[1344 + j]
+    p33 = W[1408 + j]
+    p34 = W[1472 + j]
+    p35 = W[1536 + j]
+    p44 = W[1600 + j]
+    p45 = W[1664 + j]
+    p55 = W[1728 + j]
+    dt = W[3584 + j]
+    z_x = W[3776 + j]
+    z_y = W[3840 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v_x
+    _t2 = _sinc__a0*dt
+    _t3 = _t2*v_y
+    _t4 = dt*v_y
+    _t5 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t6 = _t0*v_y
+    _t7 = _cosc2__a0*dt*v_x + _sinc2__a0*_t4
+    _t8 = (dt*dt)/2.0
+    _t9 = _sinc__a0*_t8
+    _t10 = _cosc__a0*_t8
+    _t11 = _sinc__a0*dt*v_x - _t6
+    _t12 = _t1 + _t3
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1 - _t3
+    f03 = _t2
+    f04 = _t0
+    f05 = _t5*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t2*v_x + _t6
+    f13 = -_t0
+    f14 = _t2
+    f15 = _t7*dt
+    g00 = _t9
+    g01 = _t10
+    g02 = _t5*_t8
+    g10 = -_t10
+    g11 = _t9
+    g12 = _t7*_t8
+    g22 = _t8
+    e00 = _t11*c_theta - _t12*s_theta + x
+    e01 = _t11*s_theta + _t12*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t13 = sigma_x*sigma_x
+    _t14 = sigma_y*sigma_y
+    _t15 = sigma_omega*sigma_omega
+    _t16 = _t13*g00
+    _t17 = _t14*g01
+    _t18 = _t15*g02
+    _t19 = _t15*g12
+    _t20 = dt*dt
+    pp00 = _t13*(g00*g00) + _t14*(g01*g01) + _t15*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t16*g10 + _t17*g11 + _t18*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t18*g22 + dt*m05 + m02
+    pp03 = _t16*dt + m03
+    pp04 = _t17*dt + m04
+    pp05 = _t18*dt + m05
+    pp11 = _t13*(g10*g10) + _t14*(g11*g11) + _t15*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t19*g22 + dt*m15 + m12
+    pp13 = _t13*dt*g10 + m13
+    pp14 = _t14*dt*g11 + m14
+    pp15 = _t19*dt + m15
+    pp22 = _t15*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t15*dt*g22 + m25
+    pp33 = _t13*_t20 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t14*_t20 + p44
+    pp45 = p45
+    pp55 = _t15*_t20 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t21 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t21 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp05 = c_theta_p*pp05 + hh01*pp15
+    hp10 = _t21 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    hp15 = c_theta_p*pp15 + pp05*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t22 = r*r
+    S00 = _t22 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t22 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _t23 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t24 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t23*c_theta_p - _t24*s_theta_p + x_p
+    mu01 = _t23*s_theta_p + _t24*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v_x
+    mu05 = nu4 + v_y
+    mu06 = nu5 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb50 = beta*k50
+    kb51 = beta*k51
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj05 = -(hp05*kb00) - hp15*kb01 + pp05
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj15 = -(hp05*kb10) - hp15*kb11 + pp15
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj25 = -(hp05*kb20) - hp15*kb21 + pp25
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj35 = -(hp05*kb30) - hp15*kb31 + pp35
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    pj45 = -(hp05*kb40) - hp15*kb41 + pp45
+    pj55 = -(hp05*kb50) - hp15*kb51 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    W[3904 + j] = x_p
+    W[3968 + j] = y_p
+    W[4032 + j] = c_theta_p
+    W[4096 + j] = s_theta_p
+    W[4160 + j] = v_x
+    W[4224 + j] = v_y
+    W[4288 + j] = omega
+    W[4352 + j] = pp00
+    W[4416 + j] = pp01
+    W[4480 + j] = pp02
+    W[4544 + j] = pp03
+    W[4608 + j] = pp04
+    W[4672 + j] = pp05
+    W[4736 + j] = pp11
+    W[4800 + j] = pp12
+    W[4864 + j] = pp13
+    W[4928 + j] = pp14
+    W[4992 + j] = pp15
+    W[5056 + j] = pp22
+    W[5120 + j] = pp23
+    W[5184 + j] = pp24
+    W[5248 + j] = pp25
+    W[5312 + j] = pp33
+    W[5376 + j] = pp34
+    W[5440 + j] = pp35
+    W[5504 + j] = pp44
+    W[5568 + j] = pp45
+    W[5632 + j] = pp55
+    W[2240 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2304 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2368 + j] = cp02
+    W[2432 + j] = cp03
+    W[2496 + j] = cp04
+    W[2560 + j] = cp05
+    W[2624 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2688 + j] = cp12
+    W[2752 + j] = cp13
+    W[2816 + j] = cp14
+    W[2880 + j] = cp15
+    W[2944 + j] = pj22
+    W[3008 + j] = pj23
+    W[3072 + j] = pj24
+    W[3136 + j] = pj25
+    W[3200 + j] = pj33
+    W[3264 + j] = pj34
+    W[3328 + j] = pj35
+    W[3392 + j] = pj44
+    W[3456 + j] = pj45
+    W[3520 + j] = pj55
+    W[1792 + j] = mu00
+    W[1856 + j] = mu01
+    W[1920 + j] = mu02
+    W[1984 + j] = mu03
+    W[2048 + j] = mu04
+    W[2112 + j] = mu05
+    W[2176 + j] = mu06
+    W[5696 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_position (blocks of 64 trajectories, prange over blocks, lane_store_position vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(90 * 64)
+        s = np.empty(7)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(7):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(7 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[56 * 64 + j] = dts[lo + j, k]
+                W[59 * 64 + j] = z[lo + j, k, 0]
+                W[60 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[57 * 64 + j] = lane_store_position(W, j, q[0], q[1], q[2], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[57 * 64 + j] == W[57 * 64 + j])
+                W[58 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[58 * 64 + j] == 0.0:
+                    for i in range(7):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(7 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    for i in range(7):
+                        W[(61 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(68 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[57 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[57 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(7):
+                        W[(28 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(35 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[89 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(7):
+                    s_pred[b, k, i] = W[(61 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(28 + i) * 64 + j]
+                for i in range(21):
+                    p_pred[b, k, i] = W[(68 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(35 + i) * 64 + j]
+            for i in range(7 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
 
 
 @nb.njit(cache=True)

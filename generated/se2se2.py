@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -3639,6 +3639,446 @@ def step_store_pose(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, z_theta, 
     return nis, -math.log(rdet)
 
 
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
+    """step_store_pose on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    c_omega = W[448 + j]
+    s_omega = W[512 + j]
+    p00 = W[576 + j]
+    p01 = W[640 + j]
+    p02 = W[704 + j]
+    p03 = W[768 + j]
+    p04 = W[832 + j]
+    p05 = W[896 + j]
+    p11 = W[960 + j]
+    p12 = W[1024 + j]
+    p13 = W[1088 + j]
+    p14 = W[1152 + j]
+    p15 = W[1216 + j]
+    p22 = W[1280 + j]
+    p23 = W[1344 + j]
+    p24 = W[1408 + j]
+    p25 = W[1472 + j]
+    p33 = W[1536 + j]
+    p34 = W[1600 + j]
+    p35 = W[1664 + j]
+    p44 = W[1728 + j]
+    p45 = W[1792 + j]
+    p55 = W[1856 + j]
+    dt = W[3840 + j]
+    z_x = W[4032 + j]
+    z_y = W[4096 + j]
+    z_theta = W[4160 + j]
+    _t0 = c_omega*dt
+    _t1 = dt*s_omega
+    cc03 = _t0
+    cc04 = -_t1
+    cc13 = _t1
+    cc14 = _t0
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t2 = dt*v_x
+    _t3 = _cosc__a0*_t2
+    _t4 = dt*v_y
+    _t5 = _sinc__a0*_t4
+    _t6 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t7 = _cosc__a0*_t4
+    _t8 = _cosc2__a0*_t2 + _sinc2__a0*_t4
+    _t9 = (dt*dt)/2.0
+    _t10 = _sinc__a0*_t9
+    _t11 = _cosc__a0*_t9
+    _t12 = _sinc__a0*dt*v_x - _t7
+    _t13 = _t3 + _t5
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t3 - _t5
+    f03 = _cosc__a0*cc13 + _sinc__a0*cc03
+    f04 = _cosc__a0*cc14 + _sinc__a0*cc04
+    f05 = _t6*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _sinc__a0*_t2 + _t7
+    f13 = -(_cosc__a0*cc03) + _sinc__a0*cc13
+    f14 = -(_cosc__a0*cc04) + _sinc__a0*cc14
+    f15 = _t8*dt
+    g00 = _t10
+    g01 = _t11
+    g02 = _t6*_t9
+    g10 = -_t11
+    g11 = _t10
+    g12 = _t8*_t9
+    g22 = _t9
+    e00 = _t12*c_theta - _t13*s_theta + x
+    e01 = _t12*s_theta + _t13*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t14 = sigma_x*sigma_x
+    _t15 = sigma_y*sigma_y
+    _t16 = sigma_omega*sigma_omega
+    _t17 = _t14*g00
+    _t18 = _t15*g01
+    _t19 = _t16*g02
+    _t20 = _t16*g12
+    _t21 = dt*dt
+    pp00 = _t14*(g00*g00) + _t15*(g01*g01) + _t16*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t17*g10 + _t18*g11 + _t19*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t19*g22 + dt*m05 + m02
+    pp03 = _t17*dt + m03
+    pp04 = _t18*dt + m04
+    pp05 = _t19*dt + m05
+    pp11 = _t14*(g10*g10) + _t15*(g11*g11) + _t16*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t20*g22 + dt*m15 + m12
+    pp13 = _t14*dt*g10 + m13
+    pp14 = _t15*dt*g11 + m14
+    pp15 = _t20*dt + m15
+    pp22 = _t16*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t16*dt*g22 + m25
+    pp33 = _t14*_t21 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t15*_t21 + p44
+    pp45 = p45
+    pp55 = _t16*_t21 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    if pp55 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp55)
+        pp05 = pp05 * _cap
+        pp15 = pp15 * _cap
+        pp25 = pp25 * _cap
+        pp35 = pp35 * _cap
+        pp45 = pp45 * _cap
+        pp55 = math.pi * math.pi
+    _sin_z_theta = sin_v(z_theta)
+    _cos_z_theta = cos_v(z_theta)
+    _a1 = atan2_v(c_theta_p*sin_v(z_theta) - s_theta_p*cos_v(z_theta), c_theta_p*cos_v(z_theta) + s_theta_p*sin_v(z_theta))
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t22 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t23 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t24 = atan2_v(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t25 = _t24/2.0
+    inn00 = _halfcot__a1*_t22 + _t23*_t25
+    inn10 = _halfcot__a1*_t23 - _t22*_t25
+    inn20 = _t24
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t26 = Si01*pp01
+    _t27 = Si02*pp02
+    _t28 = Si12*pp12
+    _t29 = 2.0*inn00
+    k00 = Si00*pp00 + _t26 + _t27
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t26 + _t28
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t27 + _t28
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    k50 = Si00*pp05 + Si01*pp15 + Si02*pp25
+    k51 = Si01*pp05 + Si11*pp15 + Si12*pp25
+    k52 = Si02*pp05 + Si12*pp15 + Si22*pp25
+    nis = Si00*(inn00*inn00) + Si01*_t29*inn10 + Si02*_t29*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    nk5 = inn00*k50 + inn10*k51 + inn20*k52
+    alpha = gain_damping_v(nk2, nk5)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sin_nu5 = sin_v(nu5)
+    _cos_nu5 = cos_v(nu5)
+    _cosc_nu5 = cosc_v(nu5, _sin_nu5, _cos_nu5)
+    _cosc2_nu5 = cosc2_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5 = sinc_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc2_nu5 = sinc2_v(nu5, _sin_nu5, _cos_nu5)
+    _t30 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t31 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    _t32 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
+    _t33 = _cosc_nu5*nu3 + _sinc_nu5*nu4
+    _t34 = _cos_nu5*s_omega + _sin_nu5*c_omega
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    phi33 = _sinc_nu5
+    phi34 = _cosc_nu5
+    phi35 = -(_cosc2_nu5*nu4) + _sinc2_nu5*nu3
+    phi43 = -_cosc_nu5
+    phi44 = _sinc_nu5
+    phi45 = _cosc2_nu5*nu3 + _sinc2_nu5*nu4
+    mu00 = _t30*c_theta_p - _t31*s_theta_p + x_p
+    mu01 = _t30*s_theta_p + _t31*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = _t32*c_omega - _t33*s_omega + v_x
+    mu05 = _t32*s_omega + _t33*c_omega + v_y
+    mu06 = wrap_sum_v(nu5 + omega, _t34)
+    mu07 = _cos_nu5*c_omega - _sin_nu5*s_omega
+    mu08 = _t34
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    kb50 = beta*k50
+    kb51 = beta*k51
+    kb52 = beta*k52
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj05 = -(kb00*pp05) - kb01*pp15 - kb02*pp25 + pp05
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj15 = -(kb10*pp05) - kb11*pp15 - kb12*pp25 + pp15
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj25 = -(kb20*pp05) - kb21*pp15 - kb22*pp25 + pp25
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj35 = -(kb30*pp05) - kb31*pp15 - kb32*pp25 + pp35
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    pj45 = -(kb40*pp05) - kb41*pp15 - kb42*pp25 + pp45
+    pj55 = -(kb50*pp05) - kb51*pp15 - kb52*pp25 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    cp33 = phi33*pj33 + phi34*pj34 + phi35*pj35
+    cp34 = phi33*pj34 + phi34*pj44 + phi35*pj45
+    cp35 = phi33*pj35 + phi34*pj45 + phi35*pj55
+    cp43 = phi43*pj33 + phi44*pj34 + phi45*pj35
+    cp44 = phi43*pj34 + phi44*pj44 + phi45*pj45
+    cp45 = phi43*pj35 + phi44*pj45 + phi45*pj55
+    W[4224 + j] = x_p
+    W[4288 + j] = y_p
+    W[4352 + j] = c_theta_p
+    W[4416 + j] = s_theta_p
+    W[4480 + j] = v_x
+    W[4544 + j] = v_y
+    W[4608 + j] = omega
+    W[4672 + j] = c_omega
+    W[4736 + j] = s_omega
+    W[4800 + j] = pp00
+    W[4864 + j] = pp01
+    W[4928 + j] = pp02
+    W[4992 + j] = pp03
+    W[5056 + j] = pp04
+    W[5120 + j] = pp05
+    W[5184 + j] = pp11
+    W[5248 + j] = pp12
+    W[5312 + j] = pp13
+    W[5376 + j] = pp14
+    W[5440 + j] = pp15
+    W[5504 + j] = pp22
+    W[5568 + j] = pp23
+    W[5632 + j] = pp24
+    W[5696 + j] = pp25
+    W[5760 + j] = pp33
+    W[5824 + j] = pp34
+    W[5888 + j] = pp35
+    W[5952 + j] = pp44
+    W[6016 + j] = pp45
+    W[6080 + j] = pp55
+    W[2496 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2560 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2624 + j] = cp02
+    W[2688 + j] = cp03*phi33 + cp04*phi34 + cp05*phi35
+    W[2752 + j] = cp03*phi43 + cp04*phi44 + cp05*phi45
+    W[2816 + j] = cp05
+    W[2880 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2944 + j] = cp12
+    W[3008 + j] = cp13*phi33 + cp14*phi34 + cp15*phi35
+    W[3072 + j] = cp13*phi43 + cp14*phi44 + cp15*phi45
+    W[3136 + j] = cp15
+    W[3200 + j] = pj22
+    W[3264 + j] = phi33*pj23 + phi34*pj24 + phi35*pj25
+    W[3328 + j] = phi43*pj23 + phi44*pj24 + phi45*pj25
+    W[3392 + j] = pj25
+    W[3456 + j] = cp33*phi33 + cp34*phi34 + cp35*phi35
+    W[3520 + j] = cp33*phi43 + cp34*phi44 + cp35*phi45
+    W[3584 + j] = cp35
+    W[3648 + j] = cp43*phi43 + cp44*phi44 + cp45*phi45
+    W[3712 + j] = cp45
+    W[3776 + j] = pj55
+    W[1920 + j] = mu00
+    W[1984 + j] = mu01
+    W[2048 + j] = mu02
+    W[2112 + j] = mu03
+    W[2176 + j] = mu04
+    W[2240 + j] = mu05
+    W[2304 + j] = mu06
+    W[2368 + j] = mu07
+    W[2432 + j] = mu08
+    W[6144 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_pose (blocks of 64 trajectories, prange over blocks, lane_store_pose vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(97 * 64)
+        s = np.empty(9)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(9):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(9 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[60 * 64 + j] = dts[lo + j, k]
+                W[63 * 64 + j] = z[lo + j, k, 0]
+                W[64 * 64 + j] = z[lo + j, k, 1]
+                W[65 * 64 + j] = z[lo + j, k, 2]
+            for j in range(L):
+                W[61 * 64 + j] = lane_store_pose(W, j, q[0], q[1], q[2], r[0], r[1], r[2])
+                good = covariance_is_pd_lane(W, j) & (W[61 * 64 + j] == W[61 * 64 + j])
+                W[62 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[62 * 64 + j] == 0.0:
+                    for i in range(9):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(9 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    for i in range(9):
+                        W[(66 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(75 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]) or np.isnan(z[b, k, 2]):
+                        W[61 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_pose(s, p, r[0], r[1], r[2])
+                        W[61 * 64 + j] = update_pose(s, p, z[b, k, 0], z[b, k, 1], z[b, k, 2], r[0], r[1], r[2])
+                    for i in range(9):
+                        W[(30 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(39 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[96 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[61 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(9):
+                    s_pred[b, k, i] = W[(66 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(30 + i) * 64 + j]
+                for i in range(21):
+                    p_pred[b, k, i] = W[(75 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(39 + i) * 64 + j]
+            for i in range(9 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(30 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_pose and keep every step's predicted internal state and packed
@@ -4106,6 +4546,429 @@ def step_store_position(s, p, dt, sigma_x, sigma_y, sigma_omega, z_x, z_y, r, sq
         s[8] = s_omega
         nis = update_position(s, p, z_x, z_y, r)
     return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_x, sigma_y, sigma_omega, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v_x = W[256 + j]
+    v_y = W[320 + j]
+    omega = W[384 + j]
+    c_omega = W[448 + j]
+    s_omega = W[512 + j]
+    p00 = W[576 + j]
+    p01 = W[640 + j]
+    p02 = W[704 + j]
+    p03 = W[768 + j]
+    p04 = W[832 + j]
+    p05 = W[896 + j]
+    p11 = W[960 + j]
+    p12 = W[1024 + j]
+    p13 = W[1088 + j]
+    p14 = W[1152 + j]
+    p15 = W[1216 + j]
+    p22 = W[1280 + j]
+    p23 = W[1344 + j]
+    p24 = W[1408 + j]
+    p25 = W[1472 + j]
+    p33 = W[1536 + j]
+    p34 = W[1600 + j]
+    p35 = W[1664 + j]
+    p44 = W[1728 + j]
+    p45 = W[1792 + j]
+    p55 = W[1856 + j]
+    dt = W[3840 + j]
+    z_x = W[4032 + j]
+    z_y = W[4096 + j]
+    _t0 = c_omega*dt
+    _t1 = dt*s_omega
+    cc03 = _t0
+    cc04 = -_t1
+    cc13 = _t1
+    cc14 = _t0
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _cosc__a0 = cosc_v(_a0, _sin__a0, _cos__a0)
+    _cosc2__a0 = cosc2_v(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc_v(_a0, _sin__a0, _cos__a0)
+    _sinc2__a0 = sinc2_v(_a0, _sin__a0, _cos__a0)
+    _t2 = dt*v_x
+    _t3 = _cosc__a0*_t2
+    _t4 = dt*v_y
+    _t5 = _sinc__a0*_t4
+    _t6 = -(_cosc2__a0*_t4) + _sinc2__a0*dt*v_x
+    _t7 = _cosc__a0*_t4
+    _t8 = _cosc2__a0*_t2 + _sinc2__a0*_t4
+    _t9 = (dt*dt)/2.0
+    _t10 = _sinc__a0*_t9
+    _t11 = _cosc__a0*_t9
+    _t12 = _sinc__a0*dt*v_x - _t7
+    _t13 = _t3 + _t5
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t3 - _t5
+    f03 = _cosc__a0*cc13 + _sinc__a0*cc03
+    f04 = _cosc__a0*cc14 + _sinc__a0*cc04
+    f05 = _t6*dt
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _sinc__a0*_t2 + _t7
+    f13 = -(_cosc__a0*cc03) + _sinc__a0*cc13
+    f14 = -(_cosc__a0*cc04) + _sinc__a0*cc14
+    f15 = _t8*dt
+    g00 = _t10
+    g01 = _t11
+    g02 = _t6*_t9
+    g10 = -_t11
+    g11 = _t10
+    g12 = _t8*_t9
+    g22 = _t9
+    e00 = _t12*c_theta - _t13*s_theta + x
+    e01 = _t12*s_theta + _t13*c_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04 + f05*p05
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14 + f05*p15
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24 + f05*p25
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34 + f05*p35
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44 + f05*p45
+    m05 = f00*p05 + f01*p15 + f02*p25 + f03*p35 + f04*p45 + f05*p55
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04 + f15*p05
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14 + f15*p15
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24 + f15*p25
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34 + f15*p35
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44 + f15*p45
+    m15 = f10*p05 + f11*p15 + f12*p25 + f13*p35 + f14*p45 + f15*p55
+    m22 = dt*p25 + p22
+    m23 = dt*p35 + p23
+    m24 = dt*p45 + p24
+    m25 = dt*p55 + p25
+    _t14 = sigma_x*sigma_x
+    _t15 = sigma_y*sigma_y
+    _t16 = sigma_omega*sigma_omega
+    _t17 = _t14*g00
+    _t18 = _t15*g01
+    _t19 = _t16*g02
+    _t20 = _t16*g12
+    _t21 = dt*dt
+    pp00 = _t14*(g00*g00) + _t15*(g01*g01) + _t16*(g02*g02) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04 + f05*m05
+    pp01 = _t17*g10 + _t18*g11 + _t19*g12 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04 + f15*m05
+    pp02 = _t19*g22 + dt*m05 + m02
+    pp03 = _t17*dt + m03
+    pp04 = _t18*dt + m04
+    pp05 = _t19*dt + m05
+    pp11 = _t14*(g10*g10) + _t15*(g11*g11) + _t16*(g12*g12) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14 + f15*m15
+    pp12 = _t20*g22 + dt*m15 + m12
+    pp13 = _t14*dt*g10 + m13
+    pp14 = _t15*dt*g11 + m14
+    pp15 = _t20*dt + m15
+    pp22 = _t16*(g22*g22) + dt*m25 + m22
+    pp23 = m23
+    pp24 = m24
+    pp25 = _t16*dt*g22 + m25
+    pp33 = _t14*_t21 + p33
+    pp34 = p34
+    pp35 = p35
+    pp44 = _t15*_t21 + p44
+    pp45 = p45
+    pp55 = _t16*_t21 + p55
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp25 = pp25 * _cap
+        pp22 = math.pi * math.pi
+    if pp55 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp55)
+        pp05 = pp05 * _cap
+        pp15 = pp15 * _cap
+        pp25 = pp25 * _cap
+        pp35 = pp35 * _cap
+        pp45 = pp45 * _cap
+        pp55 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t22 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t22 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp05 = c_theta_p*pp05 + hh01*pp15
+    hp10 = _t22 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    hp15 = c_theta_p*pp15 + pp05*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t23 = r*r
+    S00 = _t23 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t23 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    k50 = Si00*hp05 + Si01*hp15
+    k51 = Si01*hp05 + Si11*hp15
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    nk5 = inn00*k50 + inn10*k51
+    alpha = gain_damping_v(nk2, nk5)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    nu5 = alpha*nk5
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _cosc_nu2 = cosc_v(nu2, _sin_nu2, _cos_nu2)
+    _cosc2_nu2 = cosc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc_nu2 = sinc_v(nu2, _sin_nu2, _cos_nu2)
+    _sinc2_nu2 = sinc2_v(nu2, _sin_nu2, _cos_nu2)
+    _sin_nu5 = sin_v(nu5)
+    _cos_nu5 = cos_v(nu5)
+    _cosc_nu5 = cosc_v(nu5, _sin_nu5, _cos_nu5)
+    _cosc2_nu5 = cosc2_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc_nu5 = sinc_v(nu5, _sin_nu5, _cos_nu5)
+    _sinc2_nu5 = sinc2_v(nu5, _sin_nu5, _cos_nu5)
+    _t24 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t25 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    _t26 = -(_cosc_nu5*nu4) + _sinc_nu5*nu3
+    _t27 = _cosc_nu5*nu3 + _sinc_nu5*nu4
+    _t28 = _cos_nu5*s_omega + _sin_nu5*c_omega
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    phi33 = _sinc_nu5
+    phi34 = _cosc_nu5
+    phi35 = -(_cosc2_nu5*nu4) + _sinc2_nu5*nu3
+    phi43 = -_cosc_nu5
+    phi44 = _sinc_nu5
+    phi45 = _cosc2_nu5*nu3 + _sinc2_nu5*nu4
+    mu00 = _t24*c_theta_p - _t25*s_theta_p + x_p
+    mu01 = _t24*s_theta_p + _t25*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = _t26*c_omega - _t27*s_omega + v_x
+    mu05 = _t26*s_omega + _t27*c_omega + v_y
+    mu06 = wrap_sum_v(nu5 + omega, _t28)
+    mu07 = _cos_nu5*c_omega - _sin_nu5*s_omega
+    mu08 = _t28
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb50 = beta*k50
+    kb51 = beta*k51
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj05 = -(hp05*kb00) - hp15*kb01 + pp05
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj15 = -(hp05*kb10) - hp15*kb11 + pp15
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj25 = -(hp05*kb20) - hp15*kb21 + pp25
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj35 = -(hp05*kb30) - hp15*kb31 + pp35
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    pj45 = -(hp05*kb40) - hp15*kb41 + pp45
+    pj55 = -(hp05*kb50) - hp15*kb51 + pp55
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp05 = phi00*pj05 + phi01*pj15 + phi02*pj25
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    cp15 = phi10*pj05 + phi11*pj15 + phi12*pj25
+    cp33 = phi33*pj33 + phi34*pj34 + phi35*pj35
+    cp34 = phi33*pj34 + phi34*pj44 + phi35*pj45
+    cp35 = phi33*pj35 + phi34*pj45 + phi35*pj55
+    cp43 = phi43*pj33 + phi44*pj34 + phi45*pj35
+    cp44 = phi43*pj34 + phi44*pj44 + phi45*pj45
+    cp45 = phi43*pj35 + phi44*pj45 + phi45*pj55
+    W[4160 + j] = x_p
+    W[4224 + j] = y_p
+    W[4288 + j] = c_theta_p
+    W[4352 + j] = s_theta_p
+    W[4416 + j] = v_x
+    W[4480 + j] = v_y
+    W[4544 + j] = omega
+    W[4608 + j] = c_omega
+    W[4672 + j] = s_omega
+    W[4736 + j] = pp00
+    W[4800 + j] = pp01
+    W[4864 + j] = pp02
+    W[4928 + j] = pp03
+    W[4992 + j] = pp04
+    W[5056 + j] = pp05
+    W[5120 + j] = pp11
+    W[5184 + j] = pp12
+    W[5248 + j] = pp13
+    W[5312 + j] = pp14
+    W[5376 + j] = pp15
+    W[5440 + j] = pp22
+    W[5504 + j] = pp23
+    W[5568 + j] = pp24
+    W[5632 + j] = pp25
+    W[5696 + j] = pp33
+    W[5760 + j] = pp34
+    W[5824 + j] = pp35
+    W[5888 + j] = pp44
+    W[5952 + j] = pp45
+    W[6016 + j] = pp55
+    W[2496 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[2560 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[2624 + j] = cp02
+    W[2688 + j] = cp03*phi33 + cp04*phi34 + cp05*phi35
+    W[2752 + j] = cp03*phi43 + cp04*phi44 + cp05*phi45
+    W[2816 + j] = cp05
+    W[2880 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2944 + j] = cp12
+    W[3008 + j] = cp13*phi33 + cp14*phi34 + cp15*phi35
+    W[3072 + j] = cp13*phi43 + cp14*phi44 + cp15*phi45
+    W[3136 + j] = cp15
+    W[3200 + j] = pj22
+    W[3264 + j] = phi33*pj23 + phi34*pj24 + phi35*pj25
+    W[3328 + j] = phi43*pj23 + phi44*pj24 + phi45*pj25
+    W[3392 + j] = pj25
+    W[3456 + j] = cp33*phi33 + cp34*phi34 + cp35*phi35
+    W[3520 + j] = cp33*phi43 + cp34*phi44 + cp35*phi45
+    W[3584 + j] = cp35
+    W[3648 + j] = cp43*phi43 + cp44*phi44 + cp45*phi45
+    W[3712 + j] = cp45
+    W[3776 + j] = pj55
+    W[1920 + j] = mu00
+    W[1984 + j] = mu01
+    W[2048 + j] = mu02
+    W[2112 + j] = mu03
+    W[2176 + j] = mu04
+    W[2240 + j] = mu05
+    W[2304 + j] = mu06
+    W[2368 + j] = mu07
+    W[2432 + j] = mu08
+    W[6080 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_position (blocks of 64 trajectories, prange over blocks, lane_store_position vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(96 * 64)
+        s = np.empty(9)
+        p = np.empty(21)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(9):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(21):
+                W[(9 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[60 * 64 + j] = dts[lo + j, k]
+                W[63 * 64 + j] = z[lo + j, k, 0]
+                W[64 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[61 * 64 + j] = lane_store_position(W, j, q[0], q[1], q[2], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[61 * 64 + j] == W[61 * 64 + j])
+                W[62 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[62 * 64 + j] == 0.0:
+                    for i in range(9):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(21):
+                        p[i] = W[(9 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1], q[2])
+                    for i in range(9):
+                        W[(65 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(74 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[61 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[61 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(9):
+                        W[(30 + i) * 64 + j] = s[i]
+                    for i in range(21):
+                        W[(39 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[95 * 64 + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[61 * 64 + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range(9):
+                    s_pred[b, k, i] = W[(65 + i) * 64 + j]
+                    s_filt[b, k, i] = W[(30 + i) * 64 + j]
+                for i in range(21):
+                    p_pred[b, k, i] = W[(74 + i) * 64 + j]
+                    p_filt[b, k, i] = W[(39 + i) * 64 + j]
+            for i in range(9 + 21):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(30 + i) * 64 + j]
 
 
 @nb.njit(cache=True)

@@ -13,7 +13,9 @@ like the rest of the emitter:
   maximum-likelihood noise learning (``lgekf.estimators.tuning``);
 * ``smooth_one`` / ``smooth_batch``: the Rauch–Tung–Striebel backward pass on the group (derivation in
   ``lgekf.estimators.smoother``), one call of the straight-line ``smooth_step`` per step (F, Φ(d)⁻¹, Φ(δ)
-  symbolic, unrolled LDLᵀ; ``derive/codegen/smooth_step.py``).
+  symbolic, unrolled LDLᵀ; ``derive/codegen/smooth_step.py``);
+* the SIMD versions (trajectories in the vector lanes, as ``derive/codegen/soa.py`` for the filter):
+  ``lane_store_<meas>`` / ``run_batch_store_soa_<meas>`` and ``lane_smooth`` / ``smooth_batch_soa``.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import sympy as sp
 
 from ..algebra import symbolize
 from .printer import Kernel
-from .smooth_step import smooth_soa_kernels, smooth_step_kernel, store_step_kernel
+from .smooth_step import smooth_soa_kernels, smooth_step_kernel, store_soa_kernels, store_step_kernel
 
 __all__ = ["estimator_kernels"]
 
@@ -151,7 +153,9 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> li
         m = meas.m
         nr = len(meas.noise_names)
         ks.append(_logdet_kernel(model, meas, P, pin, sin_))
-        ks.append(store_step_kernel(model, next(k for k in kernels if getattr(k, "name", None) == f"step_{meas.name}")))
+        store = store_step_kernel(model, next(k for k in kernels if getattr(k, "name", None) == f"step_{meas.name}"))
+        ks.append(store)
+        ks.extend(store_soa_kernels(model, meas, store))  # run_batch_store_soa_<meas>: the forward pass in SIMD lanes
         ks.append((f"run_one_store_{meas.name}", STORE_TEMPLATE.format(
             meas=meas.name, m=m, n=n, ni=ni, npk=npk, qargs=_args("q", nq), rargs=_args("r", nr),
             zargs=_args("z[k]", m).replace("z[k][", "z[k, "),

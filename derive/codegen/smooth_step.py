@@ -9,7 +9,7 @@ definition like the fused filter step (no model is known here):
 * the covariances are read and written packed (upper triangle), every symmetric product is formed on its upper
   triangle only, and SymPy's CSE runs over each stage;
 * G = P_k Fᵀ P_{k+1|k}⁻¹ by an unrolled, square-root-free LDLᵀ of P_{k+1|k} = L Δ Lᵀ (L unit lower triangular):
-  each row g of G solves L y = c, then Lᵀ g = Δ⁻¹ y, with c the row of C = P_k Fᵀ (a pivot ≤ 0, which a
+  each row g of G solves L y = c, then Lᵀ g = Δ⁻¹ y, with c the row of C = P_k Fᵀ (a pivot below 1e-300, which a
   positive definite P_{k+1|k} never has, is replaced by 1e-300 instead of dividing by zero, like the loop
   version did);
 * then δ = G d, P̃ = P_k + G (P̄ − P_{k+1|k}) Gᵀ, μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ, as derived.
@@ -22,7 +22,19 @@ ones at k+1, ``ss``/``ps`` the smoothed ones at k+1, ``dt`` the step from k to k
 (derive/codegen/fused.py) that also writes the predicted internal state and packed covariance it holds in
 registers (after the angle-variance cap) into ``sq``/``pq``, and returns log det S = −log(1/det S) beside the
 NIS: the forward pass of the smoother then costs one filter step plus the stores.
-"""
+
+SIMD versions (trajectories in the vector lanes, the work-array scheme of derive/codegen/soa.py):
+``lane_smooth`` / ``smooth_batch_soa`` and ``lane_store_<meas>`` / ``run_batch_store_soa_<meas>``, the same
+arguments and results (to ~1e-14) as ``smooth_batch`` and ``run_batch_store_<meas>``.
+
+Cost, and why the backward step stays about twice a filter step.  Counted in the generated SE(2)×SE(2) code:
+``smooth_step`` has about 1 000 multiplications, the fused ``step_position`` 451.  The backward step is dominated
+by dense n×n work the filter does not have (n = 6, m = 2: the filter's update is O(n²m)): G (the LDLᵀ and 2n
+triangular solves, ≈ n³ = 216 + 126), G D (216) and (G D) Gᵀ on the upper triangle (126).  Equivalent forms were
+counted and are no cheaper: through V = C L⁻ᵀ and E = L⁻¹ D L⁻ᵀ (G D Gᵀ = VΔ⁻¹ E Δ⁻¹Vᵀ, ≈ 590 against 560 here);
+P̃ = P_k − G Cᵀ + (G Φ(d)⁻¹) Pˢ (G Φ(d)⁻¹)ᵀ (≈ 550 against 430); recomputing the prediction in the backward step
+instead of storing it adds F C (≈ 80) and the angle cap for 8·(n_int + n(n+1)/2) bytes a step less traffic.
+
 
 from __future__ import annotations
 
@@ -173,7 +185,6 @@ def store_step_kernel(model, step: Kernel) -> Kernel:
     n = model.n
     idx = packed_index(n)
     Pp, _ = sym_cov(n, "pp")
-    pred = {o[0]: o[1] for o in step.outputs}
     # the predicted state: a predicted entry is the symbol <name>_p, an entry the prediction leaves is the input
     names = {s.name for st in step.stages if not hasattr(st, "lines") for s, _ in st}
     sq = []
@@ -181,7 +192,6 @@ def store_step_kernel(model, step: Kernel) -> Kernel:
         ps = sp.Symbol(f"{v.name}_p", real=True)
         sq.append((f"sq[{i}]", ps if ps.name in names else v))
     pq = [(f"pq[{idx[(i, j)]}]", Pp[i, j]) for i in range(n) for j in range(i, n)]
-    del pred
     meas = step.name[len("step_"):]
     return replace(
         step, name=f"step_store_{meas}", params=[*step.params, "sq", "pq"], outputs=[*sq, *pq, *step.outputs],
@@ -276,3 +286,114 @@ def smooth_soa_kernels(model, step: Kernel) -> list:
     src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
     driver = SOA_SMOOTH_TEMPLATE.format(lanes=LANES, rows=at, ni=ni, npk=npk, **{k.upper(): v for k, v in rows.items()})
     return [("lane_smooth", src), ("smooth_batch_soa", driver)]
+
+
+SOA_STORE_TEMPLATE = '''
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
+    """run_batch_store_{meas} with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
+    results. As run_batch_soa_{meas} (blocks of {lanes} trajectories, prange over blocks, lane_store_{meas} vectorised
+    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_{meas}),
+    also writing the predictions and log det S of every step."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + {lanes} - 1) // {lanes}
+    for blk in nb.prange(nblk):
+        lo = blk * {lanes}
+        L = min({lanes}, B - lo)
+        W = np.zeros({rows} * {lanes})
+        s = np.empty({ni})
+        p = np.empty({npk})
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range({ni}):
+                W[({S} + i) * {lanes} + j] = s0[i]
+            for i in range({npk}):
+                W[({P} + i) * {lanes} + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[{DT} * {lanes} + j] = dts[lo + j, k]
+{zload}
+            for j in range(L):
+                W[{NIS} * {lanes} + j] = lane_store_{meas}(W, j, {qargs}, {rargs})
+                good = covariance_is_pd_lane(W, j) & (W[{NIS} * {lanes} + j] == W[{NIS} * {lanes} + j])
+                W[{OK} * {lanes} + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[{OK} * {lanes} + j] == 0.0:
+                    for i in range({ni}):
+                        s[i] = W[({S} + i) * {lanes} + j]
+                    for i in range({npk}):
+                        p[i] = W[({P} + i) * {lanes} + j]
+                    predict(s, p, dts[b, k], {qargs})
+                    for i in range({ni}):
+                        W[({SQ} + i) * {lanes} + j] = s[i]
+                    for i in range({npk}):
+                        W[({PQ} + i) * {lanes} + j] = p[i]
+                    if {nan_test}:
+                        W[{NIS} * {lanes} + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_{meas}(s, p, {rargs})
+                        W[{NIS} * {lanes} + j] = update_{meas}(s, p, {zargs}, {rargs})
+                    for i in range({ni}):
+                        W[({SN} + i) * {lanes} + j] = s[i]
+                    for i in range({npk}):
+                        W[({PN} + i) * {lanes} + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[{LD} * {lanes} + j])
+            for j in range(L):
+                b = lo + j
+                out_nis[b, k] = W[{NIS} * {lanes} + j]
+                physical_lane(W, j, out_x, b, k)
+                for i in range({ni}):
+                    s_pred[b, k, i] = W[({SQ} + i) * {lanes} + j]
+                    s_filt[b, k, i] = W[({SN} + i) * {lanes} + j]
+                for i in range({npk}):
+                    p_pred[b, k, i] = W[({PQ} + i) * {lanes} + j]
+                    p_filt[b, k, i] = W[({PN} + i) * {lanes} + j]
+            for i in range({ni} + {npk}):
+                for j in range(L):
+                    W[({S} + i) * {lanes} + j] = W[({SN} + i) * {lanes} + j]
+'''
+
+
+def store_soa_kernels(model, meas, store: Kernel) -> list:
+    """``lane_store_<meas>`` (``step_store_<meas>`` on lane j of a work array, branch-free) and
+    ``run_batch_store_soa_<meas>`` (the storing forward pass with trajectories in the SIMD lanes), on the work-array
+    layout of derive/codegen/soa.py with rows for the prediction and 1/det S after its own."""
+    import re
+
+    from .printer import render_kernel
+    from .soa import _DECO, LANES, Layout, _soa_sources, _vectorise
+
+    lay = Layout(model, meas.m)
+    SQ, PQ = lay.rows, lay.rows + lay.ni
+    LD = PQ + lay.npk
+    rows = LD + 1
+    z_params = [f"z_{nm}" for nm in meas.z_names]
+    extra = {"dt": lay.at(lay.DT)}
+    extra.update({zp: lay.at(lay.Z + i) for i, zp in enumerate(z_params)})
+    base = {"s": lay.SN, "p": lay.PN, "sq": SQ, "pq": PQ}
+    outputs = []
+    for t, e in store.outputs:
+        mm = re.fullmatch(r"(sq|pq|s|p)\[(\d+)\]", t)
+        outputs.append((lay.at(base[mm.group(1)] + int(mm.group(2))), e))
+    outputs.append((lay.at(LD), sp.Symbol("rdet", real=True)))
+    params = [x for x in store.params[2:] if x not in ("dt", "sq", "pq") and x not in z_params]
+    lane = replace(store, name=f"lane_store_{meas.name}", params=["W", "j", *params],
+                   inputs=_soa_sources(store.inputs, lay, extra), outputs=outputs, epilogue=[], ret="nis",
+                   doc=(f"step_store_{meas.name} on lane j of the work array W (rows: derive/codegen/smooth_step.py), without "
+                        "branches (SIMD); 1/det S in a row of W."))
+    src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
+    args = lambda pre, k: ", ".join(f"{pre}[{i}]" for i in range(k))  # noqa: E731
+    m = meas.m
+    zload = "\n".join(f"                W[{lay.Z + i} * {LANES} + j] = z[lo + j, k, {i}]" for i in range(m))
+    driver = SOA_STORE_TEMPLATE.format(
+        meas=meas.name, lanes=LANES, ni=lay.ni, npk=lay.npk, rows=rows, S=lay.S, P=lay.P, SN=lay.SN, PN=lay.PN,
+        DT=lay.DT, NIS=lay.NIS, OK=lay.OK, SQ=SQ, PQ=PQ, LD=LD, zload=zload,
+        qargs=args("q", len(model.noise_names)), rargs=args("r", len(meas.noise_names)),
+        zargs=", ".join(f"z[b, k, {i}]" for i in range(m)),
+        nan_test=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
+    )
+    return [(f"lane_store_{meas.name}", src), (f"run_batch_store_soa_{meas.name}", driver)]

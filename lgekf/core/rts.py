@@ -16,9 +16,10 @@ from .registry import ModelSpec
 
 __all__ = ["ForwardPass", "forward_store", "smooth_stored", "SOA_SMOOTH_MIN_BATCH"]
 
-#: from this many trajectories on, the backward pass runs ``smooth_batch_soa`` (trajectories in the SIMD lanes; the
-#: same numbers to ~1e-14, measured 1.6-2.1x faster than ``smooth_batch``: benchmarks/bench_smoother.py); it costs
-#: 5-40 s of compilation per model on its first use (cached after), which only a large batch repays
+#: from this many trajectories on, the forward and the backward pass run ``run_batch_store_soa_<meas>`` and
+#: ``smooth_batch_soa`` (trajectories in the SIMD lanes; the same numbers to ~1e-14, faster than the scalar prange
+#: kernels: benchmarks/bench_smoother.py); together they cost 10-90 s of compilation per model on their first use
+#: (cached after), which only a large batch repays
 SOA_SMOOTH_MIN_BATCH = 1000
 
 
@@ -40,15 +41,18 @@ class ForwardPass:
     x_filt: np.ndarray
 
 
-def forward_store(spec: ModelSpec, measurement: str, z, dts, x0, p0, q, r) -> ForwardPass:
+def forward_store(spec: ModelSpec, measurement: str, z, dts, x0, p0, q, r, simd: bool | None = None) -> ForwardPass:
     """Run the filter over z (B, K, m) with dts (B, K), physical x0 (B, n), packed p0 (B, n(n+1)/2), keeping
-    every step (``run_batch_store_<measurement>``)."""
+    every step (``run_batch_store_<measurement>``). ``simd``: run ``run_batch_store_soa_<measurement>``
+    (trajectories in the SIMD lanes, the same results to ~1e-14); None: from ``SOA_SMOOTH_MIN_BATCH`` trajectories on."""
     B, K = z.shape[:2]
     ni = len(spec.internal_names)
     fp = ForwardPass(np.empty((B, K, ni)), np.empty((B, K, spec.n_packed)), np.empty((B, K, ni)),
                      np.empty((B, K, spec.n_packed)), np.empty((B, K)), np.empty((B, K)), dts,
                      np.full(B, K, dtype=np.int64), np.empty((B, K, spec.n)))
-    getattr(spec.kernels, f"run_batch_store_{measurement}")(
+    if simd is None:
+        simd = B >= SOA_SMOOTH_MIN_BATCH
+    getattr(spec.kernels, f"run_batch_store{'_soa' if simd else ''}_{measurement}")(
         z, dts, x0, p0, np.asarray(q, dtype=float), np.asarray(r, dtype=float), fp.s_pred, fp.p_pred, fp.s_filt,
         fp.p_filt, fp.nis, fp.logdet, fp.x_filt)
     return fp
