@@ -29,11 +29,12 @@ arguments and results (to ~1e-14) as ``smooth_batch`` and ``run_batch_store_<mea
 
 Cost, and why the backward step stays about twice a filter step.  Counted in the generated SE(2)×SE(2) code:
 ``smooth_step`` has about 1 000 multiplications, the fused ``step_position`` 451.  The backward step is dominated
-by dense n×n work the filter does not have (n = 6, m = 2: the filter's update is O(n²m)): G (the LDLᵀ and 2n
-triangular solves, ≈ n³ = 216 + 126), G D (216) and (G D) Gᵀ on the upper triangle (126).  Equivalent forms were
+by dense n×n work the filter does not have (n = 6, m = 2: the filter's update is O(n²m)): G (the LDLᵀ, ≈ 65,
+and the two triangular solves of each of its n rows, 90 + 126), G D (216) and (G D) Gᵀ on the upper triangle (126).  Equivalent forms were
 counted and are no cheaper: through V = C L⁻ᵀ and E = L⁻¹ D L⁻ᵀ (G D Gᵀ = VΔ⁻¹ E Δ⁻¹Vᵀ, ≈ 590 against 560 here);
 P̃ = P_k − G Cᵀ + (G Φ(d)⁻¹) Pˢ (G Φ(d)⁻¹)ᵀ (≈ 550 against 430); recomputing the prediction in the backward step
 instead of storing it adds F C (≈ 80) and the angle cap for 8·(n_int + n(n+1)/2) bytes a step less traffic.
+"""
 
 
 from __future__ import annotations
