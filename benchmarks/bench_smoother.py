@@ -11,10 +11,13 @@ For every registry model, position measurements, B trajectories × K steps (defa
   (filter_batch from SOA_MIN_BATCH trajectories on);
 * ``fwd``: the smoother's storing forward pass ``run_batch_store_<meas>`` (the fused filter step, also writing
   the predicted state and covariance; ``lgekf.core.rts.forward_store``);
-* ``fwd_simd``: the same in the SIMD lanes, ``run_batch_store_soa_<meas>``;
+* ``fwd_simd``: the same in the SIMD lanes, ``run_batch_store_soa_<meas>`` (the states kept in blocks of lanes);
 * ``bwd``: the backward pass ``smooth_batch`` (``smooth_step`` per step, prange over trajectories);
-* ``bwd_simd``: the backward pass ``smooth_batch_soa`` (``smooth_step`` in the SIMD lanes), what
-  ``lgekf.core.rts.smooth_stored`` runs from SOA_SMOOTH_MIN_BATCH trajectories on (as forward_store runs fwd_simd).
+* ``bwd_simd``: the backward pass ``smooth_batch_soa`` (``smooth_step`` in the SIMD lanes) over the blocks that
+  fwd_simd stored, what ``filter_batch(smooth=True)`` runs from SOA_SMOOTH_MIN_BATCH trajectories on.
+
+Both backward passes are timed as filter_batch runs them without ``return_cov`` (smoothed states only, no
+covariances unpacked from the blocks).
 
 Printed: ns per trajectory-step of each, and three ratios of smoothing (forward pass + backward pass) to filtering:
 
@@ -64,10 +67,9 @@ def main(B=2000, K=200, repeats=5):
         simd = spec.kernels.run_batch_soa_position
         for f in (scalar, simd):  # compile
             f(z[:4], dts[:4], x0[:4], p0[:4], q, r, out_x[:4], out_p[:4], out_nis[:4])
-        forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=True)
-        fp = forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=False)
-        smooth_stored(spec, fp, simd=False)
-        smooth_stored(spec, fp, simd=True)
+        for simd_pass in (False, True):
+            smooth_stored(spec, forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=simd_pass),
+                          covariances=False)
         ts = {k: [] for k in ("scalar", "simd", "fwd", "fwd_simd", "bwd", "bwd_simd")}
         for _ in range(repeats):
             t0 = time.perf_counter()
@@ -77,11 +79,11 @@ def main(B=2000, K=200, repeats=5):
             t2 = time.perf_counter()
             fp = forward_store(spec, "position", z, dts, x0, p0, q, r, simd=False)
             t3 = time.perf_counter()
-            forward_store(spec, "position", z, dts, x0, p0, q, r, simd=True)
+            fps = forward_store(spec, "position", z, dts, x0, p0, q, r, simd=True)
             t3s = time.perf_counter()
-            smooth_stored(spec, fp, simd=False)
+            smooth_stored(spec, fp, covariances=False)
             t4 = time.perf_counter()
-            smooth_stored(spec, fp, simd=True)
+            smooth_stored(spec, fps, covariances=False)
             t5 = time.perf_counter()
             for k, v in zip(ts, (t1 - t0, t2 - t1, t3 - t2, t3s - t3, t4 - t3s, t5 - t4)):
                 ts[k].append(v)

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into']
 
 
 @nb.njit(cache=True)
@@ -3595,11 +3595,12 @@ def lane_store_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
 
 
 @nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_store_soa_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
-    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
-    results. As run_batch_soa_pose (blocks of 64 trajectories, prange over blocks, lane_store_pose vectorised
-    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose),
-    also writing the predictions and log det S of every step."""
+def run_batch_store_soa_pose(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, 28, 64), nblk = ⌈B / 64⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_pose (prange over blocks, lane_store_pose vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose)."""
     B = z.shape[0]
     K = z.shape[1]
     nblk = (B + 64 - 1) // 64
@@ -3650,15 +3651,12 @@ def run_batch_store_soa_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_fil
                 else:
                     out_logdet[b, k] = -math.log(W[90 * 64 + j])
             for j in range(L):
-                b = lo + j
-                out_nis[b, k] = W[57 * 64 + j]
-                physical_lane(W, j, out_x, b, k)
-                for i in range(7):
-                    s_pred[b, k, i] = W[(62 + i) * 64 + j]
-                    s_filt[b, k, i] = W[(28 + i) * 64 + j]
-                for i in range(21):
-                    p_pred[b, k, i] = W[(69 + i) * 64 + j]
-                    p_filt[b, k, i] = W[(35 + i) * 64 + j]
+                out_nis[lo + j, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range(7 + 21):
+                for j in range(64):
+                    Qb[blk, k, i, j] = W[(62 + i) * 64 + j]
+                    Fb[blk, k, i, j] = W[(28 + i) * 64 + j]
             for i in range(7 + 21):
                 for j in range(L):
                     W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
@@ -4402,11 +4400,12 @@ def lane_store_position(W, j, sigma_x, sigma_y, sigma_omega, r):
 
 
 @nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
-    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
-    results. As run_batch_soa_position (blocks of 64 trajectories, prange over blocks, lane_store_position vectorised
-    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position),
-    also writing the predictions and log det S of every step."""
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, 28, 64), nblk = ⌈B / 64⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_position (prange over blocks, lane_store_position vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position)."""
     B = z.shape[0]
     K = z.shape[1]
     nblk = (B + 64 - 1) // 64
@@ -4456,15 +4455,12 @@ def run_batch_store_soa_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p
                 else:
                     out_logdet[b, k] = -math.log(W[89 * 64 + j])
             for j in range(L):
-                b = lo + j
-                out_nis[b, k] = W[57 * 64 + j]
-                physical_lane(W, j, out_x, b, k)
-                for i in range(7):
-                    s_pred[b, k, i] = W[(61 + i) * 64 + j]
-                    s_filt[b, k, i] = W[(28 + i) * 64 + j]
-                for i in range(21):
-                    p_pred[b, k, i] = W[(68 + i) * 64 + j]
-                    p_filt[b, k, i] = W[(35 + i) * 64 + j]
+                out_nis[lo + j, k] = W[57 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range(7 + 21):
+                for j in range(64):
+                    Qb[blk, k, i, j] = W[(61 + i) * 64 + j]
+                    Fb[blk, k, i, j] = W[(28 + i) * 64 + j]
             for i in range(7 + 21):
                 for j in range(L):
                     W[(0 + i) * 64 + j] = W[(28 + i) * 64 + j]
@@ -5361,59 +5357,71 @@ def lane_smooth(W, j):
     W[5760 + j] = de5_0 + omega
 
 
-@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
-    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def physical_smooth_lane(W, j, out, b, k):
+    """The physical state of lane j of the smoothed rows of the work array W into out[b, k] (SIMD).
+    """
+    x = W[3584 + j]
+    y = W[3648 + j]
+    c_theta = W[3712 + j]
+    s_theta = W[3776 + j]
+    v_x = W[3840 + j]
+    v_y = W[3904 + j]
+    omega = W[3968 + j]
+    out[b, k, 0] = x
+    out[b, k, 1] = y
+    out[b, k, 2] = wrap_v(atan2_v(s_theta, c_theta))
+    out[b, k, 3] = v_x
+    out[b, k, 4] = v_y
+    out[b, k, 5] = omega
 
-    Blocks of 64 trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
-    into the rows of one work array (rows × 64) and lane_smooth (smooth_step on lane j) runs vectorised over
-    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
+    in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, 28, 64) hold the predicted / posterior internal
+    state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]; writes the smoothed ones
+    into Sb (same layout) and the smoothed physical states into out_x (B, K, 6). Trajectory b starts at its last
+    step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
+    step, the rows are copied into one work array (rows × 64) and lane_smooth runs vectorised over the lanes.
     """
     B = dts.shape[0]
-    nblk = (B + 64 - 1) // 64
+    nblk = Qb.shape[0]
     for blk in nb.prange(nblk):
         lo = blk * 64
         L = min(64, B - lo)
-        W = np.zeros(113 * 64)
+        W = np.zeros(115 * 64)
         Kmax = 0
         for j in range(L):
             Kmax = max(Kmax, lengths[lo + j])
         for k in range(Kmax - 1, -1, -1):
+            for i in range(28):
+                for j in range(64):
+                    W[(0 + i) * 64 + j] = Fb[blk, k, i, j]
             for j in range(L):
-                b = lo + j
-                Kb = lengths[b]
-                if k == Kb - 1:
-                    for i in range(7):
-                        s_sm[b, k, i] = s_filt[b, k, i]
-                        W[(56 + i) * 64 + j] = s_filt[b, k, i]
-                    for i in range(21):
-                        p_sm[b, k, i] = p_filt[b, k, i]
-                        W[(63 + i) * 64 + j] = p_filt[b, k, i]
-                elif k < Kb - 1:
-                    for i in range(7):
-                        W[(0 + i) * 64 + j] = s_filt[b, k, i]
-                        W[(28 + i) * 64 + j] = s_pred[b, k + 1, i]
-                    for i in range(21):
-                        W[(7 + i) * 64 + j] = p_filt[b, k, i]
-                        W[(35 + i) * 64 + j] = p_pred[b, k + 1, i]
-                    W[112 * 64 + j] = dts[b, k + 1]
+                Kb = lengths[lo + j]
+                W[113 * 64 + j] = 1.0 if k < Kb - 1 else 0.0
+                W[114 * 64 + j] = 1.0 if k == Kb - 1 else 0.0
             if k < Kmax - 1:
+                for i in range(28):
+                    for j in range(64):
+                        W[(28 + i) * 64 + j] = Qb[blk, k + 1, i, j]
+                for j in range(L):
+                    W[112 * 64 + j] = dts[lo + j, k + 1]
                 for j in range(L):
                     lane_smooth(W, j)
-                for j in range(L):
-                    b = lo + j
-                    if k < lengths[b] - 1:
-                        for i in range(7):
-                            v = W[(84 + i) * 64 + j]
-                            s_sm[b, k, i] = v
-                            W[(56 + i) * 64 + j] = v
-                        for i in range(21):
-                            v = W[(91 + i) * 64 + j]
-                            p_sm[b, k, i] = v
-                            W[(63 + i) * 64 + j] = v
-        for j in range(L):
-            for k in range(lengths[lo + j]):
-                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
+                for i in range(28):
+                    for j in range(64):
+                        act = W[113 * 64 + j] > 0.5
+                        W[(56 + i) * 64 + j] = W[(84 + i) * 64 + j] if act else W[(56 + i) * 64 + j]
+            for i in range(28):
+                for j in range(64):
+                    start = W[114 * 64 + j] > 0.5
+                    W[(56 + i) * 64 + j] = W[(0 + i) * 64 + j] if start else W[(56 + i) * 64 + j]
+                    Sb[blk, k, i, j] = W[(56 + i) * 64 + j]
+            for j in range(L):
+                if k < lengths[lo + j]:
+                    physical_smooth_lane(W, j, out_x, lo + j, k)
 
 
 @nb.njit(cache=True)

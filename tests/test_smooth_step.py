@@ -19,13 +19,17 @@ MODEL_NAMES = tuple(MODELS)
 DT = 0.1
 
 
+def _x0(spec, B):
+    return np.tile(spec.kernels.common_to_state(np.array([0.0, 0.0, 0.1, 3.0, 0.0, 0.2])), (B, 1))
+
+
 def _forward(spec, B=3, K=25, seed=0):
     """A stored forward pass of a turning, accelerating track with position measurements and missed detections."""
     rng = np.random.default_rng(seed)
     t = DT * np.arange(1, K + 1)
     z = np.stack([3 * t + np.sin(t), 0.2 * t**2], axis=-1)[None] + 0.3 * rng.standard_normal((B, K, 2))
     z[:, 5] = np.nan
-    x0 = np.tile(spec.kernels.common_to_state(np.array([0.0, 0.0, 0.1, 3.0, 0.0, 0.2])), (B, 1))
+    x0 = _x0(spec, B)
     p0 = pack(np.broadcast_to(np.eye(spec.n) * 0.25, (B, spec.n, spec.n)))
     q = np.asarray(spec.default_accel_std, dtype=float)
     return forward_store(spec, "position", np.ascontiguousarray(z), np.full((B, K), DT), x0, p0, q, np.array([0.3])), z, q
@@ -95,11 +99,14 @@ def test_simd_backward_equals_scalar_backward():
     """smooth_batch_soa on 70 trajectories (two blocks of lanes, a partial one) of ragged lengths, CV (the cheapest
     compile, ~5 s; the SIMD kernels of the other models were compared the same way when written, to ≤ 5e-15)."""
     spec = get_model("cv")
-    fp, _, _ = _forward(spec, B=70, K=30)
+    fp, z, q = _forward(spec, B=70, K=30)
+    fs = forward_store(spec, "position", np.ascontiguousarray(z), np.full((70, 30), DT), _x0(spec, 70),
+                       pack(np.broadcast_to(np.eye(spec.n) * 0.25, (70, spec.n, spec.n))), q, np.array([0.3]), simd=True)
     fp.lengths = np.random.default_rng(2).integers(2, 31, 70)
     fp.lengths[:3] = [0, 1, 30]
-    xa, sa, pa = smooth_stored(spec, fp, simd=False)
-    xb, sb, pb = smooth_stored(spec, fp, simd=True)
+    fs.lengths = fp.lengths
+    xa, sa, pa = smooth_stored(spec, fp)
+    xb, sb, pb = smooth_stored(spec, fs)
     assert np.array_equal(np.isnan(xa), np.isnan(xb))
     assert np.isnan(xa[0]).all() and not np.isnan(xa[1, 0]).any() and np.isnan(xa[1, 1:]).all()
     for b in range(70):
@@ -122,13 +129,14 @@ def test_simd_forward_pass_equals_scalar_forward_pass():
     z[:, 4] = np.nan
     z[7, 10:14] = np.nan
     z = np.ascontiguousarray(z)
-    x0 = np.tile(spec.kernels.common_to_state(np.array([0.0, 0.0, 0.1, 3.0, 0.0, 0.2])), (B, 1))
+    x0 = _x0(spec, B)
     p0 = pack(np.broadcast_to(np.eye(spec.n) * 0.25, (B, spec.n, spec.n)))
     q = np.asarray(spec.default_accel_std, dtype=float)
     a = forward_store(spec, "position", z, np.full((B, K), DT), x0, p0, q, np.array([0.3]), simd=False)
     b = forward_store(spec, "position", z, np.full((B, K), DT), x0, p0, q, np.array([0.3]), simd=True)
-    for name in ("s_pred", "p_pred", "s_filt", "p_filt", "x_filt", "nis", "logdet"):
-        u, v = getattr(a, name), getattr(b, name)
+    assert b.s_filt is None and b.blocks is not None  # kept in blocks of lanes
+    for name, u, v in zip(("s_pred", "p_pred", "s_filt", "p_filt", "x_filt", "nis", "logdet"), (*a.states(), a.x_filt, a.nis, a.logdet),
+                          (*b.states(), b.x_filt, b.nis, b.logdet)):
         assert np.array_equal(np.isnan(u), np.isnan(v)), name
-        assert np.allclose(v, u, rtol=1e-12, atol=1e-12, equal_nan=True), name
+        assert u.shape == v.shape and np.allclose(v, u, rtol=1e-12, atol=1e-12, equal_nan=True), name
     assert np.isnan(a.nis[:, 4]).all() and np.isfinite(a.nis[:, 5]).all()

@@ -165,6 +165,7 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> li
         )))
     step = smooth_step_kernel(model)
     ks.append(step)
-    ks.extend(smooth_soa_kernels(model, step))  # smooth_batch_soa: the backward pass in SIMD lanes
+    physical = next(k for k in kernels if getattr(k, "name", None) == "physical_into")
+    ks.extend(smooth_soa_kernels(model, step, physical))  # smooth_batch_soa: the backward pass in SIMD lanes
     ks.append(("smooth_one", SMOOTH_TEMPLATE.format(n=n, ni=ni, npk=npk)))
     return ks

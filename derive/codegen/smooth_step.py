@@ -209,15 +209,16 @@ def store_step_kernel(model, step: Kernel) -> Kernel:
 
 SOA_SMOOTH_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x):
-    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and results.
-
-    Blocks of {lanes} trajectories (prange over blocks); at every step k (backwards) the block's inputs are gathered
-    into the rows of one work array (rows × {lanes}) and lane_smooth (smooth_step on lane j) runs vectorised over
-    the lanes; trajectory b starts at its last step lengths[b] − 1 (smoothed = filtered there).
+def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
+    in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, {R}, {lanes}) hold the predicted / posterior internal
+    state and packed covariance of step k of trajectory blk·{lanes} + j in Qb[blk, k, :, j]; writes the smoothed ones
+    into Sb (same layout) and the smoothed physical states into out_x (B, K, {n}). Trajectory b starts at its last
+    step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
+    step, the rows are copied into one work array (rows × {lanes}) and lane_smooth runs vectorised over the lanes.
     """
     B = dts.shape[0]
-    nblk = (B + {lanes} - 1) // {lanes}
+    nblk = Qb.shape[0]
     for blk in nb.prange(nblk):
         lo = blk * {lanes}
         L = min({lanes}, B - lo)
@@ -226,47 +227,40 @@ def smooth_batch_soa(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, o
         for j in range(L):
             Kmax = max(Kmax, lengths[lo + j])
         for k in range(Kmax - 1, -1, -1):
+            for i in range({R}):
+                for j in range({lanes}):
+                    W[({SF} + i) * {lanes} + j] = Fb[blk, k, i, j]
             for j in range(L):
-                b = lo + j
-                Kb = lengths[b]
-                if k == Kb - 1:
-                    for i in range({ni}):
-                        s_sm[b, k, i] = s_filt[b, k, i]
-                        W[({SS} + i) * {lanes} + j] = s_filt[b, k, i]
-                    for i in range({npk}):
-                        p_sm[b, k, i] = p_filt[b, k, i]
-                        W[({PS} + i) * {lanes} + j] = p_filt[b, k, i]
-                elif k < Kb - 1:
-                    for i in range({ni}):
-                        W[({SF} + i) * {lanes} + j] = s_filt[b, k, i]
-                        W[({SQ} + i) * {lanes} + j] = s_pred[b, k + 1, i]
-                    for i in range({npk}):
-                        W[({PF} + i) * {lanes} + j] = p_filt[b, k, i]
-                        W[({PQ} + i) * {lanes} + j] = p_pred[b, k + 1, i]
-                    W[{DT} * {lanes} + j] = dts[b, k + 1]
+                Kb = lengths[lo + j]
+                W[{ACT} * {lanes} + j] = 1.0 if k < Kb - 1 else 0.0
+                W[{START} * {lanes} + j] = 1.0 if k == Kb - 1 else 0.0
             if k < Kmax - 1:
+                for i in range({R}):
+                    for j in range({lanes}):
+                        W[({SQ} + i) * {lanes} + j] = Qb[blk, k + 1, i, j]
+                for j in range(L):
+                    W[{DT} * {lanes} + j] = dts[lo + j, k + 1]
                 for j in range(L):
                     lane_smooth(W, j)
-                for j in range(L):
-                    b = lo + j
-                    if k < lengths[b] - 1:
-                        for i in range({ni}):
-                            v = W[({SO} + i) * {lanes} + j]
-                            s_sm[b, k, i] = v
-                            W[({SS} + i) * {lanes} + j] = v
-                        for i in range({npk}):
-                            v = W[({PO} + i) * {lanes} + j]
-                            p_sm[b, k, i] = v
-                            W[({PS} + i) * {lanes} + j] = v
-        for j in range(L):
-            for k in range(lengths[lo + j]):
-                physical_into(s_sm[lo + j, k], out_x[lo + j, k])
+                for i in range({R}):
+                    for j in range({lanes}):
+                        act = W[{ACT} * {lanes} + j] > 0.5
+                        W[({SS} + i) * {lanes} + j] = W[({SO} + i) * {lanes} + j] if act else W[({SS} + i) * {lanes} + j]
+            for i in range({R}):
+                for j in range({lanes}):
+                    start = W[{START} * {lanes} + j] > 0.5
+                    W[({SS} + i) * {lanes} + j] = W[({SF} + i) * {lanes} + j] if start else W[({SS} + i) * {lanes} + j]
+                    Sb[blk, k, i, j] = W[({SS} + i) * {lanes} + j]
+            for j in range(L):
+                if k < lengths[lo + j]:
+                    physical_smooth_lane(W, j, out_x, lo + j, k)
 '''
 
 
-def smooth_soa_kernels(model, step: Kernel) -> list:
-    """``lane_smooth`` (``smooth_step`` on lane j of a work array, branch-free) and ``smooth_batch_soa`` (the
-    backward pass with trajectories in the SIMD lanes, as derive/codegen/soa.py does for the filter)."""
+def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
+    """``lane_smooth`` (``smooth_step`` on lane j of a work array, branch-free), ``physical_smooth_lane`` (from the
+    ``physical_into`` Kernel) and ``smooth_batch_soa`` (the backward pass with trajectories in the SIMD lanes over
+    a forward pass stored in blocks, as derive/codegen/soa.py runs the filter)."""
     import re
 
     from .printer import render_kernel
@@ -276,7 +270,7 @@ def smooth_soa_kernels(model, step: Kernel) -> list:
     rows = {}
     at = 0
     for name, size in (("sf", ni), ("pf", npk), ("sq", ni), ("pq", npk), ("ss", ni), ("ps", npk), ("so", ni), ("po", npk),
-                       ("dt", 1)):
+                       ("dt", 1), ("act", 1), ("start", 1)):
         rows[name] = at
         at += size
 
@@ -289,17 +283,25 @@ def smooth_soa_kernels(model, step: Kernel) -> list:
                    outputs=[(row(t), e) for t, e in step.outputs],
                    doc="smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).")
     src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
-    driver = SOA_SMOOTH_TEMPLATE.format(lanes=LANES, rows=at, ni=ni, npk=npk, **{k.upper(): v for k, v in rows.items()})
-    return [("lane_smooth", src), ("smooth_batch_soa", driver)]
+    # the smoothed physical state of lane j, read from the rows ss (physical_into on the work array)
+    phys_in = [(s, re.sub(r"^s\[(\d+)\]$", lambda mm: f"W[{(rows['ss'] + int(mm.group(1))) * LANES} + j]", src))
+               for s, src in physical.inputs]
+    phys = replace(physical, name="physical_smooth_lane", params=["W", "j", "out", "b", "k"], inputs=phys_in,
+                   outputs=[(re.sub(r"out\[(\d+)\]", r"out[b, k, \1]", tt), e) for tt, e in physical.outputs],
+                   doc="The physical state of lane j of the smoothed rows of the work array W into out[b, k] (SIMD).")
+    psrc = _vectorise(render_kernel(phys)).replace("@nb.njit(cache=True)", _DECO, 1)
+    driver = SOA_SMOOTH_TEMPLATE.format(lanes=LANES, rows=at, n=model.n, R=ni + npk, **{k.upper(): v for k, v in rows.items()})
+    return [("lane_smooth", src), ("physical_smooth_lane", psrc), ("smooth_batch_soa", driver)]
 
 
 SOA_STORE_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
-    """run_batch_store_{meas} with trajectories in the SIMD lanes (derive/codegen/smooth_step.py): same arguments and
-    results. As run_batch_soa_{meas} (blocks of {lanes} trajectories, prange over blocks, lane_store_{meas} vectorised
-    over the lanes, a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_{meas}),
-    also writing the predictions and log det S of every step."""
+def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_{meas} with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, {R}, {lanes}), nblk = ⌈B / {lanes}⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·{lanes} + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_{meas} (prange over blocks, lane_store_{meas} vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_{meas})."""
     B = z.shape[0]
     K = z.shape[1]
     nblk = (B + {lanes} - 1) // {lanes}
@@ -348,15 +350,12 @@ def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_f
                 else:
                     out_logdet[b, k] = -math.log(W[{LD} * {lanes} + j])
             for j in range(L):
-                b = lo + j
-                out_nis[b, k] = W[{NIS} * {lanes} + j]
-                physical_lane(W, j, out_x, b, k)
-                for i in range({ni}):
-                    s_pred[b, k, i] = W[({SQ} + i) * {lanes} + j]
-                    s_filt[b, k, i] = W[({SN} + i) * {lanes} + j]
-                for i in range({npk}):
-                    p_pred[b, k, i] = W[({PQ} + i) * {lanes} + j]
-                    p_filt[b, k, i] = W[({PN} + i) * {lanes} + j]
+                out_nis[lo + j, k] = W[{NIS} * {lanes} + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range({ni} + {npk}):
+                for j in range({lanes}):
+                    Qb[blk, k, i, j] = W[({SQ} + i) * {lanes} + j]
+                    Fb[blk, k, i, j] = W[({SN} + i) * {lanes} + j]
             for i in range({ni} + {npk}):
                 for j in range(L):
                     W[({S} + i) * {lanes} + j] = W[({SN} + i) * {lanes} + j]
@@ -396,7 +395,7 @@ def store_soa_kernels(model, meas, store: Kernel) -> list:
     zload = "\n".join(f"                W[{lay.Z + i} * {LANES} + j] = z[lo + j, k, {i}]" for i in range(m))
     driver = SOA_STORE_TEMPLATE.format(
         meas=meas.name, lanes=LANES, ni=lay.ni, npk=lay.npk, rows=rows, S=lay.S, P=lay.P, SN=lay.SN, PN=lay.PN,
-        DT=lay.DT, NIS=lay.NIS, OK=lay.OK, SQ=SQ, PQ=PQ, LD=LD, zload=zload,
+        DT=lay.DT, NIS=lay.NIS, OK=lay.OK, SQ=SQ, PQ=PQ, LD=LD, zload=zload, R=lay.ni + lay.npk,
         qargs=args("q", len(model.noise_names)), rargs=args("r", len(meas.noise_names)),
         zargs=", ".join(f"z[b, k, {i}]" for i in range(m)),
         nan_test=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),

@@ -121,7 +121,7 @@ def smooth_segments(model: str, measurement: str, t, zm, first, lengths, x0, P0,
         fp = forward_store(spec, measurement, zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r,
                            simd=False)
         fp.lengths = np.ascontiguousarray(lengths[objs])
-        xs, _, ps = smooth_stored(spec, fp, simd=False)  # no SIMD compile (5-50 s a model) for a track file
+        xs, _, ps = smooth_stored(spec, fp)  # scalar pass (simd=False): no SIMD compile (10-90 s a model) for a file
         for bi, o in enumerate(objs):
             a, L = int(first[o]), int(lengths[o])
             x_out[a:a + L] = xs[bi, :L]
