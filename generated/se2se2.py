@@ -5994,12 +5994,14 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
     """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
     in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, 30, 64) hold the predicted / posterior internal
     state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]; writes the smoothed ones
-    into Sb (same layout) and the smoothed physical states into out_x (B, K, 6). Trajectory b starts at its last
+    into Sb (same layout; pass Sb with no steps, (nblk, 0, 30, 64), to skip them) and the smoothed physical
+    states into out_x (B, K, 6). Trajectory b starts at its last
     step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
     step, the rows are copied into one work array (rows × 64) and lane_smooth runs vectorised over the lanes.
     """
     B = dts.shape[0]
     nblk = Qb.shape[0]
+    keep = Sb.shape[1] > 0
     for blk in nb.prange(nblk):
         lo = blk * 64
         L = min(64, B - lo)
@@ -6031,7 +6033,10 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
                 for j in range(64):
                     start = W[122 * 64 + j] > 0.5
                     W[(60 + i) * 64 + j] = W[(0 + i) * 64 + j] if start else W[(60 + i) * 64 + j]
-                    Sb[blk, k, i, j] = W[(60 + i) * 64 + j]
+            if keep:
+                for i in range(30):
+                    for j in range(64):
+                        Sb[blk, k, i, j] = W[(60 + i) * 64 + j]
             for j in range(L):
                 if k < lengths[lo + j]:
                     physical_smooth_lane(W, j, out_x, lo + j, k)

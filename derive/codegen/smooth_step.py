@@ -213,12 +213,14 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
     """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
     in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, {R}, {lanes}) hold the predicted / posterior internal
     state and packed covariance of step k of trajectory blk·{lanes} + j in Qb[blk, k, :, j]; writes the smoothed ones
-    into Sb (same layout) and the smoothed physical states into out_x (B, K, {n}). Trajectory b starts at its last
+    into Sb (same layout; pass Sb with no steps, (nblk, 0, {R}, {lanes}), to skip them) and the smoothed physical
+    states into out_x (B, K, {n}). Trajectory b starts at its last
     step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
     step, the rows are copied into one work array (rows × {lanes}) and lane_smooth runs vectorised over the lanes.
     """
     B = dts.shape[0]
     nblk = Qb.shape[0]
+    keep = Sb.shape[1] > 0
     for blk in nb.prange(nblk):
         lo = blk * {lanes}
         L = min({lanes}, B - lo)
@@ -250,7 +252,10 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
                 for j in range({lanes}):
                     start = W[{START} * {lanes} + j] > 0.5
                     W[({SS} + i) * {lanes} + j] = W[({SF} + i) * {lanes} + j] if start else W[({SS} + i) * {lanes} + j]
-                    Sb[blk, k, i, j] = W[({SS} + i) * {lanes} + j]
+            if keep:
+                for i in range({R}):
+                    for j in range({lanes}):
+                        Sb[blk, k, i, j] = W[({SS} + i) * {lanes} + j]
             for j in range(L):
                 if k < lengths[lo + j]:
                     physical_smooth_lane(W, j, out_x, lo + j, k)

@@ -79,9 +79,9 @@ def forward_store(spec: ModelSpec, measurement: str, z, dts, x0, p0, q, r, simd:
     if simd is None:
         simd = B >= SOA_SMOOTH_MIN_BATCH
     if simd:
-        shape = ((B + LANES - 1) // LANES, K, ni + spec.n_packed, LANES)
+        shape = ((B + LANES - 1) // LANES, K, ni + spec.n_packed, LANES)  # every lane written (past B: zeros)
         fp = ForwardPass(None, None, None, None, np.empty((B, K)), np.empty((B, K)), dts, np.full(B, K, dtype=np.int64),
-                         np.empty((B, K, spec.n)), (np.zeros(shape), np.zeros(shape)))
+                         np.empty((B, K, spec.n)), (np.empty(shape), np.empty(shape)))
         getattr(spec.kernels, f"run_batch_store_soa_{measurement}")(z, dts, x0, p0, q, r, *fp.blocks, fp.nis, fp.logdet,
                                                                     fp.x_filt)
         return fp
@@ -103,7 +103,8 @@ def smooth_stored(spec: ModelSpec, fp: ForwardPass, covariances: bool = True
     x_sm = np.full((B, K, spec.n), np.nan)
     lengths = np.ascontiguousarray(fp.lengths, dtype=np.int64)
     if fp.blocks is not None:
-        Sb = np.empty_like(fp.blocks[0])
+        nblk, _, R, lanes = fp.blocks[0].shape
+        Sb = np.empty((nblk, K if covariances else 0, R, lanes))
         spec.kernels.smooth_batch_soa(fp.dts, *fp.blocks, lengths, Sb, x_sm)
         if not covariances:
             return x_sm, None, None
