@@ -42,9 +42,9 @@ solves L y = c, Lᵀ g = Δ⁻¹ y, c the row of C = P_k F_kᵀ (a pivot below 1
 definite P_{k+1|k}, is replaced by 1e-300 rather than divided by). ``smooth_one`` / ``smooth_batch`` call it once per step;
 ``smooth_batch_soa`` runs it with trajectories in the SIMD lanes. The forward pass that keeps the predicted and
 posterior states is ``run_batch_store_<measurement>``: the filter's fused step writing the prediction it holds in
-registers (``step_store_<measurement>``), and its SIMD version ``run_batch_store_soa_<measurement>``. The SIMD
-kernels run from ``lgekf.core.rts.SOA_SMOOTH_MIN_BATCH`` trajectories on (``filter_batch``), never for
-:func:`smooth_segments`. Entry points: ``filter_batch(..., smooth=True)``, a filter
+registers (``step_store_<measurement>``), and its SIMD version ``run_batch_store_soa_<measurement>`` (the states
+kept in blocks of 64 trajectories, ``ForwardPass.blocks``, which ``smooth_batch_soa`` reads). The SIMD kernels run
+from ``lgekf.core.rts.SOA_SMOOTH_MIN_BATCH`` trajectories on (``filter_batch``), never for :func:`smooth_segments`. Entry points: ``filter_batch(..., smooth=True)``, a filter
 class's ``smooth()`` after a run with ``record=True``, :func:`smooth_tracks` (the files of ``lgekf track``).
 """
 
