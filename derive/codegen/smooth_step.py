@@ -37,8 +37,9 @@ by dense n×n work the filter does not have (n = 6, m = 2: the filter's update i
 and the two triangular solves of each of its n rows, 90 + 126), G D (216) and (G D) Gᵀ on the upper triangle (126).  Equivalent forms were
 counted and are no cheaper: through V = C L⁻ᵀ and E = L⁻¹ D L⁻ᵀ (G D Gᵀ = VΔ⁻¹ E Δ⁻¹Vᵀ, ≈ 590 against 560 here);
 P̃ = P_k − G Cᵀ + (G Φ(d)⁻¹) Pˢ (G Φ(d)⁻¹)ᵀ (≈ 550 against 430).  Storing the prediction or recomputing it in
-the backward step: measured (2000 × 200, one interleaved run, shared machine), the fused step writing s_filt, p_filt
-and x costs 1.00–1.04 filter steps, also writing the prediction 1.14–1.19 (SE(2)×SE(2)) and 1.25–1.50 (CV);
+the backward step: measured (benchmarks/bench_store_prediction.py, 2000 × 200, three runs, shared machine), the
+fused step writing s_filt, p_filt and x costs 1.00–1.10 filter steps, also writing the prediction 1.14–1.19
+(SE(2)×SE(2)) and 1.25–1.54 (CV);
 recomputing it would add F C on the upper triangle, Φ(Ω)QΦ(Ω)ᵀ and the angle cap (≈ 80–100 of the ≈ 1 000
 multiplications of SE(2)×SE(2)) and a second set of kernels (the IMM smoother and the filter classes pass their own
 predictions), so it is stored.
