@@ -1,11 +1,33 @@
-"""Cost of RTS smoothing on the group relative to filtering, per model (ratios measured in one run).
+"""Cost of RTS smoothing on the group relative to filtering, per model (ratios measured in one interleaved run).
 
-    python benchmarks/bench_smoother.py [B] [K]
+    python benchmarks/bench_smoother.py [B] [K] [repeats]
 
-For every registry model: ``filter_batch`` (position measurements, B trajectories × K steps) without and
-with ``smooth=True`` (the storing forward pass + the backward pass), best of 5 interleaved runs each after
-a warm-up (numba compiled). Prints the time per trajectory-step and the ratio smooth / filter; the issue's
-target is a ratio of at most 2.
+For every registry model, position measurements, B trajectories × K steps (default 2000 × 200), the kernels
+``filter_batch`` runs, called directly (numba compiled first, best of ``repeats`` interleaved rounds):
+
+* ``scalar``: the scalar batch filter ``run_batch_<meas>`` (prange over trajectories), the path the smoother's
+  forward pass shares (filter_batch below SOA_MIN_BATCH trajectories);
+* ``simd``: the SIMD filter ``run_batch_soa_<meas>`` (trajectories in the vector lanes), the fastest path
+  (filter_batch from SOA_MIN_BATCH trajectories on);
+* ``fwd``: the smoother's storing forward pass ``run_batch_store_<meas>`` (the fused filter step, also writing
+  the predicted state and covariance; ``lgekf.core.rts.forward_store``);
+* ``fwd_simd``: the same in the SIMD lanes, ``run_batch_store_soa_<meas>`` (the states kept in blocks of lanes);
+* ``bwd``: the backward pass ``smooth_batch`` (``smooth_step`` per step, prange over trajectories);
+* ``bwd_simd``: the backward pass ``smooth_batch_soa`` (``smooth_step`` in the SIMD lanes) over the blocks that
+  fwd_simd stored, what ``filter_batch(smooth=True)`` runs from SOA_SMOOTH_MIN_BATCH trajectories on.
+
+Both backward passes are timed as filter_batch runs them without ``return_cov`` (smoothed states only, no
+covariances unpacked from the blocks).
+
+Printed: ns per trajectory-step of each, and three ratios of smoothing (forward pass + backward pass) to filtering:
+
+* ``same/scalar`` = (fwd + bwd) / scalar: **the issue's ratio** ("smoothing costs at most 2× filtering", issue #11),
+  filtering and smoothing on the same scalar prange path (what filter_batch does below 1000 trajectories);
+* ``simd/scalar`` = (fwd_simd + bwd_simd) / scalar;
+* ``simd/simd`` = (fwd_simd + bwd_simd) / simd: filter_batch(smooth=True) against filter_batch from 1000
+  trajectories on, both on their SIMD paths.
+
+The machine may be shared: absolute times are noisy, the ratios of one interleaved run much less so.
 """
 
 import sys
@@ -13,38 +35,68 @@ import time
 
 import numpy as np
 
-from lgekf import filter_batch
+from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
+from lgekf.core.rts import forward_store, smooth_stored
 
 
-def main(B=1000, K=200, repeats=5):
-    rng = np.random.default_rng(0)
+def _inputs(spec, B, K, rng):
     t = 0.1 * np.arange(1, K + 1)
     z = np.stack([3 * t, 0.2 * t**2], axis=-1)[None] + 0.3 * rng.standard_normal((B, K, 2))
-    print(f"{B} trajectories x {K} steps, position measurements; best of {repeats} (ns per trajectory-step)")
-    print(f"{'model':<8} {'filter':>8} {'filter+smooth':>14} {'ratio':>6}")
-    worst = 0.0
+    x0 = np.tile(spec.kernels.common_to_state(np.array([0, 0, 0, 3.0, 0, 0])), (B, 1))
+    p0 = pack(np.broadcast_to(np.eye(spec.n) * 0.25, (B, spec.n, spec.n)))
+    return np.ascontiguousarray(z), np.full((B, K), 0.1), x0, p0
+
+
+def main(B=2000, K=200, repeats=5):
+    rng = np.random.default_rng(0)
+    print(f"{B} trajectories x {K} steps, position measurements; best of {repeats} interleaved rounds (ns per trajectory-step)")
+    print(f"{'model':<8} {'scalar':>7} {'simd':>7} {'fwd':>7} {'fwd_simd':>8} {'bwd':>7} {'bwd_simd':>8}  {'same/scalar':>11}"
+          f" {'simd/scalar':>11}"
+          f" {'simd/simd':>9}")
+    worst = [0.0, 0.0, 0.0]
     for name in MODELS:
         spec = get_model(name)
-        x0 = np.tile(spec.kernels.common_to_state(np.array([0, 0, 0, 3.0, 0, 0])), (B, 1))
-        P0 = np.eye(spec.n) * 0.25
-        kw = dict(dt=0.1, accel_std=spec.default_accel_std, meas_std=0.3, x0=x0, P0=P0)
-        filter_batch(name, z[:4], **{**kw, "x0": x0[:4]}, smooth=True)  # compile
-        filter_batch(name, z[:4], **{**kw, "x0": x0[:4]})
-        tf, ts = [], []
+        z, dts, x0, p0 = _inputs(spec, B, K, rng)
+        q = np.asarray(spec.default_accel_std, dtype=float)
+        r = np.array([0.3])
+        out_x = np.empty((B, K, spec.n))
+        out_p = np.empty((B, 0, spec.n_packed))
+        out_nis = np.empty((B, K))
+        scalar = spec.kernels.run_batch_position
+        simd = spec.kernels.run_batch_soa_position
+        for f in (scalar, simd):  # compile
+            f(z[:4], dts[:4], x0[:4], p0[:4], q, r, out_x[:4], out_p[:4], out_nis[:4])
+        for simd_pass in (False, True):
+            smooth_stored(spec, forward_store(spec, "position", z[:4], dts[:4], x0[:4], p0[:4], q, r, simd=simd_pass),
+                          covariances=False)
+        ts = {k: [] for k in ("scalar", "simd", "fwd", "fwd_simd", "bwd", "bwd_simd")}
         for _ in range(repeats):
-            a = time.perf_counter()
-            filter_batch(name, z, **kw)
-            b = time.perf_counter()
-            filter_batch(name, z, **kw, smooth=True)
-            c = time.perf_counter()
-            tf.append(b - a)
-            ts.append(c - b)
-        f, s = min(tf), min(ts)
-        worst = max(worst, s / f)
-        print(f"{name:<8} {1e9 * f / (B * K):8.0f} {1e9 * s / (B * K):14.0f} {s / f:6.2f}")
-    print(f"largest ratio smoothing / filtering: {worst:.2f}")
+            t0 = time.perf_counter()
+            scalar(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+            t1 = time.perf_counter()
+            simd(z, dts, x0, p0, q, r, out_x, out_p, out_nis)
+            t2 = time.perf_counter()
+            fp = forward_store(spec, "position", z, dts, x0, p0, q, r, simd=False)
+            t3 = time.perf_counter()
+            fps = forward_store(spec, "position", z, dts, x0, p0, q, r, simd=True)
+            t3s = time.perf_counter()
+            smooth_stored(spec, fp, covariances=False)
+            t4 = time.perf_counter()
+            smooth_stored(spec, fps, covariances=False)
+            t5 = time.perf_counter()
+            for k, v in zip(ts, (t1 - t0, t2 - t1, t3 - t2, t3s - t3, t4 - t3s, t5 - t4)):
+                ts[k].append(v)
+        best = {k: min(v) for k, v in ts.items()}
+        simd_sum = best["fwd_simd"] + best["bwd_simd"]
+        ratios = [(best["fwd"] + best["bwd"]) / best["scalar"], simd_sum / best["scalar"], simd_sum / best["simd"]]
+        worst = [max(w, v) for w, v in zip(worst, ratios)]
+        ns = 1e9 / (B * K)
+        print(f"{name:<8} " + " ".join(f"{best[k] * ns:{w}.0f}" for k, w in (("scalar", 7), ("simd", 7), ("fwd", 7), ("fwd_simd", 8),
+                                                                             ("bwd", 7), ("bwd_simd", 8)))
+              + f"  {ratios[0]:11.2f} {ratios[1]:11.2f} {ratios[2]:9.2f}", flush=True)
+    print(f"largest same/scalar (the issue's ratio) {worst[0]:.2f}, simd/scalar {worst[1]:.2f}, simd/simd {worst[2]:.2f}")
 
 
 if __name__ == "__main__":
-    main(*[int(v) for v in sys.argv[1:3]])
+    main(*[int(v) for v in sys.argv[1:4]])

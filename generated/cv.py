@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
 
 
 @nb.njit(cache=True)
@@ -1085,27 +1085,367 @@ def innovation_logdet_position(s, p, r):
     return math.log(detS)
 
 
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_store_position(s, p, dt, sigma_a, z_x, z_y, r, sq, pq):
+    """step_try_position that also writes the predicted internal state into sq and the predicted packed covariance
+    (after the angle-variance cap) into pq, and returns (NIS, log det S) (derive/codegen/smooth_step.py); a NIS
+    of -1 means the caller must run update_position (derive/codegen/fused.py).
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_position (Joseph form;
+    derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    w_x = s[2]
+    w_y = s[3]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p11 = p[4]
+    p12 = p[5]
+    p13 = p[6]
+    p22 = p[7]
+    p23 = p[8]
+    p33 = p[9]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    sq[0] = x_p
+    sq[1] = y_p
+    sq[2] = w_x
+    sq[3] = w_y
+    pq[0] = pp00
+    pq[1] = pp01
+    pq[2] = pp02
+    pq[3] = pp03
+    pq[4] = pp11
+    pq[5] = pp12
+    pq[6] = pp13
+    pq[7] = pp22
+    pq[8] = pp23
+    pq[9] = pp33
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj11
+    out_p5 = pj12
+    out_p6 = pj13
+    out_p7 = pj22
+    out_p8 = pj23
+    out_p9 = pj33
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp11
+        out_p5 = pp12
+        out_p6 = pp13
+        out_p7 = pp22
+        out_p8 = pp23
+        out_p9 = pp33
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = w_x
+        out_s3 = w_y
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_a, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    w_x = W[128 + j]
+    w_y = W[192 + j]
+    p00 = W[256 + j]
+    p01 = W[320 + j]
+    p02 = W[384 + j]
+    p03 = W[448 + j]
+    p11 = W[512 + j]
+    p12 = W[576 + j]
+    p13 = W[640 + j]
+    p22 = W[704 + j]
+    p23 = W[768 + j]
+    p33 = W[832 + j]
+    dt = W[1792 + j]
+    z_x = W[1984 + j]
+    z_y = W[2048 + j]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    W[2112 + j] = x_p
+    W[2176 + j] = y_p
+    W[2240 + j] = w_x
+    W[2304 + j] = w_y
+    W[2368 + j] = pp00
+    W[2432 + j] = pp01
+    W[2496 + j] = pp02
+    W[2560 + j] = pp03
+    W[2624 + j] = pp11
+    W[2688 + j] = pp12
+    W[2752 + j] = pp13
+    W[2816 + j] = pp22
+    W[2880 + j] = pp23
+    W[2944 + j] = pp33
+    W[1152 + j] = pj00
+    W[1216 + j] = pj01
+    W[1280 + j] = pj02
+    W[1344 + j] = pj03
+    W[1408 + j] = pj11
+    W[1472 + j] = pj12
+    W[1536 + j] = pj13
+    W[1600 + j] = pj22
+    W[1664 + j] = pj23
+    W[1728 + j] = pj33
+    W[896 + j] = mu00
+    W[960 + j] = mu01
+    W[1024 + j] = mu02
+    W[1088 + j] = mu03
+    W[3008 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, 14, 64), nblk = ⌈B / 64⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_position (prange over blocks, lane_store_position vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position)."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(48 * 64)
+        s = np.empty(4)
+        p = np.empty(10)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(4):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(10):
+                W[(4 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[28 * 64 + j] = dts[lo + j, k]
+                W[31 * 64 + j] = z[lo + j, k, 0]
+                W[32 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[29 * 64 + j] = lane_store_position(W, j, q[0], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[29 * 64 + j] == W[29 * 64 + j])
+                W[30 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[30 * 64 + j] == 0.0:
+                    for i in range(4):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(10):
+                        p[i] = W[(4 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0])
+                    for i in range(4):
+                        W[(33 + i) * 64 + j] = s[i]
+                    for i in range(10):
+                        W[(37 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[29 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[29 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(4):
+                        W[(14 + i) * 64 + j] = s[i]
+                    for i in range(10):
+                        W[(18 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[47 * 64 + j])
+            for j in range(L):
+                out_nis[lo + j, k] = W[29 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range(4 + 10):
+                for j in range(64):
+                    Qb[blk, k, i, j] = W[(33 + i) * 64 + j]
+                    Fb[blk, k, i, j] = W[(14 + i) * 64 + j]
+            for i in range(4 + 10):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(14 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_position and keep every step's predicted internal state and packed
     covariance (s_pred (K, 4), p_pred (K, 10), before the update) and posterior ones (s_filt, p_filt),
     the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
-    the posterior physical states out_x (K, 4)."""
+    the posterior physical states out_x (K, 4). A step with a measurement is the fused step_store_position (the
+    filter's step_try_position writing its prediction; derive/codegen/smooth_step.py), with the same Joseph-form
+    fallback as run_one_position."""
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     for k in range(K):
-        predict(s, p, dts[k], q[0])
-        for i in range(4):
-            s_pred[k, i] = s[i]
-        for i in range(10):
-            p_pred[k, i] = p[i]
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            predict(s, p, dts[k], q[0])
+            for i in range(4):
+                s_pred[k, i] = s[i]
+            for i in range(10):
+                p_pred[k, i] = p[i]
             out_nis[k] = np.nan
             out_logdet[k] = np.nan
         else:
-            out_logdet[k] = innovation_logdet_position(s, p, r[0])
-            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            nis, out_logdet[k] = step_store_position(s, p, dts[k], q[0], z[k, 0], z[k, 1], r[0], s_pred[k], p_pred[k])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = nis
         for i in range(4):
             s_filt[k, i] = s[i]
         for i in range(10):
@@ -1144,15 +1484,403 @@ def loglik_batch_position(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
         out_count[b] = cnt
 
 
-@nb.njit(cache=True)
-def unpack_into(p, A):
-    """The packed covariance p (10) into the full symmetric A (4, 4)."""
-    k = 0
-    for i in range(4):
-        for j in range(i, 4):
-            A[i, j] = p[k]
-            A[j, i] = p[k]
-            k += 1
+@nb.njit(cache=True, fastmath=FASTMATH)
+def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
+    """One Rauch–Tung–Striebel backward step on the group (lgekf.estimators.smoother), straight-line:
+    from the posterior (sf, pf) at k, the prediction (sq, pq) at k+1 and the smoothed (ss, ps) at k+1, with
+    F = transition(μ_k, dt): d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), G = P_k Fᵀ P_{k+1|k}⁻¹ (LDLᵀ), δ = G d,
+    P̃ = P_k + G (Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ − P_{k+1|k}) Gᵀ; writes μˢ_k = μ_k·exp(δ) into so and
+    Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ (packed) into po (derive/codegen/smooth_step.py).
+    legend: cc = 𝒞, ff = F, cf = P_k Fᵀ, dd = d, ji = Φ(d)⁻¹, jp = Φ(d)⁻¹Pˢ, dm = P̄ − P_{k+1|k},
+    ld/ll/lr = LDLᵀ pivots, factor and reciprocal pivots, ly/gg = the solves for G, de = δ, gd = G·dm,
+    pt = P̃, ph = Φ(δ), tp = Φ(δ)P̃.
+    """
+    x = sf[0]
+    y = sf[1]
+    w_x = sf[2]
+    w_y = sf[3]
+    pf00 = pf[0]
+    pf01 = pf[1]
+    pf02 = pf[2]
+    pf03 = pf[3]
+    pf11 = pf[4]
+    pf12 = pf[5]
+    pf13 = pf[6]
+    pf22 = pf[7]
+    pf23 = pf[8]
+    pf33 = pf[9]
+    q_x = sq[0]
+    q_y = sq[1]
+    q_w_x = sq[2]
+    q_w_y = sq[3]
+    pq00 = pq[0]
+    pq01 = pq[1]
+    pq02 = pq[2]
+    pq03 = pq[3]
+    pq11 = pq[4]
+    pq12 = pq[5]
+    pq13 = pq[6]
+    pq22 = pq[7]
+    pq23 = pq[8]
+    pq33 = pq[9]
+    t_x = ss[0]
+    t_y = ss[1]
+    t_w_x = ss[2]
+    t_w_y = ss[3]
+    ps00 = ps[0]
+    ps01 = ps[1]
+    ps02 = ps[2]
+    ps03 = ps[3]
+    ps11 = ps[4]
+    ps12 = ps[5]
+    ps13 = ps[6]
+    ps22 = ps[7]
+    ps23 = ps[8]
+    ps33 = ps[9]
+    _t0 = dt*pf23
+    cf0_0 = dt*pf02 + pf00
+    cf0_1 = dt*pf03 + pf01
+    cf1_0 = dt*pf12 + pf01
+    cf1_1 = dt*pf13 + pf11
+    cf2_0 = dt*pf22 + pf02
+    cf2_1 = _t0 + pf12
+    cf3_0 = _t0 + pf03
+    cf3_1 = dt*pf33 + pf13
+    dd0_0 = -q_x + t_x
+    dd0_1 = -q_y + t_y
+    dd0_2 = -q_w_x + t_w_x
+    dd0_3 = -q_w_y + t_w_y
+    dm0_0 = -pq00 + ps00
+    dm0_1 = -pq01 + ps01
+    dm0_2 = -pq02 + ps02
+    dm0_3 = -pq03 + ps03
+    dm1_1 = -pq11 + ps11
+    dm1_2 = -pq12 + ps12
+    dm1_3 = -pq13 + ps13
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm3_3 = -pq33 + ps33
+    lr0 = 1.0/max(1e-300, pq00)
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ld1 = -(ll1_0*lw1_0) + pq11
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    ly0_2 = -(cf0_0*ll2_0) - ll2_1*ly0_1 + pf02
+    ly1_2 = -(cf1_0*ll2_0) - ll2_1*ly1_1 + pf12
+    ly2_2 = -(cf2_0*ll2_0) - ll2_1*ly2_1 + pf22
+    ly3_2 = -(cf3_0*ll2_0) - ll2_1*ly3_1 + pf23
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    lw3_2 = ld2*ll3_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    gg0_3 = lr3*ly0_3
+    gg1_3 = lr3*ly1_3
+    gg2_3 = lr3*ly2_3
+    gg3_3 = lr3*ly3_3
+    gg0_2 = -(gg0_3*ll3_2) + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) + lr2*ly3_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 + lr1*ly3_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + pf03
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + pf13
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + pf23
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + pf33
+    po[0] = pt0_0
+    po[1] = pt0_1
+    po[2] = pt0_2
+    po[3] = pt0_3
+    po[4] = pt1_1
+    po[5] = pt1_2
+    po[6] = pt1_3
+    po[7] = pt2_2
+    po[8] = pt2_3
+    po[9] = pt3_3
+    so[0] = de0_0 + x
+    so[1] = de1_0 + y
+    so[2] = de2_0 + w_x
+    so[3] = de3_0 + w_y
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_smooth(W, j):
+    """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    w_x = W[128 + j]
+    w_y = W[192 + j]
+    pf00 = W[256 + j]
+    pf01 = W[320 + j]
+    pf02 = W[384 + j]
+    pf03 = W[448 + j]
+    pf11 = W[512 + j]
+    pf12 = W[576 + j]
+    pf13 = W[640 + j]
+    pf22 = W[704 + j]
+    pf23 = W[768 + j]
+    pf33 = W[832 + j]
+    q_x = W[896 + j]
+    q_y = W[960 + j]
+    q_w_x = W[1024 + j]
+    q_w_y = W[1088 + j]
+    pq00 = W[1152 + j]
+    pq01 = W[1216 + j]
+    pq02 = W[1280 + j]
+    pq03 = W[1344 + j]
+    pq11 = W[1408 + j]
+    pq12 = W[1472 + j]
+    pq13 = W[1536 + j]
+    pq22 = W[1600 + j]
+    pq23 = W[1664 + j]
+    pq33 = W[1728 + j]
+    t_x = W[1792 + j]
+    t_y = W[1856 + j]
+    t_w_x = W[1920 + j]
+    t_w_y = W[1984 + j]
+    ps00 = W[2048 + j]
+    ps01 = W[2112 + j]
+    ps02 = W[2176 + j]
+    ps03 = W[2240 + j]
+    ps11 = W[2304 + j]
+    ps12 = W[2368 + j]
+    ps13 = W[2432 + j]
+    ps22 = W[2496 + j]
+    ps23 = W[2560 + j]
+    ps33 = W[2624 + j]
+    dt = W[3584 + j]
+    _t0 = dt*pf23
+    cf0_0 = dt*pf02 + pf00
+    cf0_1 = dt*pf03 + pf01
+    cf1_0 = dt*pf12 + pf01
+    cf1_1 = dt*pf13 + pf11
+    cf2_0 = dt*pf22 + pf02
+    cf2_1 = _t0 + pf12
+    cf3_0 = _t0 + pf03
+    cf3_1 = dt*pf33 + pf13
+    dd0_0 = -q_x + t_x
+    dd0_1 = -q_y + t_y
+    dd0_2 = -q_w_x + t_w_x
+    dd0_3 = -q_w_y + t_w_y
+    dm0_0 = -pq00 + ps00
+    dm0_1 = -pq01 + ps01
+    dm0_2 = -pq02 + ps02
+    dm0_3 = -pq03 + ps03
+    dm1_1 = -pq11 + ps11
+    dm1_2 = -pq12 + ps12
+    dm1_3 = -pq13 + ps13
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm3_3 = -pq33 + ps33
+    lr0 = 1.0/max(1e-300, pq00)
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ld1 = -(ll1_0*lw1_0) + pq11
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    ly0_2 = -(cf0_0*ll2_0) - ll2_1*ly0_1 + pf02
+    ly1_2 = -(cf1_0*ll2_0) - ll2_1*ly1_1 + pf12
+    ly2_2 = -(cf2_0*ll2_0) - ll2_1*ly2_1 + pf22
+    ly3_2 = -(cf3_0*ll2_0) - ll2_1*ly3_1 + pf23
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    lw3_2 = ld2*ll3_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    gg0_3 = lr3*ly0_3
+    gg1_3 = lr3*ly1_3
+    gg2_3 = lr3*ly2_3
+    gg3_3 = lr3*ly3_3
+    gg0_2 = -(gg0_3*ll3_2) + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) + lr2*ly3_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 + lr1*ly3_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + pf03
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + pf13
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + pf23
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + pf33
+    W[2944 + j] = pt0_0
+    W[3008 + j] = pt0_1
+    W[3072 + j] = pt0_2
+    W[3136 + j] = pt0_3
+    W[3200 + j] = pt1_1
+    W[3264 + j] = pt1_2
+    W[3328 + j] = pt1_3
+    W[3392 + j] = pt2_2
+    W[3456 + j] = pt2_3
+    W[3520 + j] = pt3_3
+    W[2688 + j] = de0_0 + x
+    W[2752 + j] = de1_0 + y
+    W[2816 + j] = de2_0 + w_x
+    W[2880 + j] = de3_0 + w_y
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def physical_smooth_lane(W, j, out, b, k):
+    """The physical state of lane j of the smoothed rows of the work array W into out[b, k] (SIMD).
+    """
+    x = W[1792 + j]
+    y = W[1856 + j]
+    w_x = W[1920 + j]
+    w_y = W[1984 + j]
+    out[b, k, 0] = x
+    out[b, k, 1] = y
+    out[b, k, 2] = w_x
+    out[b, k, 3] = w_y
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
+    in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, 14, 64) hold the predicted / posterior internal
+    state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]; writes the smoothed ones
+    into Sb (same layout; pass Sb with no steps, (nblk, 0, 14, 64), to skip them) and the smoothed physical
+    states into out_x (B, K, 4). Trajectory b starts at its last
+    step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
+    step, the rows are copied into one work array (rows × 64) and lane_smooth runs vectorised over the lanes.
+    """
+    B = dts.shape[0]
+    nblk = Qb.shape[0]
+    keep = Sb.shape[1] > 0
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(59 * 64)
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for i in range(14):
+                for j in range(64):
+                    W[(0 + i) * 64 + j] = Fb[blk, k, i, j]
+            for j in range(L):
+                Kb = lengths[lo + j]
+                W[57 * 64 + j] = 1.0 if k < Kb - 1 else 0.0
+                W[58 * 64 + j] = 1.0 if k == Kb - 1 else 0.0
+            if k < Kmax - 1:
+                for i in range(14):
+                    for j in range(64):
+                        W[(14 + i) * 64 + j] = Qb[blk, k + 1, i, j]
+                for j in range(L):
+                    W[56 * 64 + j] = dts[lo + j, k + 1]
+                for j in range(L):
+                    lane_smooth(W, j)
+                for i in range(14):
+                    for j in range(64):
+                        act = W[57 * 64 + j] > 0.5
+                        W[(28 + i) * 64 + j] = W[(42 + i) * 64 + j] if act else W[(28 + i) * 64 + j]
+            for i in range(14):
+                for j in range(64):
+                    start = W[58 * 64 + j] > 0.5
+                    W[(28 + i) * 64 + j] = W[(0 + i) * 64 + j] if start else W[(28 + i) * 64 + j]
+            if keep:
+                for i in range(14):
+                    for j in range(64):
+                        Sb[blk, k, i, j] = W[(28 + i) * 64 + j]
+            for j in range(L):
+                if k < lengths[lo + j]:
+                    physical_smooth_lane(W, j, out_x, lo + j, k)
 
 
 @nb.njit(cache=True)
@@ -1163,114 +1891,13 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     into s_sm (K, 4), p_sm (K, 10). For k = K-2 ... 0, with F = transition(μ_k, dts[k+1]):
     d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), P̄ = Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ, G = P_k Fᵀ P_{k+1|k}⁻¹, δ = G d,
     μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) [P_k + G (P̄ − P_{k+1|k}) Gᵀ] Φ(δ)ᵀ."""
-    n = 4
-    Pf = np.empty((n, n))
-    Pp = np.empty((n, n))
-    Ps = np.empty((n, n))
-    L = np.empty((n, n))
-    C = np.empty((n, n))
-    G = np.empty((n, n))
-    T = np.empty((n, n))
-    D = np.empty((n, n))
-    F = np.empty((n, n))
-    Ji = np.empty((n, n))
-    Phi = np.empty((n, n))
-    d = np.empty(n)
-    dl = np.empty(n)
     for i in range(4):
         s_sm[K - 1, i] = s_filt[K - 1, i]
     for i in range(10):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        transition_into(s_filt[k], dts[k + 1], F)
-        unpack_into(p_filt[k], Pf)
-        unpack_into(p_pred[k + 1], Pp)
-        unpack_into(p_sm[k + 1], Ps)
-        between_into(s_pred[k + 1], s_sm[k + 1], d)
-        right_jacobian_inv_into(d, Ji)
-        # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Ji[i, a] * Ps[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Ji[j, a]
-                D[i, j] = acc - Pp[i, j]
-                D[j, i] = D[i, j]
-        # C = P_k Fᵀ
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Pf[i, a] * F[j, a]
-                C[i, j] = acc
-        # Cholesky P_{k+1|k} = L Lᵀ, then G = C P_{k+1|k}⁻¹ row by row (two triangular solves)
-        for j in range(n):
-            acc = Pp[j, j]
-            for a in range(j):
-                acc -= L[j, a] * L[j, a]
-            dj = math.sqrt(acc) if acc > 0.0 else 1e-300
-            L[j, j] = dj
-            for i in range(j + 1, n):
-                acc = Pp[i, j]
-                for a in range(j):
-                    acc -= L[i, a] * L[j, a]
-                L[i, j] = acc / dj
-        for r in range(n):
-            for i in range(n):
-                acc = C[r, i]
-                for a in range(i):
-                    acc -= L[i, a] * G[r, a]
-                G[r, i] = acc / L[i, i]
-            for i in range(n - 1, -1, -1):
-                acc = G[r, i]
-                for a in range(i + 1, n):
-                    acc -= L[a, i] * G[r, a]
-                G[r, i] = acc / L[i, i]
-        # δ = G d
-        for i in range(n):
-            acc = 0.0
-            for a in range(n):
-                acc += G[i, a] * d[a]
-            dl[i] = acc
-        # P̃ = P_k + G D Gᵀ  (T = G D)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += G[i, a] * D[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = Pf[i, j]
-                for a in range(n):
-                    acc += T[i, a] * G[j, a]
-                Ps[i, j] = acc
-                Ps[j, i] = acc
-        # μˢ_k = μ_k·exp(δ); Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ
-        for i in range(4):
-            s_sm[k, i] = s_filt[k, i]
-        retract(s_sm[k], dl)
-        right_jacobian_into(dl, Phi)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Phi[i, a] * Ps[a, j]
-                T[i, j] = acc
-        m = 0
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Phi[j, a]
-                p_sm[k, m] = acc
-                m += 1
+        smooth_step(s_filt[k], p_filt[k], s_pred[k + 1], p_pred[k + 1], s_sm[k + 1], p_sm[k + 1], dts[k + 1], s_sm[k],
+                    p_sm[k])
 
 
 @nb.njit(cache=True, parallel=True)

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'unpack_into', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
 
 
 @nb.njit(cache=True)
@@ -2581,27 +2581,671 @@ def innovation_logdet_pose(s, p, r_x, r_y, r_theta):
     return math.log(detS)
 
 
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_store_pose(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta, sq, pq):
+    """step_try_pose that also writes the predicted internal state into sq and the predicted packed covariance
+    (after the angle-variance cap) into pq, and returns (NIS, log det S) (derive/codegen/smooth_step.py); a NIS
+    of -1 means the caller must run update_pose (derive/codegen/fused.py).
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_pose (Joseph form;
+    derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v
+    _t2 = _sinc__a0*dt
+    _t3 = dt*dt
+    _t4 = _t3*v
+    _t5 = _t2*v
+    _t6 = _t3/2.0
+    _t7 = (dt*dt*dt)*v/2.0
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1
+    f03 = _t2
+    f04 = _sinc2__a0*_t4
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t5
+    f13 = -_t0
+    f14 = _cosc2__a0*_t4
+    g00 = _sinc__a0*_t6
+    g01 = _sinc2__a0*_t7
+    g10 = -(_cosc__a0*_t6)
+    g11 = _cosc2__a0*_t7
+    g21 = _t6
+    e00 = -(_t1*s_theta) + _t5*c_theta + x
+    e01 = _t1*c_theta + _t5*s_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t8 = sigma_a*sigma_a
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = _t8*g00
+    _t11 = _t9*g01
+    _t12 = _t9*g11
+    _t13 = dt*dt
+    pp00 = _t8*(g00*g00) + _t9*(g01*g01) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04
+    pp01 = _t10*g10 + _t11*g11 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04
+    pp02 = _t11*g21 + dt*m04 + m02
+    pp03 = _t10*dt + m03
+    pp04 = _t11*dt + m04
+    pp11 = _t8*(g10*g10) + _t9*(g11*g11) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14
+    pp12 = _t12*g21 + dt*m14 + m12
+    pp13 = _t8*dt*g10 + m13
+    pp14 = _t12*dt + m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t13*_t8 + p33
+    pp34 = p34
+    pp44 = _t13*_t9 + p44
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp22 = math.pi * math.pi
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a1 = math.atan2(c_theta_p*math.sin(z_theta) - s_theta_p*math.cos(z_theta), c_theta_p*math.cos(z_theta) + s_theta_p*math.sin(z_theta))
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t14 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t15 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t16 = math.atan2(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t17 = _t16/2.0
+    inn00 = _halfcot__a1*_t14 + _t15*_t17
+    inn10 = _halfcot__a1*_t15 - _t14*_t17
+    inn20 = _t16
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t18 = Si01*pp01
+    _t19 = Si02*pp02
+    _t20 = Si12*pp12
+    _t21 = 2.0*inn00
+    k00 = Si00*pp00 + _t18 + _t19
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t18 + _t20
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t19 + _t20
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    nis = Si00*(inn00*inn00) + Si01*_t21*inn10 + Si02*_t21*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
+    _t22 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t23 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t22*c_theta_p - _t23*s_theta_p + x_p
+    mu01 = _t22*s_theta_p + _t23*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    sq[0] = x_p
+    sq[1] = y_p
+    sq[2] = c_theta_p
+    sq[3] = s_theta_p
+    sq[4] = v
+    sq[5] = omega
+    pq[0] = pp00
+    pq[1] = pp01
+    pq[2] = pp02
+    pq[3] = pp03
+    pq[4] = pp04
+    pq[5] = pp11
+    pq[6] = pp12
+    pq[7] = pp13
+    pq[8] = pp14
+    pq[9] = pp22
+    pq[10] = pp23
+    pq[11] = pp24
+    pq[12] = pp33
+    pq[13] = pp34
+    pq[14] = pp44
+    out_p0 = cp00*phi00 + cp01*phi01 + cp02*phi02
+    out_p1 = cp00*phi10 + cp01*phi11 + cp02*phi12
+    out_p2 = cp02
+    out_p3 = cp03
+    out_p4 = cp04
+    out_p5 = cp10*phi10 + cp11*phi11 + cp12*phi12
+    out_p6 = cp12
+    out_p7 = cp13
+    out_p8 = cp14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    out_s5 = mu05
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = c_theta_p
+        out_s3 = s_theta_p
+        out_s4 = v
+        out_s5 = omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    s[5] = out_s5
+    return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_pose(W, j, sigma_a, sigma_alpha, r_x, r_y, r_theta):
+    """step_store_pose on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v = W[256 + j]
+    omega = W[320 + j]
+    p00 = W[384 + j]
+    p01 = W[448 + j]
+    p02 = W[512 + j]
+    p03 = W[576 + j]
+    p04 = W[640 + j]
+    p11 = W[704 + j]
+    p12 = W[768 + j]
+    p13 = W[832 + j]
+    p14 = W[896 + j]
+    p22 = W[960 + j]
+    p23 = W[1024 + j]
+    p24 = W[1088 + j]
+    p33 = W[1152 + j]
+    p34 = W[1216 + j]
+    p44 = W[1280 + j]
+    dt = W[2688 + j]
+    z_x = W[2880 + j]
+    z_y = W[2944 + j]
+    z_theta = W[3008 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v
+    _t2 = _sinc__a0*dt
+    _t3 = dt*dt
+    _t4 = _t3*v
+    _t5 = _t2*v
+    _t6 = _t3/2.0
+    _t7 = (dt*dt*dt)*v/2.0
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1
+    f03 = _t2
+    f04 = _sinc2__a0*_t4
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t5
+    f13 = -_t0
+    f14 = _cosc2__a0*_t4
+    g00 = _sinc__a0*_t6
+    g01 = _sinc2__a0*_t7
+    g10 = -(_cosc__a0*_t6)
+    g11 = _cosc2__a0*_t7
+    g21 = _t6
+    e00 = -(_t1*s_theta) + _t5*c_theta + x
+    e01 = _t1*c_theta + _t5*s_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t8 = sigma_a*sigma_a
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = _t8*g00
+    _t11 = _t9*g01
+    _t12 = _t9*g11
+    _t13 = dt*dt
+    pp00 = _t8*(g00*g00) + _t9*(g01*g01) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04
+    pp01 = _t10*g10 + _t11*g11 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04
+    pp02 = _t11*g21 + dt*m04 + m02
+    pp03 = _t10*dt + m03
+    pp04 = _t11*dt + m04
+    pp11 = _t8*(g10*g10) + _t9*(g11*g11) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14
+    pp12 = _t12*g21 + dt*m14 + m12
+    pp13 = _t8*dt*g10 + m13
+    pp14 = _t12*dt + m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t13*_t8 + p33
+    pp34 = p34
+    pp44 = _t13*_t9 + p44
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp22 = math.pi * math.pi
+    _sin_z_theta = sin_v(z_theta)
+    _cos_z_theta = cos_v(z_theta)
+    _a1 = atan2_v(c_theta_p*sin_v(z_theta) - s_theta_p*cos_v(z_theta), c_theta_p*cos_v(z_theta) + s_theta_p*sin_v(z_theta))
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t14 = -(c_theta_p*x_p) + c_theta_p*z_x - s_theta_p*y_p + s_theta_p*z_y
+    _t15 = -(c_theta_p*y_p) + c_theta_p*z_y + s_theta_p*x_p - s_theta_p*z_x
+    _t16 = atan2_v(-(_cos_z_theta*s_theta_p) + _sin_z_theta*c_theta_p, _cos_z_theta*c_theta_p + _sin_z_theta*s_theta_p)
+    _t17 = _t16/2.0
+    inn00 = _halfcot__a1*_t14 + _t15*_t17
+    inn10 = _halfcot__a1*_t15 - _t14*_t17
+    inn20 = _t16
+    S00 = pp00 + r_x*r_x
+    S11 = pp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(pp12*pp12) - S11*(pp02*pp02) - S22*(pp01*pp01) + 2.0*pp01*pp02*pp12)
+    Si00 = rdet*(S11*S22 - pp12*pp12)
+    Si01 = rdet*(-(S22*pp01) + pp02*pp12)
+    Si02 = rdet*(-(S11*pp02) + pp01*pp12)
+    Si11 = rdet*(S00*S22 - pp02*pp02)
+    Si12 = rdet*(-(S00*pp12) + pp01*pp02)
+    Si22 = rdet*(S00*S11 - pp01*pp01)
+    _t18 = Si01*pp01
+    _t19 = Si02*pp02
+    _t20 = Si12*pp12
+    _t21 = 2.0*inn00
+    k00 = Si00*pp00 + _t18 + _t19
+    k01 = Si01*pp00 + Si11*pp01 + Si12*pp02
+    k02 = Si02*pp00 + Si12*pp01 + Si22*pp02
+    k10 = Si00*pp01 + Si01*pp11 + Si02*pp12
+    k11 = Si11*pp11 + _t18 + _t20
+    k12 = Si02*pp01 + Si12*pp11 + Si22*pp12
+    k20 = Si00*pp02 + Si01*pp12 + Si02*pp22
+    k21 = Si01*pp02 + Si11*pp12 + Si12*pp22
+    k22 = Si22*pp22 + _t19 + _t20
+    k30 = Si00*pp03 + Si01*pp13 + Si02*pp23
+    k31 = Si01*pp03 + Si11*pp13 + Si12*pp23
+    k32 = Si02*pp03 + Si12*pp13 + Si22*pp23
+    k40 = Si00*pp04 + Si01*pp14 + Si02*pp24
+    k41 = Si01*pp04 + Si11*pp14 + Si12*pp24
+    k42 = Si02*pp04 + Si12*pp14 + Si22*pp24
+    nis = Si00*(inn00*inn00) + Si01*_t21*inn10 + Si02*_t21*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
+    _t22 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t23 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t22*c_theta_p - _t23*s_theta_p + x_p
+    mu01 = _t22*s_theta_p + _t23*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb02 = beta*k02
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb12 = beta*k12
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb22 = beta*k22
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb32 = beta*k32
+    kb40 = beta*k40
+    kb41 = beta*k41
+    kb42 = beta*k42
+    pj00 = -(kb00*pp00) - kb01*pp01 - kb02*pp02 + pp00
+    pj01 = -(kb00*pp01) - kb01*pp11 - kb02*pp12 + pp01
+    pj02 = -(kb00*pp02) - kb01*pp12 - kb02*pp22 + pp02
+    pj03 = -(kb00*pp03) - kb01*pp13 - kb02*pp23 + pp03
+    pj04 = -(kb00*pp04) - kb01*pp14 - kb02*pp24 + pp04
+    pj11 = -(kb10*pp01) - kb11*pp11 - kb12*pp12 + pp11
+    pj12 = -(kb10*pp02) - kb11*pp12 - kb12*pp22 + pp12
+    pj13 = -(kb10*pp03) - kb11*pp13 - kb12*pp23 + pp13
+    pj14 = -(kb10*pp04) - kb11*pp14 - kb12*pp24 + pp14
+    pj22 = -(kb20*pp02) - kb21*pp12 - kb22*pp22 + pp22
+    pj23 = -(kb20*pp03) - kb21*pp13 - kb22*pp23 + pp23
+    pj24 = -(kb20*pp04) - kb21*pp14 - kb22*pp24 + pp24
+    pj33 = -(kb30*pp03) - kb31*pp13 - kb32*pp23 + pp33
+    pj34 = -(kb30*pp04) - kb31*pp14 - kb32*pp24 + pp34
+    pj44 = -(kb40*pp04) - kb41*pp14 - kb42*pp24 + pp44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    W[3072 + j] = x_p
+    W[3136 + j] = y_p
+    W[3200 + j] = c_theta_p
+    W[3264 + j] = s_theta_p
+    W[3328 + j] = v
+    W[3392 + j] = omega
+    W[3456 + j] = pp00
+    W[3520 + j] = pp01
+    W[3584 + j] = pp02
+    W[3648 + j] = pp03
+    W[3712 + j] = pp04
+    W[3776 + j] = pp11
+    W[3840 + j] = pp12
+    W[3904 + j] = pp13
+    W[3968 + j] = pp14
+    W[4032 + j] = pp22
+    W[4096 + j] = pp23
+    W[4160 + j] = pp24
+    W[4224 + j] = pp33
+    W[4288 + j] = pp34
+    W[4352 + j] = pp44
+    W[1728 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[1792 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[1856 + j] = cp02
+    W[1920 + j] = cp03
+    W[1984 + j] = cp04
+    W[2048 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2112 + j] = cp12
+    W[2176 + j] = cp13
+    W[2240 + j] = cp14
+    W[2304 + j] = pj22
+    W[2368 + j] = pj23
+    W[2432 + j] = pj24
+    W[2496 + j] = pj33
+    W[2560 + j] = pj34
+    W[2624 + j] = pj44
+    W[1344 + j] = mu00
+    W[1408 + j] = mu01
+    W[1472 + j] = mu02
+    W[1536 + j] = mu03
+    W[1600 + j] = mu04
+    W[1664 + j] = mu05
+    W[4416 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_pose(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_pose with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, 21, 64), nblk = ⌈B / 64⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_pose (prange over blocks, lane_store_pose vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_pose)."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(70 * 64)
+        s = np.empty(6)
+        p = np.empty(15)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(6):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(15):
+                W[(6 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[42 * 64 + j] = dts[lo + j, k]
+                W[45 * 64 + j] = z[lo + j, k, 0]
+                W[46 * 64 + j] = z[lo + j, k, 1]
+                W[47 * 64 + j] = z[lo + j, k, 2]
+            for j in range(L):
+                W[43 * 64 + j] = lane_store_pose(W, j, q[0], q[1], r[0], r[1], r[2])
+                good = covariance_is_pd_lane(W, j) & (W[43 * 64 + j] == W[43 * 64 + j])
+                W[44 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[44 * 64 + j] == 0.0:
+                    for i in range(6):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(15):
+                        p[i] = W[(6 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1])
+                    for i in range(6):
+                        W[(48 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(54 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]) or np.isnan(z[b, k, 2]):
+                        W[43 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_pose(s, p, r[0], r[1], r[2])
+                        W[43 * 64 + j] = update_pose(s, p, z[b, k, 0], z[b, k, 1], z[b, k, 2], r[0], r[1], r[2])
+                    for i in range(6):
+                        W[(21 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(27 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[69 * 64 + j])
+            for j in range(L):
+                out_nis[lo + j, k] = W[43 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range(6 + 15):
+                for j in range(64):
+                    Qb[blk, k, i, j] = W[(48 + i) * 64 + j]
+                    Fb[blk, k, i, j] = W[(21 + i) * 64 + j]
+            for i in range(6 + 15):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(21 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_pose(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_pose and keep every step's predicted internal state and packed
     covariance (s_pred (K, 6), p_pred (K, 15), before the update) and posterior ones (s_filt, p_filt),
     the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
-    the posterior physical states out_x (K, 5)."""
+    the posterior physical states out_x (K, 5). A step with a measurement is the fused step_store_pose (the
+    filter's step_try_pose writing its prediction; derive/codegen/smooth_step.py), with the same Joseph-form
+    fallback as run_one_pose."""
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     for k in range(K):
-        predict(s, p, dts[k], q[0], q[1])
-        for i in range(6):
-            s_pred[k, i] = s[i]
-        for i in range(15):
-            p_pred[k, i] = p[i]
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]) or np.isnan(z[k, 2]):
+            predict(s, p, dts[k], q[0], q[1])
+            for i in range(6):
+                s_pred[k, i] = s[i]
+            for i in range(15):
+                p_pred[k, i] = p[i]
             out_nis[k] = np.nan
             out_logdet[k] = np.nan
         else:
-            out_logdet[k] = innovation_logdet_pose(s, p, r[0], r[1], r[2])
-            out_nis[k] = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            nis, out_logdet[k] = step_store_pose(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2], s_pred[k], p_pred[k])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_pose(s, p, z[k, 0], z[k, 1], z[k, 2], r[0], r[1], r[2])
+            out_nis[k] = nis
         for i in range(6):
             s_filt[k, i] = s[i]
         for i in range(15):
@@ -2664,27 +3308,639 @@ def innovation_logdet_position(s, p, r):
     return math.log(detS)
 
 
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_store_position(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, r, sq, pq):
+    """step_try_position that also writes the predicted internal state into sq and the predicted packed covariance
+    (after the angle-variance cap) into pq, and returns (NIS, log det S) (derive/codegen/smooth_step.py); a NIS
+    of -1 means the caller must run update_position (derive/codegen/fused.py).
+    (eq:pred_mu, eq:pred_cov, angle-variance cap, eq:K, eq:up_mu, eq:up_P) in one kernel; returns the NIS.
+    Covariance as P − βKℋP; a step whose result fails the LDLᵀ test (covariance_is_pd_fused) leaves the
+    prediction in s, p and returns -1.0: the caller then runs update_position (Joseph form;
+    derive/codegen/fused.py).
+    legend: cc = 𝒞 (eq:C), f = F = Ad(exp(−Ω)) + Φ(Ω)𝒞 (eq:pred_cov), g = Φ(Ω)G, hh = ℋ (eq:calH), hp = ℋP, inn = [log_G'(h(μ)⁻¹Z)]^∨, S = ℋPℋᵀ + R, Si = S⁻¹, k = K (eq:K), nk = Kν, alpha = gain damping, nu = ν, phi = Φ(ν) (eq:up_P), a = I − αKℋ, b = aP, beta = α(2 − α), kb = βK, pj = Joseph-form P (= P − βKℋP), cp = Φ(ν)·pj, mu/e = new mean
+    """
+    x = s[0]
+    y = s[1]
+    c_theta = s[2]
+    s_theta = s[3]
+    v = s[4]
+    omega = s[5]
+    p00 = p[0]
+    p01 = p[1]
+    p02 = p[2]
+    p03 = p[3]
+    p04 = p[4]
+    p11 = p[5]
+    p12 = p[6]
+    p13 = p[7]
+    p14 = p[8]
+    p22 = p[9]
+    p23 = p[10]
+    p24 = p[11]
+    p33 = p[12]
+    p34 = p[13]
+    p44 = p[14]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v
+    _t2 = _sinc__a0*dt
+    _t3 = dt*dt
+    _t4 = _t3*v
+    _t5 = _t2*v
+    _t6 = _t3/2.0
+    _t7 = (dt*dt*dt)*v/2.0
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1
+    f03 = _t2
+    f04 = _sinc2__a0*_t4
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t5
+    f13 = -_t0
+    f14 = _cosc2__a0*_t4
+    g00 = _sinc__a0*_t6
+    g01 = _sinc2__a0*_t7
+    g10 = -(_cosc__a0*_t6)
+    g11 = _cosc2__a0*_t7
+    g21 = _t6
+    e00 = -(_t1*s_theta) + _t5*c_theta + x
+    e01 = _t1*c_theta + _t5*s_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t8 = sigma_a*sigma_a
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = _t8*g00
+    _t11 = _t9*g01
+    _t12 = _t9*g11
+    _t13 = dt*dt
+    pp00 = _t8*(g00*g00) + _t9*(g01*g01) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04
+    pp01 = _t10*g10 + _t11*g11 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04
+    pp02 = _t11*g21 + dt*m04 + m02
+    pp03 = _t10*dt + m03
+    pp04 = _t11*dt + m04
+    pp11 = _t8*(g10*g10) + _t9*(g11*g11) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14
+    pp12 = _t12*g21 + dt*m14 + m12
+    pp13 = _t8*dt*g10 + m13
+    pp14 = _t12*dt + m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t13*_t8 + p33
+    pp34 = p34
+    pp44 = _t13*_t9 + p44
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp22 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t14 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t14 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp10 = _t14 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t15 = r*r
+    S00 = _t15 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t15 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    alpha = gain_damping(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = math.sin(nu2)
+    _cos_nu2 = math.cos(nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
+    _t16 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t17 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t16*c_theta_p - _t17*s_theta_p + x_p
+    mu01 = _t16*s_theta_p + _t17*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    sq[0] = x_p
+    sq[1] = y_p
+    sq[2] = c_theta_p
+    sq[3] = s_theta_p
+    sq[4] = v
+    sq[5] = omega
+    pq[0] = pp00
+    pq[1] = pp01
+    pq[2] = pp02
+    pq[3] = pp03
+    pq[4] = pp04
+    pq[5] = pp11
+    pq[6] = pp12
+    pq[7] = pp13
+    pq[8] = pp14
+    pq[9] = pp22
+    pq[10] = pp23
+    pq[11] = pp24
+    pq[12] = pp33
+    pq[13] = pp34
+    pq[14] = pp44
+    out_p0 = cp00*phi00 + cp01*phi01 + cp02*phi02
+    out_p1 = cp00*phi10 + cp01*phi11 + cp02*phi12
+    out_p2 = cp02
+    out_p3 = cp03
+    out_p4 = cp04
+    out_p5 = cp10*phi10 + cp11*phi11 + cp12*phi12
+    out_p6 = cp12
+    out_p7 = cp13
+    out_p8 = cp14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    out_s5 = mu05
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = c_theta_p
+        out_s3 = s_theta_p
+        out_s4 = v
+        out_s5 = omega
+        nis = -1.0
+    p[0] = out_p0
+    p[1] = out_p1
+    p[2] = out_p2
+    p[3] = out_p3
+    p[4] = out_p4
+    p[5] = out_p5
+    p[6] = out_p6
+    p[7] = out_p7
+    p[8] = out_p8
+    p[9] = out_p9
+    p[10] = out_p10
+    p[11] = out_p11
+    p[12] = out_p12
+    p[13] = out_p13
+    p[14] = out_p14
+    s[0] = out_s0
+    s[1] = out_s1
+    s[2] = out_s2
+    s[3] = out_s3
+    s[4] = out_s4
+    s[5] = out_s5
+    return nis, -math.log(rdet)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_store_position(W, j, sigma_a, sigma_alpha, r):
+    """step_store_position on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v = W[256 + j]
+    omega = W[320 + j]
+    p00 = W[384 + j]
+    p01 = W[448 + j]
+    p02 = W[512 + j]
+    p03 = W[576 + j]
+    p04 = W[640 + j]
+    p11 = W[704 + j]
+    p12 = W[768 + j]
+    p13 = W[832 + j]
+    p14 = W[896 + j]
+    p22 = W[960 + j]
+    p23 = W[1024 + j]
+    p24 = W[1088 + j]
+    p33 = W[1152 + j]
+    p34 = W[1216 + j]
+    p44 = W[1280 + j]
+    dt = W[2688 + j]
+    z_x = W[2880 + j]
+    z_y = W[2944 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _t0 = _cosc__a0*dt
+    _t1 = _t0*v
+    _t2 = _sinc__a0*dt
+    _t3 = dt*dt
+    _t4 = _t3*v
+    _t5 = _t2*v
+    _t6 = _t3/2.0
+    _t7 = (dt*dt*dt)*v/2.0
+    f00 = _cos__a0
+    f01 = _sin__a0
+    f02 = _t1
+    f03 = _t2
+    f04 = _sinc2__a0*_t4
+    f10 = -_sin__a0
+    f11 = _cos__a0
+    f12 = _t5
+    f13 = -_t0
+    f14 = _cosc2__a0*_t4
+    g00 = _sinc__a0*_t6
+    g01 = _sinc2__a0*_t7
+    g10 = -(_cosc__a0*_t6)
+    g11 = _cosc2__a0*_t7
+    g21 = _t6
+    e00 = -(_t1*s_theta) + _t5*c_theta + x
+    e01 = _t1*c_theta + _t5*s_theta + y
+    e02 = _cos__a0*c_theta - _sin__a0*s_theta
+    e03 = _cos__a0*s_theta + _sin__a0*c_theta
+    m00 = f00*p00 + f01*p01 + f02*p02 + f03*p03 + f04*p04
+    m01 = f00*p01 + f01*p11 + f02*p12 + f03*p13 + f04*p14
+    m02 = f00*p02 + f01*p12 + f02*p22 + f03*p23 + f04*p24
+    m03 = f00*p03 + f01*p13 + f02*p23 + f03*p33 + f04*p34
+    m04 = f00*p04 + f01*p14 + f02*p24 + f03*p34 + f04*p44
+    m10 = f10*p00 + f11*p01 + f12*p02 + f13*p03 + f14*p04
+    m11 = f10*p01 + f11*p11 + f12*p12 + f13*p13 + f14*p14
+    m12 = f10*p02 + f11*p12 + f12*p22 + f13*p23 + f14*p24
+    m13 = f10*p03 + f11*p13 + f12*p23 + f13*p33 + f14*p34
+    m14 = f10*p04 + f11*p14 + f12*p24 + f13*p34 + f14*p44
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t8 = sigma_a*sigma_a
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = _t8*g00
+    _t11 = _t9*g01
+    _t12 = _t9*g11
+    _t13 = dt*dt
+    pp00 = _t8*(g00*g00) + _t9*(g01*g01) + f00*m00 + f01*m01 + f02*m02 + f03*m03 + f04*m04
+    pp01 = _t10*g10 + _t11*g11 + f10*m00 + f11*m01 + f12*m02 + f13*m03 + f14*m04
+    pp02 = _t11*g21 + dt*m04 + m02
+    pp03 = _t10*dt + m03
+    pp04 = _t11*dt + m04
+    pp11 = _t8*(g10*g10) + _t9*(g11*g11) + f10*m10 + f11*m11 + f12*m12 + f13*m13 + f14*m14
+    pp12 = _t12*g21 + dt*m14 + m12
+    pp13 = _t8*dt*g10 + m13
+    pp14 = _t12*dt + m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t13*_t8 + p33
+    pp34 = p34
+    pp44 = _t13*_t9 + p44
+    x_p = e00
+    y_p = e01
+    c_theta_p = e02
+    s_theta_p = e03
+    if pp22 > math.pi * math.pi:
+        _cap = math.pi / math.sqrt(pp22)
+        pp02 = pp02 * _cap
+        pp12 = pp12 * _cap
+        pp23 = pp23 * _cap
+        pp24 = pp24 * _cap
+        pp22 = math.pi * math.pi
+    hh01 = -s_theta_p
+    _t14 = c_theta_p*pp01
+    hp00 = c_theta_p*pp00 + hh01*pp01
+    hp01 = _t14 + hh01*pp11
+    hp02 = c_theta_p*pp02 + hh01*pp12
+    hp03 = c_theta_p*pp03 + hh01*pp13
+    hp04 = c_theta_p*pp04 + hh01*pp14
+    hp10 = _t14 + pp00*s_theta_p
+    hp11 = c_theta_p*pp11 + pp01*s_theta_p
+    hp12 = c_theta_p*pp12 + pp02*s_theta_p
+    hp13 = c_theta_p*pp13 + pp03*s_theta_p
+    hp14 = c_theta_p*pp14 + pp04*s_theta_p
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t15 = r*r
+    S00 = _t15 + c_theta_p*hp00 + hh01*hp01
+    S01 = c_theta_p*hp01 + hp00*s_theta_p
+    S11 = _t15 + c_theta_p*hp11 + hp10*s_theta_p
+    rdet = 1.0/(S00*S11 - S01*S01)
+    Si00 = S11*rdet
+    Si01 = -(S01*rdet)
+    Si11 = S00*rdet
+    k00 = Si00*hp00 + Si01*hp10
+    k01 = Si01*hp00 + Si11*hp10
+    k10 = Si00*hp01 + Si01*hp11
+    k11 = Si01*hp01 + Si11*hp11
+    k20 = Si00*hp02 + Si01*hp12
+    k21 = Si01*hp02 + Si11*hp12
+    k30 = Si00*hp03 + Si01*hp13
+    k31 = Si01*hp03 + Si11*hp13
+    k40 = Si00*hp04 + Si01*hp14
+    k41 = Si01*hp04 + Si11*hp14
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    alpha = gain_damping_v(nk2, 0.0)
+    nu0 = alpha*nk0
+    nu1 = alpha*nk1
+    nu2 = alpha*nk2
+    nu3 = alpha*nk3
+    nu4 = alpha*nk4
+    _sin_nu2 = sin_v(nu2)
+    _cos_nu2 = cos_v(nu2)
+    _sinc_nu2, _cosc_nu2, _sinc2_nu2, _cosc2_nu2 = sinc_family(nu2, _sin_nu2, _cos_nu2)
+    _t16 = -(_cosc_nu2*nu1) + _sinc_nu2*nu0
+    _t17 = _cosc_nu2*nu0 + _sinc_nu2*nu1
+    phi00 = _sinc_nu2
+    phi01 = _cosc_nu2
+    phi02 = -(_cosc2_nu2*nu1) + _sinc2_nu2*nu0
+    phi10 = -_cosc_nu2
+    phi11 = _sinc_nu2
+    phi12 = _cosc2_nu2*nu0 + _sinc2_nu2*nu1
+    mu00 = _t16*c_theta_p - _t17*s_theta_p + x_p
+    mu01 = _t16*s_theta_p + _t17*c_theta_p + y_p
+    mu02 = _cos_nu2*c_theta_p - _sin_nu2*s_theta_p
+    mu03 = _cos_nu2*s_theta_p + _sin_nu2*c_theta_p
+    mu04 = nu3 + v
+    mu05 = nu4 + omega
+    beta = alpha*(2.0 - alpha)
+    kb00 = beta*k00
+    kb01 = beta*k01
+    kb10 = beta*k10
+    kb11 = beta*k11
+    kb20 = beta*k20
+    kb21 = beta*k21
+    kb30 = beta*k30
+    kb31 = beta*k31
+    kb40 = beta*k40
+    kb41 = beta*k41
+    pj00 = -(hp00*kb00) - hp10*kb01 + pp00
+    pj01 = -(hp01*kb00) - hp11*kb01 + pp01
+    pj02 = -(hp02*kb00) - hp12*kb01 + pp02
+    pj03 = -(hp03*kb00) - hp13*kb01 + pp03
+    pj04 = -(hp04*kb00) - hp14*kb01 + pp04
+    pj11 = -(hp01*kb10) - hp11*kb11 + pp11
+    pj12 = -(hp02*kb10) - hp12*kb11 + pp12
+    pj13 = -(hp03*kb10) - hp13*kb11 + pp13
+    pj14 = -(hp04*kb10) - hp14*kb11 + pp14
+    pj22 = -(hp02*kb20) - hp12*kb21 + pp22
+    pj23 = -(hp03*kb20) - hp13*kb21 + pp23
+    pj24 = -(hp04*kb20) - hp14*kb21 + pp24
+    pj33 = -(hp03*kb30) - hp13*kb31 + pp33
+    pj34 = -(hp04*kb30) - hp14*kb31 + pp34
+    pj44 = -(hp04*kb40) - hp14*kb41 + pp44
+    cp00 = phi00*pj00 + phi01*pj01 + phi02*pj02
+    cp01 = phi00*pj01 + phi01*pj11 + phi02*pj12
+    cp02 = phi00*pj02 + phi01*pj12 + phi02*pj22
+    cp03 = phi00*pj03 + phi01*pj13 + phi02*pj23
+    cp04 = phi00*pj04 + phi01*pj14 + phi02*pj24
+    cp10 = phi10*pj00 + phi11*pj01 + phi12*pj02
+    cp11 = phi10*pj01 + phi11*pj11 + phi12*pj12
+    cp12 = phi10*pj02 + phi11*pj12 + phi12*pj22
+    cp13 = phi10*pj03 + phi11*pj13 + phi12*pj23
+    cp14 = phi10*pj04 + phi11*pj14 + phi12*pj24
+    W[3008 + j] = x_p
+    W[3072 + j] = y_p
+    W[3136 + j] = c_theta_p
+    W[3200 + j] = s_theta_p
+    W[3264 + j] = v
+    W[3328 + j] = omega
+    W[3392 + j] = pp00
+    W[3456 + j] = pp01
+    W[3520 + j] = pp02
+    W[3584 + j] = pp03
+    W[3648 + j] = pp04
+    W[3712 + j] = pp11
+    W[3776 + j] = pp12
+    W[3840 + j] = pp13
+    W[3904 + j] = pp14
+    W[3968 + j] = pp22
+    W[4032 + j] = pp23
+    W[4096 + j] = pp24
+    W[4160 + j] = pp33
+    W[4224 + j] = pp34
+    W[4288 + j] = pp44
+    W[1728 + j] = cp00*phi00 + cp01*phi01 + cp02*phi02
+    W[1792 + j] = cp00*phi10 + cp01*phi11 + cp02*phi12
+    W[1856 + j] = cp02
+    W[1920 + j] = cp03
+    W[1984 + j] = cp04
+    W[2048 + j] = cp10*phi10 + cp11*phi11 + cp12*phi12
+    W[2112 + j] = cp12
+    W[2176 + j] = cp13
+    W[2240 + j] = cp14
+    W[2304 + j] = pj22
+    W[2368 + j] = pj23
+    W[2432 + j] = pj24
+    W[2496 + j] = pj33
+    W[2560 + j] = pj34
+    W[2624 + j] = pj44
+    W[1344 + j] = mu00
+    W[1408 + j] = mu01
+    W[1472 + j] = mu02
+    W[1536 + j] = mu03
+    W[1600 + j] = mu04
+    W[1664 + j] = mu05
+    W[4352 + j] = rdet
+    return nis
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_store_soa_position(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
+    """run_batch_store_position with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
+    with the states stored in blocks: Qb, Fb (nblk, K, 21, 64), nblk = ⌈B / 64⌉, get the predicted /
+    posterior internal state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]
+    (lanes past B: zeros). As run_batch_soa_position (prange over blocks, lane_store_position vectorised over the lanes,
+    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_position)."""
+    B = z.shape[0]
+    K = z.shape[1]
+    nblk = (B + 64 - 1) // 64
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(69 * 64)
+        s = np.empty(6)
+        p = np.empty(15)
+        for j in range(L):
+            s0 = state_from_physical(x0[lo + j])
+            for i in range(6):
+                W[(0 + i) * 64 + j] = s0[i]
+            for i in range(15):
+                W[(6 + i) * 64 + j] = p0[lo + j, i]
+        for k in range(K):
+            for j in range(L):
+                W[42 * 64 + j] = dts[lo + j, k]
+                W[45 * 64 + j] = z[lo + j, k, 0]
+                W[46 * 64 + j] = z[lo + j, k, 1]
+            for j in range(L):
+                W[43 * 64 + j] = lane_store_position(W, j, q[0], q[1], r[0])
+                good = covariance_is_pd_lane(W, j) & (W[43 * 64 + j] == W[43 * 64 + j])
+                W[44 * 64 + j] = 1.0 if good else 0.0
+            for j in range(L):
+                b = lo + j
+                if W[44 * 64 + j] == 0.0:
+                    for i in range(6):
+                        s[i] = W[(0 + i) * 64 + j]
+                    for i in range(15):
+                        p[i] = W[(6 + i) * 64 + j]
+                    predict(s, p, dts[b, k], q[0], q[1])
+                    for i in range(6):
+                        W[(47 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(53 + i) * 64 + j] = p[i]
+                    if np.isnan(z[b, k, 0]) or np.isnan(z[b, k, 1]):
+                        W[43 * 64 + j] = np.nan
+                        out_logdet[b, k] = np.nan
+                    else:
+                        out_logdet[b, k] = innovation_logdet_position(s, p, r[0])
+                        W[43 * 64 + j] = update_position(s, p, z[b, k, 0], z[b, k, 1], r[0])
+                    for i in range(6):
+                        W[(21 + i) * 64 + j] = s[i]
+                    for i in range(15):
+                        W[(27 + i) * 64 + j] = p[i]
+                else:
+                    out_logdet[b, k] = -math.log(W[68 * 64 + j])
+            for j in range(L):
+                out_nis[lo + j, k] = W[43 * 64 + j]
+                physical_lane(W, j, out_x, lo + j, k)
+            for i in range(6 + 15):
+                for j in range(64):
+                    Qb[blk, k, i, j] = W[(47 + i) * 64 + j]
+                    Fb[blk, k, i, j] = W[(21 + i) * 64 + j]
+            for i in range(6 + 15):
+                for j in range(L):
+                    W[(0 + i) * 64 + j] = W[(21 + i) * 64 + j]
+
+
 @nb.njit(cache=True)
 def run_one_store_position(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, out_nis, out_logdet, out_x):
     """Filter one trajectory like run_one_position and keep every step's predicted internal state and packed
     covariance (s_pred (K, 6), p_pred (K, 15), before the update) and posterior ones (s_filt, p_filt),
     the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
-    the posterior physical states out_x (K, 5)."""
+    the posterior physical states out_x (K, 5). A step with a measurement is the fused step_store_position (the
+    filter's step_try_position writing its prediction; derive/codegen/smooth_step.py), with the same Joseph-form
+    fallback as run_one_position."""
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     for k in range(K):
-        predict(s, p, dts[k], q[0], q[1])
-        for i in range(6):
-            s_pred[k, i] = s[i]
-        for i in range(15):
-            p_pred[k, i] = p[i]
         if np.isnan(z[k, 0]) or np.isnan(z[k, 1]):
+            predict(s, p, dts[k], q[0], q[1])
+            for i in range(6):
+                s_pred[k, i] = s[i]
+            for i in range(15):
+                p_pred[k, i] = p[i]
             out_nis[k] = np.nan
             out_logdet[k] = np.nan
         else:
-            out_logdet[k] = innovation_logdet_position(s, p, r[0])
-            out_nis[k] = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            nis, out_logdet[k] = step_store_position(s, p, dts[k], q[0], q[1], z[k, 0], z[k, 1], r[0], s_pred[k], p_pred[k])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_position(s, p, z[k, 0], z[k, 1], r[0])
+            out_nis[k] = nis
         for i in range(6):
             s_filt[k, i] = s[i]
         for i in range(15):
@@ -2723,15 +3979,704 @@ def loglik_batch_position(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
         out_count[b] = cnt
 
 
-@nb.njit(cache=True)
-def unpack_into(p, A):
-    """The packed covariance p (15) into the full symmetric A (5, 5)."""
-    k = 0
-    for i in range(5):
-        for j in range(i, 5):
-            A[i, j] = p[k]
-            A[j, i] = p[k]
-            k += 1
+@nb.njit(cache=True, fastmath=FASTMATH)
+def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
+    """One Rauch–Tung–Striebel backward step on the group (lgekf.estimators.smoother), straight-line:
+    from the posterior (sf, pf) at k, the prediction (sq, pq) at k+1 and the smoothed (ss, ps) at k+1, with
+    F = transition(μ_k, dt): d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), G = P_k Fᵀ P_{k+1|k}⁻¹ (LDLᵀ), δ = G d,
+    P̃ = P_k + G (Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ − P_{k+1|k}) Gᵀ; writes μˢ_k = μ_k·exp(δ) into so and
+    Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ (packed) into po (derive/codegen/smooth_step.py).
+    legend: cc = 𝒞, ff = F, cf = P_k Fᵀ, dd = d, ji = Φ(d)⁻¹, jp = Φ(d)⁻¹Pˢ, dm = P̄ − P_{k+1|k},
+    ld/ll/lr = LDLᵀ pivots, factor and reciprocal pivots, ly/gg = the solves for G, de = δ, gd = G·dm,
+    pt = P̃, ph = Φ(δ), tp = Φ(δ)P̃.
+    """
+    x = sf[0]
+    y = sf[1]
+    c_theta = sf[2]
+    s_theta = sf[3]
+    v = sf[4]
+    omega = sf[5]
+    pf00 = pf[0]
+    pf01 = pf[1]
+    pf02 = pf[2]
+    pf03 = pf[3]
+    pf04 = pf[4]
+    pf11 = pf[5]
+    pf12 = pf[6]
+    pf13 = pf[7]
+    pf14 = pf[8]
+    pf22 = pf[9]
+    pf23 = pf[10]
+    pf24 = pf[11]
+    pf33 = pf[12]
+    pf34 = pf[13]
+    pf44 = pf[14]
+    q_x = sq[0]
+    q_y = sq[1]
+    q_c_theta = sq[2]
+    q_s_theta = sq[3]
+    q_v = sq[4]
+    q_omega = sq[5]
+    pq00 = pq[0]
+    pq01 = pq[1]
+    pq02 = pq[2]
+    pq03 = pq[3]
+    pq04 = pq[4]
+    pq11 = pq[5]
+    pq12 = pq[6]
+    pq13 = pq[7]
+    pq14 = pq[8]
+    pq22 = pq[9]
+    pq23 = pq[10]
+    pq24 = pq[11]
+    pq33 = pq[12]
+    pq34 = pq[13]
+    pq44 = pq[14]
+    t_x = ss[0]
+    t_y = ss[1]
+    t_c_theta = ss[2]
+    t_s_theta = ss[3]
+    t_v = ss[4]
+    t_omega = ss[5]
+    ps00 = ps[0]
+    ps01 = ps[1]
+    ps02 = ps[2]
+    ps03 = ps[3]
+    ps04 = ps[4]
+    ps11 = ps[5]
+    ps12 = ps[6]
+    ps13 = ps[7]
+    ps14 = ps[8]
+    ps22 = ps[9]
+    ps23 = ps[10]
+    ps24 = ps[11]
+    ps33 = ps[12]
+    ps34 = ps[13]
+    ps44 = ps[14]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _a1 = math.atan2(q_c_theta*t_s_theta - q_s_theta*t_c_theta, q_c_theta*t_c_theta + q_s_theta*t_s_theta)
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = (dt*dt)*v
+    _t3 = -(q_c_theta*q_x) + q_c_theta*t_x - q_s_theta*q_y + q_s_theta*t_y
+    _t4 = -(q_c_theta*q_y) + q_c_theta*t_y + q_s_theta*q_x - q_s_theta*t_x
+    _t5 = _a1/2.0
+    ff0_0 = _cos__a0
+    ff0_1 = _sin__a0
+    ff0_2 = _t0*v
+    ff0_3 = _t1
+    ff0_4 = _sinc2__a0*_t2
+    ff1_0 = -_sin__a0
+    ff1_1 = _cos__a0
+    ff1_2 = _t1*v
+    ff1_3 = -_t0
+    ff1_4 = _cosc2__a0*_t2
+    cf0_2 = dt*pf04 + pf02
+    cf1_2 = dt*pf14 + pf12
+    cf2_2 = dt*pf24 + pf22
+    cf3_2 = dt*pf34 + pf23
+    cf4_2 = dt*pf44 + pf24
+    dd0_0 = _halfcot__a1*_t3 + _t4*_t5
+    dd0_1 = _halfcot__a1*_t4 - _t3*_t5
+    dd0_2 = _a1
+    dd0_3 = -q_v + t_v
+    dd0_4 = -q_omega + t_omega
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm2_4 = -pq24 + ps24
+    dm3_3 = -pq33 + ps33
+    dm3_4 = -pq34 + ps34
+    dm4_4 = -pq44 + ps44
+    lr0 = 1.0/max(1e-300, pq00)
+    _sin_dd0_2 = math.sin(dd0_2)
+    _cos_dd0_2 = math.cos(dd0_2)
+    _halfcot_dd0_2 = halfcot(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _halfcot1_dd0_2 = halfcot1(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _t6 = dd0_2/2.0
+    cf0_0 = ff0_0*pf00 + ff0_1*pf01 + ff0_2*pf02 + ff0_3*pf03 + ff0_4*pf04
+    cf0_1 = ff1_0*pf00 + ff1_1*pf01 + ff1_2*pf02 + ff1_3*pf03 + ff1_4*pf04
+    cf1_0 = ff0_0*pf01 + ff0_1*pf11 + ff0_2*pf12 + ff0_3*pf13 + ff0_4*pf14
+    cf1_1 = ff1_0*pf01 + ff1_1*pf11 + ff1_2*pf12 + ff1_3*pf13 + ff1_4*pf14
+    cf2_0 = ff0_0*pf02 + ff0_1*pf12 + ff0_2*pf22 + ff0_3*pf23 + ff0_4*pf24
+    cf2_1 = ff1_0*pf02 + ff1_1*pf12 + ff1_2*pf22 + ff1_3*pf23 + ff1_4*pf24
+    cf3_0 = ff0_0*pf03 + ff0_1*pf13 + ff0_2*pf23 + ff0_3*pf33 + ff0_4*pf34
+    cf3_1 = ff1_0*pf03 + ff1_1*pf13 + ff1_2*pf23 + ff1_3*pf33 + ff1_4*pf34
+    cf4_0 = ff0_0*pf04 + ff0_1*pf14 + ff0_2*pf24 + ff0_3*pf34 + ff0_4*pf44
+    cf4_1 = ff1_0*pf04 + ff1_1*pf14 + ff1_2*pf24 + ff1_3*pf34 + ff1_4*pf44
+    ji0_0 = _halfcot_dd0_2
+    ji0_1 = -_t6
+    ji0_2 = _halfcot1_dd0_2*dd0_0 + dd0_1/2.0
+    ji1_0 = _t6
+    ji1_1 = _halfcot_dd0_2
+    ji1_2 = _halfcot1_dd0_2*dd0_1 - dd0_0/2.0
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    ll4_0 = lr0*pq04
+    jp0_0 = ji0_0*ps00 + ji0_1*ps01 + ji0_2*ps02
+    jp0_1 = ji0_0*ps01 + ji0_1*ps11 + ji0_2*ps12
+    jp0_2 = ji0_0*ps02 + ji0_1*ps12 + ji0_2*ps22
+    jp0_3 = ji0_0*ps03 + ji0_1*ps13 + ji0_2*ps23
+    jp0_4 = ji0_0*ps04 + ji0_1*ps14 + ji0_2*ps24
+    jp1_0 = ji1_0*ps00 + ji1_1*ps01 + ji1_2*ps02
+    jp1_1 = ji1_0*ps01 + ji1_1*ps11 + ji1_2*ps12
+    jp1_2 = ji1_0*ps02 + ji1_1*ps12 + ji1_2*ps22
+    jp1_3 = ji1_0*ps03 + ji1_1*ps13 + ji1_2*ps23
+    jp1_4 = ji1_0*ps04 + ji1_1*ps14 + ji1_2*ps24
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    lw4_0 = ll4_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ly4_1 = -(cf4_0*ll1_0) + cf4_1
+    _t7 = -pq11
+    dm0_0 = ji0_0*jp0_0 + ji0_1*jp0_1 + ji0_2*jp0_2 - pq00
+    dm0_1 = ji1_0*jp0_0 + ji1_1*jp0_1 + ji1_2*jp0_2 - pq01
+    dm0_2 = jp0_2 - pq02
+    dm0_3 = jp0_3 - pq03
+    dm0_4 = jp0_4 - pq04
+    dm1_1 = _t7 + ji1_0*jp1_0 + ji1_1*jp1_1 + ji1_2*jp1_2
+    dm1_2 = jp1_2 - pq12
+    dm1_3 = jp1_3 - pq13
+    dm1_4 = jp1_4 - pq14
+    ld1 = -_t7 - ll1_0*lw1_0
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    lw4_1 = ld1*ll4_1
+    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
+    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
+    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
+    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
+    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
+    lw3_2 = ld2*ll3_2
+    lw4_2 = ld2*ll4_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
+    lw4_3 = ld3*ll4_3
+    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
+    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
+    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
+    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
+    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
+    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
+    lr4 = 1.0/max(1e-300, ld4)
+    gg0_4 = lr4*ly0_4
+    gg1_4 = lr4*ly1_4
+    gg2_4 = lr4*ly2_4
+    gg3_4 = lr4*ly3_4
+    gg4_4 = lr4*ly4_4
+    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
+    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
+    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
+    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
+    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
+    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
+    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
+    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
+    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
+    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
+    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
+    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
+    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
+    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
+    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
+    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
+    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
+    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
+    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
+    _sin_de2_0 = math.sin(de2_0)
+    _cos_de2_0 = math.cos(de2_0)
+    _sinc_de2_0, _cosc_de2_0, _sinc2_de2_0, _cosc2_de2_0 = sinc_family(de2_0, _sin_de2_0, _cos_de2_0)
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
+    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
+    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
+    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
+    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
+    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
+    ph0_0 = _sinc_de2_0
+    ph0_1 = _cosc_de2_0
+    ph0_2 = -(_cosc2_de2_0*de1_0) + _sinc2_de2_0*de0_0
+    ph1_0 = -_cosc_de2_0
+    ph1_1 = _sinc_de2_0
+    ph1_2 = _cosc2_de2_0*de0_0 + _sinc2_de2_0*de1_0
+    tp0_0 = ph0_0*pt0_0 + ph0_1*pt0_1 + ph0_2*pt0_2
+    tp0_1 = ph0_0*pt0_1 + ph0_1*pt1_1 + ph0_2*pt1_2
+    tp0_2 = ph0_0*pt0_2 + ph0_1*pt1_2 + ph0_2*pt2_2
+    tp0_3 = ph0_0*pt0_3 + ph0_1*pt1_3 + ph0_2*pt2_3
+    tp0_4 = ph0_0*pt0_4 + ph0_1*pt1_4 + ph0_2*pt2_4
+    tp1_0 = ph1_0*pt0_0 + ph1_1*pt0_1 + ph1_2*pt0_2
+    tp1_1 = ph1_0*pt0_1 + ph1_1*pt1_1 + ph1_2*pt1_2
+    tp1_2 = ph1_0*pt0_2 + ph1_1*pt1_2 + ph1_2*pt2_2
+    tp1_3 = ph1_0*pt0_3 + ph1_1*pt1_3 + ph1_2*pt2_3
+    tp1_4 = ph1_0*pt0_4 + ph1_1*pt1_4 + ph1_2*pt2_4
+    _t8 = -(_cosc_de2_0*de1_0) + _sinc_de2_0*de0_0
+    _t9 = _cosc_de2_0*de0_0 + _sinc_de2_0*de1_0
+    po[0] = ph0_0*tp0_0 + ph0_1*tp0_1 + ph0_2*tp0_2
+    po[1] = ph1_0*tp0_0 + ph1_1*tp0_1 + ph1_2*tp0_2
+    po[2] = tp0_2
+    po[3] = tp0_3
+    po[4] = tp0_4
+    po[5] = ph1_0*tp1_0 + ph1_1*tp1_1 + ph1_2*tp1_2
+    po[6] = tp1_2
+    po[7] = tp1_3
+    po[8] = tp1_4
+    po[9] = pt2_2
+    po[10] = pt2_3
+    po[11] = pt2_4
+    po[12] = pt3_3
+    po[13] = pt3_4
+    po[14] = pt4_4
+    so[0] = _t8*c_theta - _t9*s_theta + x
+    so[1] = _t8*s_theta + _t9*c_theta + y
+    so[2] = _cos_de2_0*c_theta - _sin_de2_0*s_theta
+    so[3] = _cos_de2_0*s_theta + _sin_de2_0*c_theta
+    so[4] = de3_0 + v
+    so[5] = de4_0 + omega
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def lane_smooth(W, j):
+    """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
+    """
+    x = W[0 + j]
+    y = W[64 + j]
+    c_theta = W[128 + j]
+    s_theta = W[192 + j]
+    v = W[256 + j]
+    omega = W[320 + j]
+    pf00 = W[384 + j]
+    pf01 = W[448 + j]
+    pf02 = W[512 + j]
+    pf03 = W[576 + j]
+    pf04 = W[640 + j]
+    pf11 = W[704 + j]
+    pf12 = W[768 + j]
+    pf13 = W[832 + j]
+    pf14 = W[896 + j]
+    pf22 = W[960 + j]
+    pf23 = W[1024 + j]
+    pf24 = W[1088 + j]
+    pf33 = W[1152 + j]
+    pf34 = W[1216 + j]
+    pf44 = W[1280 + j]
+    q_x = W[1344 + j]
+    q_y = W[1408 + j]
+    q_c_theta = W[1472 + j]
+    q_s_theta = W[1536 + j]
+    q_v = W[1600 + j]
+    q_omega = W[1664 + j]
+    pq00 = W[1728 + j]
+    pq01 = W[1792 + j]
+    pq02 = W[1856 + j]
+    pq03 = W[1920 + j]
+    pq04 = W[1984 + j]
+    pq11 = W[2048 + j]
+    pq12 = W[2112 + j]
+    pq13 = W[2176 + j]
+    pq14 = W[2240 + j]
+    pq22 = W[2304 + j]
+    pq23 = W[2368 + j]
+    pq24 = W[2432 + j]
+    pq33 = W[2496 + j]
+    pq34 = W[2560 + j]
+    pq44 = W[2624 + j]
+    t_x = W[2688 + j]
+    t_y = W[2752 + j]
+    t_c_theta = W[2816 + j]
+    t_s_theta = W[2880 + j]
+    t_v = W[2944 + j]
+    t_omega = W[3008 + j]
+    ps00 = W[3072 + j]
+    ps01 = W[3136 + j]
+    ps02 = W[3200 + j]
+    ps03 = W[3264 + j]
+    ps04 = W[3328 + j]
+    ps11 = W[3392 + j]
+    ps12 = W[3456 + j]
+    ps13 = W[3520 + j]
+    ps14 = W[3584 + j]
+    ps22 = W[3648 + j]
+    ps23 = W[3712 + j]
+    ps24 = W[3776 + j]
+    ps33 = W[3840 + j]
+    ps34 = W[3904 + j]
+    ps44 = W[3968 + j]
+    dt = W[5376 + j]
+    _a0 = dt*omega
+    _sin__a0 = sin_v(_a0)
+    _cos__a0 = cos_v(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _a1 = atan2_v(q_c_theta*t_s_theta - q_s_theta*t_c_theta, q_c_theta*t_c_theta + q_s_theta*t_s_theta)
+    _sin__a1 = sin_v(_a1)
+    _cos__a1 = cos_v(_a1)
+    _halfcot__a1 = halfcot_v(_a1, _sin__a1, _cos__a1)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = (dt*dt)*v
+    _t3 = -(q_c_theta*q_x) + q_c_theta*t_x - q_s_theta*q_y + q_s_theta*t_y
+    _t4 = -(q_c_theta*q_y) + q_c_theta*t_y + q_s_theta*q_x - q_s_theta*t_x
+    _t5 = _a1/2.0
+    ff0_0 = _cos__a0
+    ff0_1 = _sin__a0
+    ff0_2 = _t0*v
+    ff0_3 = _t1
+    ff0_4 = _sinc2__a0*_t2
+    ff1_0 = -_sin__a0
+    ff1_1 = _cos__a0
+    ff1_2 = _t1*v
+    ff1_3 = -_t0
+    ff1_4 = _cosc2__a0*_t2
+    cf0_2 = dt*pf04 + pf02
+    cf1_2 = dt*pf14 + pf12
+    cf2_2 = dt*pf24 + pf22
+    cf3_2 = dt*pf34 + pf23
+    cf4_2 = dt*pf44 + pf24
+    dd0_0 = _halfcot__a1*_t3 + _t4*_t5
+    dd0_1 = _halfcot__a1*_t4 - _t3*_t5
+    dd0_2 = _a1
+    dd0_3 = -q_v + t_v
+    dd0_4 = -q_omega + t_omega
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm2_4 = -pq24 + ps24
+    dm3_3 = -pq33 + ps33
+    dm3_4 = -pq34 + ps34
+    dm4_4 = -pq44 + ps44
+    lr0 = 1.0/max(1e-300, pq00)
+    _sin_dd0_2 = sin_v(dd0_2)
+    _cos_dd0_2 = cos_v(dd0_2)
+    _halfcot_dd0_2 = halfcot_v(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _halfcot1_dd0_2 = halfcot1_v(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _t6 = dd0_2/2.0
+    cf0_0 = ff0_0*pf00 + ff0_1*pf01 + ff0_2*pf02 + ff0_3*pf03 + ff0_4*pf04
+    cf0_1 = ff1_0*pf00 + ff1_1*pf01 + ff1_2*pf02 + ff1_3*pf03 + ff1_4*pf04
+    cf1_0 = ff0_0*pf01 + ff0_1*pf11 + ff0_2*pf12 + ff0_3*pf13 + ff0_4*pf14
+    cf1_1 = ff1_0*pf01 + ff1_1*pf11 + ff1_2*pf12 + ff1_3*pf13 + ff1_4*pf14
+    cf2_0 = ff0_0*pf02 + ff0_1*pf12 + ff0_2*pf22 + ff0_3*pf23 + ff0_4*pf24
+    cf2_1 = ff1_0*pf02 + ff1_1*pf12 + ff1_2*pf22 + ff1_3*pf23 + ff1_4*pf24
+    cf3_0 = ff0_0*pf03 + ff0_1*pf13 + ff0_2*pf23 + ff0_3*pf33 + ff0_4*pf34
+    cf3_1 = ff1_0*pf03 + ff1_1*pf13 + ff1_2*pf23 + ff1_3*pf33 + ff1_4*pf34
+    cf4_0 = ff0_0*pf04 + ff0_1*pf14 + ff0_2*pf24 + ff0_3*pf34 + ff0_4*pf44
+    cf4_1 = ff1_0*pf04 + ff1_1*pf14 + ff1_2*pf24 + ff1_3*pf34 + ff1_4*pf44
+    ji0_0 = _halfcot_dd0_2
+    ji0_1 = -_t6
+    ji0_2 = _halfcot1_dd0_2*dd0_0 + dd0_1/2.0
+    ji1_0 = _t6
+    ji1_1 = _halfcot_dd0_2
+    ji1_2 = _halfcot1_dd0_2*dd0_1 - dd0_0/2.0
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    ll4_0 = lr0*pq04
+    jp0_0 = ji0_0*ps00 + ji0_1*ps01 + ji0_2*ps02
+    jp0_1 = ji0_0*ps01 + ji0_1*ps11 + ji0_2*ps12
+    jp0_2 = ji0_0*ps02 + ji0_1*ps12 + ji0_2*ps22
+    jp0_3 = ji0_0*ps03 + ji0_1*ps13 + ji0_2*ps23
+    jp0_4 = ji0_0*ps04 + ji0_1*ps14 + ji0_2*ps24
+    jp1_0 = ji1_0*ps00 + ji1_1*ps01 + ji1_2*ps02
+    jp1_1 = ji1_0*ps01 + ji1_1*ps11 + ji1_2*ps12
+    jp1_2 = ji1_0*ps02 + ji1_1*ps12 + ji1_2*ps22
+    jp1_3 = ji1_0*ps03 + ji1_1*ps13 + ji1_2*ps23
+    jp1_4 = ji1_0*ps04 + ji1_1*ps14 + ji1_2*ps24
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    lw4_0 = ll4_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ly4_1 = -(cf4_0*ll1_0) + cf4_1
+    _t7 = -pq11
+    dm0_0 = ji0_0*jp0_0 + ji0_1*jp0_1 + ji0_2*jp0_2 - pq00
+    dm0_1 = ji1_0*jp0_0 + ji1_1*jp0_1 + ji1_2*jp0_2 - pq01
+    dm0_2 = jp0_2 - pq02
+    dm0_3 = jp0_3 - pq03
+    dm0_4 = jp0_4 - pq04
+    dm1_1 = _t7 + ji1_0*jp1_0 + ji1_1*jp1_1 + ji1_2*jp1_2
+    dm1_2 = jp1_2 - pq12
+    dm1_3 = jp1_3 - pq13
+    dm1_4 = jp1_4 - pq14
+    ld1 = -_t7 - ll1_0*lw1_0
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    lw4_1 = ld1*ll4_1
+    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
+    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
+    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
+    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
+    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
+    lw3_2 = ld2*ll3_2
+    lw4_2 = ld2*ll4_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
+    lw4_3 = ld3*ll4_3
+    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
+    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
+    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
+    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
+    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
+    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
+    lr4 = 1.0/max(1e-300, ld4)
+    gg0_4 = lr4*ly0_4
+    gg1_4 = lr4*ly1_4
+    gg2_4 = lr4*ly2_4
+    gg3_4 = lr4*ly3_4
+    gg4_4 = lr4*ly4_4
+    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
+    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
+    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
+    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
+    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
+    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
+    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
+    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
+    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
+    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
+    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
+    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
+    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
+    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
+    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
+    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
+    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
+    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
+    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
+    _sin_de2_0 = sin_v(de2_0)
+    _cos_de2_0 = cos_v(de2_0)
+    _sinc_de2_0, _cosc_de2_0, _sinc2_de2_0, _cosc2_de2_0 = sinc_family(de2_0, _sin_de2_0, _cos_de2_0)
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
+    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
+    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
+    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
+    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
+    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
+    ph0_0 = _sinc_de2_0
+    ph0_1 = _cosc_de2_0
+    ph0_2 = -(_cosc2_de2_0*de1_0) + _sinc2_de2_0*de0_0
+    ph1_0 = -_cosc_de2_0
+    ph1_1 = _sinc_de2_0
+    ph1_2 = _cosc2_de2_0*de0_0 + _sinc2_de2_0*de1_0
+    tp0_0 = ph0_0*pt0_0 + ph0_1*pt0_1 + ph0_2*pt0_2
+    tp0_1 = ph0_0*pt0_1 + ph0_1*pt1_1 + ph0_2*pt1_2
+    tp0_2 = ph0_0*pt0_2 + ph0_1*pt1_2 + ph0_2*pt2_2
+    tp0_3 = ph0_0*pt0_3 + ph0_1*pt1_3 + ph0_2*pt2_3
+    tp0_4 = ph0_0*pt0_4 + ph0_1*pt1_4 + ph0_2*pt2_4
+    tp1_0 = ph1_0*pt0_0 + ph1_1*pt0_1 + ph1_2*pt0_2
+    tp1_1 = ph1_0*pt0_1 + ph1_1*pt1_1 + ph1_2*pt1_2
+    tp1_2 = ph1_0*pt0_2 + ph1_1*pt1_2 + ph1_2*pt2_2
+    tp1_3 = ph1_0*pt0_3 + ph1_1*pt1_3 + ph1_2*pt2_3
+    tp1_4 = ph1_0*pt0_4 + ph1_1*pt1_4 + ph1_2*pt2_4
+    _t8 = -(_cosc_de2_0*de1_0) + _sinc_de2_0*de0_0
+    _t9 = _cosc_de2_0*de0_0 + _sinc_de2_0*de1_0
+    W[4416 + j] = ph0_0*tp0_0 + ph0_1*tp0_1 + ph0_2*tp0_2
+    W[4480 + j] = ph1_0*tp0_0 + ph1_1*tp0_1 + ph1_2*tp0_2
+    W[4544 + j] = tp0_2
+    W[4608 + j] = tp0_3
+    W[4672 + j] = tp0_4
+    W[4736 + j] = ph1_0*tp1_0 + ph1_1*tp1_1 + ph1_2*tp1_2
+    W[4800 + j] = tp1_2
+    W[4864 + j] = tp1_3
+    W[4928 + j] = tp1_4
+    W[4992 + j] = pt2_2
+    W[5056 + j] = pt2_3
+    W[5120 + j] = pt2_4
+    W[5184 + j] = pt3_3
+    W[5248 + j] = pt3_4
+    W[5312 + j] = pt4_4
+    W[4032 + j] = _t8*c_theta - _t9*s_theta + x
+    W[4096 + j] = _t8*s_theta + _t9*c_theta + y
+    W[4160 + j] = _cos_de2_0*c_theta - _sin_de2_0*s_theta
+    W[4224 + j] = _cos_de2_0*s_theta + _sin_de2_0*c_theta
+    W[4288 + j] = de3_0 + v
+    W[4352 + j] = de4_0 + omega
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def physical_smooth_lane(W, j, out, b, k):
+    """The physical state of lane j of the smoothed rows of the work array W into out[b, k] (SIMD).
+    """
+    x = W[2688 + j]
+    y = W[2752 + j]
+    c_theta = W[2816 + j]
+    s_theta = W[2880 + j]
+    v = W[2944 + j]
+    omega = W[3008 + j]
+    out[b, k, 0] = x
+    out[b, k, 1] = y
+    out[b, k, 2] = wrap_v(atan2_v(s_theta, c_theta))
+    out[b, k, 3] = v
+    out[b, k, 4] = omega
+
+
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
+    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
+    in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, 21, 64) hold the predicted / posterior internal
+    state and packed covariance of step k of trajectory blk·64 + j in Qb[blk, k, :, j]; writes the smoothed ones
+    into Sb (same layout; pass Sb with no steps, (nblk, 0, 21, 64), to skip them) and the smoothed physical
+    states into out_x (B, K, 5). Trajectory b starts at its last
+    step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
+    step, the rows are copied into one work array (rows × 64) and lane_smooth runs vectorised over the lanes.
+    """
+    B = dts.shape[0]
+    nblk = Qb.shape[0]
+    keep = Sb.shape[1] > 0
+    for blk in nb.prange(nblk):
+        lo = blk * 64
+        L = min(64, B - lo)
+        W = np.zeros(87 * 64)
+        Kmax = 0
+        for j in range(L):
+            Kmax = max(Kmax, lengths[lo + j])
+        for k in range(Kmax - 1, -1, -1):
+            for i in range(21):
+                for j in range(64):
+                    W[(0 + i) * 64 + j] = Fb[blk, k, i, j]
+            for j in range(L):
+                Kb = lengths[lo + j]
+                W[85 * 64 + j] = 1.0 if k < Kb - 1 else 0.0
+                W[86 * 64 + j] = 1.0 if k == Kb - 1 else 0.0
+            if k < Kmax - 1:
+                for i in range(21):
+                    for j in range(64):
+                        W[(21 + i) * 64 + j] = Qb[blk, k + 1, i, j]
+                for j in range(L):
+                    W[84 * 64 + j] = dts[lo + j, k + 1]
+                for j in range(L):
+                    lane_smooth(W, j)
+                for i in range(21):
+                    for j in range(64):
+                        act = W[85 * 64 + j] > 0.5
+                        W[(42 + i) * 64 + j] = W[(63 + i) * 64 + j] if act else W[(42 + i) * 64 + j]
+            for i in range(21):
+                for j in range(64):
+                    start = W[86 * 64 + j] > 0.5
+                    W[(42 + i) * 64 + j] = W[(0 + i) * 64 + j] if start else W[(42 + i) * 64 + j]
+            if keep:
+                for i in range(21):
+                    for j in range(64):
+                        Sb[blk, k, i, j] = W[(42 + i) * 64 + j]
+            for j in range(L):
+                if k < lengths[lo + j]:
+                    physical_smooth_lane(W, j, out_x, lo + j, k)
 
 
 @nb.njit(cache=True)
@@ -2742,114 +4687,13 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     into s_sm (K, 6), p_sm (K, 15). For k = K-2 ... 0, with F = transition(μ_k, dts[k+1]):
     d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), P̄ = Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ, G = P_k Fᵀ P_{k+1|k}⁻¹, δ = G d,
     μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) [P_k + G (P̄ − P_{k+1|k}) Gᵀ] Φ(δ)ᵀ."""
-    n = 5
-    Pf = np.empty((n, n))
-    Pp = np.empty((n, n))
-    Ps = np.empty((n, n))
-    L = np.empty((n, n))
-    C = np.empty((n, n))
-    G = np.empty((n, n))
-    T = np.empty((n, n))
-    D = np.empty((n, n))
-    F = np.empty((n, n))
-    Ji = np.empty((n, n))
-    Phi = np.empty((n, n))
-    d = np.empty(n)
-    dl = np.empty(n)
     for i in range(6):
         s_sm[K - 1, i] = s_filt[K - 1, i]
     for i in range(15):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        transition_into(s_filt[k], dts[k + 1], F)
-        unpack_into(p_filt[k], Pf)
-        unpack_into(p_pred[k + 1], Pp)
-        unpack_into(p_sm[k + 1], Ps)
-        between_into(s_pred[k + 1], s_sm[k + 1], d)
-        right_jacobian_inv_into(d, Ji)
-        # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Ji[i, a] * Ps[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Ji[j, a]
-                D[i, j] = acc - Pp[i, j]
-                D[j, i] = D[i, j]
-        # C = P_k Fᵀ
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Pf[i, a] * F[j, a]
-                C[i, j] = acc
-        # Cholesky P_{k+1|k} = L Lᵀ, then G = C P_{k+1|k}⁻¹ row by row (two triangular solves)
-        for j in range(n):
-            acc = Pp[j, j]
-            for a in range(j):
-                acc -= L[j, a] * L[j, a]
-            dj = math.sqrt(acc) if acc > 0.0 else 1e-300
-            L[j, j] = dj
-            for i in range(j + 1, n):
-                acc = Pp[i, j]
-                for a in range(j):
-                    acc -= L[i, a] * L[j, a]
-                L[i, j] = acc / dj
-        for r in range(n):
-            for i in range(n):
-                acc = C[r, i]
-                for a in range(i):
-                    acc -= L[i, a] * G[r, a]
-                G[r, i] = acc / L[i, i]
-            for i in range(n - 1, -1, -1):
-                acc = G[r, i]
-                for a in range(i + 1, n):
-                    acc -= L[a, i] * G[r, a]
-                G[r, i] = acc / L[i, i]
-        # δ = G d
-        for i in range(n):
-            acc = 0.0
-            for a in range(n):
-                acc += G[i, a] * d[a]
-            dl[i] = acc
-        # P̃ = P_k + G D Gᵀ  (T = G D)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += G[i, a] * D[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = Pf[i, j]
-                for a in range(n):
-                    acc += T[i, a] * G[j, a]
-                Ps[i, j] = acc
-                Ps[j, i] = acc
-        # μˢ_k = μ_k·exp(δ); Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ
-        for i in range(6):
-            s_sm[k, i] = s_filt[k, i]
-        retract(s_sm[k], dl)
-        right_jacobian_into(dl, Phi)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Phi[i, a] * Ps[a, j]
-                T[i, j] = acc
-        m = 0
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Phi[j, a]
-                p_sm[k, m] = acc
-                m += 1
+        smooth_step(s_filt[k], p_filt[k], s_pred[k + 1], p_pred[k + 1], s_sm[k + 1], p_sm[k + 1], dts[k + 1], s_sm[k],
+                    p_sm[k])
 
 
 @nb.njit(cache=True, parallel=True)

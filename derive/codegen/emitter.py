@@ -427,7 +427,7 @@ def model_kernels(model, measurements: dict) -> list:
     ))
     ks.extend(group_operation_kernels(model))
     ks.extend(bank_model_kernels(model))
-    ks.extend(estimator_kernels(model, measurements, P, pin, sin_))  # likelihood, store loops, RTS smoother
+    ks.extend(estimator_kernels(model, measurements, P, pin, sin_, ks))  # likelihood, store loops, RTS smoother
     from .dispatch import common_readout_kernels
 
     ks.extend(common_readout_kernels(model, ks))

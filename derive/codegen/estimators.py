@@ -7,12 +7,15 @@ like the rest of the emitter:
   term of the Gaussian innovation log-likelihood that the fused update's NIS does not give;
 * ``run_one_store_<meas>`` / ``run_batch_store_<meas>``: the filter loop of ``run_one_<meas>``, keeping the
   predicted and the posterior internal states and packed covariances of every step, the NIS and log det S
-  (what the backward pass and the likelihood need);
+  (what the backward pass and the likelihood need), through ``step_store_<meas>`` (the fused filter step
+  writing its prediction, ``derive/codegen/smooth_step.py``);
 * ``loglik_batch_<meas>``: Σ_k −½(log det S_k + e_kᵀ S_k⁻¹ e_k + m log 2π) per trajectory (prange), for
   maximum-likelihood noise learning (``lgekf.estimators.tuning``);
 * ``smooth_one`` / ``smooth_batch``: the Rauch–Tung–Striebel backward pass on the group (derivation in
-  ``lgekf.estimators.smoother``), using the generated ``transition`` (F), ``between`` (log(μ_a⁻¹μ_b)),
-  ``retract`` (μ·exp ε) and ``right_jacobian``/``right_jacobian_inv`` (Φ) of the model.
+  ``lgekf.estimators.smoother``), one call of the straight-line ``smooth_step`` per step (F, Φ(d)⁻¹, Φ(δ)
+  symbolic, unrolled LDLᵀ; ``derive/codegen/smooth_step.py``);
+* the SIMD versions (trajectories in the vector lanes, as ``derive/codegen/soa.py`` for the filter):
+  ``lane_store_<meas>`` / ``run_batch_store_soa_<meas>`` and ``lane_smooth`` / ``smooth_batch_soa``.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ import sympy as sp
 
 from ..algebra import symbolize
 from .printer import Kernel
+from .smooth_step import smooth_soa_kernels, smooth_step_kernel, store_soa_kernels, store_step_kernel
 
 __all__ = ["estimator_kernels"]
 
@@ -30,22 +34,26 @@ def run_one_store_{meas}(z, dts, x0, p0, q, r, s_pred, p_pred, s_filt, p_filt, o
     """Filter one trajectory like run_one_{meas} and keep every step's predicted internal state and packed
     covariance (s_pred (K, {ni}), p_pred (K, {npk}), before the update) and posterior ones (s_filt, p_filt),
     the NIS and log det S of each update (both NaN for a missed detection: a NaN row of z predicts only) and
-    the posterior physical states out_x (K, {n})."""
+    the posterior physical states out_x (K, {n}). A step with a measurement is the fused step_store_{meas} (the
+    filter's step_try_{meas} writing its prediction; derive/codegen/smooth_step.py), with the same Joseph-form
+    fallback as run_one_{meas}."""
     s = state_from_physical(x0)
     p = p0.copy()
     K = z.shape[0]
     for k in range(K):
-        predict(s, p, dts[k], {qargs})
-        for i in range({ni}):
-            s_pred[k, i] = s[i]
-        for i in range({npk}):
-            p_pred[k, i] = p[i]
         if {nan_test}:
+            predict(s, p, dts[k], {qargs})
+            for i in range({ni}):
+                s_pred[k, i] = s[i]
+            for i in range({npk}):
+                p_pred[k, i] = p[i]
             out_nis[k] = np.nan
             out_logdet[k] = np.nan
         else:
-            out_logdet[k] = innovation_logdet_{meas}(s, p, {rargs})
-            out_nis[k] = update_{meas}(s, p, {zargs}, {rargs})
+            nis, out_logdet[k] = step_store_{meas}(s, p, dts[k], {qargs}, {zargs}, {rargs}, s_pred[k], p_pred[k])
+            if nis < 0.0:  # rare: the cheap covariance failed the LDLᵀ test; Joseph form from the prediction
+                nis = update_{meas}(s, p, {zargs}, {rargs})
+            out_nis[k] = nis
         for i in range({ni}):
             s_filt[k, i] = s[i]
         for i in range({npk}):
@@ -86,17 +94,6 @@ def loglik_batch_{meas}(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
 
 SMOOTH_TEMPLATE = '''
 @nb.njit(cache=True)
-def unpack_into(p, A):
-    """The packed covariance p ({npk}) into the full symmetric A ({n}, {n})."""
-    k = 0
-    for i in range({n}):
-        for j in range(i, {n}):
-            A[i, j] = p[k]
-            A[j, i] = p[k]
-            k += 1
-
-
-@nb.njit(cache=True)
 def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     """Rauch–Tung–Striebel backward pass on the group over the first K steps (derivation:
     lgekf.estimators.smoother). dts (K,) step lengths (dts[k] led to step k); s_pred, p_pred / s_filt, p_filt:
@@ -104,114 +101,13 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     into s_sm (K, {ni}), p_sm (K, {npk}). For k = K-2 ... 0, with F = transition(μ_k, dts[k+1]):
     d = log(μ_{{k+1|k}}⁻¹ μˢ_{{k+1}}), P̄ = Φ(d)⁻¹ Pˢ_{{k+1}} Φ(d)⁻ᵀ, G = P_k Fᵀ P_{{k+1|k}}⁻¹, δ = G d,
     μˢ_k = μ_k·exp(δ), Pˢ_k = Φ(δ) [P_k + G (P̄ − P_{{k+1|k}}) Gᵀ] Φ(δ)ᵀ."""
-    n = {n}
-    Pf = np.empty((n, n))
-    Pp = np.empty((n, n))
-    Ps = np.empty((n, n))
-    L = np.empty((n, n))
-    C = np.empty((n, n))
-    G = np.empty((n, n))
-    T = np.empty((n, n))
-    D = np.empty((n, n))
-    F = np.empty((n, n))
-    Ji = np.empty((n, n))
-    Phi = np.empty((n, n))
-    d = np.empty(n)
-    dl = np.empty(n)
     for i in range({ni}):
         s_sm[K - 1, i] = s_filt[K - 1, i]
     for i in range({npk}):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        transition_into(s_filt[k], dts[k + 1], F)
-        unpack_into(p_filt[k], Pf)
-        unpack_into(p_pred[k + 1], Pp)
-        unpack_into(p_sm[k + 1], Ps)
-        between_into(s_pred[k + 1], s_sm[k + 1], d)
-        right_jacobian_inv_into(d, Ji)
-        # P̄ = Φ(d)⁻¹ Pˢ Φ(d)⁻ᵀ (the smoothed covariance in the tangent at the predicted mean); T = Ji Ps
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Ji[i, a] * Ps[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Ji[j, a]
-                D[i, j] = acc - Pp[i, j]
-                D[j, i] = D[i, j]
-        # C = P_k Fᵀ
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Pf[i, a] * F[j, a]
-                C[i, j] = acc
-        # Cholesky P_{{k+1|k}} = L Lᵀ, then G = C P_{{k+1|k}}⁻¹ row by row (two triangular solves)
-        for j in range(n):
-            acc = Pp[j, j]
-            for a in range(j):
-                acc -= L[j, a] * L[j, a]
-            dj = math.sqrt(acc) if acc > 0.0 else 1e-300
-            L[j, j] = dj
-            for i in range(j + 1, n):
-                acc = Pp[i, j]
-                for a in range(j):
-                    acc -= L[i, a] * L[j, a]
-                L[i, j] = acc / dj
-        for r in range(n):
-            for i in range(n):
-                acc = C[r, i]
-                for a in range(i):
-                    acc -= L[i, a] * G[r, a]
-                G[r, i] = acc / L[i, i]
-            for i in range(n - 1, -1, -1):
-                acc = G[r, i]
-                for a in range(i + 1, n):
-                    acc -= L[a, i] * G[r, a]
-                G[r, i] = acc / L[i, i]
-        # δ = G d
-        for i in range(n):
-            acc = 0.0
-            for a in range(n):
-                acc += G[i, a] * d[a]
-            dl[i] = acc
-        # P̃ = P_k + G D Gᵀ  (T = G D)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += G[i, a] * D[a, j]
-                T[i, j] = acc
-        for i in range(n):
-            for j in range(i, n):
-                acc = Pf[i, j]
-                for a in range(n):
-                    acc += T[i, a] * G[j, a]
-                Ps[i, j] = acc
-                Ps[j, i] = acc
-        # μˢ_k = μ_k·exp(δ); Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ
-        for i in range({ni}):
-            s_sm[k, i] = s_filt[k, i]
-        retract(s_sm[k], dl)
-        right_jacobian_into(dl, Phi)
-        for i in range(n):
-            for j in range(n):
-                acc = 0.0
-                for a in range(n):
-                    acc += Phi[i, a] * Ps[a, j]
-                T[i, j] = acc
-        m = 0
-        for i in range(n):
-            for j in range(i, n):
-                acc = 0.0
-                for a in range(n):
-                    acc += T[i, a] * Phi[j, a]
-                p_sm[k, m] = acc
-                m += 1
+        smooth_step(s_filt[k], p_filt[k], s_pred[k + 1], p_pred[k + 1], s_sm[k + 1], p_sm[k + 1], dts[k + 1], s_sm[k],
+                    p_sm[k])
 
 
 @nb.njit(cache=True, parallel=True)
@@ -249,8 +145,9 @@ def _args(prefix, k):
     return ", ".join(f"{prefix}[{i}]" for i in range(k))
 
 
-def estimator_kernels(model, measurements: dict, P, pin, sin_) -> list:
-    """The estimator kernels of one model (module docstring), for the measurements that fit it."""
+def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> list:
+    """The estimator kernels of one model (module docstring), for the measurements that fit it; ``kernels``: the
+    model's kernels so far (the fused ``step_<meas>`` of each measurement, which the storing loop extends)."""
     n = model.n
     ni = len(model.internal)
     npk = n * (n + 1) // 2
@@ -260,6 +157,9 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_) -> list:
         m = meas.m
         nr = len(meas.noise_names)
         ks.append(_logdet_kernel(model, meas, P, pin, sin_))
+        store = store_step_kernel(model, next(k for k in kernels if getattr(k, "name", None) == f"step_try_{meas.name}"))
+        ks.append(store)
+        ks.extend(store_soa_kernels(model, meas, store))  # run_batch_store_soa_<meas>: the forward pass in SIMD lanes
         ks.append((f"run_one_store_{meas.name}", STORE_TEMPLATE.format(
             meas=meas.name, m=m, n=n, ni=ni, npk=npk, qargs=_args("q", nq), rargs=_args("r", nr),
             zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
@@ -267,5 +167,9 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_) -> list:
             nan_test=" or ".join(f"np.isnan(z[k, {i}])" for i in range(m)),
             nan_test_b=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
         )))
+    step = smooth_step_kernel(model)
+    ks.append(step)
+    physical = next(k for k in kernels if getattr(k, "name", None) == "physical_into")
+    ks.extend(smooth_soa_kernels(model, step, physical))  # smooth_batch_soa: the backward pass in SIMD lanes
     ks.append(("smooth_one", SMOOTH_TEMPLATE.format(n=n, ni=ni, npk=npk)))
     return ks

@@ -117,7 +117,7 @@ class Printer:
                     return "*".join([bs] * k), 1
                 return f"{self._wrap(b, 3)}**{k}", 1
             raise ValueError(f"unsupported power {e}")
-        if isinstance(e, sp.Function) and type(e) in self.FUNCS:
+        if isinstance(e, (sp.Function, sp.Max)) and type(e) in self.FUNCS:  # Max is no sp.Function
             return f"{self.FUNCS[type(e)]}({', '.join(self.p(a) for a in e.args)})", 3
         if isinstance(e, RUNTIME_FUNCTIONS):
             return f"{type(e).numba_name}({', '.join(self.p(a) for a in e.args)})", 3

@@ -139,10 +139,10 @@ def _filter_and_smooth(spec, measurement, z, dts, q, r, x0, p0, return_cov, retu
     """filter_batch(..., smooth=True): the storing forward pass, then the backward pass."""
     fp = forward_store(spec, measurement, z, dts, x0, p0, q, r)
     x_f = fp.x_filt
-    x_s, _, p_s = smooth_stored(spec, fp)
+    x_s, _, p_s = smooth_stored(spec, fp, covariances=return_cov)
     result = [x_f]
     if return_cov:
-        result.append(unpack(fp.p_filt, spec.n))
+        result.append(unpack(fp.states()[3], spec.n))
     if return_nis:
         result.append(fp.nis)
     result.append(x_s)

@@ -33,10 +33,18 @@ O(|d|, |δ|) and make the smoothed covariance consistent (NEES) when the correct
 
 Where it is computed
 --------------------
-The backward step is generic numba code emitted into every model module (``smooth_one``, ``smooth_batch``,
-``derive/codegen/estimators.py``) calling the model's generated ``transition``, ``between``, ``retract``,
-``right_jacobian(_inv)``: no model is known here. The forward pass that keeps the predicted and posterior
-states is ``run_batch_store_<measurement>``. Entry points: ``filter_batch(..., smooth=True)``, a filter
+The backward step is one straight-line kernel emitted into every model module from its definition
+(``smooth_step``, ``derive/codegen/smooth_step.py``; no model is known here): F, Φ(d)⁻¹ and Φ(δ) are symbolic
+(their structural zeros never reach the code; Φ = I of a Euclidean model disappears), the covariances stay packed
+and every symmetric product is formed on its upper triangle, and G = P_k F_kᵀ P_{k+1|k}⁻¹ is computed without an
+inverse: with the square-root-free LDLᵀ factorisation P_{k+1|k} = L Δ Lᵀ (L unit lower triangular), each row g of G
+solves L y = c, Lᵀ g = Δ⁻¹ y, c the row of C = P_k F_kᵀ (a pivot below 1e-300, impossible for a positive
+definite P_{k+1|k}, is replaced by 1e-300 rather than divided by). ``smooth_one`` / ``smooth_batch`` call it once per step;
+``smooth_batch_soa`` runs it with trajectories in the SIMD lanes. The forward pass that keeps the predicted and
+posterior states is ``run_batch_store_<measurement>``: the filter's fused step writing the prediction it holds in
+registers (``step_store_<measurement>``), and its SIMD version ``run_batch_store_soa_<measurement>`` (the states
+kept in blocks of 64 trajectories, ``ForwardPass.blocks``, which ``smooth_batch_soa`` reads). The SIMD kernels run
+from ``lgekf.core.rts.SOA_SMOOTH_MIN_BATCH`` trajectories on (``filter_batch``), never for :func:`smooth_segments`. Entry points: ``filter_batch(..., smooth=True)``, a filter
 class's ``smooth()`` after a run with ``record=True``, :func:`smooth_tracks` (the files of ``lgekf track``).
 """
 
@@ -110,9 +118,10 @@ def smooth_segments(model: str, measurement: str, t, zm, first, lengths, x0, P0,
             a, L = int(first[o]), int(lengths[o])
             zb[bi, :L] = zm[a:a + L]
             dts[bi, :L] = t[a:a + L] - t[a - 1:a + L - 1]
-        fp = forward_store(spec, measurement, zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r)
+        fp = forward_store(spec, measurement, zb, dts, np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs]), q, r,
+                           simd=False)
         fp.lengths = np.ascontiguousarray(lengths[objs])
-        xs, _, ps = smooth_stored(spec, fp)
+        xs, _, ps = smooth_stored(spec, fp)  # scalar pass (simd=False): no SIMD compile (10-90 s a model) for a file
         for bi, o in enumerate(objs):
             a, L = int(first[o]), int(lengths[o])
             x_out[a:a + L] = xs[bi, :L]
