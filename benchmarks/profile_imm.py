@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
@@ -25,6 +24,8 @@ import numpy as np  # noqa: E402
 from lgekf.estimators import imm_kernels as IK  # noqa: E402
 from lgekf.estimators.imm import _common_inputs, _Setup  # noqa: E402
 from lgekf.generated import dispatch as D  # noqa: E402
+
+from bench_imm import best_of  # noqa: E402  (this folder: the same best-of timer)
 
 CASES = ["se2r3:calm,se2r3:manoeuvre", "cv,se2r3", "cv,ctrv,se2r3", "se2se2:calm,se2se2:manoeuvre"]
 VARIANTS = {"full": (1, 1, 1), "no combined": (1, 1, 0), "no mixing": (0, 1, 1), "no likelihood": (1, 0, 1),
@@ -54,15 +55,6 @@ def _run(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, do_mix, do_ll, do_co
                 IK.combined_common(models, S, Pp, mu, same_group, out_c[b, k], Pc, ws)
 
 
-def _best(fn, repeat=3):
-    best = float("inf")
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        best = min(best, time.perf_counter() - t)
-    return best
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="a small batch (a smoke test)")
@@ -86,7 +78,7 @@ def main(argv=None) -> int:
         for name, flags in VARIANTS.items():
             args = (s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r)
             _run(*args, z[:1, :2], dts[:1, :2], s.same_group, *flags, out_c)
-            res[name] = _best(lambda: _run(*args, z, dts, s.same_group, *flags, out_c)) * 1e9 / (B * K)
+            res[name] = best_of(lambda: _run(*args, z, dts, s.same_group, *flags, out_c), repeat=3) * 1e9 / (B * K)
         print(f"{case:32s} " + " ".join(f"{res[v]:13.0f}" for v in VARIANTS)
               + f" {res['full'] - res['no mixing']:8.0f} {res['full'] - res['no combined']:9.0f}"
               f" {res['full'] - res['no likelihood']:10.0f}")
