@@ -54,6 +54,7 @@ import sympy as sp
 
 from ..algebra import _changed, packed_index, sym_cov
 from .printer import Kernel
+from .soa import SOA_BLOCK_LOOP
 
 __all__ = ["smooth_step_kernel", "store_step_kernel", "staged"]
 
@@ -315,28 +316,7 @@ def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet
     a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_{meas})."""
     B = z.shape[0]
     K = z.shape[1]
-    nblk = (B + {lanes} - 1) // {lanes}
-    for blk in nb.prange(nblk):
-        lo = blk * {lanes}
-        L = min({lanes}, B - lo)
-        W = np.zeros({rows} * {lanes})
-        s = np.empty({ni})
-        p = np.empty({npk})
-        for j in range(L):
-            s0 = state_from_physical(x0[lo + j])
-            for i in range({ni}):
-                W[({S} + i) * {lanes} + j] = s0[i]
-            for i in range({npk}):
-                W[({P} + i) * {lanes} + j] = p0[lo + j, i]
-        for k in range(K):
-            for j in range(L):
-                W[{DT} * {lanes} + j] = dts[lo + j, k]
-{zload}
-            for j in range(L):
-                W[{NIS} * {lanes} + j] = lane_store_{meas}(W, j, {qargs}, {rargs})
-                good = covariance_is_pd_lane(W, j) & (W[{NIS} * {lanes} + j] == W[{NIS} * {lanes} + j])
-                W[{OK} * {lanes} + j] = 1.0 if good else 0.0
-            for j in range(L):
+''' + SOA_BLOCK_LOOP.replace("{lane}", "lane_store_{meas}") + '''            for j in range(L):
                 b = lo + j
                 if W[{OK} * {lanes} + j] == 0.0:
                     for i in range({ni}):

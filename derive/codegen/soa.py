@@ -213,19 +213,10 @@ def soa_model_kernels(model, physical_kernel) -> list:
     return [("covariance_is_pd_lane", "\n".join(lines) + "\n"), ("physical_lane", src)]
 
 
-SOA_TEMPLATE = '''
-@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_soa_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """run_batch_{meas} with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
-
-    Blocks of {lanes} trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
-    work array (rows × {lanes}) and lane_{meas} runs vectorised over the lanes; a lane failing the LDLᵀ test or with
-    a NaN row (NaN NIS) is redone by the scalar predict / update_{meas}.
-    """
-    B = z.shape[0]
-    K = z.shape[1]
-    keep_p = out_p.shape[1] == K
-    nblk = (B + {lanes} - 1) // {lanes}
+# the block loop of the SIMD drivers (run_batch_soa_<meas> here, run_batch_store_soa_<meas> in smooth_step.py): a
+# block's states into the work array W, then per step the lane kernel ``{lane}`` over the lanes and the LDLᵀ /
+# NaN verdict per lane in row OK; the driver's own code follows (it redoes the failed lanes and writes its outputs)
+SOA_BLOCK_LOOP = '''    nblk = (B + {lanes} - 1) // {lanes}
     for blk in nb.prange(nblk):
         lo = blk * {lanes}
         L = min({lanes}, B - lo)
@@ -243,10 +234,24 @@ def run_batch_soa_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
                 W[{DT} * {lanes} + j] = dts[lo + j, k]
 {zload}
             for j in range(L):
-                W[{NIS} * {lanes} + j] = lane_{meas}(W, j, {qargs}, {rargs})
+                W[{NIS} * {lanes} + j] = {lane}(W, j, {qargs}, {rargs})
                 good = covariance_is_pd_lane(W, j) & (W[{NIS} * {lanes} + j] == W[{NIS} * {lanes} + j])
                 W[{OK} * {lanes} + j] = 1.0 if good else 0.0
-            for j in range(L):
+'''
+
+SOA_TEMPLATE = '''
+@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
+def run_batch_soa_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """run_batch_{meas} with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
+
+    Blocks of {lanes} trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
+    work array (rows × {lanes}) and lane_{meas} runs vectorised over the lanes; a lane failing the LDLᵀ test or with
+    a NaN row (NaN NIS) is redone by the scalar predict / update_{meas}.
+    """
+    B = z.shape[0]
+    K = z.shape[1]
+    keep_p = out_p.shape[1] == K
+''' + SOA_BLOCK_LOOP.replace("{lane}", "lane_{meas}") + '''            for j in range(L):
                 if W[{OK} * {lanes} + j] == 0.0:
                     b = lo + j
                     for i in range({ni}):

@@ -326,6 +326,23 @@ class IMM:
         return f"IMM({probs})"
 
 
+def _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0):
+    """The checked inputs of a batch IMM run (``imm_batch``, ``lgekf.estimators.imm_smoother``): the set-up
+    ``_Setup``, z (B, K, m), dts (B, K) and each trajectory's initial mode states and packed covariances."""
+    s = _Setup(modes, transition, meas_std, measurement, mu0)
+    z = measurements_array(z, get_model(s.modes[0].model).measurement(measurement).dim)
+    B, K = z.shape[:2]
+    dts = step_lengths(dt, B, K)
+    c0, P0c = _common_inputs(x0, P0)
+    if c0.shape[0] == 1 and B > 1:
+        c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
+        P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
+    if c0.shape[0] != B:
+        raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
+    S0, Pp0 = s.initial(c0, P0c)
+    return s, z, dts, S0, Pp0
+
+
 def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLike, P0: ArrayLike,
               measurement: str = "position", mu0=None, return_cov: bool = False):
     """Run an IMM over many trajectories, entirely in numba (prange over the batch).
@@ -356,18 +373,8 @@ def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLi
     """
     from .imm_kernels import imm_run_batch
 
-    s = _Setup(modes, transition, meas_std, measurement, mu0)
-    m = get_model(s.modes[0].model).measurement(measurement).dim
-    z = measurements_array(z, m)
+    s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]
-    dts = step_lengths(dt, B, K)
-    c0, P0c = _common_inputs(x0, P0)
-    if c0.shape[0] == 1 and B > 1:
-        c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
-        P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
-    if c0.shape[0] != B:
-        raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
-    S0, Pp0 = s.initial(c0, P0c)
     out_c = np.empty((B, K, 6))
     out_P = np.empty((B, K if return_cov else 0, 6, 6))
     out_mu = np.empty((B, K, s.M))

@@ -71,32 +71,6 @@ def workspace(M):
 
 
 @nb.njit(cache=True)
-def _congruence_packed(T, a, p, n, row, Pd, out, w, accumulate):
-    """out[:a, :a] (+)= w · T P Tᵀ for T[:a, :n] and P packed (n(n+1)/2); ``row`` (n,), ``Pd`` (n, n) scratch."""
-    unpack_into(p, n, Pd)
-    for i in range(a):
-        for k in range(n):
-            acc = 0.0
-            for m in range(n):
-                t = T[i, m]
-                if t != 0.0:
-                    acc += t * Pd[m, k]
-            row[k] = acc
-        for j in range(i, a):
-            acc = 0.0
-            for k in range(n):
-                acc += row[k] * T[j, k]
-            acc *= w
-            if accumulate:
-                out[i, j] += acc
-                if j != i:
-                    out[j, i] += acc
-            else:
-                out[i, j] = acc
-                out[j, i] = acc
-
-
-@nb.njit(cache=True)
 def _congruence_dense(T, a, P, n, row, out):
     """out[:a, :a] = T P Tᵀ for T[:a, :n] and dense P[:n, :n]."""
     for i in range(a):
@@ -190,7 +164,8 @@ def _to_common(model, s, p, c_out, P_out, x, A, row, Pd, ctmp):
         ctmp[4] = 0.0
         D.common_to_state_into(model, ctmp, x)
     D.physical_to_common_jacobian_into(model, x, A)
-    _congruence_packed(A, 6, p, n, row, Pd, P_out, 1.0, False)
+    unpack_into(p, n, Pd)
+    _congruence_dense(A, 6, Pd, n, row, P_out)
     _cap_heading(c_out, P_out)
 
 
@@ -284,7 +259,6 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
         return
     if same_group:
         model = models[0]
-        n = D.N_TANGENT[model]
         s, p = ws[14], ws[15]
         _mix_on_group(model, S, Pp, mu, s, p, ws[0])
         _to_common(model, s, p, c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])

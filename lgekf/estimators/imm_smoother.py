@@ -49,7 +49,7 @@ import numpy as np
 
 from ..core.registry import get_model
 from ..generated import dispatch as D
-from .imm import _common_inputs, _Setup
+from .imm import _Setup, _batch_inputs
 from .imm_kernels import _mix, combined_common, imm_update, workspace
 
 __all__ = ["ImmForward", "imm_forward_store", "smoothed_mode_probabilities", "imm_smooth_one", "imm_smooth_batch"]
@@ -240,20 +240,9 @@ def imm_smooth_batch(z, modes, transition=None, *, dt, meas_std, x0, P0, measure
         ``c_filt`` (B, K, 6), ``P_filt`` (B, K, 6, 6), ``mu_filt`` (B, K, M), and the smoothed ``c_smooth``,
         ``P_smooth``, ``mu_smooth``; ``modes`` the validated modes.
     """
-    from ..core.batch import measurements_array, step_lengths
 
-    s = _Setup(modes, transition, meas_std, measurement, mu0)
-    m = get_model(s.modes[0].model).measurement(measurement).dim
-    z = measurements_array(z, m)
+    s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]
-    dts = step_lengths(dt, B, K)
-    c0, P0c = _common_inputs(x0, P0)
-    if c0.shape[0] == 1 and B > 1:
-        c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
-        P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
-    if c0.shape[0] != B:
-        raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
-    S0, Pp0 = s.initial(c0, P0c)
     out = {k: np.empty((B, K) + sh) for k, sh in (("c_filt", (6,)), ("P_filt", (6, 6)), ("mu_filt", (s.M,)),
                                                    ("c_smooth", (6,)), ("P_smooth", (6, 6)), ("mu_smooth", (s.M,)))}
     for b in range(B):
