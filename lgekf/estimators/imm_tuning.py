@@ -69,6 +69,8 @@ class ImmFit:
         Why a parameter may not be identified (empty when all are).
     n_params : int
         Number of fitted parameters (for comparing mode sets by AIC = 2 n_params − 2 loglik).
+    n_evals : int
+        Likelihood evaluations the fit took (each one IMM run over all the tracks).
     """
 
     modes: list
@@ -82,6 +84,7 @@ class ImmFit:
     n_tracks: int
     problems: list = field(default_factory=list)
     n_params: int = 0
+    n_evals: int = 0
 
     @property
     def names(self) -> tuple:
@@ -111,7 +114,7 @@ class ImmFit:
         for nm, v, lo, hi in zip(names, vals, self.ci_low, self.ci_high):
             what = f"×{v:.3g}" if nm != "switch" else f"{v:.3g}"
             parts.append(f"{nm} {what}" + (f" [{lo:.3g}, {hi:.3g}]" if np.isfinite(lo) and np.isfinite(hi) else " [no interval]"))
-        head = (f"IMM fitted ({self.n_tracks} tracks, {self.n_updates} steps): " + ", ".join(parts)
+        head = (f"IMM fitted ({self.n_tracks} tracks, {self.n_updates} steps, {self.n_evals} runs): " + ", ".join(parts)
                 + f"; log-likelihood {self.loglik:.6g} (given modes {self.loglik_start:.6g})")
         if self.problems:
             head += "\n  not identified: " + "; ".join(self.problems)
@@ -296,7 +299,10 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         a[free] = np.exp(th[:F])
         return a, (_expit(th[F]) if fit_switch else switch)
 
+    evals = [0]
+
     def nll(th):
+        evals[0] += 1
         a, p = params(th)
         ll, _ = _loglik(_scaled(modes, a), p, meas_std, tr, measurement)
         return -ll if math.isfinite(ll) else PENALTY
@@ -350,7 +356,7 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
             what = modes[free[i]].name + " factor" if i < F else "switch"
             val = math.exp(th[i]) if i < F else _expit(th[i])
             problems.append(f"{what} at the search bound {val:.3g}")
-    return ImmFit(_scaled(modes, a), float(p), a, ci_low, ci_high, -float(fun), ll_start, tr.n_updates, tr.B, problems, d)
+    return ImmFit(_scaled(modes, a), float(p), a, ci_low, ci_high, -float(fun), ll_start, tr.n_updates, tr.B, problems, d, evals[0])
 
 
 def _logit(p: float) -> float:
