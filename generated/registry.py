@@ -93,9 +93,11 @@ MEASUREMENTS = {'pose': {'description': '2-D pose z = (x, y, θ) in SE(2) with n
           'z_names': ('x', 'y', 'theta'),
           'noise_names': ('r_x', 'r_y', 'r_theta'),
           'angles': (2,),
-          'dim': 3},
+          'dim': 3,
+          'noise_inputs': (0, 1, 2)},
  'position': {'description': "2-D position z = (x, y) with isotropic noise std r (the paper's measurement)",
               'z_names': ('x', 'y'),
               'noise_names': ('r',),
               'angles': (),
-              'dim': 2}}
+              'dim': 2,
+              'noise_inputs': (0, 0)}}

@@ -27,6 +27,7 @@ class MeasurementSpec:
     noise_names: tuple
     angles: tuple
     dim: int
+    noise_inputs: tuple | None = None  # per entry of z, the index of its std when R = diag(σ_idx²); else None
 
 
 @dataclass(frozen=True)
