@@ -189,6 +189,8 @@ def _estep(spec, measurement, lin, batch, inv, x0, tau0, P0, q, r):
     s_pred, p_pred, s_filt, p_filt = fp.states()
     ts = lin.tau(s_sm)                       # (B, K, n) smoothed means
     Ps = unpack(p_sm, n)                     # (B, K, n, n)
+    ts[~valid] = 0.0                         # past a track's end: left unset by the smoother, never used
+    Ps[~valid] = 0.0
     tf = lin.tau(s_filt)
     Pf = unpack(p_filt, n)
     tp = lin.tau(s_pred)
