@@ -2,11 +2,14 @@
 property (likelihood non-decreasing), agreement with the L-BFGS maximum likelihood, the clear refusals, and the
 model table's ``linear`` flag checked against the generated kernels."""
 
+import subprocess
+
 import numpy as np
 import pytest
+from _cli import cli_command
 
 from lgekf.core.registry import MODELS
-from lgekf.estimators.em import EMTrace, em_models, learn_noise_em
+from lgekf.estimators.em import EMTrace, em_models, em_or_lbfgs, learn_noise_em
 from lgekf.estimators.tracks import batch_tracks
 from lgekf.estimators.tuning import learn_noise, log_likelihood
 
@@ -78,16 +81,19 @@ def test_em_and_lbfgs_agree_on_the_maximum_likelihood(data):
 
 def test_numeric_measurement_m_step_matches_the_closed_form(data):
     tracks, fit, _ = data
-    num = learn_noise_em("cv", tracks, hessian=False, _numeric_r=True)
+    num = learn_noise_em("cv", tracks, hessian=False, _numeric_r=True, init=fit.values * 1.2)
     np.testing.assert_allclose(num.values, fit.values, rtol=1e-4)
 
 
 def test_fixed_measurement_std_learns_process_noise_only(data):
     tracks, _, _ = data
-    fit = learn_noise_em("cv", tracks, meas_std=R, hessian=False)
-    ref = learn_noise("cv", tracks, meas_std=R, n_starts=1, hessian=False)
+    fit = learn_noise_em("cv", tracks, meas_std=R, hessian=False, init=(SIGMA_A, R))
     assert fit.fixed == (False, True) and fit.meas_std == (R,)
-    np.testing.assert_allclose(fit.accel_std, ref.accel_std, rtol=2e-3)
+    batch = batch_tracks(tracks, 2, None, baseline=1.0)
+    best = log_likelihood("cv", batch, fit.accel_std, R)
+    assert best == pytest.approx(fit.loglik, rel=1e-10)
+    for f in (0.99, 1.01):  # a maximum in σ_a (the likelihood of the optimiser's objective)
+        assert log_likelihood("cv", batch, np.array(fit.accel_std) * f, R) < best
 
 
 def test_too_few_points_gives_the_same_error_as_learn_noise():
@@ -120,3 +126,20 @@ def test_linear_flag_agrees_with_the_generated_kernels():
                 and np.allclose(k.calH_position(s1), k.calH_position(s2))
                 and np.allclose(k.right_jacobian(eps), np.eye(spec.n)))
         assert same == ("position" in spec.linear), name
+
+
+def test_track_tune_method_em_learns_cv_noise_by_em(tmp_path):
+    """``lgekf track --tune --tune-method em``: the printed fit is EM's on the file's tracks (same numbers as
+    calling learn_noise_em on them), and the other models of the same run fall back to the optimiser."""
+    tracks = _cv_tracks(4, n_tracks=6, steps=40)
+    lines = ["id,t,x,y"] + [f"{b},{float(t)!r},{float(x)!r},{float(y)!r}" for b, (ts, z) in enumerate(tracks) for t, (x, y) in zip(ts, z)]
+    (tmp_path / "cv.csv").write_text("\n".join(lines) + "\n")
+    r = subprocess.run([*cli_command(), "track", "cv.csv", "--model", "cv", "--tune", "--tune-method", "em", "-o", "out.csv"],
+                       capture_output=True, text=True, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    fit = learn_noise_em("cv", tracks)
+    assert f"learned noise for cv by EM (position, 6 tracks, {fit.n_updates} updates" in r.stderr, r.stderr
+    assert f"sigma_a = {fit.values[0]:.4g}" in r.stderr and f"meas_r = {fit.values[1]:.4g}" in r.stderr, (r.stderr, fit.report())
+    assert (tmp_path / "out.csv").exists()
+    assert em_or_lbfgs("cv", "position", "em") == "em"
+    assert em_or_lbfgs("se2se2", "position", "em") == em_or_lbfgs("cv", "position", "lbfgs") == "lbfgs"

@@ -80,7 +80,7 @@ from ..core.rts import forward_store, smooth_stored
 from .tracks import TrackBatch, batch_tracks, two_point_prior
 from .tuning import BOUNDS, MIN_UPDATES_PER_PARAMETER, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _meas_guess
 
-__all__ = ["learn_noise_em", "EMTrace", "em_models"]
+__all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
 
 _RANK_TOL = 1e-10  # eigenvalues of a shape Q_i below this × its largest are zero
 _AFFINE_TOL = 1e-9
@@ -99,6 +99,12 @@ class EMTrace:
 def em_models() -> dict:
     """The registry models EM applies to, with their linear measurements ({model: (measurement, ...)})."""
     return {name: spec.linear for name, spec in MODELS.items() if spec.linear}
+
+
+def em_or_lbfgs(model: str, measurement: str, method: str) -> str:
+    """The ``method`` of ``learn_noise`` for "EM where it applies": "em" when ``method`` is "em" and the model is
+    linear Gaussian with ``measurement``, else "lbfgs" (the likelihood optimiser, which serves every model)."""
+    return "em" if method == "em" and measurement in get_model(model).linear else "lbfgs"
 
 
 def _refusal(model: str, measurement: str) -> str:
@@ -401,4 +407,4 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         if values[i] <= BOUNDS[0] * 1.05 or values[i] >= BOUNDS[1] / 1.05:
             problems.append(f"{names[i]} at the search bound {values[i]:.3g}")
     return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(ll), n_upd, int(B), fixed,
-                    [(start, values.copy(), float(ll))], problems)
+                    [(start, values.copy(), float(ll))], problems, "em")
