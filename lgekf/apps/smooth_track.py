@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core.registry import get_model
 from ..estimators.smoother import smooth_segments
-from ..estimators.em import em_or_lbfgs
+from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
 
 __all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset"]
@@ -64,8 +64,8 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
         fixed = None
         if meas_std is not None:
             fixed = meas_std if meas == "position" else None
-        fits[m] = learn_noise(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std,
-                              method=em_or_lbfgs(m, meas, method))
+        learn = learn_noise_em if em_or_lbfgs(m, meas, method) == "em" else learn_noise
+        fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
     return fits
 
 
@@ -81,7 +81,8 @@ def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs
     out = {}
     for m in models:
         try:
-            out[m] = learn_noise(m, tracks, meas_std=meas_std, method=em_or_lbfgs(m, "position", method))
+            learn = learn_noise_em if em_or_lbfgs(m, "position", method) == "em" else learn_noise
+            out[m] = learn(m, tracks, meas_std=meas_std)
         except ValueError as e:  # too few points: the caller keeps the default noise and says why
             out[m] = str(e)
     return out

@@ -102,8 +102,8 @@ def em_models() -> dict:
 
 
 def em_or_lbfgs(model: str, measurement: str, method: str) -> str:
-    """The ``method`` of ``learn_noise`` for "EM where it applies": "em" when ``method`` is "em" and the model is
-    linear Gaussian with ``measurement``, else "lbfgs" (the likelihood optimiser, which serves every model)."""
+    """"EM where it applies": "em" (use :func:`learn_noise_em`) when ``method`` is "em" and the model is linear
+    Gaussian with ``measurement``, else "lbfgs" (``learn_noise``, the likelihood optimiser, serves every model)."""
     return "em" if method == "em" and measurement in get_model(model).linear else "lbfgs"
 
 

@@ -182,7 +182,7 @@ def _meas_guess(batch: TrackBatch, m: int) -> float:
 
 def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
                 meas_std: float | ArrayLike | None = None, n_starts: int = 3, omega_std: float = 0.5,
-                heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0, method: str = "lbfgs") -> NoiseFit:
+                heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0) -> NoiseFit:
     """Maximum-likelihood process noise (and measurement noise) of ``model`` from measured tracks.
 
     Parameters
@@ -208,10 +208,6 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
         two-point prior, ``lgekf.estimators.tracks.batch_tracks``); the measurements in between are not used.
         Two points 0.1 s apart leave the heading almost unknown (velocity error √2·r/Δ), and the likelihood
         of the steps that follow then asks for a much larger process noise than the motion has.
-    method : {"lbfgs", "em"}
-        "lbfgs": the optimiser above (every model); "em": expectation–maximisation with closed-form M-steps
-        (``lgekf.estimators.em.learn_noise_em``; linear Gaussian models only, e.g. CV, else a ValueError),
-        the same likelihood and result type (``n_starts`` is not used).
 
     Returns
     -------
@@ -223,6 +219,10 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     ValueError
         Bad input, or fewer than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter.
 
+    See Also
+    --------
+    lgekf.estimators.em.learn_noise_em : the same maximum likelihood by EM, for the linear Gaussian models (CV).
+
     Examples
     --------
     >>> fit = learn_noise("cv", [(t, z) for t, z in my_tracks])          # doctest: +SKIP
@@ -230,13 +230,6 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     """
     from scipy.optimize import minimize
 
-    if method == "em":
-        from .em import learn_noise_em
-
-        return learn_noise_em(model, tracks, dt=dt, measurement=measurement, meas_std=meas_std, omega_std=omega_std,
-                              heading_cap=heading_cap, hessian=hessian, baseline=baseline)
-    if method != "lbfgs":
-        raise ValueError(f"method: expected 'lbfgs' or 'em', got {method!r}")
     spec = get_model(model)
     meas = spec.measurement(measurement)
     m = meas.dim
