@@ -78,7 +78,8 @@ from ..core.covariance import pack, unpack
 from ..core.registry import MODELS, get_model
 from ..core.rts import forward_store, smooth_stored
 from .tracks import TrackBatch, batch_tracks, two_point_prior
-from .tuning import BOUNDS, MIN_UPDATES_PER_PARAMETER, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _meas_guess
+from .tuning import (BOUNDS, MIN_UPDATES_PER_PARAMETER, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _loglik_tracks,
+                     _meas_guess)
 
 __all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
 
@@ -182,48 +183,61 @@ class _Linear:
         return np.asarray(pinv), blocks
 
 
-def _estep(spec, measurement, lin, batch, inv, x0, tau0, P0, q, r):
-    """Filter + RTS smoother; returns (log-likelihood, per-std process sums, measurement diag sums, start stats)."""
-    B, K, m = batch.z.shape
-    n = lin.n
+class _Cells:
+    """The valid steps (b, k) of a TrackBatch, flattened (k < length of track b), with their F, b, G⁺."""
+
+    def __init__(self, batch: TrackBatch, lin: _Linear, inv: np.ndarray, Gp: np.ndarray):
+        B, K, m = batch.z.shape
+        valid = np.arange(K)[None, :] < batch.lengths[:, None]
+        self.bi, self.ki = np.nonzero(valid)
+        self.first = self.ki == 0                      # every track has k = 0 (length ≥ 1), in track order
+        u = inv[self.bi, self.ki]
+        self.F = lin.F[u]
+        self.b = lin.b[u]
+        self.Gp = Gp[u]
+        self.z = batch.z[self.bi, self.ki]
+        self.obs = ~np.any(np.isnan(self.z), axis=1)
+        self.z = np.where(self.obs[:, None], self.z, 0.0)
+        self.m = m
+
+
+def _estep(spec, measurement, lin, batch, cells, x0, tau0, P0, q, r):
+    """Filter + RTS smoother over all tracks; returns (log L, M (N, n, n), V (N, m), S_0 (B, n, n)) over the
+    valid steps (module docstring)."""
+    n, m = lin.n, cells.m
+    bi, ki, F = cells.bi, cells.ki, cells.F
     fp = forward_store(spec, measurement, batch.z, batch.dts, x0, pack(P0), q, r, simd=False)
-    valid = np.arange(K)[None, :] < batch.lengths[:, None]
-    obs = valid & ~np.any(np.isnan(batch.z), axis=2)
-    ll = float(np.sum(-0.5 * (fp.logdet[obs] + fp.nis[obs] + m * math.log(2 * math.pi))))
+    ll = float(np.sum(-0.5 * (fp.logdet[bi, ki][cells.obs] + fp.nis[bi, ki][cells.obs] + m * math.log(2 * math.pi))))
     fp.lengths = np.ascontiguousarray(batch.lengths, dtype=np.int64)
     _, s_sm, p_sm = smooth_stored(spec, fp)
     s_pred, p_pred, s_filt, p_filt = fp.states()
-    ts = lin.tau(s_sm)                       # (B, K, n) smoothed means
-    Ps = unpack(p_sm, n)                     # (B, K, n, n)
-    ts[~valid] = 0.0                         # past a track's end: left unset by the smoother, never used
-    Ps[~valid] = 0.0
-    tf = lin.tau(s_filt)
-    Pf = unpack(p_filt, n)
-    tp = lin.tau(s_pred)
-    Pp = unpack(p_pred, n)
-    # previous step's filtered and smoothed moments (k = 0: the start)
-    F = lin.F[inv]                           # (B, K, n, n)
-    bk = lin.b[inv]
-    Pf_prev = np.concatenate([P0[:, None], Pf[:, :-1]], axis=1)
-    tf_prev = np.concatenate([tau0[:, None], tf[:, :-1]], axis=1)
+    ts = lin.tau(s_sm[bi, ki])                 # (N, n) smoothed means of the valid steps
+    Ps = unpack(p_sm[bi, ki], n)
+    tp = lin.tau(s_pred[bi, ki])
+    Pp = unpack(p_pred[bi, ki], n)
+    # the previous step's posterior (k = 0: the start): row k of the arrays extended by the start
+    p0 = pack(P0)
+    Pf_prev = unpack(np.concatenate([p0[:, None], p_filt], axis=1)[bi, ki], n)
     # smoother gain J_{k-1} = P_{k-1|k-1} F_kᵀ P_{k|k-1}⁻¹ (P_{k|k-1} symmetric: solve P_{k|k-1} Jᵀ = F_k P_{k-1|k-1})
     J = np.swapaxes(np.linalg.solve(Pp, F @ Pf_prev), -1, -2)
     # smoothed start: one more backward step
-    J0 = J[:, 0]
-    d0 = J0 @ (ts[:, 0] - tp[:, 0])[..., None]
-    ts0 = tf_prev[:, 0] + d0[..., 0]
-    Ps0 = P0 + J0 @ (Ps[:, 0] - Pp[:, 0]) @ np.swapaxes(J0, -1, -2)
-    ts_prev = np.concatenate([ts0[:, None], ts[:, :-1]], axis=1)
-    Ps_prev = np.concatenate([Ps0[:, None], Ps[:, :-1]], axis=1)
-    e = ts - (F @ ts_prev[..., None])[..., 0] - bk
-    C = Ps @ np.swapaxes(J, -1, -2)          # Cov(τ_k, τ_{k-1} | all)
+    f0 = cells.first
+    J0 = J[f0]
+    ts0 = tau0 + (J0 @ (ts[f0] - tp[f0])[..., None])[..., 0]
+    Ps0 = P0 + J0 @ (Ps[f0] - Pp[f0]) @ np.swapaxes(J0, -1, -2)
+    # the previous step's smoothed moments: the step before in the flat order, or the smoothed start
+    prev = np.arange(len(bi)) - 1
+    ts_prev = np.where(f0[:, None], ts0[bi], ts[prev])
+    Ps_prev = np.where(f0[:, None, None], Ps0[bi], Ps[prev])
+    e = ts - (F @ ts_prev[..., None])[..., 0] - cells.b
+    C = Ps @ np.swapaxes(J, -1, -2)            # Cov(τ_k, τ_{k-1} | all)
     FC = F @ np.swapaxes(C, -1, -2)
-    M = e[..., :, None] * e[..., None, :] + Ps + F @ Ps_prev @ np.swapaxes(F, -1, -2) - FC - np.swapaxes(FC, -1, -2)
-    u = np.where(obs[..., None], batch.z, 0.0) - lin.c - ts @ lin.H.T
-    V = u**2 + np.einsum("di,bkij,dj->bkd", lin.H, Ps, lin.H)
+    M = e[:, :, None] * e[:, None, :] + Ps + F @ Ps_prev @ np.swapaxes(F, -1, -2) - FC - np.swapaxes(FC, -1, -2)
+    u = cells.z - lin.c - ts @ lin.H.T
+    V = u**2 + np.einsum("di,kij,dj->kd", lin.H, Ps, lin.H)
     d00 = ts0 - tau0
     S0 = d00[:, :, None] * d00[:, None, :] + Ps0
-    return ll, M, V, S0, valid, obs
+    return ll, M, V[cells.obs], S0
 
 
 def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
@@ -305,7 +319,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     inv = inv.reshape(batch.dts.shape)
     lin = _Linear(spec, measurement, dts_u)
     Gp, owner = lin.noise_factors()
-    Gp_k = Gp[inv]                                      # (B, K, Σρ, n)
+    cells = _Cells(batch, lin, inv, Gp)
     rank = np.array([np.sum(owner == i) for i in range(nq)])
     meas_idx = np.asarray(meas.noise_inputs)
     tau0 = lin.tau(np.stack([spec.kernels.state_from_physical(x) for x in x0]))
@@ -333,18 +347,18 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     converged = False
     ll_prev = -math.inf
     for _ in range(max_iter):
-        ll, M, V, S0, valid, obs = _estep(spec, measurement, lin, batch, inv, x0, tau0, P0_of(r), q, r)
+        ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
         tr.values.append(np.concatenate([q, r]))
         tr.loglik.append(ll)
         if not math.isfinite(ll):
             raise ValueError("EM: the filter diverged (non-finite likelihood); try init= or learn_noise")
         # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
-        Enn = np.einsum("bkai,bkij,bkaj->bka", Gp_k, M, Gp_k)[valid]    # (N, Σρ) diagonal
-        q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * valid.sum()))
+        Enn = np.einsum("kai,kij,kaj->ka", cells.Gp, M, cells.Gp)        # (N, Σρ): diagonal of G⁺ M G⁺ᵀ
+        q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * len(M)))
         r_new = r
         if fixed_r is None:
-            Vsum = np.array([V[obs][:, meas_idx == j].sum() for j in range(nr)])
-            Nj = np.array([obs.sum() * np.sum(meas_idx == j) for j in range(nr)])
+            Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
+            Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
             if homogeneous:
                 prior_term = float(np.einsum("ij,bji->", A1inv, S0))
                 r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
@@ -366,7 +380,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
             break
         ll_prev = ll
     tr.converged = converged
-    ll = _estep(spec, measurement, lin, batch, inv, x0, tau0, P0_of(r), q, r)[0]
+    ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
     tr.values.append(np.concatenate([q, r]))
     tr.loglik.append(ll)
     values = np.concatenate([q, r])
@@ -380,9 +394,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         v = values.copy()
         v[free] = np.exp(t)
         qq, rr = v[:nq], v[nq:]
-        fp = forward_store(spec, measurement, batch.z, batch.dts, x0, pack(P0_of(rr)), qq, rr, simd=False)
-        ok = (np.arange(K)[None, :] < batch.lengths[:, None]) & ~np.any(np.isnan(batch.z), axis=2)
-        tot = float(np.sum(-0.5 * (fp.logdet[ok] + fp.nis[ok] + m * math.log(2 * math.pi))))
+        tot = float(np.sum(_loglik_tracks(spec, measurement, batch, qq, rr, x0, pack(P0_of(rr)))[0]))
         return -tot if math.isfinite(tot) else 1e15
 
     if hessian:
