@@ -16,7 +16,7 @@ from lgekf.estimators.tuning import learn_noise, log_likelihood
 SIGMA_A, R = 0.3, 0.2
 
 
-def _cv_tracks(seed: int, n_tracks: int = 16, steps: int = 50):
+def _cv_tracks(seed: int, n_tracks: int = 16, steps: int = 50, v0=None):
     """CV truth simulated here (not by the code under test): DWNA x_k = F x_{k-1} + G n_k with
     G = [dt²/2 I; dt I], n ~ N(0, σ_a² I), irregular dt in [0.2, 0.6] s; z = position + N(0, r² I)."""
     rng = np.random.default_rng(seed)
@@ -24,7 +24,7 @@ def _cv_tracks(seed: int, n_tracks: int = 16, steps: int = 50):
     for _ in range(n_tracks):
         dts = rng.uniform(0.2, 0.6, steps - 1)
         p = np.zeros(2)
-        v = rng.normal(0, 1.0, 2)
+        v = rng.normal(0, 1.0, 2) if v0 is None else np.asarray(v0, dtype=float)
         ps = [p.copy()]
         for dt in dts:
             a = rng.normal(0, SIGMA_A, 2)
@@ -77,10 +77,21 @@ def test_em_and_lbfgs_agree_on_the_maximum_likelihood(data):
     np.testing.assert_allclose(fit.values, ref.values, rtol=2e-3)
 
 
-def test_numeric_measurement_m_step_matches_the_closed_form(data):
-    tracks, fit, _ = data
-    num = learn_noise_em("cv", tracks, hessian=False, _numeric_r=True, init=fit.values * 1.2)
+def test_numeric_measurement_m_step_matches_the_closed_form():
+    """Fast objects (the two-point start's heading variance below its cap): P_0(r) = r² A and r's M-step is the
+    closed form; forcing the numeric M-step must reach the same maximum, and the optimiser's."""
+    tracks = _cv_tracks(5, n_tracks=10, steps=40, v0=(3.0, 1.0))
+    closed, numeric = EMTrace(), EMTrace()
+    fit = learn_noise_em("cv", tracks, hessian=False, trace=closed)
+    num = learn_noise_em("cv", tracks, hessian=False, _numeric_r=True, init=fit.values * 1.2, trace=numeric)
+    assert closed.closed_form_r and not numeric.closed_form_r
+    assert np.all(np.diff(closed.loglik) >= -1e-9 * (1 + np.abs(closed.loglik[1:])))
     np.testing.assert_allclose(num.values, fit.values, rtol=1e-4)
+    batch = batch_tracks(tracks, 2, None, baseline=1.0)
+    best = log_likelihood("cv", batch, fit.accel_std, fit.meas_std)
+    for f in (0.99, 1.01):
+        assert log_likelihood("cv", batch, fit.accel_std, np.array(fit.meas_std) * f) < best
+        assert log_likelihood("cv", batch, np.array(fit.accel_std) * f, fit.meas_std) < best
 
 
 def test_fixed_measurement_std_learns_process_noise_only(data):

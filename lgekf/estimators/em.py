@@ -90,11 +90,13 @@ _AFFINE_TOL = 1e-9
 @dataclass
 class EMTrace:
     """The iterations of :func:`learn_noise_em`: the parameters (stds) before each E-step and the exact
-    log-likelihood there (``loglik[i]`` at ``values[i]``); EM makes ``loglik`` non-decreasing."""
+    log-likelihood there (``loglik[i]`` at ``values[i]``); EM makes ``loglik`` non-decreasing. ``closed_form_r``:
+    the measurement std's M-step was the closed form (the start's covariance scales as r²), else numeric."""
 
     values: list = field(default_factory=list)
     loglik: list = field(default_factory=list)
     converged: bool = False
+    closed_form_r: bool = False
 
 
 def em_models() -> dict:
@@ -360,7 +362,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
             Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
             Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
             if homogeneous:
-                prior_term = float(np.einsum("ij,bji->", A1inv, S0))
+                prior_term = float(np.einsum("bij,bji->", A1inv, S0))
                 r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
             else:
                 def f(lr):
@@ -380,6 +382,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
             break
         ll_prev = ll
     tr.converged = converged
+    tr.closed_form_r = bool(homogeneous and fixed_r is None)
     ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
     tr.values.append(np.concatenate([q, r]))
     tr.loglik.append(ll)
