@@ -82,7 +82,7 @@ def test_numeric_measurement_m_step_matches_the_closed_form():
     closed form; forcing the numeric M-step must reach the same maximum, and the optimiser's."""
     tracks = _cv_tracks(5, n_tracks=10, steps=40, v0=(3.0, 1.0))
     closed, numeric = EMTrace(), EMTrace()
-    fit = learn_noise_em("cv", tracks, hessian=False, trace=closed)
+    fit = learn_noise_em("cv", tracks, hessian=False, trace=closed, init=(0.4, 0.3))
     num = learn_noise_em("cv", tracks, hessian=False, _numeric_r=True, init=fit.values * 1.2, trace=numeric)
     assert closed.closed_form_r and not numeric.closed_form_r
     assert np.all(np.diff(closed.loglik) >= -1e-9 * (1 + np.abs(closed.loglik[1:])))
