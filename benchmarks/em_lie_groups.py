@@ -12,7 +12,8 @@ start and the start's dependence on r are left out). After every iteration it ev
 ``learn_noise`` (the innovation log-likelihood, ``log_likelihood``) and prints how often it went down, where it
 ended, and the L-BFGS maximum for comparison.
 
-Usage: .venv/bin/python benchmarks/em_lie_groups.py [iterations]     (default 40; about a minute per model)
+Usage: .venv/bin/python benchmarks/em_lie_groups.py [iterations [model ...]]   (default 40, all models; about a
+minute per model and 40 iterations)
 """
 
 from __future__ import annotations
@@ -85,6 +86,7 @@ def approximate_em_step(spec, batch, x0, prior, q, r):
 
 def main() -> None:
     iters = int(sys.argv[1]) if len(sys.argv) > 1 else 40
+    only = sys.argv[2:] or list(MODELS)
     rng = np.random.default_rng(7)
     B = 12
     sim = simulate(np.tile([0, 0, 0, 3.0, 0, 0], (B, 1)), dt=0.1, steps=100, sigma_v=0.5, sigma_w=0.2, meas_std=0.2, rng=rng)
@@ -93,7 +95,7 @@ def main() -> None:
     batch = batch_tracks(tracks, 2, None, 1.0)
     print(f"truth SE(2)xSE(2): sigma_v 0.5, sigma_w 0.2, r 0.2; {B} tracks x 100 steps of 0.1 s; {iters} iterations")
     for name, spec in MODELS.items():
-        if "position" not in spec.measurements:
+        if "position" not in spec.measurements or name not in only:
             continue
         x0, prior = two_point_prior(spec, batch, None)
         q = np.asarray(spec.default_accel_std, dtype=float) * 2.0

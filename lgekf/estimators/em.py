@@ -114,7 +114,7 @@ def _refusal(model: str, measurement: str) -> str:
     ok = "; ".join(f"{n} with {', '.join(ms)}" for n, ms in em_models().items()) or "none"
     return (f"EM applies only to linear Gaussian models (a vector-space group with F, Q and ℋ independent of the "
             f"state, so that the smoothed expectations are exact): {model} with {measurement} measurements is not; "
-            f"EM supports: {ok}. Use the likelihood optimiser (learn_noise, method='lbfgs'), which serves every model")
+            f"EM supports: {ok}. Use the likelihood optimiser (learn_noise; --tune-method lbfgs or mle on the command line), which serves every model")
 
 
 class _Linear:
@@ -176,11 +176,11 @@ class _Linear:
             G = np.concatenate(cols, axis=1)
             if np.linalg.matrix_rank(G) < G.shape[1]:
                 raise ValueError("EM: the process-noise shapes of this model overlap (G has dependent columns); "
-                                 "the closed-form M-step does not apply; use learn_noise (method='lbfgs')")
+                                 "the closed-form M-step does not apply; use learn_noise")
             if blocks is None:
                 blocks = np.asarray(owner)
             elif not np.array_equal(blocks, owner):
-                raise ValueError("EM: the rank of the process-noise shapes changes with dt; use learn_noise (method='lbfgs')")
+                raise ValueError("EM: the rank of the process-noise shapes changes with dt; use learn_noise")
             pinv.append(np.linalg.pinv(G))
         return np.asarray(pinv), blocks
 
