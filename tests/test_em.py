@@ -155,3 +155,25 @@ def test_track_tune_method_em_learns_cv_noise_by_em(tmp_path):
     assert (tmp_path / "out.csv").exists()
     assert em_or_lbfgs("cv", "position", "em") == "em"
     assert em_or_lbfgs("se2se2", "position", "em") == em_or_lbfgs("cv", "position", "lbfgs") == "lbfgs"
+
+
+def test_evaluate_tuning_uses_em_for_cv_only():
+    """``lgekf evaluate --tune --tune-method em`` learns through ``learn_on_dataset(..., method="em")``: CV by EM,
+    with the same value as learn_noise_em on the same noisy tracks (measurement std held at the known one)."""
+    from lgekf.apps.smooth_track import learn_on_dataset
+    from lgekf.io.datasets import Dataset
+
+    tracks = _cv_tracks(6, n_tracks=8, steps=40)
+    t = np.concatenate([ts for ts, _ in tracks])
+    p = np.concatenate([z for _, z in tracks])
+    starts = np.concatenate([[0], np.cumsum([len(ts) for ts, _ in tracks])])
+    ds = Dataset("toy", t, p, None, starts, [str(i) for i in range(len(tracks))])
+
+    def rng(seed, stream, name):
+        return np.random.default_rng([seed, stream])
+
+    fits = learn_on_dataset(ds, 0.1, [0], rng, ("cv",), method="em")
+    noisy = p + 0.1 * rng(0, 1, "toy").standard_normal(p.shape)
+    ref = learn_noise_em("cv", [(t[a:b], noisy[a:b]) for a, b in zip(starts[:-1], starts[1:])], meas_std=0.1, hessian=False)
+    assert fits["cv"].method == "em" and "by EM" in fits["cv"].report()
+    np.testing.assert_allclose(fits["cv"].values, ref.values, rtol=1e-12)

@@ -72,6 +72,7 @@ the state-space model", JASA 84, 1989.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -88,6 +89,23 @@ __all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
 
 _RANK_TOL = 1e-10  # eigenvalues of a shape Q_i below this × its largest are zero
 _AFFINE_TOL = 1e-9
+#: below this many track steps the E-step's numba kernels run on one thread: EM calls them hundreds of times on
+#: little work each, and waking the thread pool cost 10-30 ms per call on the shared 2-core machine (0.04 ms of
+#: work for 8 tracks × 38 steps; 3.4 ms single-threaded against 31 ms on two threads for 150 × 100)
+SINGLE_THREAD_CELLS = 100_000
+
+
+@contextmanager
+def _numba_threads(n: int):
+    """Run the block with at most ``n`` numba threads (numba's setting is per calling thread; restored after)."""
+    import numba
+
+    old = numba.get_num_threads()
+    numba.set_num_threads(max(1, min(n, old)))
+    try:
+        yield
+    finally:
+        numba.set_num_threads(old)
 
 
 @dataclass
@@ -347,48 +365,50 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         r = np.full(nr, _meas_guess(batch, m))
     if fixed_r is not None:
         r = fixed_r.copy()
-    start = np.concatenate([q, r])
-    tr = trace if trace is not None else EMTrace()
-    converged = False
-    ll_prev = -math.inf
-    for _ in range(max_iter):
-        ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
+    threads = 1 if batch.z.shape[0] * batch.z.shape[1] < SINGLE_THREAD_CELLS else 1 << 30
+    with _numba_threads(threads):
+        start = np.concatenate([q, r])
+        tr = trace if trace is not None else EMTrace()
+        converged = False
+        ll_prev = -math.inf
+        for _ in range(max_iter):
+            ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
+            tr.values.append(np.concatenate([q, r]))
+            tr.loglik.append(ll)
+            if not math.isfinite(ll):
+                raise ValueError("EM: the filter diverged (non-finite likelihood); try init= or learn_noise")
+            # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
+            Enn = np.einsum("kai,kij,kaj->ka", cells.Gp, M, cells.Gp)        # (N, Σρ): diagonal of G⁺ M G⁺ᵀ
+            q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * len(M)))
+            r_new = r
+            if fixed_r is None:
+                Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
+                Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
+                if homogeneous:
+                    prior_term = float(np.einsum("bij,bji->", A1inv, S0))
+                    r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
+                else:
+                    def f(lr):
+                        rr = np.exp(lr)
+                        P0 = P0_of(rr)
+                        sign, logdet = np.linalg.slogdet(P0)
+                        tr0 = np.einsum("bij,bji->", np.linalg.inv(P0), S0)
+                        return 0.5 * (np.sum(Nj * 2 * lr) + np.sum(Vsum / rr**2) + np.sum(logdet) + tr0)
+                    res = minimize(f, np.log(r), method="L-BFGS-B", bounds=[(math.log(BOUNDS[0]), math.log(BOUNDS[1]))] * nr)
+                    r_new = np.exp(res.x) if res.fun <= f(np.log(r)) else r
+            q_new = np.clip(q_new, *BOUNDS)
+            r_new = np.clip(r_new, *BOUNDS)
+            small = np.all(np.abs(np.concatenate([q_new, r_new]) / np.concatenate([q, r]) - 1) < 1e-5)
+            q, r = q_new, np.asarray(r_new, dtype=float)
+            if ll - ll_prev < tol * (1 + abs(ll)) and small:
+                converged = True
+                break
+            ll_prev = ll
+        tr.converged = converged
+        tr.closed_form_r = bool(homogeneous and fixed_r is None)
+        ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
         tr.values.append(np.concatenate([q, r]))
         tr.loglik.append(ll)
-        if not math.isfinite(ll):
-            raise ValueError("EM: the filter diverged (non-finite likelihood); try init= or learn_noise")
-        # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
-        Enn = np.einsum("kai,kij,kaj->ka", cells.Gp, M, cells.Gp)        # (N, Σρ): diagonal of G⁺ M G⁺ᵀ
-        q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * len(M)))
-        r_new = r
-        if fixed_r is None:
-            Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
-            Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
-            if homogeneous:
-                prior_term = float(np.einsum("bij,bji->", A1inv, S0))
-                r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
-            else:
-                def f(lr):
-                    rr = np.exp(lr)
-                    P0 = P0_of(rr)
-                    sign, logdet = np.linalg.slogdet(P0)
-                    tr0 = np.einsum("bij,bji->", np.linalg.inv(P0), S0)
-                    return 0.5 * (np.sum(Nj * 2 * lr) + np.sum(Vsum / rr**2) + np.sum(logdet) + tr0)
-                res = minimize(f, np.log(r), method="L-BFGS-B", bounds=[(math.log(BOUNDS[0]), math.log(BOUNDS[1]))] * nr)
-                r_new = np.exp(res.x) if res.fun <= f(np.log(r)) else r
-        q_new = np.clip(q_new, *BOUNDS)
-        r_new = np.clip(r_new, *BOUNDS)
-        small = np.all(np.abs(np.concatenate([q_new, r_new]) / np.concatenate([q, r]) - 1) < 1e-5)
-        q, r = q_new, np.asarray(r_new, dtype=float)
-        if ll - ll_prev < tol * (1 + abs(ll)) and small:
-            converged = True
-            break
-        ll_prev = ll
-    tr.converged = converged
-    tr.closed_form_r = bool(homogeneous and fixed_r is None)
-    ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
-    tr.values.append(np.concatenate([q, r]))
-    tr.loglik.append(ll)
     values = np.concatenate([q, r])
     fixed = tuple([False] * nq + [fixed_r is not None] * nr)
     problems = [] if converged else [f"EM did not converge in {max_iter} iterations"]
@@ -404,7 +424,8 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         return -tot if math.isfinite(tot) else 1e15
 
     if hessian:
-        H = _hessian(nll, th, 0.02)
+        with _numba_threads(threads):
+            H = _hessian(nll, th, 0.02)
         try:
             cov = np.linalg.inv(H)
             ok = np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0)
