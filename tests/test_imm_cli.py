@@ -85,18 +85,36 @@ def test_readme_imm_example_runs():
     assert imm.x.shape == (6,) and imm.P.shape == (6, 6) and abs(imm.mu.sum() - 1) < 1e-12
 
 
-def test_evaluate_tuned_imm_takes_learned_noise():
-    """`evaluate --imm --tune` (MLE): the tuned run's IMM modes take their model's learned noise, times the
-    level factor of :calm / :manoeuvre; a mode given as numbers, or whose model could not be learned, keeps its own."""
-    from lgekf.apps.evaluate import _imm_with_learned
-    from lgekf.apps.track_imm import ImmTrackOptions
+def _turning_tracks(n_obj=4, K=60, seed=0):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n_obj):
+        th = np.cumsum(np.where((np.arange(K) > K // 3) & (np.arange(K) < 2 * K // 3), 0.08, 0.0))
+        xy = np.cumsum(0.5 * np.stack([np.cos(th), np.sin(th)], axis=1), axis=0)
+        out.append((0.1 * np.arange(K), xy + 0.2 * rng.standard_normal((K, 2))))
+    return out
 
-    opts = ImmTrackOptions("cv,se2r3:calm,se2r3:manoeuvre,ctrv:0.3/0.2,se2r2", 0.05)
-    before = [m.accel_std for m in opts.modes]
-    accel = {"cv": (0.7,), "se2r3": (1.0, 2.0, 3.0), "ctrv": (9.0, 9.0), "se2r2": (5.0, 5.0)}
-    fits = {"cv": object(), "se2r3": object(), "ctrv": object(), "se2r2": "too few points"}
-    tuned = _imm_with_learned(opts, accel, fits)
-    got = [tuple(np.round(m.accel_std, 12)) for m in tuned.modes]
-    assert got == [(0.7,), (0.2, 0.4, 0.6), (4.0, 8.0, 12.0), (0.3, 0.2), tuple(before[4])]
-    assert [m.accel_std for m in opts.modes] == before  # the default run's IMM is unchanged
-    assert _imm_with_learned(None, accel, fits) is None
+
+def test_fit_imm_keeps_the_lowest_aic_and_given_modes():
+    """`--tune` of the IMM (lgekf.apps.track_imm.fit_imm): without --imm-modes every set of TUNE_MODE_SETS is
+    fitted and the lowest AIC kept, each mode = learned noise × level × fitted factor; given modes and a given
+    switching probability are the only candidate and stay fixed, numbers included."""
+    from lgekf.apps.track_imm import TUNE_MODE_SETS, ImmTrackOptions, fit_imm
+
+    tracks = _turning_tracks()
+    learned = {"cv": (0.7,), "se2r3": (0.5, 0.5, 1.0)}
+    opts = ImmTrackOptions()
+    fit, table = fit_imm(opts, tracks, 0.2, 0.5, learned)
+    assert [text for text, _ in table] == list(TUNE_MODE_SETS)
+    kept_text, kept = min(table, key=lambda tf: tf[1].aic)
+    assert fit is kept and opts.modes_text == kept_text and opts.switch == fit.switch
+    levels = {"calm": 0.2, "manoeuvre": 4.0, "": 1.0}
+    for mode, f in zip(opts.modes, fit.factors):
+        np.testing.assert_allclose(mode.accel_std, [levels[mode.label] * f * v for v in learned[mode.model]], rtol=1e-12)
+    assert all(f.n_params == 4 - (text.count(",") == 1) for text, f in table)  # factors + switch
+
+    given = ImmTrackOptions("cv,se2r3:0.3/0.3/0.6", 0.02)
+    fit2, table2 = fit_imm(given, tracks, 0.2, 0.5, learned)
+    assert len(table2) == 1 and given.switch == 0.02 and fit2.n_params == 1
+    assert given.modes[1].accel_std == (0.3, 0.3, 0.6) and fit2.factors[1] == 1.0
+    np.testing.assert_allclose(given.modes[0].accel_std, [0.7 * fit2.factors[0]], rtol=1e-12)

@@ -139,16 +139,21 @@ def test_track_imm_tune_smooth_cli(tmp_path, capsys):
 
     src = _turning_csv(tmp_path / "data.csv")
     out = tmp_path / "out.csv"
-    assert main(["track", str(src), "--model", "imm", "--tune", "--smooth", "-o", str(out)]) == 0
+    assert main(["track", str(src), "--model", "imm", "--tune", "--smooth", "--imm-modes", "cv,se2r3:calm,se2r3:manoeuvre",
+                 "-o", str(out)]) == 0
     err = capsys.readouterr().err
     line = next(ln for ln in err.splitlines() if "imm --tune: learned" in ln)
     assert "cv accel-std" in line and "se2r3 accel-std" in line and "meas-std" in line
-    # the modes ran with the learned noise: se2r3:calm = 0.2 x and se2r3:manoeuvre = 4 x the learned se2r3 noise
+    # the modes ran with the learned noise × their level (se2r3:calm 0.2, se2r3:manoeuvre 4) × the factor the IMM's
+    # own likelihood fitted (lgekf.apps.track_imm.fit_imm), all printed
     learned = [float(v) for v in line.split("se2r3 accel-std ")[1].split(" ")[0].split(",")]
-    calm = [float(v) for v in line.split("se2r3:calm (")[1].split(")")[0].split(",")]
-    man = [float(v) for v in line.split("se2r3:manoeuvre (")[1].split(")")[0].split(",")]
-    np.testing.assert_allclose(calm, [0.2 * v for v in learned], rtol=2e-2)
-    np.testing.assert_allclose(man, [4 * v for v in learned], rtol=2e-2)
+    fitted = next(ln for ln in err.splitlines() if "IMM fitted" in ln)
+    factor = {name: float(fitted.split(f"{name} ×")[1].split(" ")[0]) for name in ("se2r3:calm", "se2r3:manoeuvre")}
+    used = next(ln for ln in err.splitlines() if ln.strip().startswith("modes "))
+    calm = [float(v) for v in used.split("se2r3:calm (")[1].split(")")[0].split(",")]
+    man = [float(v) for v in used.split("se2r3:manoeuvre (")[1].split(")")[0].split(",")]
+    np.testing.assert_allclose(calm, [0.2 * factor["se2r3:calm"] * v for v in learned], rtol=2e-2)
+    np.testing.assert_allclose(man, [4 * factor["se2r3:manoeuvre"] * v for v in learned], rtol=2e-2)
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 180
     cols = list(rows[0])

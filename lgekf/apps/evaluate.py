@@ -202,16 +202,21 @@ class DatasetResult:
         return rows
 
 
-def _imm_with_learned(imm, accel: dict, fits: dict):
-    """A copy of the IMM options whose modes take the noise learned for their model (``with_learned_noise``: a
-    plain mode the learned values, ``:calm``/``:manoeuvre`` those times their factor); None without an IMM."""
+def _imm_fitted(imm, dtune, meas_std: float, seed_list, omega_std: float, fits: dict):
+    """A copy of the IMM options fitted on the tuning split by the IMM's own likelihood
+    (``lgekf.apps.track_imm.fit_imm``: each candidate mode set from its models' learned noise, the lowest AIC
+    kept), and the fit; (None, None) without an IMM."""
     if imm is None:
-        return None
+        return None, None
     import copy
 
+    from .smooth_track import noisy_tracks
+    from .track_imm import fit_imm
+
     tuned = copy.deepcopy(imm)
-    tuned.with_learned_noise({m: accel[m] for m in imm.tunable_models() if m in fits and not isinstance(fits[m], str)})
-    return tuned
+    learned = {m: f.accel_std for m, f in fits.items() if not isinstance(f, str)}
+    fit, _ = fit_imm(tuned, noisy_tracks(dtune, meas_std, seed_list, _seed_rng), meas_std, omega_std, learned)
+    return tuned, fit
 
 
 def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
@@ -222,8 +227,8 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     "mle" or "em" (as "mle", with EM for the linear Gaussian models, ``lgekf.estimators.em``);
     ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
     ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row: with its modes' noise as given there in the
-    default run, and with ``tune`` (MLE) in the tuned run with each mode's model's learned noise (times the
-    mode's level factor; modes given as numbers keep them). The grid search does not tune the IMM.
+    default run, and with ``tune`` (MLE) in the tuned run fitted on the tuning split by its own likelihood
+    (``_imm_fitted``; the fit is in the tuned result's ``fits["imm"]``). The grid search does not tune the IMM.
     """
     if imm is not None and runner is not None:
         raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
@@ -240,13 +245,14 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
         fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS, method="em" if tune_method == "em" else "lbfgs")
         accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
         cfg = TrackConfig(dict(accel), meas_std).validate()
+        imm_tuned, imm_fit = _imm_fitted(imm, dtune, meas_std, seed_list, cfg.omega_std, fits)
         if progress:
             progress(1)
         out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
                                                                     runner=runner, imm=imm), [], len(tune_idx))]
         out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner,
-                                                                      imm=_imm_with_learned(imm, accel, fits)), [],
-                                 len(tune_idx), accel, fits))
+                                                                      imm=imm_tuned), [],
+                                 len(tune_idx), accel, dict(fits, imm=imm_fit) if imm_fit is not None else fits))
         return out
     tuning = []
     best = {m: (float("inf"), (1.0, 1.0)) for m in FILTERS}

@@ -20,7 +20,7 @@ from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
 
-__all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset"]
+__all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset", "noisy_tracks"]
 
 
 def smooth_column_names(model: str) -> list:
@@ -69,15 +69,21 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
     return fits
 
 
-def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs") -> dict:
-    """{model: NoiseFit} learned on a ``lgekf.io.datasets.Dataset``'s tracks with N(0, meas_std²) noise added
-    (noise stream 1 of ``lgekf evaluate``, every seed's draw a track of its own), the measurement std held
-    at ``meas_std``. A model whose noise cannot be learned (too few points) maps to the reason (a str). ``method``
-    "em": EM for the models where it applies (``em_or_lbfgs``)."""
+def noisy_tracks(ds, meas_std: float, seeds, seed_rng) -> list:
+    """[(t, z)]: a ``lgekf.io.datasets.Dataset``'s tracks with N(0, meas_std²) noise added (noise stream 1 of
+    ``lgekf evaluate``), every seed's draw a track of its own."""
     tracks = []
     for seed in seeds:
         z = ds.p + meas_std * seed_rng(seed, 1, ds.name).standard_normal(ds.p.shape)
         tracks += [(ds.t[a:b], z[a:b]) for a, b in zip(ds.starts[:-1], ds.starts[1:])]
+    return tracks
+
+
+def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs") -> dict:
+    """{model: NoiseFit} learned on ``noisy_tracks`` of a dataset, the measurement std held at ``meas_std``.
+    A model whose noise cannot be learned (too few points) maps to the reason (a str). ``method`` "em": EM for
+    the models where it applies (``em_or_lbfgs``)."""
+    tracks = noisy_tracks(ds, meas_std, seeds, seed_rng)
     out = {}
     for m in models:
         try:

@@ -14,7 +14,10 @@ maximum likelihood on the file's own tracks (``lgekf.apps.smooth_track.tune_mode
 --tune``); a plain mode ``MODEL`` runs with the learned process noise, ``MODEL:calm`` / ``MODEL:manoeuvre`` with
 the learned noise × their level factor (0.2, 4; ``lgekf.estimators.imm.NOISE_LEVELS``), ``MODEL:a/b/c`` keeps
 its numbers. The measurement std is ``--meas-std`` when given (then held fixed in the fits), else the one
-learned by the fit with the highest log-likelihood.
+learned by the fit with the highest log-likelihood. Then the IMM itself is fitted by its own likelihood
+(:func:`fit_imm`, ``lgekf.estimators.imm_tuning.learn_imm``): one factor per mode on that noise, and the
+switching probability unless ``--imm-switch`` is given. Without ``--imm-modes`` two mode sets are fitted,
+``TUNE_MODE_SETS`` (the default and two CV modes, calm and manoeuvring), and the one of lowest AIC is kept.
 
 ``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm_smoother``) combined estimate
 ``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
@@ -30,7 +33,7 @@ from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, imm_batch, pars
 from ..io.formatting import format_rows, label_bytes
 from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, initial_common
 
-__all__ = ["DEFAULT_TRACK_MODES", "ImmTrackOptions", "imm_columns", "write_imm", "imm_track_common", "tune_imm",
+__all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "fit_imm", "imm_columns", "write_imm", "imm_track_common", "tune_imm",
            "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
@@ -39,16 +42,27 @@ IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 #: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see README)
 DEFAULT_TRACK_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
 COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
+#: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (README: on
+#: pedestrians the two CV modes win, on vehicles and cyclists CV with SE(2)×R³ calm and manoeuvring)
+TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre")
+#: at most about this many steps (whole tracks, a seeded random subset) enter the IMM's joint fit
+FIT_MAX_STEPS = 40_000
 
 
 class ImmTrackOptions:
     """The IMM of ``lgekf track``: modes (``parse_modes`` syntax) and the per-step switching probability."""
 
     def __init__(self, modes: str | None = None, switch: float | None = None):
+        self.modes_given = modes is not None
+        self.switch_given = switch is not None
         self.modes_text = DEFAULT_TRACK_MODES if modes is None else modes
         self.switch = DEFAULT_SWITCH if switch is None else float(switch)
         self.modes = parse_modes(self.modes_text)
         transition_matrix(len(self.modes), self.switch)
+
+    def candidates(self) -> list:
+        """The mode sets ``--tune`` fits: the given ``--imm-modes``, else every set of ``TUNE_MODE_SETS``."""
+        return [self.modes_text] if self.modes_given else list(TUNE_MODE_SETS)
 
     def tunable_models(self) -> list:
         """The distinct models of modes whose noise is a named level or the default (not given as numbers)."""
@@ -150,31 +164,83 @@ def _imm_track_smoothed(t, z, starts, meas_std: float, omega_std: float, opts: I
 
 
 def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float):
-    """Learn the noise of ``opts``'s tunable models from the file (module docstring) and set the modes' noise.
+    """Learn the IMM from the file (module docstring) and set ``opts``' modes, their noise and the switching.
 
     Returns
     -------
     r : float
         The measurement std to run with.
     fits : dict
-        {model: NoiseFit}.
+        {model: NoiseFit} of the single models, and "imm": the kept ``ImmFit``.
     summary : str
-        One line: what was learned and used.
+        What was learned and used (one line per step).
     """
     from .smooth_track import tune_models
 
-    models = opts.tunable_models()
+    models = []
+    for text in opts.candidates():
+        for m in ImmTrackOptions(text).tunable_models():
+            if m not in models:
+                models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
     fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std)
-    opts.with_learned_noise({m: f.accel_std for m, f in fits.items()})
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
     learned = "; ".join(f"{m} accel-std {','.join(f'{v:.3g}' for v in f.accel_std)} (log-likelihood {f.loglik:.6g}"
                         + (f"; not identified: {', '.join(f.problems)}" if f.problems else "") + ")" for m, f in fits.items())
     src = "given" if meas_std is not None else f"learned with {best}, the best log-likelihood"
+    t = np.asarray(meas.t, float)
+    z = np.asarray(meas.z, float)[:, :2]
+    tracks = [(t[a:b], z[a:b]) for a, b in zip(starts[:-1], starts[1:]) if b - a >= 3]
+    fit, table = fit_imm(opts, tracks, r, omega_std, {m: f.accel_std for m, f in fits.items()})
+    fits = dict(fits, imm=fit)
+    sets = "; ".join(f"{text}: " + (f"AIC {f.aic:.6g}" if not isinstance(f, str) else f"not fitted ({f})") for text, f in table)
     modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
-    return r, fits, f"imm --tune: learned {learned}; meas-std {r:.3g} m ({src}); modes {modes}"
+    return r, fits, (f"imm --tune: learned {learned}; meas-std {r:.3g} m ({src})\n"
+                     + (f"  mode sets compared: {sets}; kept {opts.modes_text}\n" if len(table) > 1 else "")
+                     + f"  {fit.report()}\n  modes {modes}; switch {opts.switch:.3g}")
+
+
+def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, learned: dict, seed: int = 0):
+    """The IMM fitted to ``tracks`` by its own likelihood (``lgekf.estimators.imm_tuning.learn_imm``), in place.
+
+    Every candidate mode set (``opts.candidates()``) starts from its models' learned noise ``learned``
+    ({model: accel_std}) times the named levels, and its modes' factors and the switching probability (unless
+    ``--imm-switch`` was given) are fitted; modes given as numbers keep them. The set of lowest AIC is kept in
+    ``opts``. With more than ``FIT_MAX_STEPS`` steps a seeded random subset of whole tracks is used.
+
+    Returns
+    -------
+    fit : ImmFit
+        The kept set's fit.
+    table : list of (str, ImmFit or str)
+        Every candidate with its fit, or why it could not be fitted.
+    """
+    from ..estimators.imm_tuning import learn_imm
+
+    tracks = list(tracks)
+    steps = np.array([max(len(t) - 2, 0) for t, _ in tracks])
+    if steps.sum() > FIT_MAX_STEPS:
+        order = np.random.default_rng(seed).permutation(len(tracks))
+        keep = order[:max(1, int(np.searchsorted(np.cumsum(steps[order]), FIT_MAX_STEPS)) + 1)]
+        tracks = [tracks[i] for i in np.sort(keep)]
+    table = []
+    for text in opts.candidates():
+        cand = ImmTrackOptions(text, opts.switch if opts.switch_given else None)
+        cand.with_learned_noise({m: learned[m] for m in cand.tunable_models() if m in learned})
+        fixed = [bool(m.label) and m.label not in NOISE_LEVELS for m in cand.modes]
+        try:
+            table.append((text, learn_imm(cand.modes, tracks, meas_std=meas_std, switch=cand.switch, omega_std=omega_std,
+                                          fit_switch=not opts.switch_given, fixed=fixed)))
+        except ValueError as e:
+            table.append((text, str(e)))
+    fitted = [(text, f) for text, f in table if not isinstance(f, str)]
+    if not fitted:
+        raise ValueError(f"--tune: the IMM could not be fitted: {table[0][1]}")
+    text, fit = min(fitted, key=lambda tf: tf[1].aic)
+    opts.modes_text, opts.modes, opts.switch = text, list(fit.modes), fit.switch
+    return fit, table
 
 
 def common_world_velocity(c: np.ndarray) -> np.ndarray:
