@@ -266,7 +266,8 @@ def _estep(spec, measurement, lin, batch, cells, x0, tau0, P0, q, r):
 def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
                    meas_std: float | ArrayLike | None = None, omega_std: float = 0.5, heading_cap: float = math.pi,
                    hessian: bool = True, baseline: float = 1.0, max_iter: int = 2000, tol: float = 1e-7,
-                   init: ArrayLike | None = None, trace: EMTrace | None = None, _numeric_r: bool = False) -> NoiseFit:
+                   init: ArrayLike | None = None, trace: EMTrace | None = None, accelerate: bool = True,
+                   _numeric_r: bool = False) -> NoiseFit:
     r"""Maximum-likelihood noise of a linear Gaussian model by EM (E: RTS smoother, M: closed form).
 
     The same inputs and result as :func:`~lgekf.estimators.tuning.learn_noise`, the same likelihood (the
@@ -298,6 +299,12 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         second-difference guess of r.
     trace : EMTrace, optional
         Filled with every iteration's stds and log-likelihood.
+    accelerate : bool
+        SQUAREM (Varadhan & Roland, "Simple and globally convergent methods for accelerating the convergence
+        of any EM algorithm", Scand. J. Stat. 35, 2008; scheme SqS3) on the variances: after two EM steps an
+        extrapolated point, kept (with one EM step from it) only when its likelihood is higher than the second
+        step's, so the recorded likelihood still never decreases; the same fixed point in several times fewer
+        E-steps. False: plain EM (``max_iter`` counts E-steps either way).
 
     Returns
     -------
@@ -366,44 +373,81 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     if fixed_r is not None:
         r = fixed_r.copy()
     threads = 1 if batch.z.shape[0] * batch.z.shape[1] < SINGLE_THREAD_CELLS else 1 << 30
+    def em_map(q, r):
+        """The log-likelihood at (q, r) and the EM update (q', r') (None, None if the filter diverged)."""
+        ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
+        if not math.isfinite(ll):
+            return ll, None, None
+        # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
+        Enn = np.einsum("kai,kij,kaj->ka", cells.Gp, M, cells.Gp)        # (N, Σρ): diagonal of G⁺ M G⁺ᵀ
+        q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * len(M)))
+        r_new = r
+        if fixed_r is None:
+            Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
+            Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
+            if homogeneous:
+                prior_term = float(np.einsum("bij,bji->", A1inv, S0))
+                r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
+            else:
+                def f(lr):
+                    rr = np.exp(lr)
+                    P0 = P0_of(rr)
+                    sign, logdet = np.linalg.slogdet(P0)
+                    tr0 = np.einsum("bij,bji->", np.linalg.inv(P0), S0)
+                    return 0.5 * (np.sum(Nj * 2 * lr) + np.sum(Vsum / rr**2) + np.sum(logdet) + tr0)
+                res = minimize(f, np.log(r), method="L-BFGS-B", bounds=[(math.log(BOUNDS[0]), math.log(BOUNDS[1]))] * nr)
+                r_new = np.exp(res.x) if res.fun <= f(np.log(r)) else r
+        return ll, np.clip(q_new, *BOUNDS), np.clip(np.asarray(r_new, dtype=float), *BOUNDS)
+
+    def done(ll, ll_prev, th, th_new):
+        return ll - ll_prev < tol * (1 + abs(ll)) and np.all(np.abs(th_new / th - 1) < 1e-5)
+
+    start = np.concatenate([q, r])
+    tr = trace if trace is not None else EMTrace()
+    converged = False
+    ll_prev = -math.inf
     with _numba_threads(threads):
-        start = np.concatenate([q, r])
-        tr = trace if trace is not None else EMTrace()
-        converged = False
-        ll_prev = -math.inf
-        for _ in range(max_iter):
-            ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
-            tr.values.append(np.concatenate([q, r]))
-            tr.loglik.append(ll)
-            if not math.isfinite(ll):
+        it = 0
+        while it < max_iter:
+            ll0, q1, r1 = em_map(q, r)
+            it += 1
+            if q1 is None:
                 raise ValueError("EM: the filter diverged (non-finite likelihood); try init= or learn_noise")
-            # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
-            Enn = np.einsum("kai,kij,kaj->ka", cells.Gp, M, cells.Gp)        # (N, Σρ): diagonal of G⁺ M G⁺ᵀ
-            q_new = np.sqrt(np.array([Enn[:, owner == i].sum() for i in range(nq)]) / (rank * len(M)))
-            r_new = r
-            if fixed_r is None:
-                Vsum = np.array([V[:, meas_idx == j].sum() for j in range(nr)])
-                Nj = np.array([len(V) * np.sum(meas_idx == j) for j in range(nr)])
-                if homogeneous:
-                    prior_term = float(np.einsum("bij,bji->", A1inv, S0))
-                    r_new = np.sqrt((Vsum + prior_term) / (Nj + n * B))
-                else:
-                    def f(lr):
-                        rr = np.exp(lr)
-                        P0 = P0_of(rr)
-                        sign, logdet = np.linalg.slogdet(P0)
-                        tr0 = np.einsum("bij,bji->", np.linalg.inv(P0), S0)
-                        return 0.5 * (np.sum(Nj * 2 * lr) + np.sum(Vsum / rr**2) + np.sum(logdet) + tr0)
-                    res = minimize(f, np.log(r), method="L-BFGS-B", bounds=[(math.log(BOUNDS[0]), math.log(BOUNDS[1]))] * nr)
-                    r_new = np.exp(res.x) if res.fun <= f(np.log(r)) else r
-            q_new = np.clip(q_new, *BOUNDS)
-            r_new = np.clip(r_new, *BOUNDS)
-            small = np.all(np.abs(np.concatenate([q_new, r_new]) / np.concatenate([q, r]) - 1) < 1e-5)
-            q, r = q_new, np.asarray(r_new, dtype=float)
-            if ll - ll_prev < tol * (1 + abs(ll)) and small:
+            tr.values.append(np.concatenate([q, r]))
+            tr.loglik.append(ll0)
+            if done(ll0, ll_prev, np.concatenate([q, r]), np.concatenate([q1, r1])):
+                q, r = q1, r1
                 converged = True
                 break
-            ll_prev = ll
+            ll_prev = ll0
+            if not accelerate:
+                q, r = q1, r1
+                continue
+            # SQUAREM (Varadhan & Roland 2008, SqS3) on the variances: two EM steps, an extrapolation, one EM step
+            # from it; kept only if it beats the second point's likelihood, so the recorded likelihood never drops
+            ll1, q2, r2 = em_map(q1, r1)
+            it += 1
+            if q2 is None:
+                raise ValueError("EM: the filter diverged (non-finite likelihood); try init= or learn_noise")
+            tr.values.append(np.concatenate([q1, r1]))
+            tr.loglik.append(ll1)
+            ll_prev = ll1
+            th0, th1, th2 = (np.concatenate([a, b]) ** 2 for a, b in ((q, r), (q1, r1), (q2, r2)))
+            rho, v = th1 - th0, th2 - 2 * th1 + th0
+            nv = float(np.linalg.norm(v))
+            alpha = min(-float(np.linalg.norm(rho)) / nv, -1.0) if nv > 0 else -1.0
+            thx = th0 - 2 * alpha * rho + alpha**2 * v
+            q, r = q2, r2
+            if alpha < -1.0 and np.all(thx > 0):
+                sx = np.clip(np.sqrt(thx), *BOUNDS)
+                qx, rx = sx[:nq], (sx[nq:] if fixed_r is None else fixed_r)
+                llx, qy, ry = em_map(qx, rx)
+                it += 1
+                if qy is not None and llx >= ll1:
+                    tr.values.append(np.concatenate([qx, rx]))
+                    tr.loglik.append(llx)
+                    ll_prev = llx
+                    q, r = qy, ry
         tr.converged = converged
         tr.closed_form_r = bool(homogeneous and fixed_r is None)
         ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
