@@ -57,5 +57,6 @@ def main() -> None:
               f"EM / L-BFGS on one thread = {t_em / t_lbfgs1:.2f}, plain EM / L-BFGS on one thread = {t_plain / t_lbfgs1:.2f}"
               f" (all with the Hessian interval)")
 
+
 if __name__ == "__main__":
     main()

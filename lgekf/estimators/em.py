@@ -60,8 +60,11 @@ tr(P_0(r)⁻¹ S_0)), is maximised numerically in log r from the current value (
 monotone). With ``meas_std`` given, r is held fixed.
 
 Each iteration cannot decrease the likelihood (Dempster, Laird, Rubin 1977); :class:`EMTrace` records it.
-EM converges linearly, slowly where the data identify a parameter weakly; the interval and the identification
-checks are those of :func:`~lgekf.estimators.tuning.learn_noise` (Hessian of −log L in log θ at the optimum).
+EM converges linearly, slowly where the data identify a parameter weakly; by default it is accelerated by
+SQUAREM (Varadhan & Roland 2008), safeguarded so that the recorded likelihood still never decreases (on the
+test data 29 instead of 97 E-steps). The interval and the identification checks are those of
+:func:`~lgekf.estimators.tuning.learn_noise` (Hessian of −log L in log θ at the optimum). The E-step's kernels
+run on one numba thread below ``SINGLE_THREAD_CELLS`` track steps.
 
 References: R. H. Shumway, D. S. Stoffer, "An approach to time series smoothing and forecasting using the EM
 algorithm", J. Time Series Anal. 3(4), 1982; Z. Ghahramani, G. E. Hinton, "Parameter estimation for linear
