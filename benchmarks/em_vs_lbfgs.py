@@ -51,7 +51,7 @@ def main() -> None:
         print(f"  L-BFGS: sigma_a = {ref.values[0]:.5g}, r = {ref.values[1]:.5g}, log L = {ref.loglik:.6f}"
               f" {'identified' if ref.identified else ref.problems}")
         print(f"  EM    : sigma_a = {em.values[0]:.5g}, r = {em.values[1]:.5g}, log L = {em.loglik:.6f}"
-              f" ({len(tr.loglik) - 1} recorded SQUAREM iterations, plain EM {len(plain.loglik) - 1}; converged {tr.converged})"
+              f" ({tr.e_steps} E-steps with SQUAREM, {plain.e_steps} plain; converged {tr.converged})"
               f" {'identified' if em.identified else em.problems}")
         print(f"  log L (EM − L-BFGS) = {em.loglik - ref.loglik:+.2e}; time EM / L-BFGS = {t_em / t_lbfgs:.2f}, "
               f"EM / L-BFGS on one thread = {t_em / t_lbfgs1:.2f}, plain EM / L-BFGS on one thread = {t_plain / t_lbfgs1:.2f}"

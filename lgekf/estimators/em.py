@@ -115,12 +115,14 @@ def _numba_threads(n: int):
 class EMTrace:
     """The iterations of :func:`learn_noise_em`: the parameters (stds) before each E-step and the exact
     log-likelihood there (``loglik[i]`` at ``values[i]``); EM makes ``loglik`` non-decreasing. ``closed_form_r``:
-    the measurement std's M-step was the closed form (the start's covariance scales as r²), else numeric."""
+    the measurement std's M-step was the closed form (the start's covariance scales as r²), else numeric.
+    ``e_steps``: smoother passes run (with SQUAREM also those of rejected extrapolations, not in ``loglik``)."""
 
     values: list = field(default_factory=list)
     loglik: list = field(default_factory=list)
     converged: bool = False
     closed_form_r: bool = False
+    e_steps: int = 0
 
 
 def em_models() -> dict:
@@ -379,6 +381,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     def em_map(q, r):
         """The log-likelihood at (q, r) and the EM update (q', r') (None, None if the filter diverged)."""
         ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
+        tr.e_steps += 1
         if not math.isfinite(ll):
             return ll, None, None
         # process noise: E[n nᵀ] = G⁺ M G⁺ᵀ per step, summed per std over the valid steps
@@ -454,6 +457,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         tr.converged = converged
         tr.closed_form_r = bool(homogeneous and fixed_r is None)
         ll = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)[0]
+        tr.e_steps += 1
         tr.values.append(np.concatenate([q, r]))
         tr.loglik.append(ll)
     values = np.concatenate([q, r])
