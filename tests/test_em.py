@@ -47,7 +47,7 @@ def data():
 
 
 def test_em_recovers_known_cv_noise_within_the_stated_uncertainty(data):
-    """Truth (σ_a, r) = (0.3, 0.2); measured: 0.2729 [0.244, 0.305], 0.2029 [0.195, 0.211] in 97 E-steps of plain EM."""
+    """Truth (σ_a, r) = (0.3, 0.2); measured: 0.2729 [0.244, 0.305], 0.2029 [0.195, 0.211] in 98 E-steps of plain EM (32 with SQUAREM)."""
     _, fit, trace = data
     assert trace.converged and fit.identified, fit.report()
     truth = np.array([SIGMA_A, R])

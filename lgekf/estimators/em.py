@@ -62,7 +62,7 @@ monotone). With ``meas_std`` given, r is held fixed.
 Each iteration cannot decrease the likelihood (Dempster, Laird, Rubin 1977); :class:`EMTrace` records it.
 EM converges linearly, slowly where the data identify a parameter weakly; by default it is accelerated by
 SQUAREM (Varadhan & Roland 2008), safeguarded so that the recorded likelihood still never decreases (on the
-test data 29 instead of 97 E-steps). The interval and the identification checks are those of
+test data 32 instead of 98 E-steps). The interval and the identification checks are those of
 :func:`~lgekf.estimators.tuning.learn_noise` (Hessian of −log L in log θ at the optimum). The E-step's kernels
 run on one numba thread below ``SINGLE_THREAD_CELLS`` track steps.
 
