@@ -378,6 +378,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     if fixed_r is not None:
         r = fixed_r.copy()
     threads = 1 if batch.z.shape[0] * batch.z.shape[1] < SINGLE_THREAD_CELLS else 1 << 30
+
     def em_map(q, r):
         """The log-likelihood at (q, r) and the EM update (q', r') (None, None if the filter diverged)."""
         ll, M, V, S0 = _estep(spec, measurement, lin, batch, cells, x0, tau0, P0_of(r), q, r)
