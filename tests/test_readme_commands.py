@@ -107,6 +107,7 @@ README_TO_RUN = {
                                                                               "lgekf track detections.csv --model se2r3 --smooth -o tracks.csv"],
     "lgekf evaluate ethucy kitti cyclists dut --tune --smooth": None,
     "lgekf evaluate --tune": ["lgekf evaluate ethucy --tune"],
+    "lgekf track detections.csv --model cv --tune --tune-method em -o tracks.csv": None,
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,

@@ -170,6 +170,21 @@ def _render_model(args) -> tuple[str, str]:
     return f"{name}.py", src
 
 
+def _noise_inputs(meas) -> tuple | None:
+    """For each entry of z, the index of its std in ``noise_names`` when R = diag(σ_idx²); None otherwise."""
+    R = sp.Matrix(meas.R())
+    syms = meas.noise_symbols
+    if R != sp.diag(*[R[i, i] for i in range(R.rows)]):
+        return None
+    out = []
+    for i in range(R.rows):
+        idx = [j for j, sd in enumerate(syms) if sp.simplify(R[i, i] - sd**2) == 0]
+        if len(idx) != 1:
+            return None
+        out.append(idx[0])
+    return tuple(out)
+
+
 def render_registry(models: dict, measurements: dict) -> str:
     """generated/registry.py: the plain-data model table the runtime reads (no SymPy at run time)."""
     import pprint
@@ -180,7 +195,7 @@ def render_registry(models: dict, measurements: dict) -> str:
         table[name] = registry_entry(model, fit, refused)
     meas = {
         name: {"description": m.description, "z_names": tuple(m.z_names), "noise_names": tuple(m.noise_names),
-               "angles": tuple(m.angles), "dim": m.m}
+               "angles": tuple(m.angles), "dim": m.m, "noise_inputs": _noise_inputs(m)}
         for name, m in measurements.items()
     }
     out = [HEADER.format(title="The model table: one entry per motion-model definition, read by lgekf.core.registry.",

@@ -487,4 +487,5 @@ def registry_entry(model, measurements: dict, refused: dict) -> dict:
         "noise_inputs": tuple(model.noise_symbols.index(sd) for sd in model.noise_stds()),
         "measurements": tuple(measurements),
         "refused": dict(refused),
+        "linear": tuple(name for name, meas in measurements.items() if model.is_linear_gaussian(meas)),
     }

@@ -318,6 +318,27 @@ class MotionModel:
         """Tangent coordinates that are rotation angles of SE(2) factors (exp is periodic in them)."""
         return tuple(self.group.periodic_coordinates())
 
+    def is_linear_gaussian(self, meas) -> bool:
+        """True when this model with measurement ``meas`` is a linear Gaussian state-space model.
+
+        That is: the group is a vector space in its tangent coordinates (Φ_G = I and Φ_G' = I, so μ·exp(ε)
+        is μ + ε and the innovation a difference), and F (eq:pred_cov), Q = G diag(σ²) Gᵀ and ℋ (eq:calH)
+        do not depend on the state.  Then x_k = F x_{k-1} + G n_k, z_k = ℋ x_k + m_k exactly, the filter is
+        the Kalman filter, its innovation likelihood is exact, and EM (Shumway & Stoffer 1982) applies
+        (``lgekf.estimators.em``).
+        """
+        state = set(self.physical) | set(self.internal) | {s for _, c, s_ in self.carried for s in (c, s_)}
+        eps = sp.Matrix(self.EPS)
+        if sp.simplify(self.group.right_jacobian(list(eps)) - sp.eye(self.n)) != sp.zeros(self.n, self.n):
+            return False
+        m = meas.group.dim
+        if sp.simplify(meas.group.right_jacobian([sp.Symbol(f"_u{i}") for i in range(m)]) - sp.eye(m)) != sp.zeros(m, m):
+            return False
+        for M in (self.to_internal(self.F), self.to_internal(self.Q), self.to_internal(self.calH_for(meas))):
+            if sp.Matrix(M).free_symbols & state:
+                return False
+        return True
+
 
 def _plain_name(s) -> str:
     return {"v_x": "vx", "v_y": "vy"}.get(s.name, s.name)

@@ -223,8 +223,9 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
                      tune_method="mle", smooth=False, imm=None):
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
-    ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid" or
-    "mle"; ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
+    ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid",
+    "mle" or "em" (as "mle", with EM for the linear Gaussian models, ``lgekf.estimators.em``);
+    ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
     ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row: with its modes' noise as given there in the
     default run, and with ``tune`` (MLE) in the tuned run fitted on the tuning split by its own likelihood
     (``_imm_fitted``; the fit is in the tuned result's ``fits["imm"]``). The grid search does not tune the IMM.
@@ -238,10 +239,10 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
         return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, models=models, runner=runner, imm=imm))]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
-    if tune_method == "mle":
+    if tune_method in ("mle", "em"):
         from .smooth_track import learn_on_dataset
 
-        fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS)
+        fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS, method="em" if tune_method == "em" else "lbfgs")
         accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
         cfg = TrackConfig(dict(accel), meas_std).validate()
         imm_tuned, imm_fit = _imm_fitted(imm, dtune, meas_std, seed_list, cfg.omega_std, fits)

@@ -17,6 +17,7 @@ import numpy as np
 
 from ..core.registry import get_model
 from ..estimators.smoother import smooth_segments
+from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
 
 __all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "learn_on_dataset", "noisy_tracks"]
@@ -47,8 +48,10 @@ def smoothed_columns(model, measurement, t, zm, starts, x0, P0, q, r, x_filt, p_
     return np.hstack([xs, np.sqrt(np.maximum(ps[:, diag], 0.0))])
 
 
-def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5):
-    """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file)."""
+def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5,
+                method="lbfgs"):
+    """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file); ``method`` "em":
+    EM where it applies (``lgekf.estimators.em.em_or_lbfgs``), else the likelihood optimiser."""
     fits: dict[str, NoiseFit] = {}
     starts = np.asarray(starts, dtype=np.int64)
     for m in models:
@@ -61,7 +64,8 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
         fixed = None
         if meas_std is not None:
             fixed = meas_std if meas == "position" else None
-        fits[m] = learn_noise(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
+        learn = learn_noise_em if em_or_lbfgs(m, meas, method) == "em" else learn_noise
+        fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
     return fits
 
 
@@ -75,14 +79,16 @@ def noisy_tracks(ds, meas_std: float, seeds, seed_rng) -> list:
     return tracks
 
 
-def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models) -> dict:
+def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs") -> dict:
     """{model: NoiseFit} learned on ``noisy_tracks`` of a dataset, the measurement std held at ``meas_std``.
-    A model whose noise cannot be learned (too few points) maps to the reason (a str)."""
+    A model whose noise cannot be learned (too few points) maps to the reason (a str). ``method`` "em": EM for
+    the models where it applies (``em_or_lbfgs``)."""
     tracks = noisy_tracks(ds, meas_std, seeds, seed_rng)
     out = {}
     for m in models:
         try:
-            out[m] = learn_noise(m, tracks, meas_std=meas_std)
+            learn = learn_noise_em if em_or_lbfgs(m, "position", method) == "em" else learn_noise
+            out[m] = learn(m, tracks, meas_std=meas_std)
         except ValueError as e:  # too few points: the caller keeps the default noise and says why
             out[m] = str(e)
     return out

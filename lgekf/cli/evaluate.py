@@ -39,9 +39,10 @@ def evaluate_parser():
     ap.add_argument("--min-length", type=int, default=5, help="skip tracks with fewer samples (default 5)")
     ap.add_argument("--tune", action="store_true",
                     help="tune each filter's process noise on the first 30 %% of tracks (--tune-method), evaluate on the rest")
-    ap.add_argument("--tune-method", choices=["mle", "grid"], default="mle",
+    ap.add_argument("--tune-method", choices=["mle", "grid", "em"], default="mle",
                     help="with --tune: mle = maximum-likelihood process noise learned on the tuning split (default), "
-                         "grid = the RMSE grid search over k·default noise and the turn-rate ratio")
+                         "grid = the RMSE grid search over k·default noise and the turn-rate ratio, "
+                         "em = as mle, by EM for the linear Gaussian filters (CV), the optimiser for the others")
     ap.add_argument("--smooth", action="store_true", help="also rows <model>:smoothed, the RTS smoother on the group")
     ap.add_argument("--imm", action="store_true",
                     help="add an IMM row (modes --imm-modes; with --tune (mle) its modes take their models' learned noise; one process only)")

@@ -107,6 +107,9 @@ def track_parser():
     ap.add_argument("--tune", action="store_true",
                     help="learn each model's process noise (and the measurement std unless --meas-std) by maximum likelihood "
                          "on the file's own tracks, print it with 95 %% intervals to stderr, then track with it")
+    ap.add_argument("--tune-method", choices=["lbfgs", "em"], default="lbfgs",
+                    help="with --tune: lbfgs = the likelihood optimiser (default), em = expectation-maximisation for the "
+                         "linear Gaussian models (cv), the optimiser for the others")
     ap.add_argument("--smooth", action="store_true",
                     help="also write RTS-smoothed columns smooth_<state>, smooth_std_<state> (after flag; "
                          "with --model imm also smooth_mu_<mode>)")
@@ -255,7 +258,8 @@ def cmd_track(argv) -> int:
         if a.tune:
             from ..apps.smooth_track import tune_models
 
-            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, given_q, meas.heading, a.omega_std)
+            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, given_q, meas.heading, a.omega_std,
+                               a.tune_method)
             for m, fit in fits.items():
                 print(f"lgekf track: {fit.report()}", file=sys.stderr)
                 r = fit.meas_std

@@ -27,6 +27,7 @@ class MeasurementSpec:
     noise_names: tuple
     angles: tuple
     dim: int
+    noise_inputs: tuple | None = None  # per entry of z, the index of its std when R = diag(σ_idx²); else None
 
 
 @dataclass(frozen=True)
@@ -49,6 +50,7 @@ class ModelSpec:
     noise_inputs: tuple  # for each entry of the noise n, the index of its std in accel_std
     measurements: tuple  # the measurement models this model supports
     refused: dict = field(default_factory=dict)  # {measurement: why not}
+    linear: tuple = ()  # measurements with which the model is linear Gaussian (F, Q, ℋ state-free; EM applies)
 
     @property
     def kernels(self) -> ModuleType:

@@ -75,6 +75,8 @@ class NoiseFit:
         (start values, end values, log-likelihood) of every start.
     problems : list of str
         Why the noise may not be identified (empty when it is).
+    method : str
+        "lbfgs" (the likelihood optimiser) or "em" (``lgekf.estimators.em``).
     """
 
     model: str
@@ -90,6 +92,7 @@ class NoiseFit:
     fixed: tuple
     starts: list = field(default_factory=list)
     problems: list = field(default_factory=list)
+    method: str = "lbfgs"
 
     @property
     def accel_std(self) -> tuple:
@@ -118,7 +121,7 @@ class NoiseFit:
                 parts.append(f"{nm} = {v:.4g} [95 %: {lo:.3g}, {hi:.3g}]")
             else:
                 parts.append(f"{nm} = {v:.4g} [no interval]")
-        head = (f"learned noise for {self.model} ({self.measurement}, {self.n_tracks} tracks, {self.n_updates} updates, "
+        head = (f"learned noise for {self.model}{' by EM' if self.method == 'em' else ''} ({self.measurement}, {self.n_tracks} tracks, {self.n_updates} updates, "
                 f"log-likelihood {self.loglik:.6g}): " + ", ".join(parts))
         if self.problems:
             head += "\n  not identified: " + "; ".join(self.problems)
@@ -215,6 +218,10 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     ------
     ValueError
         Bad input, or fewer than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter.
+
+    See Also
+    --------
+    lgekf.estimators.em.learn_noise_em : the same maximum likelihood by EM, for the linear Gaussian models (CV).
 
     Examples
     --------
