@@ -16,8 +16,9 @@ the learned noise × their level factor (0.2, 4; ``lgekf.estimators.imm.NOISE_LE
 its numbers. The measurement std is ``--meas-std`` when given (then held fixed in the fits), else the one
 learned by the fit with the highest log-likelihood. Then the IMM itself is fitted by its own likelihood
 (:func:`fit_imm`, ``lgekf.estimators.imm_tuning.learn_imm``): one factor per mode on that noise, and the
-switching probability unless ``--imm-switch`` is given. Without ``--imm-modes`` two mode sets are fitted,
-``TUNE_MODE_SETS`` (the default and two CV modes, calm and manoeuvring), and the one of lowest AIC is kept.
+switching probability unless ``--imm-switch`` is given. Without ``--imm-modes`` the mode sets of
+``TUNE_MODE_SETS`` are fitted (the default; CV calm and manoeuvring; those two and a manoeuvring SE(2)×R³) and
+the one of lowest AIC is kept.
 
 ``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm_smoother``) combined estimate
 ``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
@@ -42,9 +43,9 @@ IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 #: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see README)
 DEFAULT_TRACK_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
 COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
-#: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (README: on
-#: pedestrians the two CV modes win, on vehicles and cyclists CV with SE(2)×R³ calm and manoeuvring)
-TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre")
+#: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (README, real
+#: data: two CV modes win on pedestrians, a manoeuvring SE(2)×R³ added to them or the default on cars and cyclists)
+TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre", "cv:calm,cv:manoeuvre,se2r3:manoeuvre")
 #: at most about this many steps (whole tracks, a seeded random subset) enter the IMM's joint fit
 FIT_MAX_STEPS = 40_000
 

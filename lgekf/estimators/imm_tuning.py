@@ -323,7 +323,7 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
     lo_b = np.array([b[0] for b in bounds])
     hi_b = np.array([b[1] for b in bounds])
     nm = minimize(lambda x: nll(np.clip(x, lo_b, hi_b)), best.x, method="Nelder-Mead",
-                  options={"xatol": 1e-3, "fatol": 1e-3, "maxfev": 200 * d})
+                  options={"xatol": 1e-3, "fatol": 1e-2, "maxfev": 40 * d})
     th = np.clip(nm.x, lo_b, hi_b) if nm.fun < best.fun else best.x
     fun = min(nm.fun, best.fun)
     a, p = params(th)
