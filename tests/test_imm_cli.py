@@ -118,3 +118,16 @@ def test_fit_imm_keeps_the_lowest_aic_and_given_modes():
     assert len(table2) == 1 and given.switch == 0.02 and fit2.n_params == 1
     assert given.modes[1].accel_std == (0.3, 0.3, 0.6) and fit2.factors[1] == 1.0
     np.testing.assert_allclose(given.modes[0].accel_std, [0.7 * fit2.factors[0]], rtol=1e-12)
+
+
+def test_fit_imm_subsamples_long_files(monkeypatch):
+    """Beyond FIT_MAX_STEPS filter steps the IMM's fit uses a seeded random subset of whole tracks (just over the
+    limit), and says what it fits."""
+    import lgekf.apps.track_imm as ti
+
+    tracks = _turning_tracks(n_obj=8, K=30)
+    monkeypatch.setattr(ti, "FIT_MAX_STEPS", 60)  # 28 filter steps per track: 3 tracks reach it
+    lines = []
+    fit, _ = ti.fit_imm(ti.ImmTrackOptions("cv:calm,cv:manoeuvre"), tracks, 0.2, 0.5, {"cv": (0.7,)}, say=lines.append)
+    assert fit.n_tracks == 3
+    assert len(lines) == 1 and "mode set 1/1 (cv:calm,cv:manoeuvre)" in lines[0] and "90 measurements of 3 tracks" in lines[0]

@@ -47,7 +47,7 @@ COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
 #: data: two CV modes win on pedestrians, a manoeuvring SE(2)×R³ added to them or the default on cars and cyclists)
 TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre", "cv:calm,cv:manoeuvre,se2r3:manoeuvre")
 #: at most about this many steps (whole tracks, a seeded random subset) enter the IMM's joint fit
-FIT_MAX_STEPS = 40_000
+FIT_MAX_STEPS = 20_000
 
 
 class ImmTrackOptions:
@@ -164,7 +164,7 @@ def _imm_track_smoothed(t, z, starts, meas_std: float, omega_std: float, opts: I
     return c, sd, mu, cs, sds, mus
 
 
-def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float):
+def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float, say=None):
     """Learn the IMM from the file (module docstring) and set ``opts``' modes, their noise and the switching.
 
     Returns
@@ -175,6 +175,8 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
         {model: NoiseFit} of the single models, and "imm": the kept ``ImmFit``.
     summary : str
         What was learned and used (one line per step).
+
+    ``say`` (optional) gets a line before each of the IMM's fits (they take seconds to minutes).
     """
     from .smooth_track import tune_models
 
@@ -194,7 +196,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
     t = np.asarray(meas.t, float)
     z = np.asarray(meas.z, float)[:, :2]
     tracks = [(t[a:b], z[a:b]) for a, b in zip(starts[:-1], starts[1:]) if b - a >= 3]
-    fit, table = fit_imm(opts, tracks, r, omega_std, {m: f.accel_std for m, f in fits.items()})
+    fit, table = fit_imm(opts, tracks, r, omega_std, {m: f.accel_std for m, f in fits.items()}, say=say)
     fits = dict(fits, imm=fit)
     sets = "; ".join(f"{text}: " + (f"AIC {f.aic:.6g}" if not isinstance(f, str) else f"not fitted ({f})") for text, f in table)
     modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
@@ -203,13 +205,14 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                      + f"  {fit.report()}\n  modes {modes}; switch {opts.switch:.3g}")
 
 
-def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, learned: dict, seed: int = 0):
+def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, learned: dict, seed: int = 0, say=None):
     """The IMM fitted to ``tracks`` by its own likelihood (``lgekf.estimators.imm_tuning.learn_imm``), in place.
 
     Every candidate mode set (``opts.candidates()``) starts from its models' learned noise ``learned``
     ({model: accel_std}) times the named levels, and its modes' factors and the switching probability (unless
     ``--imm-switch`` was given) are fitted; modes given as numbers keep them. The set of lowest AIC is kept in
-    ``opts``. With more than ``FIT_MAX_STEPS`` steps a seeded random subset of whole tracks is used.
+    ``opts``. With more than ``FIT_MAX_STEPS`` steps a seeded random subset of whole tracks is used. ``say``
+    (optional) gets one line before each mode set's fit.
 
     Returns
     -------
@@ -227,7 +230,11 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
         keep = order[:max(1, int(np.searchsorted(np.cumsum(steps[order]), FIT_MAX_STEPS)) + 1)]
         tracks = [tracks[i] for i in np.sort(keep)]
     table = []
-    for text in opts.candidates():
+    texts = opts.candidates()
+    for i, text in enumerate(texts):
+        if say is not None:
+            say(f"imm --tune: fitting mode set {i + 1}/{len(texts)} ({text}) on {sum(len(t) for t, _ in tracks)} measurements "
+                f"of {len(tracks)} tracks")
         cand = ImmTrackOptions(text, opts.switch if opts.switch_given else None)
         cand.with_learned_noise({m: learned[m] for m in cand.tunable_models() if m in learned})
         fixed = [bool(m.label) and m.label not in NOISE_LEVELS for m in cand.modes]

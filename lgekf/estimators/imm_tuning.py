@@ -364,4 +364,4 @@ def _logit(p: float) -> float:
 
 
 def _expit(x: float) -> float:
-    return 1.0 / (1.0 + math.exp(-x))
+    return 0.5 * (1.0 + math.tanh(0.5 * x))  # 1/(1 + e^-x) without overflow
