@@ -7,9 +7,19 @@ import gzip
 import numpy as np
 import pytest
 
+import lgekf.io.fastcsv as fastcsv
 import lgekf.io.readers as readers
 from lgekf.io.fastcsv import group_order
 from lgekf.io.readers import DataError, read_csv
+
+
+@pytest.fixture(params=["one part", "two parts"], autouse=True)
+def parts(request, monkeypatch):
+    """Every test both ways: the body parsed in one piece, and split in two halves parsed in two threads."""
+    if request.param == "two parts":
+        monkeypatch.setattr(fastcsv, "PARALLEL_BYTES", 8)
+        monkeypatch.setattr(fastcsv, "_cpus", lambda: 2)
+    return request.param
 
 
 def general(path, **kw):

@@ -1,7 +1,7 @@
 """The fast path of ``read_csv``: the numeric body of a measurement CSV parsed in numba from its raw bytes.
 
 The header line is read in Python (``lgekf.io.readers``: separator, column keys); the body is parsed by one
-numba pass over the bytes (``parse_body``), which also numbers the objects of the ``id`` column in order of
+numba pass over the bytes (``parse``: ``parse_rows`` on the two halves of a large file in two threads), which also numbers the objects of the ``id`` column in order of
 first appearance (a hash table of the ids' bytes), and ``group_order`` sorts the rows by object in O(N).
 
 Numbers are correctly rounded float64, bit for bit what ``numpy.loadtxt`` and Python's ``float`` give: a
@@ -12,17 +12,20 @@ number (more digits, larger exponents) is left to Python's ``float`` afterwards 
 The fast path accepts only what it can read exactly as the general reader does: one-character separators
 ``, ; tab | :`` or runs of spaces/tabs; numbers ``[+-]digits[.digits][(e|E)[+-]digits]`` with spaces or
 tabs around; lines ending in LF or CRLF; blank lines skipped. Anything else (quotes, NaN/inf text, empty
-or malformed fields, too few columns, lone CR, control characters, an empty id) makes ``parse_body``
+or malformed fields, too few columns, lone CR, control characters, an empty id) makes ``parse``
 return a non-zero status, and ``read_csv`` re-reads the file with its general reader, whose one-line
 error messages name the line and column (or which reads the file if it is valid after all).
 """
 
 from __future__ import annotations
 
+import os
+from concurrent.futures import ThreadPoolExecutor
+
 import numba as nb
 import numpy as np
 
-__all__ = ["parse_body", "group_order", "FAST_DELIMITERS", "OK"]
+__all__ = ["parse", "parse_rows", "group_order", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES"]
 
 # separators of the fast path (None: runs of spaces/tabs); others go to the general reader
 FAST_DELIMITERS = (",", ";", "\t", "|", ":", None)
@@ -31,15 +34,6 @@ _BAD = 1  # anything the fast path does not read: the general reader decides (an
 
 # 10^0 .. 10^22: each exactly representable
 _P10 = np.array([10.0**i for i in range(23)])
-
-
-@nb.njit(cache=True)
-def _count_lines(buf, start):
-    n = 1
-    for i in range(start, buf.shape[0]):
-        if buf[i] == 10:
-            n += 1
-    return n
 
 
 @nb.njit(cache=True)
@@ -220,7 +214,7 @@ def _rows(buf, pos, r, ln, delim, slot, need, vals, line, obj, table, lab, nobj,
                     hard[nhard, 2] = i
                     hard[nhard, 3] = j
                     nhard += 1
-                vals[s, r] = v
+                vals[r, s] = v
             elif s == -2:
                 a = i
                 b = j
@@ -269,47 +263,47 @@ def _rehash(buf, lab, nobj, size):
     return table
 
 
-@nb.njit(cache=True)
-def parse_body(buf, start, delim, cols, idcol, first_line):
-    """Parse the rows of ``buf[start:]`` (the bytes after the header line).
+@nb.njit(cache=True, nogil=True)  # nogil: ``parse`` runs it on the two halves of a file in two threads
+def parse_rows(buf, start, delim, cols, idcol, first_line, vals, line, obj):
+    """Parse the lines of ``buf[start:]`` into ``vals``, ``line``, ``obj`` (rows from 0; room for every line).
 
     Parameters
     ----------
     buf : ndarray of uint8
-        The file's bytes.
+        The bytes (a file's, or the first part of them: the lines end where ``buf`` ends).
     start : int
-        Offset of the first body line.
+        Offset of the first line to parse.
     delim : int
         The separator's byte, or -1 for runs of spaces/tabs.
     cols : ndarray of int64
-        The column indices of the numeric columns to read (0-based fields).
+        The field indices (0-based) of the numeric columns to read.
     idcol : int
         The field index of the ``id`` column, or -1.
     first_line : int
-        The 1-based line number of the first body line.
+        The 1-based line number of the first line.
+    vals : ndarray, shape (L, len(cols))
+        Out: the numbers (the ``hard`` ones left 0).
+    line : ndarray of int64, shape (L,)
+        Out: the 1-based line number of each row.
+    obj : ndarray of int64, shape (L,)
+        Out: the object index of each row (order of first appearance here; 0 without an id column).
 
     Returns
     -------
     status : int
         ``OK`` (0), or non-zero when the general reader must read the file.
-    vals : ndarray, shape (len(cols), rows)
-        The numbers (the ``hard`` ones still 0).
-    line : ndarray of int64, shape (rows,)
-        1-based line numbers.
-    obj : ndarray of int64, shape (rows,)
-        Object index per row (order of first appearance; all 0 without an id column).
+    rows : int
+        Rows written.
     lab : ndarray of int64, shape (objects, 2)
-        Byte range of each object's id (spaces/tabs removed).
+        Byte range of each object's id (spaces/tabs around removed).
+    table : ndarray of int64
+        The hash table of the ids (open addressing, size a power of two): object index or -1.
     hard : ndarray of int64, shape (h, 4)
         (column, row, byte from, byte to) of the numbers left to Python's float.
     nonascii : bool
-        Some byte of the body is >= 0x80 (the caller checks that the file is UTF-8).
+        Some byte is >= 0x80 (the caller checks that the file is UTF-8).
     """
-    cap = _count_lines(buf, start)
     k = cols.shape[0]
-    vals = np.empty((k, cap))
-    line = np.empty(cap, np.int64)
-    obj = np.zeros(cap, np.int64)
     need = idcol
     for j in range(k):
         need = max(need, cols[j])
@@ -320,6 +314,8 @@ def parse_body(buf, start, delim, cols, idcol, first_line):
         slot[cols[j]] = j
     if idcol >= 0:
         slot[idcol] = -2
+    else:
+        obj[:] = 0
     lab = np.empty((1024, 2), np.int64)
     table = np.full(4096, -1, np.int64)
     hard = np.empty((64, 4), np.int64)
@@ -343,7 +339,102 @@ def parse_body(buf, start, delim, cols, idcol, first_line):
         lab[0, 0] = 0
         lab[0, 1] = 0
         nobj = 1
-    return status, vals[:, :r], line[:r], obj[:r], lab[:nobj], hard[:nhard], flags[0] != 0
+    return status, r, lab[:nobj], table, hard[:nhard], flags[0] != 0
+
+
+@nb.njit(cache=True)
+def _merge_ids(buf, table, lab, lab2):
+    """The objects of a second part numbered after the first's: (index of each of lab2's ids among all,
+    the byte ranges of the ids new in the second part, in their order)."""
+    mask = table.shape[0] - 1
+    n1 = lab.shape[0]
+    index = np.empty(lab2.shape[0], np.int64)
+    new = np.empty((lab2.shape[0], 2), np.int64)
+    nn = 0
+    for u in range(lab2.shape[0]):
+        a, b = lab2[u, 0], lab2[u, 1]
+        q = np.int64(_hash(buf, a, b) & np.uint64(mask))
+        found = -1
+        while table[q] >= 0:
+            o = table[q]
+            if _same(buf, lab[o, 0], lab[o, 1], a, b):
+                found = o
+                break
+            q = (q + 1) & mask
+        if found < 0:
+            index[u] = n1 + nn
+            new[nn, 0] = a
+            new[nn, 1] = b
+            nn += 1
+        else:
+            index[u] = found
+    return index, new[:nn]
+
+
+PARALLEL_BYTES = 1 << 22  # bodies of at least this many bytes are parsed in two halves at once
+
+
+def parse(data: bytes, start: int, delim: int, cols, idcol: int, first_line: int):
+    """Parse the body of a CSV, in two threads (halves split at a line end) when it is large.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's bytes.
+    start, delim, cols, idcol, first_line
+        As for ``parse_rows``.
+
+    Returns
+    -------
+    status : int
+        ``OK`` (0), or non-zero when the general reader must read the file.
+    vals : ndarray, shape (rows, len(cols))
+    line, obj : ndarray of int64, shape (rows,)
+    lab : ndarray of int64, shape (objects, 2)
+        Objects numbered in order of first appearance in the file.
+    hard : ndarray of int64, shape (h, 4)
+    nonascii : bool
+        As for ``parse_rows``.
+    """
+    buf = np.frombuffer(data, dtype=np.uint8)
+    cols = np.asarray(cols, dtype=np.int64)
+    n = len(data)
+    cut = data.find(b"\n", start + (n - start) // 2) + 1 if n - start >= PARALLEL_BYTES and _cpus() > 1 else 0
+    if cut <= start or cut >= n:
+        cap = data.count(b"\n", start) + 1
+        vals, line, obj = np.empty((cap, cols.size)), np.empty(cap, np.int64), np.empty(cap, np.int64)
+        status, r, lab, _, hard, nonascii = parse_rows(buf, start, delim, cols, idcol, first_line, vals, line, obj)
+        return status, vals[:r], line[:r], obj[:r], lab, hard, nonascii
+    cap1 = data.count(b"\n", start, cut)  # the first half's lines, each ending in LF
+    cap = cap1 + data.count(b"\n", cut) + 1
+    vals, line, obj = np.empty((cap, cols.size)), np.empty(cap, np.int64), np.empty(cap, np.int64)
+    with ThreadPoolExecutor(2) as pool:
+        one = pool.submit(parse_rows, buf[:cut], start, delim, cols, idcol, first_line, vals[:cap1], line[:cap1], obj[:cap1])
+        two = pool.submit(parse_rows, buf, cut, delim, cols, idcol, first_line + cap1, vals[cap1:], line[cap1:], obj[cap1:])
+        st1, r1, lab1, table1, hard1, na1 = one.result()
+        st2, r2, lab2, _, hard2, na2 = two.result()
+    if st1 != OK or st2 != OK:
+        return (st1 if st1 != OK else st2), vals[:0], line[:0], obj[:0], lab1, hard1, na1 or na2
+    if r1 < cap1:  # blank lines in the first half: close the gap
+        vals[r1:r1 + r2] = vals[cap1:cap1 + r2].copy()
+        line[r1:r1 + r2] = line[cap1:cap1 + r2].copy()
+        obj[r1:r1 + r2] = obj[cap1:cap1 + r2].copy()
+    if idcol >= 0:
+        index, new = _merge_ids(buf, table1, lab1, lab2)
+        obj[r1:r1 + r2] = index[obj[r1:r1 + r2]]
+        lab = np.concatenate([lab1, new])
+    else:
+        lab = lab1 if r1 else lab2
+    hard2 = hard2.copy()
+    hard2[:, 1] += r1
+    return OK, vals[:r1 + r2], line[:r1 + r2], obj[:r1 + r2], lab, np.concatenate([hard1, hard2]), na1 or na2
+
+
+def _cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
 
 
 @nb.njit(cache=True)

@@ -533,9 +533,8 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         return None
     num = [(n, c) for n, c in zip(colnames, usecols) if n != "id"]
     idcol = usecols[colnames.index("id")] if "id" in colnames else -1
-    buf = np.frombuffer(data, dtype=np.uint8)
-    status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse_body(
-        buf, nl + 1, -1 if delim is None else ord(delim), np.array([c for _, c in num], dtype=np.int64), idcol, 2)
+    status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim), [c for _, c in num],
+                                                                 idcol, 2)
     if status != fastcsv.OK or lines.size == 0:
         return None
     if nonascii:
@@ -544,15 +543,16 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         except UnicodeDecodeError:
             return None
     for s, r, a, b in hard.tolist():  # beyond the exact fast path: Python's correctly rounded float
-        vals[s, r] = float(data[a:b])
+        vals[r, s] = float(data[a:b])
     if idcol >= 0:
         labels = [data[a:b].decode("utf-8") for a, b in lab.tolist()]
         if any(lb != lb.strip() for lb in labels):  # other whitespace than spaces/tabs around an id
             return None
     else:
         labels = ["0"]
-    del buf, data  # the file's bytes are no longer needed: less peak memory for what follows
-    cols = {n: vals[i] for i, (n, _) in enumerate(num)}
+    del data  # the file's bytes are no longer needed: less peak memory for what follows
+    cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
+    del vals
     return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels))
 
 
