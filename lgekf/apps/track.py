@@ -58,7 +58,7 @@ from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
 from .divergence import MonitorConfig, recover, speed_limits
 from ..io.files import is_stdio
-from ..io.formatting import format_rows, label_bytes
+from ..io.formatting import label_bytes, write_rows
 from ..io.parquet import ParquetRows
 
 __all__ = [
@@ -393,7 +393,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             if sink is not None:
                 sink.write_rows(meas.labels, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block)
             else:
-                fh.write(format_rows(lab, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block, col_digits))
+                write_rows(fh, lab, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block, col_digits)
         if bar is not None:
             bar.update(b - a)
         o = o2

@@ -10,7 +10,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numba as nb
 import numpy as np
 
-__all__ = ["format_rows", "format_g", "label_bytes"]
+__all__ = ["format_rows", "write_rows", "format_g", "label_bytes"]
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 
@@ -209,6 +209,25 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
     lab: the result of ``label_bytes(labels)``; row_label (N,) index into the labels; t (N,);
     values (N, m); digits: significant digits per value column (an int or (m,)), 1..17.
     """
+    return b"".join(p.tobytes() for p in _formatted_parts(lab, row_label, t, values, digits, t_digits))
+
+
+def write_rows(fh, lab, row_label, t, values, digits, t_digits: int = 15) -> None:
+    """Write ``format_rows``'s bytes to ``fh`` part by part (no joined copy of the text).
+
+    Parameters
+    ----------
+    fh : file-like
+        Has ``write`` taking a bytes-like object.
+    lab, row_label, t, values, digits, t_digits
+        As for ``format_rows``.
+    """
+    for part in _formatted_parts(lab, row_label, t, values, digits, t_digits):
+        fh.write(part)
+
+
+def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
+    """The CSV text of the rows as uint8 arrays, one per thread's contiguous part of the rows, in order."""
     values = np.ascontiguousarray(values, dtype=float)
     if values.ndim != 2:
         raise ValueError("values: expected a 2-D array")
@@ -220,14 +239,13 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
     n = values.shape[0]
     threads = min(_cpus(), n // PARALLEL_ROWS)
     if threads < 2:
-        return _format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d).tobytes()
-    # contiguous parts of the rows in parallel threads (the kernel releases the GIL), joined in order:
-    # the same bytes as one call
+        return [_format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d)]
+    # contiguous parts of the rows in parallel threads (the kernel releases the GIL), in order: the same
+    # bytes as one call
     cut = np.linspace(0, n, threads + 1).astype(np.int64)
     with ThreadPoolExecutor(threads) as pool:
-        parts = list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
-                                                     int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
-    return b"".join(parts)
+        return list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
+                                                    int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
 
 
 def _cpus() -> int:
