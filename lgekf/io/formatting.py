@@ -75,6 +75,28 @@ def _put_str(buf, pos, s):
 
 
 @nb.njit(cache=True)
+def _decimal_exponent(v):
+    """floor(log10(v)) for v > 0, from the binary exponent and one comparison with a power of ten (no log10).
+
+    Exact but for v within an ulp or so of a power of ten, where it may be one off: ``_put_g`` corrects
+    either way by the size of its rounded digits (as it always did for log10's own rounding), to the same
+    digits where they are exact (|p - 1 - e| <= 22); elsewhere ``_put_g`` starts from log10 as before.
+    """
+    e2 = math.frexp(v)[1]  # v in [2^(e2-1), 2^e2)
+    e = int(math.floor((e2 - 1) * 0.30102999566398120))  # floor(log10 v) or one less
+    k = e + 1
+    if 0 <= k <= 22:
+        if v >= _P10F[k]:
+            e = k
+    elif -22 <= k < 0:
+        if v * _P10F[-k] >= 1.0:
+            e = k
+    else:
+        e = int(math.floor(math.log10(v)))
+    return e
+
+
+@nb.njit(cache=True)
 def _put_g(buf, pos, v, p, digits):
     """Write ``'%.{p}g' % v`` (1 <= p <= 17) into buf at pos; return the new position.
 
@@ -93,7 +115,9 @@ def _put_g(buf, pos, v, p, digits):
         v = -v
     if v == np.inf:
         return _put_str(buf, pos, "inf")
-    e = int(math.floor(math.log10(v)))
+    e = _decimal_exponent(v)
+    if not -21 <= p - 1 - e <= 21:  # digits not exact (see below): log10's start, whose one-off cases give these digits
+        e = int(math.floor(math.log10(v)))
     top = _POW10[p]
     q = _round_scaled(v, p - 1 - e)
     if q >= top:
