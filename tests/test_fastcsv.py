@@ -186,3 +186,24 @@ def test_group_order_is_the_stable_argsort():
     order, counts = group_order(obj, 50)
     np.testing.assert_array_equal(order, np.argsort(obj, kind="stable"))
     np.testing.assert_array_equal(counts, np.bincount(obj, minlength=50))
+
+
+def test_formatter_next_to_powers_of_ten_is_pythons_g():
+    """The output formatter's decimal exponent (frexp and one comparison, no log10) next to powers of ten and
+    where rounding carries into a new digit: Python's %g wherever the digits are exact (|p - 1 - e| <= 21)."""
+    from lgekf.io.formatting import format_g
+
+    for p in range(1, 18):
+        vals = []
+        for e in range(-20 + p, 21):
+            ten = float(f"1e{e}")
+            a = b = ten
+            vals.append(ten)
+            for _ in range(3):
+                a, b = np.nextafter(a, np.inf), np.nextafter(b, 0.0)
+                vals += [a, b]
+            nines = float(f"{'9' * (p + 2)}e{e - p - 2}")  # p + 2 nines: rounds up to 10^e (a carry, not a near tie)
+            vals += [nines, np.nextafter(nines, 0.0)]
+        vals = np.array([v for v in vals if v > 0])
+        vals = np.concatenate([vals, -vals])
+        assert format_g(vals, p) == [f"%.{p}g" % v for v in vals], p
