@@ -320,7 +320,8 @@ def parse_rows(buf, start, delim, cols, idcol, first_line, vals, line, obj):
     table = np.full(4096, -1, np.int64)
     hard = np.empty((64, 4), np.int64)
     flags = np.zeros(1, np.int64)
-    pos, r, ln, nobj, nhard = start, 0, first_line - 1, 0, 0
+    zero = np.int64(0)  # one type for the loop-carried counts: _rows compiles once
+    pos, r, ln, nobj, nhard = np.int64(start), zero, np.int64(first_line - 1), zero, zero
     while True:
         status, pos, r, ln, nobj, nhard = _rows(buf, pos, r, ln, delim, slot, need, vals, line, obj, table, lab, nobj, hard,
                                                 nhard, flags)
