@@ -207,3 +207,13 @@ def test_formatter_next_to_powers_of_ten_is_pythons_g():
         vals = np.array([v for v in vals if v > 0])
         vals = np.concatenate([vals, -vals])
         assert format_g(vals, p) == [f"%.{p}g" % v for v in vals], p
+
+
+def test_extra_columns_as_the_general_reader(tmp_path):
+    p = tmp_path / "v.csv"
+    p.write_text("id,t,x,y,vx,vy,note\na,0,1,2,0.5,-1e-3,x\na,1,2,3,0.25,7,y\nb,0,0,0,1,1,z\nb,1,1,1,2,2,w\n")
+    fast, slow = read_csv(p, extra=("vx", "vy", "vz")), general(p, extra=("vx", "vy", "vz"))
+    assert readers._read_csv_fast(p, str(p), False, ("vx", "vy"), "auto") is not None
+    assert sorted(fast.extra) == sorted(slow.extra) == ["vx", "vy"]
+    for k in fast.extra:
+        np.testing.assert_array_equal(_bits(fast.extra[k]), _bits(slow.extra[k]))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
@@ -214,12 +215,15 @@ def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
     return buf[:pos]
 
 
+_NEEDS_QUOTES = re.compile('[,"\n\r]')  # a label with one of these is written quoted
+
+
 def label_bytes(labels):
     """Concatenated UTF-8 bytes of CSV-quoted labels and their offsets (for ``format_rows``)."""
     enc = []
     for lab in labels:
         s = str(lab)
-        if any(c in s for c in ',"\n\r') or s != s.strip():
+        if _NEEDS_QUOTES.search(s) or s != s.strip():
             s = '"' + s.replace('"', '""') + '"'
         enc.append(s.encode("utf-8"))
     off = np.zeros(len(enc) + 1, dtype=np.int64)
