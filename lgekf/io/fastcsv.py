@@ -7,7 +7,7 @@ first appearance (a hash table of the ids' bytes), and ``group_order`` sorts the
 Numbers are correctly rounded float64, bit for bit what ``numpy.loadtxt`` and Python's ``float`` give: a
 decimal with at most 15 significant digits (trailing zeros do not count) and a power of ten 10^e with
 |e| <= 22 is m·10^e or m/10^-e of two exact doubles, one IEEE operation (Clinger's fast path); any other
-number (more digits, larger exponents) is left to Python's ``float`` afterwards (``hard`` positions).
+number (more digits, larger exponents) is parsed afterwards by ``numpy.loadtxt`` in one call (``hard_values``).
 
 The fast path accepts only what it can read exactly as the general reader does: one-character separators
 ``, ; tab | :`` or runs of spaces/tabs; numbers ``[+-]digits[.digits][(e|E)[+-]digits]`` with spaces or
@@ -19,13 +19,14 @@ error messages name the line and column (or which reads the file if it is valid 
 
 from __future__ import annotations
 
+import io
 import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
 import numpy as np
 
-__all__ = ["parse", "parse_rows", "group_order", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES"]
+__all__ = ["parse", "parse_rows", "hard_values", "group_order", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES"]
 
 # separators of the fast path (None: runs of spaces/tabs); others go to the general reader
 FAST_DELIMITERS = (",", ";", "\t", "|", ":", None)
@@ -39,7 +40,7 @@ _P10 = np.array([10.0**i for i in range(23)])
 @nb.njit(cache=True)
 def _parse_number(buf, a, b):
     """The double of buf[a:b] (spaces/tabs around allowed): (value, status) with status 0 = exact,
-    1 = valid but needs Python's float (too many digits or too large an exponent), 2 = not a number."""
+    1 = valid but needs the general parser (hard_values) (too many digits or too large an exponent), 2 = not a number."""
     while a < b and (buf[a] == 32 or buf[a] == 9):
         a += 1
     while b > a and (buf[b - 1] == 32 or buf[b - 1] == 9):
@@ -299,7 +300,7 @@ def parse_rows(buf, start, delim, cols, idcol, first_line, vals, line, obj):
     table : ndarray of int64
         The hash table of the ids (open addressing, size a power of two): object index or -1.
     hard : ndarray of int64, shape (h, 4)
-        (column, row, byte from, byte to) of the numbers left to Python's float.
+        (column, row, byte from, byte to) of the numbers left to hard_values.
     nonascii : bool
         Some byte is >= 0x80 (the caller checks that the file is UTF-8).
     """
@@ -429,6 +430,44 @@ def parse(data: bytes, start: int, delim: int, cols, idcol: int, first_line: int
     hard2 = hard2.copy()
     hard2[:, 1] += r1
     return OK, vals[:r1 + r2], line[:r1 + r2], obj[:r1 + r2], lab, np.concatenate([hard1, hard2]), na1 or na2
+
+
+@nb.njit(cache=True)
+def _hard_text(buf, hard):
+    """The bytes of the fields ``hard[:, 2:4]``, one per line."""
+    total = 0
+    for i in range(hard.shape[0]):
+        total += hard[i, 3] - hard[i, 2] + 1
+    out = np.empty(total, np.uint8)
+    pos = 0
+    for i in range(hard.shape[0]):
+        for j in range(hard[i, 2], hard[i, 3]):
+            out[pos] = buf[j]
+            pos += 1
+        out[pos] = 10
+        pos += 1
+    return out
+
+
+def hard_values(data: bytes, hard) -> np.ndarray:
+    """The numbers the fast path left (``hard`` rows of ``parse``), correctly rounded by ``numpy.loadtxt`` (the
+    general reader's own parser) in one call: no Python ``float`` per value when a file has many long numbers.
+
+    Parameters
+    ----------
+    data : bytes
+        The file's bytes.
+    hard : ndarray of int64, shape (h, 4)
+        (column, row, byte from, byte to) of each number.
+
+    Returns
+    -------
+    ndarray, shape (h,)
+    """
+    if len(hard) == 0:
+        return np.empty(0)
+    text = _hard_text(np.frombuffer(data, dtype=np.uint8), np.ascontiguousarray(hard)).tobytes().decode("ascii")
+    return np.loadtxt(io.StringIO(text), dtype=float, comments=None, ndmin=1)
 
 
 def _cpus() -> int:

@@ -542,8 +542,8 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
             data.decode("utf-8")
         except UnicodeDecodeError:
             return None
-    for s, r, a, b in hard.tolist():  # beyond the exact fast path: Python's correctly rounded float
-        vals[r, s] = float(data[a:b])
+    if hard.shape[0]:  # beyond the exact fast path: numpy's correctly rounded parser, all at once
+        vals[hard[:, 1], hard[:, 0]] = fastcsv.hard_values(data, hard)
     if idcol >= 0:
         labels = [data[a:b].decode("utf-8") for a, b in lab.tolist()]
         if any(lb != lb.strip() for lb in labels):  # other whitespace than spaces/tabs around an id
