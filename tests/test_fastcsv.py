@@ -217,3 +217,30 @@ def test_extra_columns_as_the_general_reader(tmp_path):
     assert sorted(fast.extra) == sorted(slow.extra) == ["vx", "vy"]
     for k in fast.extra:
         np.testing.assert_array_equal(_bits(fast.extra[k]), _bits(slow.extra[k]))
+
+
+def test_long_mantissas_and_rounding_midpoints(tmp_path):
+    """16-19 significant digits (double-double in the fast path): repr'd doubles, and decimals within one unit
+    of the 19th digit of the exact midpoint between two neighbouring doubles, bit for bit as float."""
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 60
+    rng = np.random.default_rng(5)
+    v = rng.standard_normal(4000) * 10.0 ** rng.integers(-6, 7, 4000)
+    texts = [repr(float(x)) for x in v]
+    for x in v[:1500]:
+        mid = (Decimal(float(x)) + Decimal(float(np.nextafter(x, np.inf)))) / 2
+        for d in (16, 17, 19):
+            t = format(mid, f".{d - 1}e")
+            m, e = t.split("e")
+            last = int(m[-1])
+            texts += [t] + [f"{m[:-1]}{last + k}e{e}" for k in (-1, 1) if 0 <= last + k <= 9]
+    p = tmp_path / "long.csv"
+    p.write_text("t,x,y\n" + "\n".join(f"{i},{s},{s}" for i, s in enumerate(texts)) + "\n")
+    fast = readers._read_csv_fast(p, str(p), False, (), "auto")
+    assert fast is not None
+    want = np.array([float(s) for s in texts])
+    np.testing.assert_array_equal(_bits(fast.z[:, 0]), _bits(want))
+    # most of them are decided in the fast path, not handed to the general parser
+    _, _, _, _, _, hard, _ = fastcsv.parse(p.read_bytes(), 6, 44, [1], -1, 2)
+    assert 0 < len(hard) < len(texts) // 2

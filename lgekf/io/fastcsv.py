@@ -6,7 +6,9 @@ first appearance (a hash table of the ids' bytes), and ``group_order`` sorts the
 
 Numbers are correctly rounded float64, bit for bit what ``numpy.loadtxt`` and Python's ``float`` give: a
 decimal with at most 15 significant digits (trailing zeros do not count) and a power of ten 10^e with
-|e| <= 22 is m·10^e or m/10^-e of two exact doubles, one IEEE operation (Clinger's fast path); any other
+|e| <= 22 is m·10^e or m/10^-e of two exact doubles, one IEEE operation (Clinger's fast path); 16 to 19
+digits with |e| <= 22 are computed in double-double and kept unless within 2^-30 ulp of a rounding
+midpoint (``_long_mantissa``); any other
 number (more digits, larger exponents) is parsed afterwards by ``numpy.loadtxt`` in one call (``hard_values``).
 
 The fast path accepts only what it can read exactly as the general reader does: one-character separators
@@ -20,6 +22,7 @@ error messages name the line and column (or which reads the file if it is valid 
 from __future__ import annotations
 
 import io
+import math
 import os
 from concurrent.futures import ThreadPoolExecutor
 
@@ -66,7 +69,7 @@ def _parse_number(buf, a, b):
             if nd > 0:
                 zeros += 1
         else:
-            if nd + zeros + 1 > 15:
+            if nd + zeros + 1 > 19:
                 hard = True
             else:
                 for _ in range(zeros):
@@ -85,7 +88,7 @@ def _parse_number(buf, a, b):
                 if nd > 0:
                     zeros += 1
             else:
-                if nd + zeros + 1 > 15:
+                if nd + zeros + 1 > 19:
                     hard = True
                 else:
                     for _ in range(zeros):
@@ -122,12 +125,70 @@ def _parse_number(buf, a, b):
     p = e + zeros - frac  # the number is m·10^p
     if p > 22 or p < -22:
         return 0.0, 1
-    v = float(m)
-    if p >= 0:
-        v = v * _P10[p]
-    else:
-        v = v / _P10[-p]
+    if nd <= 15:  # m and 10^|p| exact doubles: one correctly rounded operation
+        v = float(m)
+        if p >= 0:
+            v = v * _P10[p]
+        else:
+            v = v / _P10[-p]
+        return (-v if neg else v), 0
+    v = _long_mantissa(m, p)  # 16-19 digits: double-double, unless too close to a rounding midpoint
+    if v != v:
+        return 0.0, 1
     return (-v if neg else v), 0
+
+
+@nb.njit(cache=True)
+def _two_prod(a, b):
+    """a*b = p + e exactly (Dekker's split)."""
+    p = a * b
+    c = 134217729.0 * a
+    ah = c - (c - a)
+    al = a - ah
+    c = 134217729.0 * b
+    bh = c - (c - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+    return p, e
+
+
+@nb.njit(cache=True)
+def _long_mantissa(m, p):
+    """The double nearest m·10^p for m < 10^19 (uint64) and |p| <= 22, or nan when it cannot be decided here.
+
+    m = a + b exactly (a its top 53 bits, b < 2^11); m·10^p is carried as a double-double (hi, lo) with an error
+    far below 2^-90 of the value, so hi is the correctly rounded result unless |lo| is within 2^-30 ulp(hi)
+    of half an ulp (or hi is a power of two, where the ulp below is smaller): those return nan, and the
+    general parser decides.
+    """
+    a = float(m & np.uint64(0xFFFFFFFFFFFFF800))
+    b = float(m & np.uint64(0x7FF))
+    if p >= 0:
+        P = _P10[p]
+        a1, e1 = _two_prod(a, P)
+        a2, e2 = _two_prod(b, P)
+        s = a1 + a2
+        bb = s - a1
+        t = (a1 - (s - bb)) + (a2 - bb)  # two_sum(a1, a2) = s + t
+        t += e1 + e2
+    else:
+        P = _P10[-p]
+        q1 = a / P
+        p1, pe = _two_prod(q1, P)
+        r = ((a - p1) - pe) + b  # m - q1·P: a - p1 exact (Sterbenz)
+        s = q1
+        t = r / P
+    hi = s + t
+    lo = t - (hi - s)
+    mant, ex = math.frexp(hi)
+    if mant == 0.5 or mant == -0.5:
+        return np.nan
+    ulp = math.ldexp(1.0, ex - 53)
+    if abs(abs(lo) - 0.5 * ulp) < ulp * 9.313225746154785e-10:  # 2^-30
+        return np.nan
+    if abs(lo) > 0.5 * ulp:  # hi + lo rounds past hi (cannot happen after the fast two-sum; kept as a guard)
+        return np.nan
+    return hi
 
 
 @nb.njit(cache=True)
