@@ -31,6 +31,7 @@ import csv
 import gzip
 import itertools
 import math
+import os
 import re
 import warnings
 import zlib
@@ -508,7 +509,7 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
     """``read_csv`` by the numba parser (``lgekf.io.fastcsv``) of a whole file's bytes, or None when the
     general reader must read it (stdin, anything the fast path does not take, any bad input: the general
     reader then names the line and column in its message)."""
-    if is_stdio(path):
+    if is_stdio(path) or not os.path.isfile(path):  # a pipe (/dev/stdin, <(...)) cannot be read a second time
         return None
     try:
         with open(path, "rb") as raw:
