@@ -21,15 +21,18 @@ error messages name the line and column (or which reads the file if it is valid 
 
 from __future__ import annotations
 
+import atexit
 import io
 import math
 import os
+import subprocess
+import sys
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
 import numpy as np
 
-__all__ = ["parse", "parse_rows", "hard_values", "group_order", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES"]
+__all__ = ["parse", "parse_rows", "hard_values", "group_order", "compiled", "compile_in_background", "warm", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES"]
 
 # separators of the fast path (None: runs of spaces/tabs); others go to the general reader
 FAST_DELIMITERS = (",", ";", "\t", "|", ":", None)
@@ -529,6 +532,49 @@ def hard_values(data: bytes, hard) -> np.ndarray:
         return np.empty(0)
     text = _hard_text(np.frombuffer(data, dtype=np.uint8), np.ascontiguousarray(hard)).tobytes().decode("ascii")
     return np.loadtxt(io.StringIO(text), dtype=float, comments=None, ndmin=1)
+
+
+def compiled() -> bool:
+    """True when the parser's kernels are compiled in this process or in numba's cache (``cache=True``).
+
+    On a cold cache ``read_csv`` reads with its general reader instead and calls ``compile_in_background``:
+    compiling the parser takes several seconds of CPU, which would double a first run on small files.
+    """
+    if parse_rows.signatures:
+        return True
+    try:
+        return os.path.exists(parse_rows._cache._cache_file._index_path)
+    except AttributeError:  # another numba's internals: just compile when used
+        return True
+
+
+_COMPILER = []
+
+
+def compile_in_background() -> None:
+    """Compile the parser into numba's cache in a second process (once per process; the command waits for
+    it when it exits, so that no process outlives it). The next run finds the kernels in the cache."""
+    if _COMPILER:
+        return
+    proc = subprocess.Popen([sys.executable, "-c", "from lgekf.io.fastcsv import warm; warm()"],
+                            stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _COMPILER.append(proc)
+    atexit.register(proc.wait)
+
+
+def warm() -> None:
+    """Compile (or load) every kernel of the fast path with the argument types ``read_csv`` passes: one part
+    and two halves, ids, a number for ``hard_values``."""
+    text = b"id,t,x,y\n" + b"".join(b"a%d, %d.5,1.25,-2e-3\n" % (i % 3, i) for i in range(40)) + b"b,1.5,0.1234567890123456789,2\n"
+    for parts in (1 << 62, 8):
+        global PARALLEL_BYTES
+        saved, PARALLEL_BYTES = PARALLEL_BYTES, parts
+        try:
+            out = parse(text, 9, 44, [1, 2, 3], 0, 2)
+        finally:
+            PARALLEL_BYTES = saved
+    hard_values(text, out[5])
+    group_order(out[3], len(out[4]))
 
 
 def _cpus() -> int:
