@@ -13,6 +13,12 @@ from lgekf.io.fastcsv import group_order
 from lgekf.io.readers import DataError, read_csv
 
 
+@pytest.fixture(scope="module", autouse=True)
+def compiled_parser():
+    """The parser compiled in this process (on a cold cache read_csv would use the general reader)."""
+    fastcsv.warm()
+
+
 @pytest.fixture(params=["one part", "two parts"], autouse=True)
 def parts(request, monkeypatch):
     """Every test both ways: the body parsed in one piece, and split in two halves parsed in two threads."""
@@ -244,3 +250,13 @@ def test_long_mantissas_and_rounding_midpoints(tmp_path):
     # most of them are decided in the fast path, not handed to the general parser
     _, _, _, _, _, hard, _ = fastcsv.parse(p.read_bytes(), 6, 44, [1], -1, 2)
     assert 0 < len(hard) < len(texts) // 2
+
+
+def test_cold_cache_reads_with_the_general_reader_and_compiles_for_next_time(tmp_path, monkeypatch):
+    p = tmp_path / "a.csv"
+    p.write_text("id,t,x,y\na,0,1,2\na,1,2,3\n")
+    started = []
+    monkeypatch.setattr(fastcsv, "compiled", lambda: False)
+    monkeypatch.setattr(fastcsv, "compile_in_background", lambda: started.append(1))
+    assert readers._read_csv_fast(p, str(p), False, (), "auto") is None and started == [1]
+    assert outcome(read_csv, p) == outcome(general, p)
