@@ -48,6 +48,8 @@ from .noise import CHORD_S, chi2_quantile, chord_speeds
 
 __all__ = ["MonitorConfig", "Alarm", "speed_limits", "speeds", "speed_std", "first_alarms", "KIND_NAMES"]
 
+SPEED_ROWS = 1 << 16  # rows whose speeds first_alarms computes at a time (bounds the temporary copies)
+
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
 RERUN_ROWS = 1 << 12  # the first window of rows filtered again after a re-initialisation (then doubled)
 
@@ -212,7 +214,10 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
         _finite_rows(x, p, rows, finite)
         bad[rows] = ~finite
         sp = np.zeros(rows.size)
-        sp[finite] = speeds(model, x[rows[finite]])
+        ok = np.flatnonzero(finite)
+        for lo in range(0, ok.size, SPEED_ROWS):  # in blocks: no copy of every state of a long object at once
+            j = ok[lo:lo + SPEED_ROWS]
+            sp[j] = speeds(model, x[rows[j]])
         o = finite & (sp > lim_row)
         over[rows] = o
         if o.any():

@@ -58,7 +58,7 @@ from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
 from .divergence import MonitorConfig, recover, speed_limits
 from ..io.files import is_stdio
-from ..io.formatting import format_rows, label_bytes
+from ..io.formatting import label_bytes, write_rows
 from ..io.parquet import ParquetRows
 
 __all__ = [
@@ -185,6 +185,9 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
         K = int(Lb.max())
         first = np.ascontiguousarray(first_all[objs])
         B = len(objs)
+        if B == 1 or B * K <= SERIAL_STEPS:  # one long object or small work: straight on the rows, no copies
+            _run_in_place(getattr(kern, f"run_one_{measurement}"), t, zm, first, Lb, x0[objs], p0[objs], q, r, out_x, out_p, out_nis)
+            continue
         zb = np.empty((B, K, m))
         dts = np.empty((B, K))
         _gather(t, zm, first, Lb, K, zb, dts)
@@ -192,13 +195,19 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
         bp = np.empty((B, K, npk))
         bn = np.empty((B, K))
         xb, pb = np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs])
-        if B * K <= SERIAL_STEPS:  # small work: numba's thread start-up costs more than the filter (ms)
-            one = getattr(kern, f"run_one_{measurement}")
-            for i in range(B):
-                one(zb[i], dts[i], xb[i], pb[i], q, r, bx[i], bp[i], bn[i])
-        else:
-            getattr(kern, f"run_batch_{measurement}")(zb, dts, xb, pb, q, r, bx, bp, bn)
+        getattr(kern, f"run_batch_{measurement}")(zb, dts, xb, pb, q, r, bx, bp, bn)
         _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
+
+
+def _run_in_place(run_one, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """The generated ``run_one`` object by object on views of the rows (no padded copies, no scatter): the
+    numbers of ``run_batch`` (which runs ``run_one`` per object), for small batches (numba's thread start-up
+    costs more than the filter) and for one long object (no second copy of its states and covariances)."""
+    x0 = np.ascontiguousarray(x0)
+    p0 = np.ascontiguousarray(p0)
+    for i in range(first.shape[0]):
+        a, b = int(first[i]), int(first[i] + lengths[i])
+        run_one(zm[a:b], t[a:b] - t[a - 1:b - 1], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
@@ -369,11 +378,10 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             al.row += a
         alarms += r.alarms
         flagged += int(r.flag.sum())
-        std = np.sqrt(np.maximum(r.p[:, diag], 0.0))
-        parts = [r.x, std] + ([r.p] if full_cov else []) + [r.nis[:, None]]
+        parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
         if origin:
             parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
-        parts.append(r.flag[:, None].astype(float))
+        parts.append(r.flag[:, None])
         if smooth:
             from .smooth_track import smoothed_columns
 
@@ -381,11 +389,11 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                                                                                              cfg, h, measurement), r.x, r.p))
         for lo in range(0, b - a, FORMAT_ROWS):  # a block of rows at a time: no text copy of a long object
             hi = min(lo + FORMAT_ROWS, b - a)
-            block = np.hstack([v[lo:hi] for v in parts])
+            block = np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
             if sink is not None:
                 sink.write_rows(meas.labels, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block)
             else:
-                fh.write(format_rows(lab, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block, col_digits))
+                write_rows(fh, lab, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block, col_digits)
         if bar is not None:
             bar.update(b - a)
         o = o2

@@ -183,11 +183,12 @@ def cmd_track(argv) -> int:
 
         return cmd_track_multi(argv)
     a = track_parser().parse_args(argv)
-    from .track_imm import check_imm_options, cmd_track_imm
+    if a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
+        from .track_imm import check_imm_options, cmd_track_imm
 
-    check_imm_options(a)
-    if a.model == "imm":
-        return cmd_track_imm(a)
+        check_imm_options(a)
+        if a.model == "imm":
+            return cmd_track_imm(a)
     models = list(MODELS) if a.model == "all" else [a.model]
     given_q = parse_accel_std(a.accel_std, models)
     # validate the given values before any reading (the estimated ones are valid by construction)

@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
 import numpy as np
 
-__all__ = ["format_rows", "format_g", "label_bytes"]
+__all__ = ["format_rows", "write_rows", "format_g", "label_bytes"]
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 
@@ -75,6 +76,28 @@ def _put_str(buf, pos, s):
 
 
 @nb.njit(cache=True)
+def _decimal_exponent(v):
+    """floor(log10(v)) for v > 0, from the binary exponent and one comparison with a power of ten (no log10).
+
+    Exact but for v within an ulp or so of a power of ten, where it may be one off: ``_put_g`` corrects
+    either way by the size of its rounded digits (as it always did for log10's own rounding), to the same
+    digits where they are exact (|p - 1 - e| <= 22); elsewhere ``_put_g`` starts from log10 as before.
+    """
+    e2 = math.frexp(v)[1]  # v in [2^(e2-1), 2^e2)
+    e = int(math.floor((e2 - 1) * 0.30102999566398120))  # floor(log10 v) or one less
+    k = e + 1
+    if 0 <= k <= 22:
+        if v >= _P10F[k]:
+            e = k
+    elif -22 <= k < 0:
+        if v * _P10F[-k] >= 1.0:
+            e = k
+    else:
+        e = int(math.floor(math.log10(v)))
+    return e
+
+
+@nb.njit(cache=True)
 def _put_g(buf, pos, v, p, digits):
     """Write ``'%.{p}g' % v`` (1 <= p <= 17) into buf at pos; return the new position.
 
@@ -93,7 +116,9 @@ def _put_g(buf, pos, v, p, digits):
         v = -v
     if v == np.inf:
         return _put_str(buf, pos, "inf")
-    e = int(math.floor(math.log10(v)))
+    e = _decimal_exponent(v)
+    if not -21 <= p - 1 - e <= 21:  # digits not exact (see below): log10's start, whose one-off cases give these digits
+        e = int(math.floor(math.log10(v)))
     top = _POW10[p]
     q = _round_scaled(v, p - 1 - e)
     if q >= top:
@@ -190,12 +215,15 @@ def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
     return buf[:pos]
 
 
+_NEEDS_QUOTES = re.compile('[,"\n\r]')  # a label with one of these is written quoted
+
+
 def label_bytes(labels):
     """Concatenated UTF-8 bytes of CSV-quoted labels and their offsets (for ``format_rows``)."""
     enc = []
     for lab in labels:
         s = str(lab)
-        if any(c in s for c in ',"\n\r') or s != s.strip():
+        if _NEEDS_QUOTES.search(s) or s != s.strip():
             s = '"' + s.replace('"', '""') + '"'
         enc.append(s.encode("utf-8"))
     off = np.zeros(len(enc) + 1, dtype=np.int64)
@@ -209,6 +237,25 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
     lab: the result of ``label_bytes(labels)``; row_label (N,) index into the labels; t (N,);
     values (N, m); digits: significant digits per value column (an int or (m,)), 1..17.
     """
+    return b"".join(p.tobytes() for p in _formatted_parts(lab, row_label, t, values, digits, t_digits))
+
+
+def write_rows(fh, lab, row_label, t, values, digits, t_digits: int = 15) -> None:
+    """Write ``format_rows``'s bytes to ``fh`` part by part (no joined copy of the text).
+
+    Parameters
+    ----------
+    fh : file-like
+        Has ``write`` taking a bytes-like object.
+    lab, row_label, t, values, digits, t_digits
+        As for ``format_rows``.
+    """
+    for part in _formatted_parts(lab, row_label, t, values, digits, t_digits):
+        fh.write(part)
+
+
+def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
+    """The CSV text of the rows as uint8 arrays, one per thread's contiguous part of the rows, in order."""
     values = np.ascontiguousarray(values, dtype=float)
     if values.ndim != 2:
         raise ValueError("values: expected a 2-D array")
@@ -220,14 +267,13 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
     n = values.shape[0]
     threads = min(_cpus(), n // PARALLEL_ROWS)
     if threads < 2:
-        return _format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d).tobytes()
-    # contiguous parts of the rows in parallel threads (the kernel releases the GIL), joined in order:
-    # the same bytes as one call
+        return [_format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d)]
+    # contiguous parts of the rows in parallel threads (the kernel releases the GIL), in order: the same
+    # bytes as one call
     cut = np.linspace(0, n, threads + 1).astype(np.int64)
     with ThreadPoolExecutor(threads) as pool:
-        parts = list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
-                                                     int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
-    return b"".join(parts)
+        return list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
+                                                    int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
 
 
 def _cpus() -> int:

@@ -31,6 +31,7 @@ import csv
 import gzip
 import itertools
 import math
+import os
 import re
 import warnings
 import zlib
@@ -39,7 +40,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .files import open_input, source_name
+from . import fastcsv
+from .fastcsv import group_order
+from .files import is_stdio, open_input, source_name
 from .geo import to_local
 
 __all__ = [
@@ -98,9 +101,8 @@ class Measurements:
         Objects with fewer than ``min_length`` measurements are an error unless ``drop_short``
         (then they are removed and listed). Times must increase strictly within each object.
         """
-        order = np.argsort(self.obj, kind="stable")
+        order, counts = group_order(np.ascontiguousarray(self.obj, dtype=np.int64), self.n_objects)  # argsort(obj, stable)
         obj = self.obj[order]
-        counts = np.bincount(obj, minlength=self.n_objects)
         short = np.flatnonzero(counts < min_length)
         dropped = []
         if short.size:
@@ -491,6 +493,9 @@ def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Mea
         ``007`` and ``7`` are different objects; lat, lon are projected to metres (``origin`` set).
     """
     source = source_name(path)
+    fast = _read_csv_fast(path, source, use_heading, extra, delimiter)
+    if fast is not None:
+        return fast
     with open_input(path, DataError) as f, _reading(source):
         delim, colnames, usecols = _header_columns(source, f.readline(), use_heading, extra, delimiter)
         str_cols = ("id",) if "id" in colnames else ()
@@ -500,7 +505,63 @@ def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Mea
     return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols])
 
 
-def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=()) -> Measurements:
+def _read_csv_fast(path, source, use_heading, extra, delimiter):
+    """``read_csv`` by the numba parser (``lgekf.io.fastcsv``) of a whole file's bytes, or None when the
+    general reader must read it (stdin, anything the fast path does not take, any bad input: the general
+    reader then names the line and column in its message)."""
+    if is_stdio(path) or not os.path.isfile(path):  # a pipe (/dev/stdin, <(...)) cannot be read a second time
+        return None
+    if not fastcsv.compiled():  # a cold numba cache: the general reader now, the parser compiles for next time
+        fastcsv.compile_in_background()
+        return None
+    try:
+        with open(path, "rb") as raw:
+            data = raw.read()
+        if data[:2] == b"\x1f\x8b":
+            data = gzip.decompress(data)
+    except (OSError, EOFError, zlib.error):
+        return None
+    off = 3 if data[:3] == b"\xef\xbb\xbf" else 0
+    nl = data.find(b"\n", off)
+    if nl < 0:
+        return None  # no body
+    head = data[off:nl]
+    try:
+        first = (head[:-1] if head.endswith(b"\r") else head).decode("utf-8")
+        if "\r" in first:
+            return None
+        delim, colnames, usecols = _header_columns(source, first, use_heading, extra, delimiter)
+    except (UnicodeDecodeError, DataError):
+        return None
+    if delim not in fastcsv.FAST_DELIMITERS:
+        return None
+    num = [(n, c) for n, c in zip(colnames, usecols) if n != "id"]
+    idcol = usecols[colnames.index("id")] if "id" in colnames else -1
+    status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim), [c for _, c in num],
+                                                                 idcol, 2)
+    if status != fastcsv.OK or lines.size == 0:
+        return None
+    if nonascii:
+        try:
+            data.decode("utf-8")
+        except UnicodeDecodeError:
+            return None
+    if hard.shape[0]:  # beyond the exact fast path: numpy's correctly rounded parser, all at once
+        vals[hard[:, 1], hard[:, 0]] = fastcsv.hard_values(data, hard)
+    if idcol >= 0:
+        labels = [data[a:b].decode("utf-8") for a, b in lab.tolist()]
+        if any(lb != lb.strip() for lb in labels):  # other whitespace than spaces/tabs around an id
+            return None
+    else:
+        labels = ["0"]
+    del data  # the file's bytes are no longer needed: less peak memory for what follows
+    cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
+    del vals
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels))
+
+
+def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=(),
+                              objects=None) -> Measurements:
     """Check parsed columns and assemble them into ``Measurements`` (the last step of ``read_csv``).
 
     Parameters
@@ -518,6 +579,8 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         (lat0, lon0) of the projection of lat, lon (default: the first row's).
     extra : sequence of str
         Further numeric columns, kept in ``Measurements.extra``.
+    objects : tuple, optional
+        (object index per row, labels) already found (``read_csv``'s fast path); ``cols`` then has no ``id``.
 
     Returns
     -------
@@ -525,7 +588,9 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         Objects numbered in order of first appearance among these rows.
     """
     _check_finite(source, cols, lines, [n for n in cols if n != "id"])
-    if "id" in cols:
+    if objects is not None:
+        obj, labels = objects
+    elif "id" in cols:
         _check_ids(source, cols["id"], lines)
         obj, labels = _objects_from_texts(cols["id"])
     else:
