@@ -258,5 +258,7 @@ def test_cold_cache_reads_with_the_general_reader_and_compiles_for_next_time(tmp
     started = []
     monkeypatch.setattr(fastcsv, "compiled", lambda: False)
     monkeypatch.setattr(fastcsv, "compile_in_background", lambda: started.append(1))
+    assert readers._read_csv_fast(p, str(p), False, (), "auto") is None and started == []  # too small to pay off
+    monkeypatch.setattr(fastcsv, "COMPILE_MIN_BYTES", 10)
     assert readers._read_csv_fast(p, str(p), False, (), "auto") is None and started == [1]
     assert outcome(read_csv, p) == outcome(general, p)

@@ -511,8 +511,9 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
     reader then names the line and column in its message)."""
     if is_stdio(path) or not os.path.isfile(path):  # a pipe (/dev/stdin, <(...)) cannot be read a second time
         return None
-    if not fastcsv.compiled():  # a cold numba cache: the general reader now, the parser compiles for next time
-        fastcsv.compile_in_background()
+    if not fastcsv.compiled():  # a cold numba cache: the general reader now, and for a file large enough for the
+        if os.path.getsize(path) >= fastcsv.COMPILE_MIN_BYTES:  # parser to pay off, it compiles for next time
+            fastcsv.compile_in_background()
         return None
     try:
         with open(path, "rb") as raw:
