@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_position']
 
 
 @nb.njit(cache=True)
@@ -2332,3 +2332,375 @@ def state_of_common(c, Pc, s, p):
     p[7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
     p[8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
     p[9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
+
+
+@nb.njit(cache=True, error_model="numpy")
+def between_add_at(s, js, t, jt, w, acc, jacc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
+    On rows: s[js], t[jt], acc[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = s[js, 0]
+    y = s[js, 1]
+    w_x = s[js, 2]
+    w_y = s[js, 3]
+    t_x = t[jt, 0]
+    t_y = t[jt, 1]
+    t_w_x = t[jt, 2]
+    t_w_y = t[jt, 3]
+    acc0 = acc[jacc, 0]
+    acc1 = acc[jacc, 1]
+    acc2 = acc[jacc, 2]
+    acc3 = acc[jacc, 3]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[jacc, 0] = acc0 + d0*w
+    acc[jacc, 1] = acc1 + d1*w
+    acc[jacc, 2] = acc2 + d2*w
+    acc[jacc, 3] = acc3 + d3*w
+
+
+@nb.njit(cache=True, error_model="numpy")
+def mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
+    one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
+    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    On rows: s[js], t[jt], pt[jpt], acc[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = s[js, 0]
+    y = s[js, 1]
+    w_x = s[js, 2]
+    w_y = s[js, 3]
+    t_x = t[jt, 0]
+    t_y = t[jt, 1]
+    t_w_x = t[jt, 2]
+    t_w_y = t[jt, 3]
+    pt0_0 = pt[jpt, 0]
+    pt0_1 = pt[jpt, 1]
+    pt0_2 = pt[jpt, 2]
+    pt0_3 = pt[jpt, 3]
+    pt1_1 = pt[jpt, 4]
+    pt1_2 = pt[jpt, 5]
+    pt1_3 = pt[jpt, 6]
+    pt2_2 = pt[jpt, 7]
+    pt2_3 = pt[jpt, 8]
+    pt3_3 = pt[jpt, 9]
+    acc0 = acc[jacc, 0]
+    acc1 = acc[jacc, 1]
+    acc2 = acc[jacc, 2]
+    acc3 = acc[jacc, 3]
+    acc4 = acc[jacc, 4]
+    acc5 = acc[jacc, 5]
+    acc6 = acc[jacc, 6]
+    acc7 = acc[jacc, 7]
+    acc8 = acc[jacc, 8]
+    acc9 = acc[jacc, 9]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    acc[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
+    acc[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
+    acc[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
+    acc[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
+    acc[jacc, 4] = acc4 + w*(d1*d1 + pt1_1)
+    acc[jacc, 5] = acc5 + w*(d1*d2 + pt1_2)
+    acc[jacc, 6] = acc6 + w*(d1*d3 + pt1_3)
+    acc[jacc, 7] = acc7 + w*(d2*d2 + pt2_2)
+    acc[jacc, 8] = acc8 + w*(d2*d3 + pt2_3)
+    acc[jacc, 9] = acc9 + w*(d3*d3 + pt3_3)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def retract_at(s, js, eps, jeps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    On rows: s[js], eps[jeps] (derive/codegen/imm_rows.py).
+    """
+    x = s[js, 0]
+    y = s[js, 1]
+    w_x = s[js, 2]
+    w_y = s[js, 3]
+    eps0 = eps[jeps, 0]
+    eps1 = eps[jeps, 1]
+    eps2 = eps[jeps, 2]
+    eps3 = eps[jeps, 3]
+    s[js, 0] = eps0 + x
+    s[js, 1] = eps1 + y
+    s[js, 2] = eps2 + w_x
+    s[js, 3] = eps3 + w_y
+
+
+@nb.njit(cache=True, error_model="numpy")
+def common_of_state_at(s, js, p, jp, c, jc, Pc, jPc):
+    """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
+    physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
+    On rows: s[js], p[jp], c[jc], Pc[jPc] (derive/codegen/imm_rows.py).
+    """
+    x = s[js, 0]
+    y = s[js, 1]
+    w_x = s[js, 2]
+    w_y = s[js, 3]
+    p0_0 = p[jp, 0]
+    p0_1 = p[jp, 1]
+    p0_2 = p[jp, 2]
+    p0_3 = p[jp, 3]
+    p1_1 = p[jp, 4]
+    p1_2 = p[jp, 5]
+    p1_3 = p[jp, 6]
+    p2_2 = p[jp, 7]
+    p2_3 = p[jp, 8]
+    p3_3 = p[jp, 9]
+    xp_x = x
+    xp_y = y
+    xp_w_x = w_x
+    xp_w_y = w_y
+    _t0 = xp_w_x*xp_w_x + xp_w_y*xp_w_y
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    A2_2 = -(_t1*xp_w_y)
+    A2_3 = _t1*xp_w_x
+    A3_2 = _t2*xp_w_x
+    A3_3 = _t2*xp_w_y
+    U2_2 = A2_2*p2_2 + A2_3*p2_3
+    U2_3 = A2_2*p2_3 + A2_3*p3_3
+    U3_2 = A3_2*p2_2 + A3_3*p2_3
+    U3_3 = A3_2*p2_3 + A3_3*p3_3
+    _t3 = A2_2*p0_2 + A2_3*p0_3
+    _t4 = A3_2*p0_2 + A3_3*p0_3
+    _t5 = A2_2*p1_2 + A2_3*p1_3
+    _t6 = A3_2*p1_2 + A3_3*p1_3
+    _t7 = A3_2*U2_2 + A3_3*U2_3
+    c[jc, 0] = xp_x
+    c[jc, 1] = xp_y
+    c[jc, 2] = math.atan2(xp_w_y, xp_w_x)
+    c[jc, 3] = math.sqrt(xp_w_x*xp_w_x + xp_w_y*xp_w_y)
+    c[jc, 4] = 0.0
+    c[jc, 5] = 0.0
+    Pc[jPc, 0] = p0_0
+    Pc[jPc, 1] = p0_1
+    Pc[jPc, 6] = p0_1
+    Pc[jPc, 2] = _t3
+    Pc[jPc, 12] = _t3
+    Pc[jPc, 3] = _t4
+    Pc[jPc, 18] = _t4
+    Pc[jPc, 4] = 0.0
+    Pc[jPc, 24] = 0.0
+    Pc[jPc, 5] = 0.0
+    Pc[jPc, 30] = 0.0
+    Pc[jPc, 7] = p1_1
+    Pc[jPc, 8] = _t5
+    Pc[jPc, 13] = _t5
+    Pc[jPc, 9] = _t6
+    Pc[jPc, 19] = _t6
+    Pc[jPc, 10] = 0.0
+    Pc[jPc, 25] = 0.0
+    Pc[jPc, 11] = 0.0
+    Pc[jPc, 31] = 0.0
+    Pc[jPc, 14] = A2_2*U2_2 + A2_3*U2_3
+    Pc[jPc, 15] = _t7
+    Pc[jPc, 20] = _t7
+    Pc[jPc, 16] = 0.0
+    Pc[jPc, 26] = 0.0
+    Pc[jPc, 17] = 0.0
+    Pc[jPc, 32] = 0.0
+    Pc[jPc, 21] = A3_2*U3_2 + A3_3*U3_3
+    Pc[jPc, 22] = 0.0
+    Pc[jPc, 27] = 0.0
+    Pc[jPc, 23] = 0.0
+    Pc[jPc, 33] = 0.0
+    Pc[jPc, 28] = 0.0
+    Pc[jPc, 29] = 0.0
+    Pc[jPc, 34] = 0.0
+    Pc[jPc, 35] = 0.0
+
+
+@nb.njit(cache=True, error_model="numpy")
+def state_of_common_at(c, jc, Pc, jPc, s, js, p, jp):
+    """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
+    s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
+    On rows: c[jc], Pc[jPc], s[js], p[jp] (derive/codegen/imm_rows.py).
+    """
+    c0 = c[jc, 0]
+    c1 = c[jc, 1]
+    c2 = c[jc, 2]
+    c3 = c[jc, 3]
+    c4 = c[jc, 4]
+    pc0_0 = Pc[jPc, 0]
+    pc0_1 = Pc[jPc, 1]
+    pc0_2 = Pc[jPc, 2]
+    pc0_3 = Pc[jPc, 3]
+    pc0_4 = Pc[jPc, 4]
+    pc1_1 = Pc[jPc, 7]
+    pc1_2 = Pc[jPc, 8]
+    pc1_3 = Pc[jPc, 9]
+    pc1_4 = Pc[jPc, 10]
+    pc2_2 = Pc[jPc, 14]
+    pc2_3 = Pc[jPc, 15]
+    pc2_4 = Pc[jPc, 16]
+    pc3_3 = Pc[jPc, 21]
+    pc3_4 = Pc[jPc, 22]
+    pc4_4 = Pc[jPc, 28]
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    xp_x = c0
+    xp_y = c1
+    xp_w_x = _cos_c2*c3 - _sin_c2*c4
+    xp_w_y = _cos_c2*c4 + _sin_c2*c3
+    J2_2 = -(_cos_c2*c4) - _sin_c2*c3
+    J2_3 = _cos_c2
+    J2_4 = -_sin_c2
+    J3_2 = _cos_c2*c3 - _sin_c2*c4
+    J3_3 = _sin_c2
+    J3_4 = _cos_c2
+    V2_2 = J2_2*pc2_2 + J2_3*pc2_3 + J2_4*pc2_4
+    V2_3 = J2_2*pc2_3 + J2_3*pc3_3 + J2_4*pc3_4
+    V2_4 = J2_2*pc2_4 + J2_3*pc3_4 + J2_4*pc4_4
+    V3_2 = J3_2*pc2_2 + J3_3*pc2_3 + J3_4*pc2_4
+    V3_3 = J3_2*pc2_3 + J3_3*pc3_3 + J3_4*pc3_4
+    V3_4 = J3_2*pc2_4 + J3_3*pc3_4 + J3_4*pc4_4
+    s[js, 0] = xp_x
+    s[js, 1] = xp_y
+    s[js, 2] = xp_w_x
+    s[js, 3] = xp_w_y
+    p[jp, 0] = pc0_0
+    p[jp, 1] = pc0_1
+    p[jp, 2] = J2_2*pc0_2 + J2_3*pc0_3 + J2_4*pc0_4
+    p[jp, 3] = J3_2*pc0_2 + J3_3*pc0_3 + J3_4*pc0_4
+    p[jp, 4] = pc1_1
+    p[jp, 5] = J2_2*pc1_2 + J2_3*pc1_3 + J2_4*pc1_4
+    p[jp, 6] = J3_2*pc1_2 + J3_3*pc1_3 + J3_4*pc1_4
+    p[jp, 7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
+    p[jp, 8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
+    p[jp, 9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
+
+
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_ll_position(s, js, p, jp, dt, sigma_a, z_x, z_y, r):
+    """``step_try_position`` on rows s[js], p[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+    rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
+    """
+    x = s[js, 0]
+    y = s[js, 1]
+    w_x = s[js, 2]
+    w_y = s[js, 3]
+    p00 = p[jp, 0]
+    p01 = p[jp, 1]
+    p02 = p[jp, 2]
+    p03 = p[jp, 3]
+    p11 = p[jp, 4]
+    p12 = p[jp, 5]
+    p13 = p[jp, 6]
+    p22 = p[jp, 7]
+    p23 = p[jp, 8]
+    p33 = p[jp, 9]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj11
+    out_p5 = pj12
+    out_p6 = pj13
+    out_p7 = pj22
+    out_p8 = pj23
+    out_p9 = pj33
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp11
+        out_p5 = pp12
+        out_p6 = pp13
+        out_p7 = pp22
+        out_p8 = pp23
+        out_p9 = pp33
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = w_x
+        out_s3 = w_y
+        nis = -1.0
+    p[jp, 0] = out_p0
+    p[jp, 1] = out_p1
+    p[jp, 2] = out_p2
+    p[jp, 3] = out_p3
+    p[jp, 4] = out_p4
+    p[jp, 5] = out_p5
+    p[jp, 6] = out_p6
+    p[jp, 7] = out_p7
+    p[jp, 8] = out_p8
+    p[jp, 9] = out_p9
+    s[js, 0] = out_s0
+    s[js, 1] = out_s1
+    s[js, 2] = out_s2
+    s[js, 3] = out_s3
+    return nis, rdet

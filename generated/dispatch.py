@@ -470,3 +470,101 @@ def calH_position_into(model, s, out):
         se2r3.calH_position_into(s, out)
     elif model == 4:
         se2se2.calH_position_into(s, out)
+
+
+@nb.njit(cache=True, inline="always")
+def between_add_at(model, s, js, t, jt, w, acc, jacc):
+    if model == 0:
+        ctrv.between_add_at(s, js, t, jt, w, acc, jacc)
+    elif model == 1:
+        cv.between_add_at(s, js, t, jt, w, acc, jacc)
+    elif model == 2:
+        se2r2.between_add_at(s, js, t, jt, w, acc, jacc)
+    elif model == 3:
+        se2r3.between_add_at(s, js, t, jt, w, acc, jacc)
+    elif model == 4:
+        se2se2.between_add_at(s, js, t, jt, w, acc, jacc)
+
+
+@nb.njit(cache=True, inline="always")
+def mix_transport_at(model, s, js, t, jt, pt, jpt, w, acc, jacc):
+    if model == 0:
+        ctrv.mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc)
+    elif model == 1:
+        cv.mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc)
+    elif model == 2:
+        se2r2.mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc)
+    elif model == 3:
+        se2r3.mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc)
+    elif model == 4:
+        se2se2.mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc)
+
+
+@nb.njit(cache=True, inline="always")
+def retract_at(model, s, js, eps, jeps):
+    if model == 0:
+        ctrv.retract_at(s, js, eps, jeps)
+    elif model == 1:
+        cv.retract_at(s, js, eps, jeps)
+    elif model == 2:
+        se2r2.retract_at(s, js, eps, jeps)
+    elif model == 3:
+        se2r3.retract_at(s, js, eps, jeps)
+    elif model == 4:
+        se2se2.retract_at(s, js, eps, jeps)
+
+
+@nb.njit(cache=True, inline="always")
+def common_of_state_at(model, s, js, p, jp, c, jc, Pc, jPc):
+    if model == 0:
+        ctrv.common_of_state_at(s, js, p, jp, c, jc, Pc, jPc)
+    elif model == 1:
+        cv.common_of_state_at(s, js, p, jp, c, jc, Pc, jPc)
+    elif model == 2:
+        se2r2.common_of_state_at(s, js, p, jp, c, jc, Pc, jPc)
+    elif model == 3:
+        se2r3.common_of_state_at(s, js, p, jp, c, jc, Pc, jPc)
+    elif model == 4:
+        se2se2.common_of_state_at(s, js, p, jp, c, jc, Pc, jPc)
+
+
+@nb.njit(cache=True, inline="always")
+def state_of_common_at(model, c, jc, Pc, jPc, s, js, p, jp):
+    if model == 0:
+        ctrv.state_of_common_at(c, jc, Pc, jPc, s, js, p, jp)
+    elif model == 1:
+        cv.state_of_common_at(c, jc, Pc, jPc, s, js, p, jp)
+    elif model == 2:
+        se2r2.state_of_common_at(c, jc, Pc, jPc, s, js, p, jp)
+    elif model == 3:
+        se2r3.state_of_common_at(c, jc, Pc, jPc, s, js, p, jp)
+    elif model == 4:
+        se2se2.state_of_common_at(c, jc, Pc, jPc, s, js, p, jp)
+
+
+@nb.njit(cache=True, inline="always")
+def step_ll_pose(model, s, js, p, jp, dt, q, jq, z, jz, r):
+    if model == 0:
+        return ctrv.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+    elif model == 2:
+        return se2r2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+    elif model == 3:
+        return se2r3.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+    elif model == 4:
+        return se2se2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True, inline="always")
+def step_ll_position(model, s, js, p, jp, dt, q, jq, z, jz, r):
+    if model == 0:
+        return ctrv.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[0])
+    elif model == 1:
+        return cv.step_ll_position(s, js, p, jp, dt, q[jq, 0], z[jz, 0], z[jz, 1], r[0])
+    elif model == 2:
+        return se2r2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[0])
+    elif model == 3:
+        return se2r3.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[0])
+    elif model == 4:
+        return se2se2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[0])
+    raise ValueError('dispatch: model index out of range')
