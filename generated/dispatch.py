@@ -543,28 +543,28 @@ def state_of_common_at(model, c, jc, Pc, jPc, s, js, p, jp):
 
 
 @nb.njit(cache=True, inline="always")
-def step_ll_pose(model, s, js, p, jp, dt, q, jq, z, jz, r):
+def step_ll_pose(model, s, js, p, jp, dt, q, jq, z, jz, r, jr):
     if model == 0:
-        return ctrv.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+        return ctrv.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[jr, 0], r[jr, 1], r[jr, 2])
     elif model == 2:
-        return se2r2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+        return se2r2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], z[jz, 2], r[jr, 0], r[jr, 1], r[jr, 2])
     elif model == 3:
-        return se2r3.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+        return se2r3.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[jr, 0], r[jr, 1], r[jr, 2])
     elif model == 4:
-        return se2se2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[0], r[1], r[2])
+        return se2se2.step_ll_pose(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], z[jz, 2], r[jr, 0], r[jr, 1], r[jr, 2])
     raise ValueError('dispatch: model index out of range')
 
 
 @nb.njit(cache=True, inline="always")
-def step_ll_position(model, s, js, p, jp, dt, q, jq, z, jz, r):
+def step_ll_position(model, s, js, p, jp, dt, q, jq, z, jz, r, jr):
     if model == 0:
-        return ctrv.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[0])
+        return ctrv.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[jr, 0])
     elif model == 1:
-        return cv.step_ll_position(s, js, p, jp, dt, q[jq, 0], z[jz, 0], z[jz, 1], r[0])
+        return cv.step_ll_position(s, js, p, jp, dt, q[jq, 0], z[jz, 0], z[jz, 1], r[jr, 0])
     elif model == 2:
-        return se2r2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[0])
+        return se2r2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], z[jz, 0], z[jz, 1], r[jr, 0])
     elif model == 3:
-        return se2r3.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[0])
+        return se2r3.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[jr, 0])
     elif model == 4:
-        return se2se2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[0])
+        return se2se2.step_ll_position(s, js, p, jp, dt, q[jq, 0], q[jq, 1], q[jq, 2], z[jz, 0], z[jz, 1], r[jr, 0])
     raise ValueError('dispatch: model index out of range')

@@ -106,7 +106,7 @@ def dispatch_chains(chain, names: list, models: dict, fits: dict, measurements: 
                 return None
             q = ", ".join(f"q[jq, {i}]" for i in range(len(models[n].noise_names)))
             z = ", ".join(f"z[jz, {i}]" for i in range(meas.m))
-            r = ", ".join(f"r[{i}]" for i in range(len(meas.noise_names)))
+            r = ", ".join(f"r[jr, {i}]" for i in range(len(meas.noise_names)))
             return f"{n}.step_ll_{mname}(s, js, p, jp, dt, {q}, {z}, {r})"
-        funcs.append(chain(f"step_ll_{mname}", "s, js, p, jp, dt, q, jq, z, jz, r", names, call, True))
+        funcs.append(chain(f"step_ll_{mname}", "s, js, p, jp, dt, q, jq, z, jz, r, jr", names, call, True))
     return funcs

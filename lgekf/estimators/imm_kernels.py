@@ -41,10 +41,13 @@ mode probabilities, on the group when ``same_group``, then converted to c).
 Speed (issue #11; README "Speed of the IMM"). numba brackets a function with atomic reference counting
 (``NRT_incref``/``NRT_decref``) of the arrays it receives when it passes arrays on to a call that is not inlined or
 can raise; views (``S[j]``) and tuples of arrays multiply the count. So the step loop works on arrays it already
-holds: the modes' states and covariances stay rows of ``S`` and ``Pp``, every scratch quantity is a row of ONE 2-D
-workspace (``workspace(M)``, rows at fixed offsets: ``_R_*``, ``_r_*``), and the generated kernels are called in
-their row variants (``<kernel>_at(..., array, row, ...)``, derive/codegen/imm_rows.py, ``error_model="numpy"``),
-so that neither they nor the helpers count inside the loop. ``imm_step`` runs each mode's prediction and update as
+holds: ONE 2-D float workspace per IMM (``workspace(M)``) carries everything the step reads and writes, a quantity
+per row at offsets fixed by M (``_R_*``, ``_r_*``): the model indices, the modes' internal states and packed
+covariances, μ, the transition matrix, the noise stds, the measurement and every scratch quantity. The helpers take
+that one array (two atomic operations per call, however many quantities it holds) and the generated kernels are
+called in their row variants (``<kernel>_at(..., array, row, ...)``, derive/codegen/imm_rows.py,
+``error_model="numpy"``), which count nothing. The public functions copy their arguments in and the results out
+(``_load`` / ``_store``); ``imm_run_one`` does so once per trajectory. ``imm_step`` runs each mode's prediction and update as
 the filter's fused step (``step_ll_<meas>``: ``step_try_<meas>`` on rows, which also returns 1/det S for the
 likelihood; a step that fails its LDLᵀ test is redone by ``update_<meas>`` from the prediction, as in the filter
 loops). ``imm_predict`` / ``imm_update`` (the IMM class, the smoother's forward pass) keep the separate prediction,
@@ -84,8 +87,13 @@ _R_D = 8  # a deviation (6)
 _R_SMIX = 9  # the combined estimate on the group: state (L)
 _R_PMIX = 10  # ... packed covariance (n(n+1)/2)
 _R_MU = 11  # the weights of the combined estimate (M)
-_R_Z = 12  # a measurement (m)
-_R_BLOCKS = 13
+_R_Z = 12  # the measurement (m)
+_R_MODEL = 13  # the modes' model indices (M, as floats)
+_R_MUV = 14  # the mode probabilities μ (M)
+_R_R = 15  # the measurement noise stds
+_R_NIS = 16  # each mode's NIS of the last update (M)
+_R_BLOCKS = 17
+_N_BLOCKS = 12
 
 
 @nb.njit(cache=True, inline="always")
@@ -136,11 +144,79 @@ def _r_pi(M):
     return _R_BLOCKS + 7 * M
 
 
+@nb.njit(cache=True, inline="always")
+def _r_s(M):
+    """First of M rows: the modes' internal states (L)."""
+    return _R_BLOCKS + 8 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_pp(M):
+    """First of M rows: the modes' packed covariances."""
+    return _R_BLOCKS + 9 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_trans(M):
+    """First of M rows: the transition matrix, row i = PI[i, :]."""
+    return _R_BLOCKS + 10 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_q(M):
+    """First of M rows: the modes' process-noise stds."""
+    return _R_BLOCKS + 11 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _model(ws, j):
+    return int(ws[_R_MODEL, j])
+
+
 @nb.njit(cache=True)
 def workspace(M):
-    """The scratch of one IMM of M modes: one 2-D float array, a quantity per row (no allocation and no views
-    inside the step loop; layout in the ``_R_*`` / ``_r_*`` constants)."""
-    return np.zeros((_R_BLOCKS + 8 * M, max(36, LMAX, NPMAX, M)))
+    """The workspace of one IMM of M modes: one 2-D float array, a quantity per row (module docstring; no
+    allocation and no views inside the step loop)."""
+    return np.zeros((_R_BLOCKS + _N_BLOCKS * M, max(36, LMAX, NPMAX, M, 8)))
+
+
+@nb.njit(cache=True)
+def _load_modes(ws, models, S, Pp):
+    """Model indices, states and packed covariances into the workspace."""
+    M = models.shape[0]
+    for j in range(M):
+        ws[_R_MODEL, j] = models[j]
+        for k in range(S.shape[1]):
+            ws[_r_s(M) + j, k] = S[j, k]
+        for k in range(Pp.shape[1]):
+            ws[_r_pp(M) + j, k] = Pp[j, k]
+
+
+@nb.njit(cache=True)
+def _load(ws, models, S, Pp, mu, PI, Q, r):
+    """Everything the step reads into the workspace."""
+    M = models.shape[0]
+    _load_modes(ws, models, S, Pp)
+    for j in range(M):
+        ws[_R_MUV, j] = mu[j]
+        for i in range(M):
+            ws[_r_trans(M) + j, i] = PI[j, i]
+        for i in range(Q.shape[1]):
+            ws[_r_q(M) + j, i] = Q[j, i]
+    for i in range(r.shape[0]):
+        ws[_R_R, i] = r[i]
+
+
+@nb.njit(cache=True)
+def _store(ws, S, Pp, mu):
+    """The states, covariances and probabilities back from the workspace."""
+    M = S.shape[0]
+    for j in range(M):
+        mu[j] = ws[_R_MUV, j]
+        for k in range(S.shape[1]):
+            S[j, k] = ws[_r_s(M) + j, k]
+        for k in range(Pp.shape[1]):
+            Pp[j, k] = ws[_r_pp(M) + j, k]
 
 
 @nb.njit(cache=True)
@@ -172,7 +248,9 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     M = S.shape[0]
     for i in range(M):
         ws[_R_MU, i] = w[i]
-    it = _mix_on_group(model, S, Pp, M, ws, _R_MU, _R_SMIX, _R_PMIX)
+        ws[_R_MODEL, i] = model
+    _load_modes(ws, np.full(M, model), S, Pp)
+    it = _mix_on_group(ws, M, model, _R_MU, _R_SMIX, _R_PMIX)
     for k in range(D.N_INTERNAL[model]):
         s_out[k] = ws[_R_SMIX, k]
     unpack_into(ws[_R_PMIX], D.N_TANGENT[model], P_out)
@@ -180,20 +258,22 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _mix_on_group(model, S, Pp, M, ws, rw, rs, rp):
-    """mix_on_group with the weights ws[rw, :M], into the state ws[rs] and the packed covariance ws[rp].
+def _mix_on_group(ws, M, model, rw, rs, rp):
+    """mix_on_group of the modes in the workspace with the weights ws[rw, :M], into the state ws[rs] and the
+    packed covariance ws[rp].
 
     The mean's terms come from the generated ``between_add``, each source's covariance term w_i [Φ(d_i)⁻¹ P_i
     Φ(d_i)⁻ᵀ + d_i d_iᵀ] from the generated ``mix_transport`` (straight line, packed in and out; their row
     variants). Returns the iterations used."""
     n = D.N_TANGENT[model]
     ni = D.N_INTERNAL[model]
+    rS, rPp = _r_s(M), _r_pp(M)
     best = 0
     for i in range(M):
         if ws[rw, i] > ws[rw, best]:
             best = i
     for k in range(ni):
-        ws[rs, k] = S[best, k]
+        ws[rs, k] = ws[rS + best, k]
     it = 0
     if M > 1:
         for it in range(1, 51):
@@ -202,7 +282,7 @@ def _mix_on_group(model, S, Pp, M, ws, rw, rs, rp):
             for i in range(M):
                 w = ws[rw, i]
                 if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_add_at(model, ws, rs, S, i, w, ws, _R_DELTA)
+                    D.between_add_at(model, ws, rs, ws, rS + i, w, ws, _R_DELTA)
             D.retract_at(model, ws, rs, ws, _R_DELTA)
             nrm = 0.0
             for k in range(n):
@@ -212,34 +292,35 @@ def _mix_on_group(model, S, Pp, M, ws, rw, rs, rp):
     npk = n * (n + 1) // 2
     if M == 1:
         for k in range(npk):
-            ws[rp, k] = Pp[0, k]
+            ws[rp, k] = ws[rPp, k]
         return it
     for k in range(npk):
         ws[rp, k] = 0.0
     for i in range(M):
         w = ws[rw, i]
         if w > 0.0:
-            D.mix_transport_at(model, ws, rs, S, i, Pp, i, w, ws, rp)
+            D.mix_transport_at(model, ws, rs, ws, rS + i, ws, rPp + i, w, ws, rp)
     return it
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _to_common(model, S, js, Pp, jp, ws, rc, rP):
-    """Mode state S[js], packed Pp[jp] -> common c (ws[rc], 6) and its covariance (ws[rP], 6 × 6 row-major)
-    (A P Aᵀ, generated ``common_of_state``).
+def _to_common(ws, model, js, jp, rc, rP):
+    """State ws[js], packed covariance ws[jp] of a model -> common c (ws[rc], 6) and its covariance (ws[rP],
+    6 × 6 row-major) (A P Aᵀ, generated ``common_of_state``).
 
     At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
     read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
-    D.common_of_state_at(model, S, js, Pp, jp, ws, rc, ws, rP)  # generated, straight line: c and A P Aᵀ at s
+    D.common_of_state_at(model, ws, js, ws, jp, ws, rc, ws, rP)  # generated, straight line: c and A P Aᵀ at s
     if math.hypot(ws[rc, 3], ws[rc, 4]) < SPEED_FLOOR:
-        _to_common_slow(model, S[js], Pp[jp], ws, rc, rP)
+        _to_common_slow(ws, model, js, jp, rc, rP)
     _cap_heading(ws, rc, rP)
 
 
 @nb.njit(cache=True)
-def _to_common_slow(model, s, p, ws, rc, rP):
+def _to_common_slow(ws, model, js, jp, rc, rP):
     """_to_common's path below SPEED_FLOOR (rare: allocates its scratch)."""
     n = D.N_TANGENT[model]
+    s, p = ws[js].copy(), ws[jp].copy()
     x, A, row = np.empty(NMAX), np.empty((6, NMAX)), np.empty(NW)
     Pd, ctmp, Pc = np.empty((NW, NW)), np.empty(6), np.empty((6, 6))
     D.physical_into(model, s, x)
@@ -300,7 +381,7 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
         ws[_R_FILLC, a] = fill_c[a]
         for b in range(6):
             ws[_R_FILLP, 6 * a + b] = fill_P[a, b]
-    _mix_common(M, ws, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
+    _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
     for a in range(6):
         c_out[a] = ws[_R_CM, a]
         for b in range(6):
@@ -308,7 +389,7 @@ def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _mix_common(M, ws, rw, rfc, rfp, rc, rP):
+def _mix_common(ws, M, rw, rfc, rfp, rc, rP):
     """mix_common on workspace rows: sources c_i, P_c,i, miss_i in the blocks _r_c, _r_pc, _r_miss; weights ws[rw];
     fill mean ws[rfc], fill covariance ws[rfp] (6 × 6 row-major, diagonal used); result into ws[rc], ws[rP]."""
     rC, rPC, rMS, rCI, rPI = _r_c(M), _r_pc(M), _r_miss(M), _r_ci(M), _r_pi(M)
@@ -356,28 +437,27 @@ def _mix_common(M, ws, rw, rfc, rfp, rc, rP):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _all_common(models, S, Pp, ws):
+def _all_common(ws, M):
     """Every mode in the common coordinates: the workspace blocks _r_c (M, 6), _r_pc (M, 36), _r_miss (M, 6)."""
-    M = models.shape[0]
     for i in range(M):
-        _to_common(models[i], S, i, Pp, i, ws, _r_c(M) + i, _r_pc(M) + i)
+        model = _model(ws, i)
+        _to_common(ws, model, _r_s(M) + i, _r_pp(M) + i, _r_c(M) + i, _r_pc(M) + i)
         for a in range(6):
-            ws[_r_miss(M) + i, a] = D.COMMON_MISSING[models[i], a]
+            ws[_r_miss(M) + i, a] = D.COMMON_MISSING[model, a]
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _combined(models, S, Pp, same_group, ws):
+def _combined(ws, M, same_group):
     """The combined estimate (weights ws[_R_MU]) in the common coordinates into ws[_R_CM], ws[_R_PCM]."""
-    M = models.shape[0]
     if M == 1:
-        _to_common(models[0], S, 0, Pp, 0, ws, _R_CM, _R_PCM)
+        _to_common(ws, _model(ws, 0), _r_s(M), _r_pp(M), _R_CM, _R_PCM)
         return
     if same_group:
-        model = models[0]
-        _mix_on_group(model, S, Pp, M, ws, _R_MU, _R_SMIX, _R_PMIX)
-        _to_common(model, ws, _R_SMIX, ws, _R_PMIX, ws, _R_CM, _R_PCM)
+        model = _model(ws, 0)
+        _mix_on_group(ws, M, model, _R_MU, _R_SMIX, _R_PMIX)
+        _to_common(ws, model, _R_SMIX, _R_PMIX, _R_CM, _R_PCM)
         return
-    _all_common(models, S, Pp, ws)
+    _all_common(ws, M)
     rC, rPC, rMS = _r_c(M), _r_pc(M), _r_miss(M)
     # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
     for e in range(36):
@@ -396,15 +476,16 @@ def _combined(models, S, Pp, same_group, ws):
                 if ws[rMS + i, a] < 0.5:
                     e = ws[rC + i, a] - ws[_R_FILLC, a]
                     ws[_R_FILLP, 7 * a] += ws[_R_MU, i] / tot * (ws[rPC + i, 7 * a] + e * e)
-    _mix_common(M, ws, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
+    _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
 
 
 @nb.njit(cache=True)
 def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
+    _load_modes(ws, models, S, Pp)
     for i in range(models.shape[0]):
         ws[_R_MU, i] = mu[i]
-    _combined(models, S, Pp, same_group, ws)
+    _combined(ws, models.shape[0], same_group)
     for a in range(6):
         c_out[a] = ws[_R_CM, a]
         for b in range(6):
@@ -412,76 +493,85 @@ def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
 
 
 @nb.njit(cache=True)
-def _state_of_common_slow(model, ws, rc, rP, rs, rp):
+def _state_of_common_slow(ws, model, rc, rP, rs, rp):
     """The mixed common Gaussian ws[rc], ws[rP] below SPEED_FLOOR to a mode's state ws[rs] and packed covariance
     ws[rp] (rare: allocates its scratch)."""
     n = D.N_TANGENT[model]
     c, Pc, x = np.empty(6), np.empty((6, 6)), np.empty(NMAX)
     J, P, row = np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW)
+    s, p = np.empty(LMAX), np.empty(NPMAX)
     for a in range(6):
         c[a] = ws[rc, a]
         for b in range(6):
             Pc[a, b] = ws[rP, 6 * a + b]
     D.common_to_state_into(model, c, x)
-    D.state_from_physical_into(model, x, ws[rs])
+    D.state_from_physical_into(model, x, s)
     c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
     D.common_jacobian_into(model, c, J)
     _congruence_dense(J, n, Pc, 6, row, P)
-    pack_from(P, n, ws[rp])
+    pack_from(P, n, p)
+    for k in range(D.N_INTERNAL[model]):
+        ws[rs, k] = s[k]
+    for k in range(n * (n + 1) // 2):
+        ws[rp, k] = p[k]
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _mix_rows(models, S, Pp, mu, PI, same_group, ws):
-    """The IMM's interaction step, in place: every mode restarts from its mixed estimate; the predicted
+def _mix_rows(ws, M, same_group):
+    """The IMM's interaction step on the workspace: every mode restarts from its mixed estimate; the predicted
     probabilities cbar_j = Σ_i PI_ij μ_i into ws[_R_CBAR]."""
-    M = models.shape[0]
+    rT = _r_trans(M)
     for j in range(M):
         cb = 0.0
         for i in range(M):
-            cb += PI[i, j] * mu[i]
+            cb += ws[rT + i, j] * ws[_R_MUV, i]
         ws[_R_CBAR, j] = cb
     if M == 1:
         return
-    rW, rS, rP = _r_w(M), _r_snew(M), _r_pnew(M)
+    rW, rSn, rPn = _r_w(M), _r_snew(M), _r_pnew(M)
     for j in range(M):
         cb = ws[_R_CBAR, j]
         for i in range(M):
-            ws[rW + j, i] = PI[i, j] * mu[i] / cb if cb > 0.0 else (1.0 if i == j else 0.0)
+            ws[rW + j, i] = ws[rT + i, j] * ws[_R_MUV, i] / cb if cb > 0.0 else (1.0 if i == j else 0.0)
     if same_group:
-        model = models[0]
+        model = _model(ws, 0)
         for j in range(M):
-            _mix_on_group(model, S, Pp, M, ws, rW + j, rS + j, rP + j)
+            _mix_on_group(ws, M, model, rW + j, rSn + j, rPn + j)
     else:
-        _all_common(models, S, Pp, ws)
+        _all_common(ws, M)
         for j in range(M):
-            _mix_common(M, ws, rW + j, _r_c(M) + j, _r_pc(M) + j, _R_CM, _R_PCM)
-            model = models[j]
+            _mix_common(ws, M, rW + j, _r_c(M) + j, _r_pc(M) + j, _R_CM, _R_PCM)
+            model = _model(ws, j)
             if math.hypot(ws[_R_CM, 3], ws[_R_CM, 4]) >= SPEED_FLOOR:  # generated, straight line: state, J Pc Jᵀ
-                D.state_of_common_at(model, ws, _R_CM, ws, _R_PCM, ws, rS + j, ws, rP + j)
+                D.state_of_common_at(model, ws, _R_CM, ws, _R_PCM, ws, rSn + j, ws, rPn + j)
             else:
-                _state_of_common_slow(model, ws, _R_CM, _R_PCM, rS + j, rP + j)
+                _state_of_common_slow(ws, model, _R_CM, _R_PCM, rSn + j, rPn + j)
+    rS, rPp = _r_s(M), _r_pp(M)
     for j in range(M):
-        model = models[j]
+        model = _model(ws, j)
         for k in range(D.N_INTERNAL[model]):
-            S[j, k] = ws[rS + j, k]
+            ws[rS + j, k] = ws[rSn + j, k]
         n = D.N_TANGENT[model]
         for k in range(n * (n + 1) // 2):
-            Pp[j, k] = ws[rP + j, k]
+            ws[rPp + j, k] = ws[rPn + j, k]
 
 
 @nb.njit(cache=True)
 def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
     """The IMM's interaction step, in place: every mode restarts from its mixed estimate; cbar_j = Σ_i PI_ij μ_i."""
-    _mix_rows(models, S, Pp, mu, PI, same_group, ws)
-    for j in range(models.shape[0]):
+    M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, np.zeros((M, 1)), np.zeros(1))
+    _mix_rows(ws, M, same_group)
+    _store(ws, S, Pp, mu)
+    for j in range(M):
         cbar[j] = ws[_R_CBAR, j]
 
 
 @nb.njit(cache=True)
-def _predict_modes(models, S, Pp, Q, dt):
-    """Every mode's prediction by dt, in place."""
-    for j in range(models.shape[0]):
-        D.predict(models[j], S[j], Pp[j], dt, Q[j])
+def _predict_modes(ws, M, dt):
+    """Every mode's prediction by dt, in place in the workspace (views: used for missed detections only)."""
+    for j in range(M):
+        D.predict(_model(ws, j), ws[_r_s(M) + j], ws[_r_pp(M) + j], dt, ws[_r_q(M) + j])
 
 
 @nb.njit(cache=True)
@@ -490,32 +580,35 @@ def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws):
 
     Q (M, q): the modes' process-noise stds; ws: ``workspace(M)``.
     """
-    _mix_rows(models, S, Pp, mu, PI, same_group, ws)
-    _predict_modes(models, S, Pp, Q, dt)
-    for j in range(models.shape[0]):
-        mu[j] = ws[_R_CBAR, j]
+    M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, Q, np.zeros(1))
+    _mix_rows(ws, M, same_group)
+    _predict_modes(ws, M, dt)
+    for j in range(M):
+        ws[_R_MUV, j] = ws[_R_CBAR, j]
+    _store(ws, S, Pp, mu)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _posterior(mu, M, ws):
-    """μ_j ∝ μ_j exp(loglik_j) (ws[_R_LOGLIK]); returns log Σ_j μ_j N_j, or −inf (and μ back to ws[_R_PRIOR])
-    when no mode explains the measurement."""
+def _posterior(ws, M):
+    """μ_j ∝ μ_j exp(loglik_j) (ws[_R_MUV], ws[_R_LOGLIK]); returns log Σ_j μ_j N_j, or −inf (and μ back to
+    ws[_R_PRIOR]) when no mode explains the measurement."""
     top = -np.inf
     for j in range(M):
-        if mu[j] > 0.0 and ws[_R_LOGLIK, j] > top:
+        if ws[_R_MUV, j] > 0.0 and ws[_R_LOGLIK, j] > top:
             top = ws[_R_LOGLIK, j]
     tot = 0.0
     for j in range(M):
         ll = ws[_R_LOGLIK, j]
-        v = mu[j] * math.exp(ll - top) if np.isfinite(ll) else 0.0
-        mu[j] = v
+        v = ws[_R_MUV, j] * math.exp(ll - top) if np.isfinite(ll) else 0.0
+        ws[_R_MUV, j] = v
         tot += v
     if not (tot > 0.0) or not np.isfinite(tot):
         for j in range(M):
-            mu[j] = ws[_R_PRIOR, j]
+            ws[_R_MUV, j] = ws[_R_PRIOR, j]
         return -np.inf
     for j in range(M):
-        mu[j] /= tot
+        ws[_R_MUV, j] /= tot
     return top + math.log(tot)
 
 
@@ -544,46 +637,52 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
         nis_out[j] = nis
         ws[_R_LOGLIK, j] = -0.5 * (nis + logdet + m * LOG_2PI)
         ws[_R_PRIOR, j] = mu[j]
-    return _posterior(mu, M, ws)
+        ws[_R_MUV, j] = mu[j]
+    ll = _posterior(ws, M)
+    for j in range(M):
+        mu[j] = ws[_R_MUV, j]
+    return ll
 
 
 @nb.njit(cache=True)
-def _update_fallback(model, S, Pp, j, z, jz, r, meas_pose):
-    """``update_<meas>`` of mode j from its prediction (the fused step's rare FALLBACK: Joseph form, jitter repair)."""
+def _update_fallback(ws, model, j, M, m, meas_pose):
+    """``update_<meas>`` of mode j from its prediction (the fused step's rare FALLBACK: Joseph form, jitter
+    repair); views of the workspace."""
+    s, p, z, r = ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R]
     if meas_pose:
-        return D.update_pose(model, S[j], Pp[j], z[jz], r)
-    return D.update_position(model, S[j], Pp[j], z[jz], r)
+        return D.update_pose(model, s, p, z, r)
+    return D.update_position(model, s, p, z, r)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _step_rows(models, S, Pp, mu, PI, Q, r, z, jz, m, dt, same_group, meas_pose, nis_out, ws):
-    """imm_step with the measurement z[jz, :m]: mixing, then each mode's fused step ``step_ll_<meas>`` (prediction,
-    1/det S, update; ``update_<meas>`` when its LDLᵀ test fails), then the mode probabilities."""
-    M = models.shape[0]
+def _step_rows(ws, M, m, dt, same_group, meas_pose):
+    """imm_step on the workspace, measurement ws[_R_Z, :m]: mixing, then each mode's fused step ``step_ll_<meas>``
+    (prediction, 1/det S, update; ``update_<meas>`` when its LDLᵀ test fails), then the mode probabilities."""
     missed = False
     for k in range(m):
-        if np.isnan(z[jz, k]):
+        if np.isnan(ws[_R_Z, k]):
             missed = True
-    _mix_rows(models, S, Pp, mu, PI, same_group, ws)
+    _mix_rows(ws, M, same_group)
     for j in range(M):
-        mu[j] = ws[_R_CBAR, j]
+        ws[_R_MUV, j] = ws[_R_CBAR, j]
     if missed:
-        _predict_modes(models, S, Pp, Q, dt)
+        _predict_modes(ws, M, dt)
         for j in range(M):
-            nis_out[j] = np.nan
+            ws[_R_NIS, j] = np.nan
         return np.nan
+    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
     for j in range(M):
-        model = models[j]
+        model = _model(ws, j)
         if meas_pose:
-            nis, rdet = D.step_ll_pose(model, S, j, Pp, j, dt, Q, j, z, jz, r)
+            nis, rdet = D.step_ll_pose(model, ws, rS + j, ws, rPp + j, dt, ws, rQ + j, ws, _R_Z, ws, _R_R)
         else:
-            nis, rdet = D.step_ll_position(model, S, j, Pp, j, dt, Q, j, z, jz, r)
-        if nis < 0.0:  # FALLBACK: the prediction is in S[j], Pp[j]
-            nis = _update_fallback(model, S, Pp, j, z, jz, r, meas_pose)
-        nis_out[j] = nis
+            nis, rdet = D.step_ll_position(model, ws, rS + j, ws, rPp + j, dt, ws, rQ + j, ws, _R_Z, ws, _R_R)
+        if nis < 0.0:  # FALLBACK: the prediction is in the workspace
+            nis = _update_fallback(ws, model, j, M, m, meas_pose)
+        ws[_R_NIS, j] = nis
         ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
-        ws[_R_PRIOR, j] = mu[j]
-    return _posterior(mu, M, ws)
+        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+    return _posterior(ws, M)
 
 
 @nb.njit(cache=True)
@@ -593,10 +692,16 @@ def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out,
 
     Each mode's prediction and update run as the filter's fused step (module docstring); equal to imm_predict
     followed by imm_update to rounding."""
+    M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, Q, r)
     m = z.shape[0]
     for k in range(m):
         ws[_R_Z, k] = z[k]
-    return _step_rows(models, S, Pp, mu, PI, Q, r, ws, _R_Z, m, dt, same_group, meas_pose, nis_out, ws)
+    ll = _step_rows(ws, M, m, dt, same_group, meas_pose)
+    _store(ws, S, Pp, mu)
+    for j in range(M):
+        nis_out[j] = ws[_R_NIS, j]
+    return ll
 
 
 @nb.njit(cache=True)
@@ -611,19 +716,22 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
     M = models.shape[0]
     keep_P = out_P.shape[0] == K
     ws = workspace(M)
-    nis = np.empty(M)
+    _load(ws, models, S, Pp, mu, PI, Q, r)
     for k in range(K):
-        _step_rows(models, S, Pp, mu, PI, Q, r, z, k, m, dts[k], same_group, meas_pose, nis, ws)
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        _step_rows(ws, M, m, dts[k], same_group, meas_pose)
         for j in range(M):
-            ws[_R_MU, j] = mu[j]
-            out_mu[k, j] = mu[j]
-        _combined(models, S, Pp, same_group, ws)
+            ws[_R_MU, j] = ws[_R_MUV, j]
+            out_mu[k, j] = ws[_R_MUV, j]
+        _combined(ws, M, same_group)
         for a in range(6):
             out_c[k, a] = ws[_R_CM, a]
         if keep_P:
             for a in range(6):
                 for b in range(6):
                     out_P[k, a, b] = ws[_R_PCM, 6 * a + b]
+    _store(ws, S, Pp, mu)
 
 
 @nb.njit(cache=True, parallel=True)
