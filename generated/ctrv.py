@@ -4541,236 +4541,236 @@ def state_of_common(c, Pc, s, p):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def between_add_at(s, js, t, jt, w, acc, jacc):
+def between_add_at(ws, js, jt, w, jacc):
     """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
-    On rows: s[js], t[jt], acc[jacc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], t = ws[jt], acc = ws[jacc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    t_x = t[jt, 0]
-    t_y = t[jt, 1]
-    t_psi = t[jt, 2]
-    t_v = t[jt, 3]
-    t_omega = t[jt, 4]
-    acc0 = acc[jacc, 0]
-    acc1 = acc[jacc, 1]
-    acc2 = acc[jacc, 2]
-    acc3 = acc[jacc, 3]
-    acc4 = acc[jacc, 4]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_psi = ws[jt, 2]
+    t_v = ws[jt, 3]
+    t_omega = ws[jt, 4]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
     d0 = t_x - x
     d1 = t_y - y
     d2 = wrap_angle(-psi + t_psi)
     d3 = t_v - v
     d4 = -omega + t_omega
-    acc[jacc, 0] = acc0 + d0*w
-    acc[jacc, 1] = acc1 + d1*w
-    acc[jacc, 2] = acc2 + d2*w
-    acc[jacc, 3] = acc3 + d3*w
-    acc[jacc, 4] = acc4 + d4*w
+    ws[jacc, 0] = acc0 + d0*w
+    ws[jacc, 1] = acc1 + d1*w
+    ws[jacc, 2] = acc2 + d2*w
+    ws[jacc, 3] = acc3 + d3*w
+    ws[jacc, 4] = acc4 + d4*w
 
 
 @nb.njit(cache=True, error_model="numpy")
-def mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc):
+def mix_transport_at(ws, js, jt, jpt, w, jacc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
     to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
-    On rows: s[js], t[jt], pt[jpt], acc[jacc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], t = ws[jt], pt = ws[jpt], acc = ws[jacc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    t_x = t[jt, 0]
-    t_y = t[jt, 1]
-    t_psi = t[jt, 2]
-    t_v = t[jt, 3]
-    t_omega = t[jt, 4]
-    pt0_0 = pt[jpt, 0]
-    pt0_1 = pt[jpt, 1]
-    pt0_2 = pt[jpt, 2]
-    pt0_3 = pt[jpt, 3]
-    pt0_4 = pt[jpt, 4]
-    pt1_1 = pt[jpt, 5]
-    pt1_2 = pt[jpt, 6]
-    pt1_3 = pt[jpt, 7]
-    pt1_4 = pt[jpt, 8]
-    pt2_2 = pt[jpt, 9]
-    pt2_3 = pt[jpt, 10]
-    pt2_4 = pt[jpt, 11]
-    pt3_3 = pt[jpt, 12]
-    pt3_4 = pt[jpt, 13]
-    pt4_4 = pt[jpt, 14]
-    acc0 = acc[jacc, 0]
-    acc1 = acc[jacc, 1]
-    acc2 = acc[jacc, 2]
-    acc3 = acc[jacc, 3]
-    acc4 = acc[jacc, 4]
-    acc5 = acc[jacc, 5]
-    acc6 = acc[jacc, 6]
-    acc7 = acc[jacc, 7]
-    acc8 = acc[jacc, 8]
-    acc9 = acc[jacc, 9]
-    acc10 = acc[jacc, 10]
-    acc11 = acc[jacc, 11]
-    acc12 = acc[jacc, 12]
-    acc13 = acc[jacc, 13]
-    acc14 = acc[jacc, 14]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_psi = ws[jt, 2]
+    t_v = ws[jt, 3]
+    t_omega = ws[jt, 4]
+    pt0_0 = ws[jpt, 0]
+    pt0_1 = ws[jpt, 1]
+    pt0_2 = ws[jpt, 2]
+    pt0_3 = ws[jpt, 3]
+    pt0_4 = ws[jpt, 4]
+    pt1_1 = ws[jpt, 5]
+    pt1_2 = ws[jpt, 6]
+    pt1_3 = ws[jpt, 7]
+    pt1_4 = ws[jpt, 8]
+    pt2_2 = ws[jpt, 9]
+    pt2_3 = ws[jpt, 10]
+    pt2_4 = ws[jpt, 11]
+    pt3_3 = ws[jpt, 12]
+    pt3_4 = ws[jpt, 13]
+    pt4_4 = ws[jpt, 14]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
+    acc5 = ws[jacc, 5]
+    acc6 = ws[jacc, 6]
+    acc7 = ws[jacc, 7]
+    acc8 = ws[jacc, 8]
+    acc9 = ws[jacc, 9]
+    acc10 = ws[jacc, 10]
+    acc11 = ws[jacc, 11]
+    acc12 = ws[jacc, 12]
+    acc13 = ws[jacc, 13]
+    acc14 = ws[jacc, 14]
     d0 = t_x - x
     d1 = t_y - y
     d2 = wrap_angle(-psi + t_psi)
     d3 = t_v - v
     d4 = -omega + t_omega
-    acc[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
-    acc[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
-    acc[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
-    acc[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
-    acc[jacc, 4] = acc4 + w*(d0*d4 + pt0_4)
-    acc[jacc, 5] = acc5 + w*(d1*d1 + pt1_1)
-    acc[jacc, 6] = acc6 + w*(d1*d2 + pt1_2)
-    acc[jacc, 7] = acc7 + w*(d1*d3 + pt1_3)
-    acc[jacc, 8] = acc8 + w*(d1*d4 + pt1_4)
-    acc[jacc, 9] = acc9 + w*(d2*d2 + pt2_2)
-    acc[jacc, 10] = acc10 + w*(d2*d3 + pt2_3)
-    acc[jacc, 11] = acc11 + w*(d2*d4 + pt2_4)
-    acc[jacc, 12] = acc12 + w*(d3*d3 + pt3_3)
-    acc[jacc, 13] = acc13 + w*(d3*d4 + pt3_4)
-    acc[jacc, 14] = acc14 + w*(d4*d4 + pt4_4)
+    ws[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
+    ws[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
+    ws[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
+    ws[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
+    ws[jacc, 4] = acc4 + w*(d0*d4 + pt0_4)
+    ws[jacc, 5] = acc5 + w*(d1*d1 + pt1_1)
+    ws[jacc, 6] = acc6 + w*(d1*d2 + pt1_2)
+    ws[jacc, 7] = acc7 + w*(d1*d3 + pt1_3)
+    ws[jacc, 8] = acc8 + w*(d1*d4 + pt1_4)
+    ws[jacc, 9] = acc9 + w*(d2*d2 + pt2_2)
+    ws[jacc, 10] = acc10 + w*(d2*d3 + pt2_3)
+    ws[jacc, 11] = acc11 + w*(d2*d4 + pt2_4)
+    ws[jacc, 12] = acc12 + w*(d3*d3 + pt3_3)
+    ws[jacc, 13] = acc13 + w*(d3*d4 + pt3_4)
+    ws[jacc, 14] = acc14 + w*(d4*d4 + pt4_4)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def retract_at(s, js, eps, jeps):
+def retract_at(ws, js, jeps):
     """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
-    On rows: s[js], eps[jeps] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], eps = ws[jeps] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    eps0 = eps[jeps, 0]
-    eps1 = eps[jeps, 1]
-    eps2 = eps[jeps, 2]
-    eps3 = eps[jeps, 3]
-    eps4 = eps[jeps, 4]
-    s[js, 0] = eps0 + x
-    s[js, 1] = eps1 + y
-    s[js, 2] = eps2 + psi
-    s[js, 3] = eps3 + v
-    s[js, 4] = eps4 + omega
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    eps0 = ws[jeps, 0]
+    eps1 = ws[jeps, 1]
+    eps2 = ws[jeps, 2]
+    eps3 = ws[jeps, 3]
+    eps4 = ws[jeps, 4]
+    ws[js, 0] = eps0 + x
+    ws[js, 1] = eps1 + y
+    ws[js, 2] = eps2 + psi
+    ws[js, 3] = eps3 + v
+    ws[js, 4] = eps4 + omega
 
 
 @nb.njit(cache=True, error_model="numpy")
-def common_of_state_at(s, js, p, jp, c, jc, Pc, jPc):
+def common_of_state_at(ws, js, jp, jc, jPc):
     """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
     physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
-    On rows: s[js], p[jp], c[jc], Pc[jPc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], p = ws[jp], c = ws[jc], Pc = ws[jPc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    p0_0 = p[jp, 0]
-    p0_1 = p[jp, 1]
-    p0_2 = p[jp, 2]
-    p0_3 = p[jp, 3]
-    p0_4 = p[jp, 4]
-    p1_1 = p[jp, 5]
-    p1_2 = p[jp, 6]
-    p1_3 = p[jp, 7]
-    p1_4 = p[jp, 8]
-    p2_2 = p[jp, 9]
-    p2_3 = p[jp, 10]
-    p2_4 = p[jp, 11]
-    p3_3 = p[jp, 12]
-    p3_4 = p[jp, 13]
-    p4_4 = p[jp, 14]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p0_0 = ws[jp, 0]
+    p0_1 = ws[jp, 1]
+    p0_2 = ws[jp, 2]
+    p0_3 = ws[jp, 3]
+    p0_4 = ws[jp, 4]
+    p1_1 = ws[jp, 5]
+    p1_2 = ws[jp, 6]
+    p1_3 = ws[jp, 7]
+    p1_4 = ws[jp, 8]
+    p2_2 = ws[jp, 9]
+    p2_3 = ws[jp, 10]
+    p2_4 = ws[jp, 11]
+    p3_3 = ws[jp, 12]
+    p3_4 = ws[jp, 13]
+    p4_4 = ws[jp, 14]
     xp_x = x
     xp_y = y
     xp_psi = wrap_angle(psi)
     xp_v = v
     xp_omega = omega
-    c[jc, 0] = xp_x
-    c[jc, 1] = xp_y
-    c[jc, 2] = xp_psi
-    c[jc, 3] = xp_v
-    c[jc, 4] = 0.0
-    c[jc, 5] = xp_omega
-    Pc[jPc, 0] = p0_0
-    Pc[jPc, 1] = p0_1
-    Pc[jPc, 6] = p0_1
-    Pc[jPc, 2] = p0_2
-    Pc[jPc, 12] = p0_2
-    Pc[jPc, 3] = p0_3
-    Pc[jPc, 18] = p0_3
-    Pc[jPc, 4] = 0.0
-    Pc[jPc, 24] = 0.0
-    Pc[jPc, 5] = p0_4
-    Pc[jPc, 30] = p0_4
-    Pc[jPc, 7] = p1_1
-    Pc[jPc, 8] = p1_2
-    Pc[jPc, 13] = p1_2
-    Pc[jPc, 9] = p1_3
-    Pc[jPc, 19] = p1_3
-    Pc[jPc, 10] = 0.0
-    Pc[jPc, 25] = 0.0
-    Pc[jPc, 11] = p1_4
-    Pc[jPc, 31] = p1_4
-    Pc[jPc, 14] = p2_2
-    Pc[jPc, 15] = p2_3
-    Pc[jPc, 20] = p2_3
-    Pc[jPc, 16] = 0.0
-    Pc[jPc, 26] = 0.0
-    Pc[jPc, 17] = p2_4
-    Pc[jPc, 32] = p2_4
-    Pc[jPc, 21] = p3_3
-    Pc[jPc, 22] = 0.0
-    Pc[jPc, 27] = 0.0
-    Pc[jPc, 23] = p3_4
-    Pc[jPc, 33] = p3_4
-    Pc[jPc, 28] = 0.0
-    Pc[jPc, 29] = 0.0
-    Pc[jPc, 34] = 0.0
-    Pc[jPc, 35] = p4_4
+    ws[jc, 0] = xp_x
+    ws[jc, 1] = xp_y
+    ws[jc, 2] = xp_psi
+    ws[jc, 3] = xp_v
+    ws[jc, 4] = 0.0
+    ws[jc, 5] = xp_omega
+    ws[jPc, 0] = p0_0
+    ws[jPc, 1] = p0_1
+    ws[jPc, 6] = p0_1
+    ws[jPc, 2] = p0_2
+    ws[jPc, 12] = p0_2
+    ws[jPc, 3] = p0_3
+    ws[jPc, 18] = p0_3
+    ws[jPc, 4] = 0.0
+    ws[jPc, 24] = 0.0
+    ws[jPc, 5] = p0_4
+    ws[jPc, 30] = p0_4
+    ws[jPc, 7] = p1_1
+    ws[jPc, 8] = p1_2
+    ws[jPc, 13] = p1_2
+    ws[jPc, 9] = p1_3
+    ws[jPc, 19] = p1_3
+    ws[jPc, 10] = 0.0
+    ws[jPc, 25] = 0.0
+    ws[jPc, 11] = p1_4
+    ws[jPc, 31] = p1_4
+    ws[jPc, 14] = p2_2
+    ws[jPc, 15] = p2_3
+    ws[jPc, 20] = p2_3
+    ws[jPc, 16] = 0.0
+    ws[jPc, 26] = 0.0
+    ws[jPc, 17] = p2_4
+    ws[jPc, 32] = p2_4
+    ws[jPc, 21] = p3_3
+    ws[jPc, 22] = 0.0
+    ws[jPc, 27] = 0.0
+    ws[jPc, 23] = p3_4
+    ws[jPc, 33] = p3_4
+    ws[jPc, 28] = 0.0
+    ws[jPc, 29] = 0.0
+    ws[jPc, 34] = 0.0
+    ws[jPc, 35] = p4_4
 
 
 @nb.njit(cache=True, error_model="numpy")
-def state_of_common_at(c, jc, Pc, jPc, s, js, p, jp):
+def state_of_common_at(ws, jc, jPc, js, jp):
     """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
     s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
-    On rows: c[jc], Pc[jPc], s[js], p[jp] (derive/codegen/imm_rows.py).
+    On rows of ws: c = ws[jc], Pc = ws[jPc], s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py).
     """
-    c0 = c[jc, 0]
-    c1 = c[jc, 1]
-    c2 = c[jc, 2]
-    c3 = c[jc, 3]
-    c4 = c[jc, 4]
-    c5 = c[jc, 5]
-    pc0_0 = Pc[jPc, 0]
-    pc0_1 = Pc[jPc, 1]
-    pc0_2 = Pc[jPc, 2]
-    pc0_3 = Pc[jPc, 3]
-    pc0_4 = Pc[jPc, 4]
-    pc0_5 = Pc[jPc, 5]
-    pc1_1 = Pc[jPc, 7]
-    pc1_2 = Pc[jPc, 8]
-    pc1_3 = Pc[jPc, 9]
-    pc1_4 = Pc[jPc, 10]
-    pc1_5 = Pc[jPc, 11]
-    pc2_2 = Pc[jPc, 14]
-    pc2_3 = Pc[jPc, 15]
-    pc2_4 = Pc[jPc, 16]
-    pc2_5 = Pc[jPc, 17]
-    pc3_3 = Pc[jPc, 21]
-    pc3_4 = Pc[jPc, 22]
-    pc3_5 = Pc[jPc, 23]
-    pc4_4 = Pc[jPc, 28]
-    pc4_5 = Pc[jPc, 29]
-    pc5_5 = Pc[jPc, 35]
+    c0 = ws[jc, 0]
+    c1 = ws[jc, 1]
+    c2 = ws[jc, 2]
+    c3 = ws[jc, 3]
+    c4 = ws[jc, 4]
+    c5 = ws[jc, 5]
+    pc0_0 = ws[jPc, 0]
+    pc0_1 = ws[jPc, 1]
+    pc0_2 = ws[jPc, 2]
+    pc0_3 = ws[jPc, 3]
+    pc0_4 = ws[jPc, 4]
+    pc0_5 = ws[jPc, 5]
+    pc1_1 = ws[jPc, 7]
+    pc1_2 = ws[jPc, 8]
+    pc1_3 = ws[jPc, 9]
+    pc1_4 = ws[jPc, 10]
+    pc1_5 = ws[jPc, 11]
+    pc2_2 = ws[jPc, 14]
+    pc2_3 = ws[jPc, 15]
+    pc2_4 = ws[jPc, 16]
+    pc2_5 = ws[jPc, 17]
+    pc3_3 = ws[jPc, 21]
+    pc3_4 = ws[jPc, 22]
+    pc3_5 = ws[jPc, 23]
+    pc4_4 = ws[jPc, 28]
+    pc4_5 = ws[jPc, 29]
+    pc5_5 = ws[jPc, 35]
     xp_x = c0
     xp_y = c1
     xp_psi = c2 + math.atan2(c4, c3)
@@ -4790,53 +4790,53 @@ def state_of_common_at(c, jc, Pc, jPc, s, js, p, jp):
     V3_3 = J3_3*pc3_3 + J3_4*pc3_4
     V3_4 = J3_3*pc3_4 + J3_4*pc4_4
     V3_5 = J3_3*pc3_5 + J3_4*pc4_5
-    s[js, 0] = xp_x
-    s[js, 1] = xp_y
-    s[js, 2] = xp_psi
-    s[js, 3] = xp_v
-    s[js, 4] = xp_omega
-    p[jp, 0] = pc0_0
-    p[jp, 1] = pc0_1
-    p[jp, 2] = J2_3*pc0_3 + J2_4*pc0_4 + pc0_2
-    p[jp, 3] = J3_3*pc0_3 + J3_4*pc0_4
-    p[jp, 4] = pc0_5
-    p[jp, 5] = pc1_1
-    p[jp, 6] = J2_3*pc1_3 + J2_4*pc1_4 + pc1_2
-    p[jp, 7] = J3_3*pc1_3 + J3_4*pc1_4
-    p[jp, 8] = pc1_5
-    p[jp, 9] = J2_3*V2_3 + J2_4*V2_4 + V2_2
-    p[jp, 10] = J3_3*V2_3 + J3_4*V2_4
-    p[jp, 11] = V2_5
-    p[jp, 12] = J3_3*V3_3 + J3_4*V3_4
-    p[jp, 13] = V3_5
-    p[jp, 14] = pc5_5
+    ws[js, 0] = xp_x
+    ws[js, 1] = xp_y
+    ws[js, 2] = xp_psi
+    ws[js, 3] = xp_v
+    ws[js, 4] = xp_omega
+    ws[jp, 0] = pc0_0
+    ws[jp, 1] = pc0_1
+    ws[jp, 2] = J2_3*pc0_3 + J2_4*pc0_4 + pc0_2
+    ws[jp, 3] = J3_3*pc0_3 + J3_4*pc0_4
+    ws[jp, 4] = pc0_5
+    ws[jp, 5] = pc1_1
+    ws[jp, 6] = J2_3*pc1_3 + J2_4*pc1_4 + pc1_2
+    ws[jp, 7] = J3_3*pc1_3 + J3_4*pc1_4
+    ws[jp, 8] = pc1_5
+    ws[jp, 9] = J2_3*V2_3 + J2_4*V2_4 + V2_2
+    ws[jp, 10] = J3_3*V2_3 + J3_4*V2_4
+    ws[jp, 11] = V2_5
+    ws[jp, 12] = J3_3*V3_3 + J3_4*V3_4
+    ws[jp, 13] = V3_5
+    ws[jp, 14] = pc5_5
 
 
 @nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def step_ll_pose(s, js, p, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
-    """``step_try_pose`` on rows s[js], p[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+def step_ll_pose(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """``step_try_pose`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
     rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    p00 = p[jp, 0]
-    p01 = p[jp, 1]
-    p02 = p[jp, 2]
-    p03 = p[jp, 3]
-    p04 = p[jp, 4]
-    p11 = p[jp, 5]
-    p12 = p[jp, 6]
-    p13 = p[jp, 7]
-    p14 = p[jp, 8]
-    p22 = p[jp, 9]
-    p23 = p[jp, 10]
-    p24 = p[jp, 11]
-    p33 = p[jp, 12]
-    p34 = p[jp, 13]
-    p44 = p[jp, 14]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p04 = ws[jp, 4]
+    p11 = ws[jp, 5]
+    p12 = ws[jp, 6]
+    p13 = ws[jp, 7]
+    p14 = ws[jp, 8]
+    p22 = ws[jp, 9]
+    p23 = ws[jp, 10]
+    p24 = ws[jp, 11]
+    p33 = ws[jp, 12]
+    p34 = ws[jp, 13]
+    p44 = ws[jp, 14]
     _a0 = dt*omega/2.0
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
@@ -5024,54 +5024,54 @@ def step_ll_pose(s, js, p, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x,
         out_s3 = v
         out_s4 = omega
         nis = -1.0
-    p[jp, 0] = out_p0
-    p[jp, 1] = out_p1
-    p[jp, 2] = out_p2
-    p[jp, 3] = out_p3
-    p[jp, 4] = out_p4
-    p[jp, 5] = out_p5
-    p[jp, 6] = out_p6
-    p[jp, 7] = out_p7
-    p[jp, 8] = out_p8
-    p[jp, 9] = out_p9
-    p[jp, 10] = out_p10
-    p[jp, 11] = out_p11
-    p[jp, 12] = out_p12
-    p[jp, 13] = out_p13
-    p[jp, 14] = out_p14
-    s[js, 0] = out_s0
-    s[js, 1] = out_s1
-    s[js, 2] = out_s2
-    s[js, 3] = out_s3
-    s[js, 4] = out_s4
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[jp, 10] = out_p10
+    ws[jp, 11] = out_p11
+    ws[jp, 12] = out_p12
+    ws[jp, 13] = out_p13
+    ws[jp, 14] = out_p14
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
+    ws[js, 4] = out_s4
     return nis, rdet
 
 
 @nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def step_ll_position(s, js, p, jp, dt, sigma_a, sigma_alpha, z_x, z_y, r):
-    """``step_try_position`` on rows s[js], p[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+def step_ll_position(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, r):
+    """``step_try_position`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
     rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    psi = s[js, 2]
-    v = s[js, 3]
-    omega = s[js, 4]
-    p00 = p[jp, 0]
-    p01 = p[jp, 1]
-    p02 = p[jp, 2]
-    p03 = p[jp, 3]
-    p04 = p[jp, 4]
-    p11 = p[jp, 5]
-    p12 = p[jp, 6]
-    p13 = p[jp, 7]
-    p14 = p[jp, 8]
-    p22 = p[jp, 9]
-    p23 = p[jp, 10]
-    p24 = p[jp, 11]
-    p33 = p[jp, 12]
-    p34 = p[jp, 13]
-    p44 = p[jp, 14]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p04 = ws[jp, 4]
+    p11 = ws[jp, 5]
+    p12 = ws[jp, 6]
+    p13 = ws[jp, 7]
+    p14 = ws[jp, 8]
+    p22 = ws[jp, 9]
+    p23 = ws[jp, 10]
+    p24 = ws[jp, 11]
+    p33 = ws[jp, 12]
+    p34 = ws[jp, 13]
+    p44 = ws[jp, 14]
     _a0 = dt*omega/2.0
     _sin__a0 = math.sin(_a0)
     _cos__a0 = math.cos(_a0)
@@ -5223,24 +5223,24 @@ def step_ll_position(s, js, p, jp, dt, sigma_a, sigma_alpha, z_x, z_y, r):
         out_s3 = v
         out_s4 = omega
         nis = -1.0
-    p[jp, 0] = out_p0
-    p[jp, 1] = out_p1
-    p[jp, 2] = out_p2
-    p[jp, 3] = out_p3
-    p[jp, 4] = out_p4
-    p[jp, 5] = out_p5
-    p[jp, 6] = out_p6
-    p[jp, 7] = out_p7
-    p[jp, 8] = out_p8
-    p[jp, 9] = out_p9
-    p[jp, 10] = out_p10
-    p[jp, 11] = out_p11
-    p[jp, 12] = out_p12
-    p[jp, 13] = out_p13
-    p[jp, 14] = out_p14
-    s[js, 0] = out_s0
-    s[js, 1] = out_s1
-    s[js, 2] = out_s2
-    s[js, 3] = out_s3
-    s[js, 4] = out_s4
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[jp, 10] = out_p10
+    ws[jp, 11] = out_p11
+    ws[jp, 12] = out_p12
+    ws[jp, 13] = out_p13
+    ws[jp, 14] = out_p14
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
+    ws[js, 4] = out_s4
     return nis, rdet

@@ -2335,122 +2335,122 @@ def state_of_common(c, Pc, s, p):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def between_add_at(s, js, t, jt, w, acc, jacc):
+def between_add_at(ws, js, jt, w, jacc):
     """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
-    On rows: s[js], t[jt], acc[jacc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], t = ws[jt], acc = ws[jacc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    w_x = s[js, 2]
-    w_y = s[js, 3]
-    t_x = t[jt, 0]
-    t_y = t[jt, 1]
-    t_w_x = t[jt, 2]
-    t_w_y = t[jt, 3]
-    acc0 = acc[jacc, 0]
-    acc1 = acc[jacc, 1]
-    acc2 = acc[jacc, 2]
-    acc3 = acc[jacc, 3]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_w_x = ws[jt, 2]
+    t_w_y = ws[jt, 3]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
     d0 = t_x - x
     d1 = t_y - y
     d2 = t_w_x - w_x
     d3 = t_w_y - w_y
-    acc[jacc, 0] = acc0 + d0*w
-    acc[jacc, 1] = acc1 + d1*w
-    acc[jacc, 2] = acc2 + d2*w
-    acc[jacc, 3] = acc3 + d3*w
+    ws[jacc, 0] = acc0 + d0*w
+    ws[jacc, 1] = acc1 + d1*w
+    ws[jacc, 2] = acc2 + d2*w
+    ws[jacc, 3] = acc3 + d3*w
 
 
 @nb.njit(cache=True, error_model="numpy")
-def mix_transport_at(s, js, t, jt, pt, jpt, w, acc, jacc):
+def mix_transport_at(ws, js, jt, jpt, w, jacc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
     to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
-    On rows: s[js], t[jt], pt[jpt], acc[jacc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], t = ws[jt], pt = ws[jpt], acc = ws[jacc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    w_x = s[js, 2]
-    w_y = s[js, 3]
-    t_x = t[jt, 0]
-    t_y = t[jt, 1]
-    t_w_x = t[jt, 2]
-    t_w_y = t[jt, 3]
-    pt0_0 = pt[jpt, 0]
-    pt0_1 = pt[jpt, 1]
-    pt0_2 = pt[jpt, 2]
-    pt0_3 = pt[jpt, 3]
-    pt1_1 = pt[jpt, 4]
-    pt1_2 = pt[jpt, 5]
-    pt1_3 = pt[jpt, 6]
-    pt2_2 = pt[jpt, 7]
-    pt2_3 = pt[jpt, 8]
-    pt3_3 = pt[jpt, 9]
-    acc0 = acc[jacc, 0]
-    acc1 = acc[jacc, 1]
-    acc2 = acc[jacc, 2]
-    acc3 = acc[jacc, 3]
-    acc4 = acc[jacc, 4]
-    acc5 = acc[jacc, 5]
-    acc6 = acc[jacc, 6]
-    acc7 = acc[jacc, 7]
-    acc8 = acc[jacc, 8]
-    acc9 = acc[jacc, 9]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_w_x = ws[jt, 2]
+    t_w_y = ws[jt, 3]
+    pt0_0 = ws[jpt, 0]
+    pt0_1 = ws[jpt, 1]
+    pt0_2 = ws[jpt, 2]
+    pt0_3 = ws[jpt, 3]
+    pt1_1 = ws[jpt, 4]
+    pt1_2 = ws[jpt, 5]
+    pt1_3 = ws[jpt, 6]
+    pt2_2 = ws[jpt, 7]
+    pt2_3 = ws[jpt, 8]
+    pt3_3 = ws[jpt, 9]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
+    acc5 = ws[jacc, 5]
+    acc6 = ws[jacc, 6]
+    acc7 = ws[jacc, 7]
+    acc8 = ws[jacc, 8]
+    acc9 = ws[jacc, 9]
     d0 = t_x - x
     d1 = t_y - y
     d2 = t_w_x - w_x
     d3 = t_w_y - w_y
-    acc[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
-    acc[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
-    acc[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
-    acc[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
-    acc[jacc, 4] = acc4 + w*(d1*d1 + pt1_1)
-    acc[jacc, 5] = acc5 + w*(d1*d2 + pt1_2)
-    acc[jacc, 6] = acc6 + w*(d1*d3 + pt1_3)
-    acc[jacc, 7] = acc7 + w*(d2*d2 + pt2_2)
-    acc[jacc, 8] = acc8 + w*(d2*d3 + pt2_3)
-    acc[jacc, 9] = acc9 + w*(d3*d3 + pt3_3)
+    ws[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
+    ws[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
+    ws[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
+    ws[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
+    ws[jacc, 4] = acc4 + w*(d1*d1 + pt1_1)
+    ws[jacc, 5] = acc5 + w*(d1*d2 + pt1_2)
+    ws[jacc, 6] = acc6 + w*(d1*d3 + pt1_3)
+    ws[jacc, 7] = acc7 + w*(d2*d2 + pt2_2)
+    ws[jacc, 8] = acc8 + w*(d2*d3 + pt2_3)
+    ws[jacc, 9] = acc9 + w*(d3*d3 + pt3_3)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def retract_at(s, js, eps, jeps):
+def retract_at(ws, js, jeps):
     """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
-    On rows: s[js], eps[jeps] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], eps = ws[jeps] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    w_x = s[js, 2]
-    w_y = s[js, 3]
-    eps0 = eps[jeps, 0]
-    eps1 = eps[jeps, 1]
-    eps2 = eps[jeps, 2]
-    eps3 = eps[jeps, 3]
-    s[js, 0] = eps0 + x
-    s[js, 1] = eps1 + y
-    s[js, 2] = eps2 + w_x
-    s[js, 3] = eps3 + w_y
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    eps0 = ws[jeps, 0]
+    eps1 = ws[jeps, 1]
+    eps2 = ws[jeps, 2]
+    eps3 = ws[jeps, 3]
+    ws[js, 0] = eps0 + x
+    ws[js, 1] = eps1 + y
+    ws[js, 2] = eps2 + w_x
+    ws[js, 3] = eps3 + w_y
 
 
 @nb.njit(cache=True, error_model="numpy")
-def common_of_state_at(s, js, p, jp, c, jc, Pc, jPc):
+def common_of_state_at(ws, js, jp, jc, jPc):
     """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
     physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
-    On rows: s[js], p[jp], c[jc], Pc[jPc] (derive/codegen/imm_rows.py).
+    On rows of ws: s = ws[js], p = ws[jp], c = ws[jc], Pc = ws[jPc] (derive/codegen/imm_rows.py).
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    w_x = s[js, 2]
-    w_y = s[js, 3]
-    p0_0 = p[jp, 0]
-    p0_1 = p[jp, 1]
-    p0_2 = p[jp, 2]
-    p0_3 = p[jp, 3]
-    p1_1 = p[jp, 4]
-    p1_2 = p[jp, 5]
-    p1_3 = p[jp, 6]
-    p2_2 = p[jp, 7]
-    p2_3 = p[jp, 8]
-    p3_3 = p[jp, 9]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    p0_0 = ws[jp, 0]
+    p0_1 = ws[jp, 1]
+    p0_2 = ws[jp, 2]
+    p0_3 = ws[jp, 3]
+    p1_1 = ws[jp, 4]
+    p1_2 = ws[jp, 5]
+    p1_3 = ws[jp, 6]
+    p2_2 = ws[jp, 7]
+    p2_3 = ws[jp, 8]
+    p3_3 = ws[jp, 9]
     xp_x = x
     xp_y = y
     xp_w_x = w_x
@@ -2471,76 +2471,76 @@ def common_of_state_at(s, js, p, jp, c, jc, Pc, jPc):
     _t5 = A2_2*p1_2 + A2_3*p1_3
     _t6 = A3_2*p1_2 + A3_3*p1_3
     _t7 = A3_2*U2_2 + A3_3*U2_3
-    c[jc, 0] = xp_x
-    c[jc, 1] = xp_y
-    c[jc, 2] = math.atan2(xp_w_y, xp_w_x)
-    c[jc, 3] = math.sqrt(xp_w_x*xp_w_x + xp_w_y*xp_w_y)
-    c[jc, 4] = 0.0
-    c[jc, 5] = 0.0
-    Pc[jPc, 0] = p0_0
-    Pc[jPc, 1] = p0_1
-    Pc[jPc, 6] = p0_1
-    Pc[jPc, 2] = _t3
-    Pc[jPc, 12] = _t3
-    Pc[jPc, 3] = _t4
-    Pc[jPc, 18] = _t4
-    Pc[jPc, 4] = 0.0
-    Pc[jPc, 24] = 0.0
-    Pc[jPc, 5] = 0.0
-    Pc[jPc, 30] = 0.0
-    Pc[jPc, 7] = p1_1
-    Pc[jPc, 8] = _t5
-    Pc[jPc, 13] = _t5
-    Pc[jPc, 9] = _t6
-    Pc[jPc, 19] = _t6
-    Pc[jPc, 10] = 0.0
-    Pc[jPc, 25] = 0.0
-    Pc[jPc, 11] = 0.0
-    Pc[jPc, 31] = 0.0
-    Pc[jPc, 14] = A2_2*U2_2 + A2_3*U2_3
-    Pc[jPc, 15] = _t7
-    Pc[jPc, 20] = _t7
-    Pc[jPc, 16] = 0.0
-    Pc[jPc, 26] = 0.0
-    Pc[jPc, 17] = 0.0
-    Pc[jPc, 32] = 0.0
-    Pc[jPc, 21] = A3_2*U3_2 + A3_3*U3_3
-    Pc[jPc, 22] = 0.0
-    Pc[jPc, 27] = 0.0
-    Pc[jPc, 23] = 0.0
-    Pc[jPc, 33] = 0.0
-    Pc[jPc, 28] = 0.0
-    Pc[jPc, 29] = 0.0
-    Pc[jPc, 34] = 0.0
-    Pc[jPc, 35] = 0.0
+    ws[jc, 0] = xp_x
+    ws[jc, 1] = xp_y
+    ws[jc, 2] = math.atan2(xp_w_y, xp_w_x)
+    ws[jc, 3] = math.sqrt(xp_w_x*xp_w_x + xp_w_y*xp_w_y)
+    ws[jc, 4] = 0.0
+    ws[jc, 5] = 0.0
+    ws[jPc, 0] = p0_0
+    ws[jPc, 1] = p0_1
+    ws[jPc, 6] = p0_1
+    ws[jPc, 2] = _t3
+    ws[jPc, 12] = _t3
+    ws[jPc, 3] = _t4
+    ws[jPc, 18] = _t4
+    ws[jPc, 4] = 0.0
+    ws[jPc, 24] = 0.0
+    ws[jPc, 5] = 0.0
+    ws[jPc, 30] = 0.0
+    ws[jPc, 7] = p1_1
+    ws[jPc, 8] = _t5
+    ws[jPc, 13] = _t5
+    ws[jPc, 9] = _t6
+    ws[jPc, 19] = _t6
+    ws[jPc, 10] = 0.0
+    ws[jPc, 25] = 0.0
+    ws[jPc, 11] = 0.0
+    ws[jPc, 31] = 0.0
+    ws[jPc, 14] = A2_2*U2_2 + A2_3*U2_3
+    ws[jPc, 15] = _t7
+    ws[jPc, 20] = _t7
+    ws[jPc, 16] = 0.0
+    ws[jPc, 26] = 0.0
+    ws[jPc, 17] = 0.0
+    ws[jPc, 32] = 0.0
+    ws[jPc, 21] = A3_2*U3_2 + A3_3*U3_3
+    ws[jPc, 22] = 0.0
+    ws[jPc, 27] = 0.0
+    ws[jPc, 23] = 0.0
+    ws[jPc, 33] = 0.0
+    ws[jPc, 28] = 0.0
+    ws[jPc, 29] = 0.0
+    ws[jPc, 34] = 0.0
+    ws[jPc, 35] = 0.0
 
 
 @nb.njit(cache=True, error_model="numpy")
-def state_of_common_at(c, jc, Pc, jPc, s, js, p, jp):
+def state_of_common_at(ws, jc, jPc, js, jp):
     """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
     s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
-    On rows: c[jc], Pc[jPc], s[js], p[jp] (derive/codegen/imm_rows.py).
+    On rows of ws: c = ws[jc], Pc = ws[jPc], s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py).
     """
-    c0 = c[jc, 0]
-    c1 = c[jc, 1]
-    c2 = c[jc, 2]
-    c3 = c[jc, 3]
-    c4 = c[jc, 4]
-    pc0_0 = Pc[jPc, 0]
-    pc0_1 = Pc[jPc, 1]
-    pc0_2 = Pc[jPc, 2]
-    pc0_3 = Pc[jPc, 3]
-    pc0_4 = Pc[jPc, 4]
-    pc1_1 = Pc[jPc, 7]
-    pc1_2 = Pc[jPc, 8]
-    pc1_3 = Pc[jPc, 9]
-    pc1_4 = Pc[jPc, 10]
-    pc2_2 = Pc[jPc, 14]
-    pc2_3 = Pc[jPc, 15]
-    pc2_4 = Pc[jPc, 16]
-    pc3_3 = Pc[jPc, 21]
-    pc3_4 = Pc[jPc, 22]
-    pc4_4 = Pc[jPc, 28]
+    c0 = ws[jc, 0]
+    c1 = ws[jc, 1]
+    c2 = ws[jc, 2]
+    c3 = ws[jc, 3]
+    c4 = ws[jc, 4]
+    pc0_0 = ws[jPc, 0]
+    pc0_1 = ws[jPc, 1]
+    pc0_2 = ws[jPc, 2]
+    pc0_3 = ws[jPc, 3]
+    pc0_4 = ws[jPc, 4]
+    pc1_1 = ws[jPc, 7]
+    pc1_2 = ws[jPc, 8]
+    pc1_3 = ws[jPc, 9]
+    pc1_4 = ws[jPc, 10]
+    pc2_2 = ws[jPc, 14]
+    pc2_3 = ws[jPc, 15]
+    pc2_4 = ws[jPc, 16]
+    pc3_3 = ws[jPc, 21]
+    pc3_4 = ws[jPc, 22]
+    pc4_4 = ws[jPc, 28]
     _sin_c2 = math.sin(c2)
     _cos_c2 = math.cos(c2)
     xp_x = c0
@@ -2559,41 +2559,41 @@ def state_of_common_at(c, jc, Pc, jPc, s, js, p, jp):
     V3_2 = J3_2*pc2_2 + J3_3*pc2_3 + J3_4*pc2_4
     V3_3 = J3_2*pc2_3 + J3_3*pc3_3 + J3_4*pc3_4
     V3_4 = J3_2*pc2_4 + J3_3*pc3_4 + J3_4*pc4_4
-    s[js, 0] = xp_x
-    s[js, 1] = xp_y
-    s[js, 2] = xp_w_x
-    s[js, 3] = xp_w_y
-    p[jp, 0] = pc0_0
-    p[jp, 1] = pc0_1
-    p[jp, 2] = J2_2*pc0_2 + J2_3*pc0_3 + J2_4*pc0_4
-    p[jp, 3] = J3_2*pc0_2 + J3_3*pc0_3 + J3_4*pc0_4
-    p[jp, 4] = pc1_1
-    p[jp, 5] = J2_2*pc1_2 + J2_3*pc1_3 + J2_4*pc1_4
-    p[jp, 6] = J3_2*pc1_2 + J3_3*pc1_3 + J3_4*pc1_4
-    p[jp, 7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
-    p[jp, 8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
-    p[jp, 9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
+    ws[js, 0] = xp_x
+    ws[js, 1] = xp_y
+    ws[js, 2] = xp_w_x
+    ws[js, 3] = xp_w_y
+    ws[jp, 0] = pc0_0
+    ws[jp, 1] = pc0_1
+    ws[jp, 2] = J2_2*pc0_2 + J2_3*pc0_3 + J2_4*pc0_4
+    ws[jp, 3] = J3_2*pc0_2 + J3_3*pc0_3 + J3_4*pc0_4
+    ws[jp, 4] = pc1_1
+    ws[jp, 5] = J2_2*pc1_2 + J2_3*pc1_3 + J2_4*pc1_4
+    ws[jp, 6] = J3_2*pc1_2 + J3_3*pc1_3 + J3_4*pc1_4
+    ws[jp, 7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
+    ws[jp, 8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
+    ws[jp, 9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
 
 
 @nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
-def step_ll_position(s, js, p, jp, dt, sigma_a, z_x, z_y, r):
-    """``step_try_position`` on rows s[js], p[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+def step_ll_position(ws, js, jp, dt, sigma_a, z_x, z_y, r):
+    """``step_try_position`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
     rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
     """
-    x = s[js, 0]
-    y = s[js, 1]
-    w_x = s[js, 2]
-    w_y = s[js, 3]
-    p00 = p[jp, 0]
-    p01 = p[jp, 1]
-    p02 = p[jp, 2]
-    p03 = p[jp, 3]
-    p11 = p[jp, 4]
-    p12 = p[jp, 5]
-    p13 = p[jp, 6]
-    p22 = p[jp, 7]
-    p23 = p[jp, 8]
-    p33 = p[jp, 9]
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p11 = ws[jp, 4]
+    p12 = ws[jp, 5]
+    p13 = ws[jp, 6]
+    p22 = ws[jp, 7]
+    p23 = ws[jp, 8]
+    p33 = ws[jp, 9]
     _t0 = (dt*dt)/2.0
     g00 = _t0
     g11 = _t0
@@ -2689,18 +2689,18 @@ def step_ll_position(s, js, p, jp, dt, sigma_a, z_x, z_y, r):
         out_s2 = w_x
         out_s3 = w_y
         nis = -1.0
-    p[jp, 0] = out_p0
-    p[jp, 1] = out_p1
-    p[jp, 2] = out_p2
-    p[jp, 3] = out_p3
-    p[jp, 4] = out_p4
-    p[jp, 5] = out_p5
-    p[jp, 6] = out_p6
-    p[jp, 7] = out_p7
-    p[jp, 8] = out_p8
-    p[jp, 9] = out_p9
-    s[js, 0] = out_s0
-    s[js, 1] = out_s1
-    s[js, 2] = out_s2
-    s[js, 3] = out_s3
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
     return nis, rdet

@@ -45,8 +45,8 @@ holds: ONE 2-D float workspace per IMM (``workspace(M)``) carries everything the
 per row at offsets fixed by M (``_R_*``, ``_r_*``): the model indices, the modes' internal states and packed
 covariances, μ, the transition matrix, the noise stds, the measurement and every scratch quantity. The helpers take
 that one array (two atomic operations per call, however many quantities it holds) and the generated kernels are
-called in their row variants (``<kernel>_at(..., array, row, ...)``, derive/codegen/imm_rows.py,
-``error_model="numpy"``), which count nothing. The public functions copy their arguments in and the results out
+called in their row variants (``<kernel>_at(ws, row, ...)``, derive/codegen/imm_rows.py, ``error_model="numpy"``),
+which count nothing themselves; the inlined dispatch chain before them counts ``ws`` once per call. The public functions copy their arguments in and the results out
 (``_load`` / ``_store``); ``imm_run_one`` does so once per trajectory. ``imm_step`` runs each mode's prediction and update as
 the filter's fused step (``step_ll_<meas>``: ``step_try_<meas>`` on rows, which also returns 1/det S for the
 likelihood; a step that fails its LDLᵀ test is redone by ``update_<meas>`` from the prediction, as in the filter
@@ -282,8 +282,8 @@ def _mix_on_group(ws, M, model, rw, rs, rp):
             for i in range(M):
                 w = ws[rw, i]
                 if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_add_at(model, ws, rs, ws, rS + i, w, ws, _R_DELTA)
-            D.retract_at(model, ws, rs, ws, _R_DELTA)
+                    D.between_add_at(model, ws, rs, rS + i, w, _R_DELTA)
+            D.retract_at(model, ws, rs, _R_DELTA)
             nrm = 0.0
             for k in range(n):
                 nrm += ws[_R_DELTA, k] * ws[_R_DELTA, k]
@@ -299,7 +299,7 @@ def _mix_on_group(ws, M, model, rw, rs, rp):
     for i in range(M):
         w = ws[rw, i]
         if w > 0.0:
-            D.mix_transport_at(model, ws, rs, ws, rS + i, ws, rPp + i, w, ws, rp)
+            D.mix_transport_at(model, ws, rs, rS + i, rPp + i, w, rp)
     return it
 
 
@@ -310,7 +310,7 @@ def _to_common(ws, model, js, jp, rc, rP):
 
     At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
     read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
-    D.common_of_state_at(model, ws, js, ws, jp, ws, rc, ws, rP)  # generated, straight line: c and A P Aᵀ at s
+    D.common_of_state_at(model, ws, js, jp, rc, rP)  # generated, straight line: c and A P Aᵀ at s
     if math.hypot(ws[rc, 3], ws[rc, 4]) < SPEED_FLOOR:
         _to_common_slow(ws, model, js, jp, rc, rP)
     _cap_heading(ws, rc, rP)
@@ -543,7 +543,7 @@ def _mix_rows(ws, M, same_group):
             _mix_common(ws, M, rW + j, _r_c(M) + j, _r_pc(M) + j, _R_CM, _R_PCM)
             model = _model(ws, j)
             if math.hypot(ws[_R_CM, 3], ws[_R_CM, 4]) >= SPEED_FLOOR:  # generated, straight line: state, J Pc Jᵀ
-                D.state_of_common_at(model, ws, _R_CM, ws, _R_PCM, ws, rSn + j, ws, rPn + j)
+                D.state_of_common_at(model, ws, _R_CM, _R_PCM, rSn + j, rPn + j)
             else:
                 _state_of_common_slow(ws, model, _R_CM, _R_PCM, rSn + j, rPn + j)
     rS, rPp = _r_s(M), _r_pp(M)
@@ -674,9 +674,9 @@ def _step_rows(ws, M, m, dt, same_group, meas_pose):
     for j in range(M):
         model = _model(ws, j)
         if meas_pose:
-            nis, rdet = D.step_ll_pose(model, ws, rS + j, ws, rPp + j, dt, ws, rQ + j, ws, _R_Z, ws, _R_R)
+            nis, rdet = D.step_ll_pose(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
         else:
-            nis, rdet = D.step_ll_position(model, ws, rS + j, ws, rPp + j, dt, ws, rQ + j, ws, _R_Z, ws, _R_R)
+            nis, rdet = D.step_ll_position(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
         if nis < 0.0:  # FALLBACK: the prediction is in the workspace
             nis = _update_fallback(ws, model, j, M, m, meas_pose)
         ws[_R_NIS, j] = nis
