@@ -515,6 +515,21 @@ def retract_at(model, ws, js, jeps):
 
 
 @nb.njit(cache=True, inline="always")
+def mix_on_group_at(model, ws, M, rw, rs, rp, rS, rPp, rd):
+    if model == 0:
+        return ctrv.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 1:
+        return cv.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 2:
+        return se2r2.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 3:
+        return se2r3.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 4:
+        return se2se2.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True, inline="always")
 def common_of_state_at(model, ws, js, jp, jc, jPc):
     if model == 0:
         ctrv.common_of_state_at(ws, js, jp, jc, jPc)

@@ -22,6 +22,12 @@ no counting either.
   ``innovation_logdet_<meas>`` pass over the predicted covariance. S does not depend on the update, so rdet holds
   also when the step returns ``FALLBACK`` (the caller then runs ``update_<meas>``).
 
+``mix_on_group_at`` (a template per model, ``MIX_TEMPLATE``): the whole reduction Σ w_i N_G(μ_i, P_i) → N_G(μ, P) of
+mixing on the group (the iterated mean, then the transported covariance terms; maths in
+``lgekf.estimators.imm_kernels``) as one loop calling the row variants above directly: a call through the inlined
+dispatch chain counts ``ws`` once, a direct call does not, so the loop's 2–4 kernel calls per source and iteration
+count nothing.
+
 ``dispatch_chains`` adds their model-index chains to ``generated/dispatch.py``.
 """
 
@@ -32,7 +38,7 @@ from dataclasses import replace
 
 from .printer import Kernel, RawStage
 
-__all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS"]
+__all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE"]
 
 #: (kernel, name of the row variant, {array parameter: columns of its 2-D form, or None for a vector})
 ROW_KERNELS = (
@@ -74,6 +80,49 @@ def row_variant(k: Kernel, name: str, arrays: dict, ret: str | None = None, doc:
     )
 
 
+MIX_TEMPLATE = '''
+@nb.njit(cache=True, error_model="numpy")
+def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
+    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
+    covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
+    mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
+    |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the
+    iterations used (derive/codegen/imm_rows.py)."""
+    best = 0
+    for i in range(M):
+        if ws[rw, i] > ws[rw, best]:
+            best = i
+    for k in range({ni}):
+        ws[rs, k] = ws[rS + best, k]
+    it = 0
+    if M > 1:
+        for it in range(1, 51):
+            for k in range({n}):
+                ws[rd, k] = 0.0
+            for i in range(M):
+                w = ws[rw, i]
+                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
+                    between_add_at(ws, rs, rS + i, w, rd)
+            retract_at(ws, rs, rd)
+            nrm = 0.0
+            for k in range({n}):
+                nrm += ws[rd, k] * ws[rd, k]
+            if nrm < 1e-24:
+                break
+    if M == 1:
+        for k in range({npk}):
+            ws[rp, k] = ws[rPp, k]
+        return it
+    for k in range({npk}):
+        ws[rp, k] = 0.0
+    for i in range(M):
+        w = ws[rw, i]
+        if w > 0.0:
+            mix_transport_at(ws, rs, rS + i, rPp + i, w, rp)
+    return it
+'''
+
+
 def imm_row_kernels(model, kernels) -> list:
     """The row variants of one model (module docstring); ``kernels``: the model's kernels so far."""
     by_name = {k.name: k for k in kernels if isinstance(k, Kernel)}
@@ -85,6 +134,8 @@ def imm_row_kernels(model, kernels) -> list:
                 k, f"step_ll_{meas}", {"s": None, "p": None}, ret="nis, rdet",
                 doc=(f"``step_try_{meas}`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),\n"
                      "rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.")))
+    n = model.n
+    out.append(("mix_on_group_at", MIX_TEMPLATE.format(n=n, ni=len(model.internal), npk=n * (n + 1) // 2)))
     return out
 
 
@@ -96,6 +147,8 @@ def dispatch_chains(chain, names: list, models: dict, fits: dict, measurements: 
         chain("mix_transport_at", "ws, js, jt, jpt, w, jacc", names,
               lambda n: f"{n}.mix_transport_at(ws, js, jt, jpt, w, jacc)", False),
         chain("retract_at", "ws, js, jeps", names, lambda n: f"{n}.retract_at(ws, js, jeps)", False),
+        chain("mix_on_group_at", "ws, M, rw, rs, rp, rS, rPp, rd", names,
+              lambda n: f"{n}.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)", True),
         chain("common_of_state_at", "ws, js, jp, jc, jPc", names, lambda n: f"{n}.common_of_state_at(ws, js, jp, jc, jPc)", False),
         chain("state_of_common_at", "ws, jc, jPc, js, jp", names, lambda n: f"{n}.state_of_common_at(ws, jc, jPc, js, jp)", False),
     ]

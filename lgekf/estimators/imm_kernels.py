@@ -257,50 +257,13 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     return it
 
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(cache=True, inline="always")
 def _mix_on_group(ws, M, model, rw, rs, rp):
     """mix_on_group of the modes in the workspace with the weights ws[rw, :M], into the state ws[rs] and the
-    packed covariance ws[rp].
-
-    The mean's terms come from the generated ``between_add``, each source's covariance term w_i [Φ(d_i)⁻¹ P_i
-    Φ(d_i)⁻ᵀ + d_i d_iᵀ] from the generated ``mix_transport`` (straight line, packed in and out; their row
-    variants). Returns the iterations used."""
-    n = D.N_TANGENT[model]
-    ni = D.N_INTERNAL[model]
-    rS, rPp = _r_s(M), _r_pp(M)
-    best = 0
-    for i in range(M):
-        if ws[rw, i] > ws[rw, best]:
-            best = i
-    for k in range(ni):
-        ws[rs, k] = ws[rS + best, k]
-    it = 0
-    if M > 1:
-        for it in range(1, 51):
-            for k in range(n):
-                ws[_R_DELTA, k] = 0.0
-            for i in range(M):
-                w = ws[rw, i]
-                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_add_at(model, ws, rs, rS + i, w, _R_DELTA)
-            D.retract_at(model, ws, rs, _R_DELTA)
-            nrm = 0.0
-            for k in range(n):
-                nrm += ws[_R_DELTA, k] * ws[_R_DELTA, k]
-            if nrm < 1e-24:
-                break
-    npk = n * (n + 1) // 2
-    if M == 1:
-        for k in range(npk):
-            ws[rp, k] = ws[rPp, k]
-        return it
-    for k in range(npk):
-        ws[rp, k] = 0.0
-    for i in range(M):
-        w = ws[rw, i]
-        if w > 0.0:
-            D.mix_transport_at(model, ws, rs, rS + i, rPp + i, w, rp)
-    return it
+    packed covariance ws[rp] (the generated loop ``mix_on_group_at``: the mean iterated with ``between_add`` and
+    ``retract``, then each source's term w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ] from ``mix_transport``, straight
+    line, packed in and out; their row variants). Returns the iterations used."""
+    return D.mix_on_group_at(model, ws, M, rw, rs, rp, _r_s(M), _r_pp(M), _R_DELTA)
 
 
 @nb.njit(cache=True, error_model="numpy")
