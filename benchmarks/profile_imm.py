@@ -44,13 +44,7 @@ def _run(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, do_mix, do_comb, out
             ws[IK._R_Z, 1] = z[b, k, 1]
             if do_mix:
                 IK._mix_rows(ws, M, same_group)
-            for j in range(M):
-                nis, rdet = D.step_ll_position(models[j], ws, IK._r_s(M) + j, IK._r_pp(M) + j, dts[b, k], IK._r_q(M) + j,
-                                               IK._R_Z, IK._R_R)
-                if nis < 0.0:
-                    nis = IK._update_fallback(ws, models[j], j, M, 2, False)
-                ws[IK._R_LOGLIK, j] = -0.5 * (nis - np.log(rdet))
-                ws[IK._R_PRIOR, j] = ws[IK._R_MUV, j]
+            IK._modes_position(ws, M, 2, dts[b, k])  # each mode's fused step and likelihood
             IK._posterior(ws, M)
             if do_comb:
                 for j in range(M):

@@ -64,8 +64,8 @@ import numpy as np
 from ..generated import dispatch as D
 from .packed import pack_from, unpack_into
 
-__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "mix_on_group", "combined_common",
-           "workspace", "mix_common"]
+__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "imm_run_batch_position",
+           "imm_run_batch_pose", "mix_on_group", "combined_common", "workspace", "mix_common"]
 
 LOG_2PI = math.log(2.0 * math.pi)
 NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
@@ -608,19 +608,51 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
 
 
 @nb.njit(cache=True)
-def _update_fallback(ws, model, j, M, m, meas_pose):
-    """``update_<meas>`` of mode j from its prediction (the fused step's rare FALLBACK: Joseph form, jitter
+def _fallback_position(ws, model, j, M, m):
+    """``update_position`` of mode j from its prediction (the fused step's rare FALLBACK: Joseph form, jitter
     repair); views of the workspace."""
-    s, p, z, r = ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R]
-    if meas_pose:
-        return D.update_pose(model, s, p, z, r)
-    return D.update_position(model, s, p, z, r)
+    return D.update_position(model, ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R])
+
+
+@nb.njit(cache=True)
+def _fallback_pose(ws, model, j, M, m):
+    """``update_pose`` of mode j from its prediction (as _fallback_position)."""
+    return D.update_pose(model, ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R])
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _step_rows(ws, M, m, dt, same_group, meas_pose):
-    """imm_step on the workspace, measurement ws[_R_Z, :m]: mixing, then each mode's fused step ``step_ll_<meas>``
-    (prediction, 1/det S, update; ``update_<meas>`` when its LDLᵀ test fails), then the mode probabilities."""
+def _modes_position(ws, M, m, dt):
+    """Each mode's fused step ``step_ll_position`` (prediction, 1/det S, update; ``update_position`` when its LDLᵀ
+    test fails) with the measurement ws[_R_Z, :m]; the modes' log-likelihoods into ws[_R_LOGLIK]."""
+    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
+    for j in range(M):
+        model = _model(ws, j)
+        nis, rdet = D.step_ll_position(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
+        if nis < 0.0:  # FALLBACK: the prediction is in the workspace
+            nis = _fallback_position(ws, model, j, M, m)
+        ws[_R_NIS, j] = nis
+        ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
+        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _modes_pose(ws, M, m, dt):
+    """_modes_position with a pose measurement (``step_ll_pose``, ``update_pose``)."""
+    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
+    for j in range(M):
+        model = _model(ws, j)
+        nis, rdet = D.step_ll_pose(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
+        if nis < 0.0:
+            nis = _fallback_pose(ws, model, j, M, m)
+        ws[_R_NIS, j] = nis
+        ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
+        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _mix_or_predict(ws, M, m, dt, same_group):
+    """The step's start: mixing, μ ← the predicted probabilities; for a missed detection (NaN in ws[_R_Z, :m]) also
+    each mode's prediction and NaN NIS. Returns whether it was missed."""
     missed = False
     for k in range(m):
         if np.isnan(ws[_R_Z, k]):
@@ -632,19 +664,19 @@ def _step_rows(ws, M, m, dt, same_group, meas_pose):
         _predict_modes(ws, M, dt)
         for j in range(M):
             ws[_R_NIS, j] = np.nan
+    return missed
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _step_rows(ws, M, m, dt, same_group, meas_pose):
+    """imm_step on the workspace, measurement ws[_R_Z, :m]: mixing, each mode's fused step, the mode
+    probabilities; returns the step log-likelihood (NaN when missed, −inf when no mode explains z)."""
+    if _mix_or_predict(ws, M, m, dt, same_group):
         return np.nan
-    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
-    for j in range(M):
-        model = _model(ws, j)
-        if meas_pose:
-            nis, rdet = D.step_ll_pose(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
-        else:
-            nis, rdet = D.step_ll_position(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
-        if nis < 0.0:  # FALLBACK: the prediction is in the workspace
-            nis = _update_fallback(ws, model, j, M, m, meas_pose)
-        ws[_R_NIS, j] = nis
-        ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
-        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+    if meas_pose:
+        _modes_pose(ws, M, m, dt)
+    else:
+        _modes_position(ws, M, m, dt)
     return _posterior(ws, M)
 
 
@@ -667,6 +699,48 @@ def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out,
     return ll
 
 
+@nb.njit(cache=True, error_model="numpy")
+def _outputs(ws, M, k, same_group, out_c, out_P, out_mu):
+    """After step k: the mode probabilities and the combined estimate (its covariance when out_P has K rows)."""
+    for j in range(M):
+        ws[_R_MU, j] = ws[_R_MUV, j]
+        out_mu[k, j] = ws[_R_MUV, j]
+    _combined(ws, M, same_group)
+    for a in range(6):
+        out_c[k, a] = ws[_R_CM, a]
+    if out_P.shape[0] > k:
+        for a in range(6):
+            for b in range(6):
+                out_P[k, a, b] = ws[_R_PCM, 6 * a + b]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _run_position(ws, M, z, dts, same_group, out_c, out_P, out_mu):
+    """The loop of imm_run_one with position measurements, on a loaded workspace (only the position kernels are
+    compiled for it: ``imm_batch`` of position measurements never compiles the pose ones)."""
+    m = z.shape[1]
+    for k in range(z.shape[0]):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        if not _mix_or_predict(ws, M, m, dts[k], same_group):
+            _modes_position(ws, M, m, dts[k])
+            _posterior(ws, M)
+        _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _run_pose(ws, M, z, dts, same_group, out_c, out_P, out_mu):
+    """_run_position with pose measurements."""
+    m = z.shape[1]
+    for k in range(z.shape[0]):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        if not _mix_or_predict(ws, M, m, dts[k], same_group):
+            _modes_pose(ws, M, m, dts[k])
+            _posterior(ws, M)
+        _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
+
+
 @nb.njit(cache=True)
 def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_c, out_P, out_mu):
     """Run the IMM over one trajectory z (K, m) with steps dts (K,), from the state (S, Pp, mu) (modified).
@@ -674,26 +748,13 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
     Writes the combined common estimate out_c (K, 6), its covariance out_P (K, 6, 6) when out_P.shape[0] == K,
     and the mode probabilities out_mu (K, M).
     """
-    K = z.shape[0]
-    m = z.shape[1]
     M = models.shape[0]
-    keep_P = out_P.shape[0] == K
     ws = workspace(M)
     _load(ws, models, S, Pp, mu, PI, Q, r)
-    for k in range(K):
-        for i in range(m):
-            ws[_R_Z, i] = z[k, i]
-        _step_rows(ws, M, m, dts[k], same_group, meas_pose)
-        for j in range(M):
-            ws[_R_MU, j] = ws[_R_MUV, j]
-            out_mu[k, j] = ws[_R_MUV, j]
-        _combined(ws, M, same_group)
-        for a in range(6):
-            out_c[k, a] = ws[_R_CM, a]
-        if keep_P:
-            for a in range(6):
-                for b in range(6):
-                    out_P[k, a, b] = ws[_R_PCM, 6 * a + b]
+    if meas_pose:
+        _run_pose(ws, M, z, dts, same_group, out_c, out_P, out_mu)
+    else:
+        _run_position(ws, M, z, dts, same_group, out_c, out_P, out_mu)
     _store(ws, S, Pp, mu)
 
 
@@ -705,3 +766,23 @@ def imm_run_batch(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, meas_pose, 
         Pp = P0[b].copy()
         mu = mu0.copy()
         imm_run_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], same_group, meas_pose, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def imm_run_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
+    """imm_run_batch with position measurements (compiles no pose kernel)."""
+    M = models.shape[0]
+    for b in nb.prange(z.shape[0]):
+        ws = workspace(M)
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        _run_position(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def imm_run_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
+    """imm_run_batch with pose measurements (compiles no position kernel)."""
+    M = models.shape[0]
+    for b in nb.prange(z.shape[0]):
+        ws = workspace(M)
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        _run_pose(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])
