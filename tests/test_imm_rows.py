@@ -52,6 +52,7 @@ def test_row_variants_equal_the_kernels(model):
         np.testing.assert_array_equal(ws[3, :n], want)
         want = s.copy()
         k.retract(want, acc[:n])
+        ws[3, :npk] = acc
         k.retract_at(ws, 0, 3)
         np.testing.assert_array_equal(ws[0, :L], want)
         ws[0, :L] = s
