@@ -46,12 +46,13 @@ per row at offsets fixed by M (``_R_*``, ``_r_*``): the model indices, the modes
 covariances, μ, the transition matrix, the noise stds, the measurement and every scratch quantity. The helpers take
 that one array (two atomic operations per call, however many quantities it holds) and the generated kernels are
 called in their row variants (``<kernel>_at(ws, row, ...)``, derive/codegen/imm_rows.py, ``error_model="numpy"``),
-which count nothing themselves; the inlined dispatch chain before them counts ``ws`` once per call. The public functions copy their arguments in and the results out
-(``_load`` / ``_store``); ``imm_run_one`` does so once per trajectory. ``imm_step`` runs each mode's prediction and update as
-the filter's fused step (``step_ll_<meas>``: ``step_try_<meas>`` on rows, which also returns 1/det S for the
-likelihood; a step that fails its LDLᵀ test is redone by ``update_<meas>`` from the prediction, as in the filter
-loops). ``imm_predict`` / ``imm_update`` (the IMM class, the smoother's forward pass) keep the separate prediction,
-log det S and update.
+which count nothing themselves; the inlined dispatch chain before them counts ``ws`` once per call, and the mixing
+on the group is one generated loop per model (``mix_on_group_at``) that calls them directly. The public functions
+copy their arguments in and the results out (``_load`` / ``_store``); ``imm_batch`` does so once per trajectory.
+``imm_step`` and ``imm_batch`` run each mode's prediction and update as the filter's fused step (``step_ll_<meas>``:
+``step_try_<meas>`` on rows, which also returns 1/det S for the likelihood; a step that fails its LDLᵀ test is
+redone by ``update_<meas>`` from the prediction, as in the filter loops). ``imm_predict`` / ``imm_update`` (the IMM
+class, the smoother's forward pass) keep the separate prediction, log det S and update.
 """
 
 from __future__ import annotations
