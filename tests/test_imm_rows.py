@@ -132,3 +132,29 @@ def test_imm_step_equals_predict_then_update(case, meas):
             np.testing.assert_allclose(nis_a, nis_b, rtol=1e-10, atol=1e-11)
         for a, b in zip(A, B):
             np.testing.assert_allclose(a, b, rtol=1e-11, atol=1e-12)
+
+
+def test_imm_loglik_one_sums_imm_step():
+    """The log-likelihood runner on the workspace equals imm_step called step by step (missed steps not counted)."""
+    from lgekf.estimators.imm import _common_inputs, _Setup
+    from lgekf.estimators.imm_kernels import imm_loglik_one, imm_step, workspace
+
+    s = _Setup("cv,se2r3", None, 0.5, "position", None)
+    c, Pc = _common_inputs(np.array([[0.0, 0.0, 0.2, 3.0, 0.0, 0.1]]), np.diag([0.25, 0.25, 0.01, 0.25, 0.25, 0.01]))
+    S0, P0 = s.initial(c, Pc)
+    rng = np.random.default_rng(4)
+    K = 40
+    t = 0.1 * np.arange(1, K + 1)
+    z = np.stack([3 * t, 0.3 * t * t], axis=-1) + 0.3 * rng.normal(size=(K, 2))
+    z[[5, 20]] = np.nan
+    dts = np.full(K, 0.1)
+    S, Pp, mu = S0[0].copy(), P0[0].copy(), s.mu0.copy()
+    ws, nis = workspace(s.M), np.empty(s.M)
+    steps = [imm_step(s.models, S, Pp, mu, s.PI, s.Q, s.r, z[k], 0.1, s.same_group, s.meas_pose, nis, ws) for k in range(30)]
+    want = sum(v for v in steps[3:] if not np.isnan(v))
+    S2, P2, mu2 = S0[0].copy(), P0[0].copy(), s.mu0.copy()
+    tot, n = imm_loglik_one(s.models, S2, P2, mu2, s.PI, s.Q, s.r, z, dts, 3, 30, s.same_group, s.meas_pose)
+    assert n == 25  # steps 3..29 (27) without the missed steps 5 and 20
+    np.testing.assert_allclose(tot, want, rtol=1e-13)
+    for a, b in ((S, S2), (Pp, P2), (mu, mu2)):
+        np.testing.assert_array_equal(a, b)

@@ -65,7 +65,7 @@ import numpy as np
 from ..generated import dispatch as D
 from .packed import pack_from, unpack_into
 
-__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "imm_run_batch_position",
+__all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "imm_run_batch", "imm_run_batch_position",
            "imm_run_batch_pose", "mix_on_group", "combined_common", "workspace", "mix_common"]
 
 LOG_2PI = math.log(2.0 * math.pi)
@@ -698,6 +698,29 @@ def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out,
     for j in range(M):
         nis_out[j] = ws[_R_NIS, j]
     return ll
+
+
+@nb.njit(cache=True)
+def imm_loglik_one(models, S, Pp, mu, PI, Q, r, z, dts, start, stop, same_group, meas_pose):
+    """Σ of imm_step's log-likelihood over the steps k in [start, stop) of one track z (K, m), dts (K,), run from
+    step 0 from the state (S, Pp, mu) (modified); missed detections (NaN) are not counted. The same steps as
+    calling imm_step for k < stop, on a workspace loaded once. Returns (the sum, the steps counted); the sum is
+    −inf once no mode explains a measurement."""
+    M = models.shape[0]
+    m = z.shape[1]
+    ws = workspace(M)
+    _load(ws, models, S, Pp, mu, PI, Q, r)
+    tot = 0.0
+    n = 0
+    for k in range(stop):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        v = _step_rows(ws, M, m, dts[k], same_group, meas_pose)
+        if k >= start and not np.isnan(v):
+            tot += v
+            n += 1
+    _store(ws, S, Pp, mu)
+    return tot, n
 
 
 @nb.njit(cache=True, error_model="numpy")
