@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -4538,3 +4538,750 @@ def state_of_common(c, Pc, s, p):
     p[12] = J3_3*V3_3 + J3_4*V3_4
     p[13] = V3_5
     p[14] = pc5_5
+
+
+@nb.njit(cache=True, error_model="numpy")
+def between_add_at(ws, js, jt, w, jacc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
+    On rows of ws: s = ws[js], t = ws[jt], acc = ws[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_psi = ws[jt, 2]
+    t_v = ws[jt, 3]
+    t_omega = ws[jt, 4]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = wrap_angle(-psi + t_psi)
+    d3 = t_v - v
+    d4 = -omega + t_omega
+    ws[jacc, 0] = acc0 + d0*w
+    ws[jacc, 1] = acc1 + d1*w
+    ws[jacc, 2] = acc2 + d2*w
+    ws[jacc, 3] = acc3 + d3*w
+    ws[jacc, 4] = acc4 + d4*w
+
+
+@nb.njit(cache=True, error_model="numpy")
+def mix_transport_at(ws, js, jt, jpt, w, jacc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
+    one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
+    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    On rows of ws: s = ws[js], t = ws[jt], pt = ws[jpt], acc = ws[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_psi = ws[jt, 2]
+    t_v = ws[jt, 3]
+    t_omega = ws[jt, 4]
+    pt0_0 = ws[jpt, 0]
+    pt0_1 = ws[jpt, 1]
+    pt0_2 = ws[jpt, 2]
+    pt0_3 = ws[jpt, 3]
+    pt0_4 = ws[jpt, 4]
+    pt1_1 = ws[jpt, 5]
+    pt1_2 = ws[jpt, 6]
+    pt1_3 = ws[jpt, 7]
+    pt1_4 = ws[jpt, 8]
+    pt2_2 = ws[jpt, 9]
+    pt2_3 = ws[jpt, 10]
+    pt2_4 = ws[jpt, 11]
+    pt3_3 = ws[jpt, 12]
+    pt3_4 = ws[jpt, 13]
+    pt4_4 = ws[jpt, 14]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
+    acc5 = ws[jacc, 5]
+    acc6 = ws[jacc, 6]
+    acc7 = ws[jacc, 7]
+    acc8 = ws[jacc, 8]
+    acc9 = ws[jacc, 9]
+    acc10 = ws[jacc, 10]
+    acc11 = ws[jacc, 11]
+    acc12 = ws[jacc, 12]
+    acc13 = ws[jacc, 13]
+    acc14 = ws[jacc, 14]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = wrap_angle(-psi + t_psi)
+    d3 = t_v - v
+    d4 = -omega + t_omega
+    ws[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
+    ws[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
+    ws[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
+    ws[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
+    ws[jacc, 4] = acc4 + w*(d0*d4 + pt0_4)
+    ws[jacc, 5] = acc5 + w*(d1*d1 + pt1_1)
+    ws[jacc, 6] = acc6 + w*(d1*d2 + pt1_2)
+    ws[jacc, 7] = acc7 + w*(d1*d3 + pt1_3)
+    ws[jacc, 8] = acc8 + w*(d1*d4 + pt1_4)
+    ws[jacc, 9] = acc9 + w*(d2*d2 + pt2_2)
+    ws[jacc, 10] = acc10 + w*(d2*d3 + pt2_3)
+    ws[jacc, 11] = acc11 + w*(d2*d4 + pt2_4)
+    ws[jacc, 12] = acc12 + w*(d3*d3 + pt3_3)
+    ws[jacc, 13] = acc13 + w*(d3*d4 + pt3_4)
+    ws[jacc, 14] = acc14 + w*(d4*d4 + pt4_4)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def retract_at(ws, js, jeps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    On rows of ws: s = ws[js], eps = ws[jeps] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    eps0 = ws[jeps, 0]
+    eps1 = ws[jeps, 1]
+    eps2 = ws[jeps, 2]
+    eps3 = ws[jeps, 3]
+    eps4 = ws[jeps, 4]
+    ws[js, 0] = eps0 + x
+    ws[js, 1] = eps1 + y
+    ws[js, 2] = eps2 + psi
+    ws[js, 3] = eps3 + v
+    ws[js, 4] = eps4 + omega
+
+
+@nb.njit(cache=True, error_model="numpy")
+def common_of_state_at(ws, js, jp, jc, jPc):
+    """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
+    physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
+    On rows of ws: s = ws[js], p = ws[jp], c = ws[jc], Pc = ws[jPc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p0_0 = ws[jp, 0]
+    p0_1 = ws[jp, 1]
+    p0_2 = ws[jp, 2]
+    p0_3 = ws[jp, 3]
+    p0_4 = ws[jp, 4]
+    p1_1 = ws[jp, 5]
+    p1_2 = ws[jp, 6]
+    p1_3 = ws[jp, 7]
+    p1_4 = ws[jp, 8]
+    p2_2 = ws[jp, 9]
+    p2_3 = ws[jp, 10]
+    p2_4 = ws[jp, 11]
+    p3_3 = ws[jp, 12]
+    p3_4 = ws[jp, 13]
+    p4_4 = ws[jp, 14]
+    xp_x = x
+    xp_y = y
+    xp_psi = wrap_angle(psi)
+    xp_v = v
+    xp_omega = omega
+    ws[jc, 0] = xp_x
+    ws[jc, 1] = xp_y
+    ws[jc, 2] = xp_psi
+    ws[jc, 3] = xp_v
+    ws[jc, 4] = 0.0
+    ws[jc, 5] = xp_omega
+    ws[jPc, 0] = p0_0
+    ws[jPc, 1] = p0_1
+    ws[jPc, 6] = p0_1
+    ws[jPc, 2] = p0_2
+    ws[jPc, 12] = p0_2
+    ws[jPc, 3] = p0_3
+    ws[jPc, 18] = p0_3
+    ws[jPc, 4] = 0.0
+    ws[jPc, 24] = 0.0
+    ws[jPc, 5] = p0_4
+    ws[jPc, 30] = p0_4
+    ws[jPc, 7] = p1_1
+    ws[jPc, 8] = p1_2
+    ws[jPc, 13] = p1_2
+    ws[jPc, 9] = p1_3
+    ws[jPc, 19] = p1_3
+    ws[jPc, 10] = 0.0
+    ws[jPc, 25] = 0.0
+    ws[jPc, 11] = p1_4
+    ws[jPc, 31] = p1_4
+    ws[jPc, 14] = p2_2
+    ws[jPc, 15] = p2_3
+    ws[jPc, 20] = p2_3
+    ws[jPc, 16] = 0.0
+    ws[jPc, 26] = 0.0
+    ws[jPc, 17] = p2_4
+    ws[jPc, 32] = p2_4
+    ws[jPc, 21] = p3_3
+    ws[jPc, 22] = 0.0
+    ws[jPc, 27] = 0.0
+    ws[jPc, 23] = p3_4
+    ws[jPc, 33] = p3_4
+    ws[jPc, 28] = 0.0
+    ws[jPc, 29] = 0.0
+    ws[jPc, 34] = 0.0
+    ws[jPc, 35] = p4_4
+
+
+@nb.njit(cache=True, error_model="numpy")
+def state_of_common_at(ws, jc, jPc, js, jp):
+    """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
+    s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
+    On rows of ws: c = ws[jc], Pc = ws[jPc], s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py).
+    """
+    c0 = ws[jc, 0]
+    c1 = ws[jc, 1]
+    c2 = ws[jc, 2]
+    c3 = ws[jc, 3]
+    c4 = ws[jc, 4]
+    c5 = ws[jc, 5]
+    pc0_0 = ws[jPc, 0]
+    pc0_1 = ws[jPc, 1]
+    pc0_2 = ws[jPc, 2]
+    pc0_3 = ws[jPc, 3]
+    pc0_4 = ws[jPc, 4]
+    pc0_5 = ws[jPc, 5]
+    pc1_1 = ws[jPc, 7]
+    pc1_2 = ws[jPc, 8]
+    pc1_3 = ws[jPc, 9]
+    pc1_4 = ws[jPc, 10]
+    pc1_5 = ws[jPc, 11]
+    pc2_2 = ws[jPc, 14]
+    pc2_3 = ws[jPc, 15]
+    pc2_4 = ws[jPc, 16]
+    pc2_5 = ws[jPc, 17]
+    pc3_3 = ws[jPc, 21]
+    pc3_4 = ws[jPc, 22]
+    pc3_5 = ws[jPc, 23]
+    pc4_4 = ws[jPc, 28]
+    pc4_5 = ws[jPc, 29]
+    pc5_5 = ws[jPc, 35]
+    xp_x = c0
+    xp_y = c1
+    xp_psi = c2 + math.atan2(c4, c3)
+    xp_v = math.sqrt(c3*c3 + c4*c4)
+    xp_omega = c5
+    _t0 = c3*c3 + c4*c4
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    J2_3 = -(_t1*c4)
+    J2_4 = _t1*c3
+    J3_3 = _t2*c3
+    J3_4 = _t2*c4
+    V2_2 = J2_3*pc2_3 + J2_4*pc2_4 + pc2_2
+    V2_3 = J2_3*pc3_3 + J2_4*pc3_4 + pc2_3
+    V2_4 = J2_3*pc3_4 + J2_4*pc4_4 + pc2_4
+    V2_5 = J2_3*pc3_5 + J2_4*pc4_5 + pc2_5
+    V3_3 = J3_3*pc3_3 + J3_4*pc3_4
+    V3_4 = J3_3*pc3_4 + J3_4*pc4_4
+    V3_5 = J3_3*pc3_5 + J3_4*pc4_5
+    ws[js, 0] = xp_x
+    ws[js, 1] = xp_y
+    ws[js, 2] = xp_psi
+    ws[js, 3] = xp_v
+    ws[js, 4] = xp_omega
+    ws[jp, 0] = pc0_0
+    ws[jp, 1] = pc0_1
+    ws[jp, 2] = J2_3*pc0_3 + J2_4*pc0_4 + pc0_2
+    ws[jp, 3] = J3_3*pc0_3 + J3_4*pc0_4
+    ws[jp, 4] = pc0_5
+    ws[jp, 5] = pc1_1
+    ws[jp, 6] = J2_3*pc1_3 + J2_4*pc1_4 + pc1_2
+    ws[jp, 7] = J3_3*pc1_3 + J3_4*pc1_4
+    ws[jp, 8] = pc1_5
+    ws[jp, 9] = J2_3*V2_3 + J2_4*V2_4 + V2_2
+    ws[jp, 10] = J3_3*V2_3 + J3_4*V2_4
+    ws[jp, 11] = V2_5
+    ws[jp, 12] = J3_3*V3_3 + J3_4*V3_4
+    ws[jp, 13] = V3_5
+    ws[jp, 14] = pc5_5
+
+
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_ll_pose(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_theta, r_x, r_y, r_theta):
+    """``step_try_pose`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+    rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p04 = ws[jp, 4]
+    p11 = ws[jp, 5]
+    p12 = ws[jp, 6]
+    p13 = ws[jp, 7]
+    p14 = ws[jp, 8]
+    p22 = ws[jp, 9]
+    p23 = ws[jp, 10]
+    p24 = ws[jp, 11]
+    p33 = ws[jp, 12]
+    p34 = ws[jp, 13]
+    p44 = ws[jp, 14]
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc02 = -(_t1*v)
+    cc03 = _t3
+    cc04 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc12 = _t3*v
+    cc13 = _t1
+    cc14 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _t5 = (dt*dt)/2.0
+    _t6 = _sinc__a0*dt*v
+    g00 = _cos_psi*_t5
+    g10 = _sin_psi*_t5
+    g21 = _t5
+    e00 = _cos__a1*_t6 + x
+    e01 = _sin__a1*_t6 + y
+    e02 = dt*omega + psi
+    m00 = cc02*p02 + cc03*p03 + cc04*p04 + p00
+    m01 = cc02*p12 + cc03*p13 + cc04*p14 + p01
+    m02 = cc02*p22 + cc03*p23 + cc04*p24 + p02
+    m03 = cc02*p23 + cc03*p33 + cc04*p34 + p03
+    m04 = cc02*p24 + cc03*p34 + cc04*p44 + p04
+    m11 = cc12*p12 + cc13*p13 + cc14*p14 + p11
+    m12 = cc12*p22 + cc13*p23 + cc14*p24 + p12
+    m13 = cc12*p23 + cc13*p33 + cc14*p34 + p13
+    m14 = cc12*p24 + cc13*p34 + cc14*p44 + p14
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t7 = sigma_a*sigma_a
+    _t8 = _t7*g00
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = dt*dt
+    pp00 = _t7*(g00*g00) + cc02*m02 + cc03*m03 + cc04*m04 + m00
+    pp01 = _t8*g10 + cc12*m02 + cc13*m03 + cc14*m04 + m01
+    pp02 = dt*m04 + m02
+    pp03 = _t8*dt + m03
+    pp04 = m04
+    pp11 = _t7*(g10*g10) + cc12*m12 + cc13*m13 + cc14*m14 + m11
+    pp12 = dt*m14 + m12
+    pp13 = _t7*dt*g10 + m13
+    pp14 = m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t10*_t7 + p33
+    pp34 = p34
+    pp44 = _t10*_t9 + p44
+    x_p = e00
+    y_p = e01
+    psi_p = e02
+    _sin_psi_p = math.sin(psi_p)
+    _cos_psi_p = math.cos(psi_p)
+    hh00 = _cos_psi_p
+    hh01 = _sin_psi_p
+    hh10 = -_sin_psi_p
+    hh11 = _cos_psi_p
+    _sin_z_theta = math.sin(z_theta)
+    _cos_z_theta = math.cos(z_theta)
+    _a2 = math.atan2(-(math.sin(psi_p)*math.cos(z_theta)) + math.sin(z_theta)*math.cos(psi_p), math.sin(psi_p)*math.sin(z_theta) + math.cos(psi_p)*math.cos(z_theta))
+    _sin__a2 = math.sin(_a2)
+    _cos__a2 = math.cos(_a2)
+    _halfcot__a2 = halfcot(_a2, _sin__a2, _cos__a2)
+    _t11 = -(_cos_psi_p*x_p) + _cos_psi_p*z_x - _sin_psi_p*y_p + _sin_psi_p*z_y
+    _t12 = -(_cos_psi_p*y_p) + _cos_psi_p*z_y + _sin_psi_p*x_p - _sin_psi_p*z_x
+    _t13 = math.atan2(_cos_psi_p*_sin_z_theta - _cos_z_theta*_sin_psi_p, _cos_psi_p*_cos_z_theta + _sin_psi_p*_sin_z_theta)
+    _t14 = _t13/2.0
+    hp00 = hh00*pp00 + hh01*pp01
+    hp01 = hh00*pp01 + hh01*pp11
+    hp02 = hh00*pp02 + hh01*pp12
+    hp03 = hh00*pp03 + hh01*pp13
+    hp04 = hh00*pp04 + hh01*pp14
+    hp10 = hh10*pp00 + hh11*pp01
+    hp11 = hh10*pp01 + hh11*pp11
+    hp12 = hh10*pp02 + hh11*pp12
+    hp13 = hh10*pp03 + hh11*pp13
+    hp14 = hh10*pp04 + hh11*pp14
+    inn00 = _halfcot__a2*_t11 + _t12*_t14
+    inn10 = _halfcot__a2*_t12 - _t11*_t14
+    inn20 = _t13
+    S00 = hh00*hp00 + hh01*hp01 + r_x*r_x
+    S01 = hh10*hp00 + hh11*hp01
+    S11 = hh10*hp10 + hh11*hp11 + r_y*r_y
+    S22 = pp22 + r_theta*r_theta
+    rdet = 1.0/(S00*S11*S22 - S00*(hp12*hp12) - (S01*S01)*S22 + 2.0*S01*hp02*hp12 - S11*(hp02*hp02))
+    Si00 = rdet*(S11*S22 - hp12*hp12)
+    Si01 = rdet*(-(S01*S22) + hp02*hp12)
+    Si02 = rdet*(S01*hp12 - S11*hp02)
+    Si11 = rdet*(S00*S22 - hp02*hp02)
+    Si12 = rdet*(-(S00*hp12) + S01*hp02)
+    Si22 = rdet*(S00*S11 - S01*S01)
+    _t15 = 2.0*inn00
+    k00 = Si00*hp00 + Si01*hp10 + Si02*pp02
+    k01 = Si01*hp00 + Si11*hp10 + Si12*pp02
+    k02 = Si02*hp00 + Si12*hp10 + Si22*pp02
+    k10 = Si00*hp01 + Si01*hp11 + Si02*pp12
+    k11 = Si01*hp01 + Si11*hp11 + Si12*pp12
+    k12 = Si02*hp01 + Si12*hp11 + Si22*pp12
+    k20 = Si00*hp02 + Si01*hp12 + Si02*pp22
+    k21 = Si01*hp02 + Si11*hp12 + Si12*pp22
+    k22 = Si02*hp02 + Si12*hp12 + Si22*pp22
+    k30 = Si00*hp03 + Si01*hp13 + Si02*pp23
+    k31 = Si01*hp03 + Si11*hp13 + Si12*pp23
+    k32 = Si02*hp03 + Si12*hp13 + Si22*pp23
+    k40 = Si00*hp04 + Si01*hp14 + Si02*pp24
+    k41 = Si01*hp04 + Si11*hp14 + Si12*pp24
+    k42 = Si02*hp04 + Si12*hp14 + Si22*pp24
+    nis = Si00*(inn00*inn00) + Si01*_t15*inn10 + Si02*_t15*inn20 + Si11*(inn10*inn10) + 2.0*Si12*inn10*inn20 + Si22*(inn20*inn20)
+    nk0 = inn00*k00 + inn10*k01 + inn20*k02
+    nk1 = inn00*k10 + inn10*k11 + inn20*k12
+    nk2 = inn00*k20 + inn10*k21 + inn20*k22
+    nk3 = inn00*k30 + inn10*k31 + inn20*k32
+    nk4 = inn00*k40 + inn10*k41 + inn20*k42
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + psi_p
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
+    pj00 = -(hp00*k00) - hp10*k01 - k02*pp02 + pp00
+    pj01 = -(hp01*k00) - hp11*k01 - k02*pp12 + pp01
+    pj02 = -(hp02*k00) - hp12*k01 - k02*pp22 + pp02
+    pj03 = -(hp03*k00) - hp13*k01 - k02*pp23 + pp03
+    pj04 = -(hp04*k00) - hp14*k01 - k02*pp24 + pp04
+    pj11 = -(hp01*k10) - hp11*k11 - k12*pp12 + pp11
+    pj12 = -(hp02*k10) - hp12*k11 - k12*pp22 + pp12
+    pj13 = -(hp03*k10) - hp13*k11 - k12*pp23 + pp13
+    pj14 = -(hp04*k10) - hp14*k11 - k12*pp24 + pp14
+    pj22 = -(hp02*k20) - hp12*k21 - k22*pp22 + pp22
+    pj23 = -(hp03*k20) - hp13*k21 - k22*pp23 + pp23
+    pj24 = -(hp04*k20) - hp14*k21 - k22*pp24 + pp24
+    pj33 = -(hp03*k30) - hp13*k31 - k32*pp23 + pp33
+    pj34 = -(hp04*k30) - hp14*k31 - k32*pp24 + pp34
+    pj44 = -(hp04*k40) - hp14*k41 - k42*pp24 + pp44
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj04
+    out_p5 = pj11
+    out_p6 = pj12
+    out_p7 = pj13
+    out_p8 = pj14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = psi_p
+        out_s3 = v
+        out_s4 = omega
+        nis = -1.0
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[jp, 10] = out_p10
+    ws[jp, 11] = out_p11
+    ws[jp, 12] = out_p12
+    ws[jp, 13] = out_p13
+    ws[jp, 14] = out_p14
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
+    ws[js, 4] = out_s4
+    return nis, rdet
+
+
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_ll_position(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, r):
+    """``step_try_position`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+    rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    psi = ws[js, 2]
+    v = ws[js, 3]
+    omega = ws[js, 4]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p04 = ws[jp, 4]
+    p11 = ws[jp, 5]
+    p12 = ws[jp, 6]
+    p13 = ws[jp, 7]
+    p14 = ws[jp, 8]
+    p22 = ws[jp, 9]
+    p23 = ws[jp, 10]
+    p24 = ws[jp, 11]
+    p33 = ws[jp, 12]
+    p34 = ws[jp, 13]
+    p44 = ws[jp, 14]
+    _a0 = dt*omega/2.0
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
+    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
+    _a1 = dt*omega/2.0 + psi
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _t0 = _sin__a1*_sinc__a0
+    _t1 = _t0*dt
+    _t2 = _cos__a1*_sinc__a0
+    _t3 = _t2*dt
+    _t4 = (dt*dt)*v/2.0
+    cc02 = -(_t1*v)
+    cc03 = _t3
+    cc04 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
+    cc12 = _t3*v
+    cc13 = _t1
+    cc14 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
+    _sin_psi = math.sin(psi)
+    _cos_psi = math.cos(psi)
+    _t5 = (dt*dt)/2.0
+    _t6 = _sinc__a0*dt*v
+    g00 = _cos_psi*_t5
+    g10 = _sin_psi*_t5
+    g21 = _t5
+    e00 = _cos__a1*_t6 + x
+    e01 = _sin__a1*_t6 + y
+    e02 = dt*omega + psi
+    m00 = cc02*p02 + cc03*p03 + cc04*p04 + p00
+    m01 = cc02*p12 + cc03*p13 + cc04*p14 + p01
+    m02 = cc02*p22 + cc03*p23 + cc04*p24 + p02
+    m03 = cc02*p23 + cc03*p33 + cc04*p34 + p03
+    m04 = cc02*p24 + cc03*p34 + cc04*p44 + p04
+    m11 = cc12*p12 + cc13*p13 + cc14*p14 + p11
+    m12 = cc12*p22 + cc13*p23 + cc14*p24 + p12
+    m13 = cc12*p23 + cc13*p33 + cc14*p34 + p13
+    m14 = cc12*p24 + cc13*p34 + cc14*p44 + p14
+    m22 = dt*p24 + p22
+    m23 = dt*p34 + p23
+    m24 = dt*p44 + p24
+    _t7 = sigma_a*sigma_a
+    _t8 = _t7*g00
+    _t9 = sigma_alpha*sigma_alpha
+    _t10 = dt*dt
+    pp00 = _t7*(g00*g00) + cc02*m02 + cc03*m03 + cc04*m04 + m00
+    pp01 = _t8*g10 + cc12*m02 + cc13*m03 + cc14*m04 + m01
+    pp02 = dt*m04 + m02
+    pp03 = _t8*dt + m03
+    pp04 = m04
+    pp11 = _t7*(g10*g10) + cc12*m12 + cc13*m13 + cc14*m14 + m11
+    pp12 = dt*m14 + m12
+    pp13 = _t7*dt*g10 + m13
+    pp14 = m14
+    pp22 = _t9*(g21*g21) + dt*m24 + m22
+    pp23 = m23
+    pp24 = _t9*dt*g21 + m24
+    pp33 = _t10*_t7 + p33
+    pp34 = p34
+    pp44 = _t10*_t9 + p44
+    x_p = e00
+    y_p = e01
+    psi_p = e02
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t11 = r*r
+    S00 = _t11 + pp00
+    S11 = _t11 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t12 = Si01*pp01
+    k00 = Si00*pp00 + _t12
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t12
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    k40 = Si00*pp04 + Si01*pp14
+    k41 = Si01*pp04 + Si11*pp14
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    nk4 = inn00*k40 + inn10*k41
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + psi_p
+    mu03 = nk3 + v
+    mu04 = nk4 + omega
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj04 = -(k00*pp04) - k01*pp14 + pp04
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj14 = -(k10*pp04) - k11*pp14 + pp14
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj24 = -(k20*pp04) - k21*pp14 + pp24
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    pj34 = -(k30*pp04) - k31*pp14 + pp34
+    pj44 = -(k40*pp04) - k41*pp14 + pp44
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj04
+    out_p5 = pj11
+    out_p6 = pj12
+    out_p7 = pj13
+    out_p8 = pj14
+    out_p9 = pj22
+    out_p10 = pj23
+    out_p11 = pj24
+    out_p12 = pj33
+    out_p13 = pj34
+    out_p14 = pj44
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    out_s4 = mu04
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9, out_p10, out_p11, out_p12, out_p13, out_p14):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp04
+        out_p5 = pp11
+        out_p6 = pp12
+        out_p7 = pp13
+        out_p8 = pp14
+        out_p9 = pp22
+        out_p10 = pp23
+        out_p11 = pp24
+        out_p12 = pp33
+        out_p13 = pp34
+        out_p14 = pp44
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = psi_p
+        out_s3 = v
+        out_s4 = omega
+        nis = -1.0
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[jp, 10] = out_p10
+    ws[jp, 11] = out_p11
+    ws[jp, 12] = out_p12
+    ws[jp, 13] = out_p13
+    ws[jp, 14] = out_p14
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
+    ws[js, 4] = out_s4
+    return nis, rdet
+
+
+@nb.njit(cache=True, error_model="numpy")
+def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
+    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
+    covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
+    mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
+    |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the
+    iterations used (derive/codegen/imm_rows.py)."""
+    best = 0
+    for i in range(M):
+        if ws[rw, i] > ws[rw, best]:
+            best = i
+    for k in range(5):
+        ws[rs, k] = ws[rS + best, k]
+    it = 0
+    if M > 1:
+        for it in range(1, 51):
+            for k in range(5):
+                ws[rd, k] = 0.0
+            for i in range(M):
+                w = ws[rw, i]
+                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
+                    between_add_at(ws, rs, rS + i, w, rd)
+            retract_at(ws, rs, rd)
+            nrm = 0.0
+            for k in range(5):
+                nrm += ws[rd, k] * ws[rd, k]
+            if nrm < 1e-24:
+                break
+    if M == 1:
+        for k in range(15):
+            ws[rp, k] = ws[rPp, k]
+        return it
+    for k in range(15):
+        ws[rp, k] = 0.0
+    for i in range(M):
+        w = ws[rw, i]
+        if w > 0.0:
+            mix_transport_at(ws, rs, rS + i, rPp + i, w, rp)
+    return it

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -2332,3 +2332,416 @@ def state_of_common(c, Pc, s, p):
     p[7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
     p[8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
     p[9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
+
+
+@nb.njit(cache=True, error_model="numpy")
+def between_add_at(ws, js, jt, w, jacc):
+    """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
+    On rows of ws: s = ws[js], t = ws[jt], acc = ws[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_w_x = ws[jt, 2]
+    t_w_y = ws[jt, 3]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    ws[jacc, 0] = acc0 + d0*w
+    ws[jacc, 1] = acc1 + d1*w
+    ws[jacc, 2] = acc2 + d2*w
+    ws[jacc, 3] = acc3 + d3*w
+
+
+@nb.njit(cache=True, error_model="numpy")
+def mix_transport_at(ws, js, jt, jpt, w, jacc):
+    """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
+    one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
+    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    On rows of ws: s = ws[js], t = ws[jt], pt = ws[jpt], acc = ws[jacc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    t_x = ws[jt, 0]
+    t_y = ws[jt, 1]
+    t_w_x = ws[jt, 2]
+    t_w_y = ws[jt, 3]
+    pt0_0 = ws[jpt, 0]
+    pt0_1 = ws[jpt, 1]
+    pt0_2 = ws[jpt, 2]
+    pt0_3 = ws[jpt, 3]
+    pt1_1 = ws[jpt, 4]
+    pt1_2 = ws[jpt, 5]
+    pt1_3 = ws[jpt, 6]
+    pt2_2 = ws[jpt, 7]
+    pt2_3 = ws[jpt, 8]
+    pt3_3 = ws[jpt, 9]
+    acc0 = ws[jacc, 0]
+    acc1 = ws[jacc, 1]
+    acc2 = ws[jacc, 2]
+    acc3 = ws[jacc, 3]
+    acc4 = ws[jacc, 4]
+    acc5 = ws[jacc, 5]
+    acc6 = ws[jacc, 6]
+    acc7 = ws[jacc, 7]
+    acc8 = ws[jacc, 8]
+    acc9 = ws[jacc, 9]
+    d0 = t_x - x
+    d1 = t_y - y
+    d2 = t_w_x - w_x
+    d3 = t_w_y - w_y
+    ws[jacc, 0] = acc0 + w*(d0*d0 + pt0_0)
+    ws[jacc, 1] = acc1 + w*(d0*d1 + pt0_1)
+    ws[jacc, 2] = acc2 + w*(d0*d2 + pt0_2)
+    ws[jacc, 3] = acc3 + w*(d0*d3 + pt0_3)
+    ws[jacc, 4] = acc4 + w*(d1*d1 + pt1_1)
+    ws[jacc, 5] = acc5 + w*(d1*d2 + pt1_2)
+    ws[jacc, 6] = acc6 + w*(d1*d3 + pt1_3)
+    ws[jacc, 7] = acc7 + w*(d2*d2 + pt2_2)
+    ws[jacc, 8] = acc8 + w*(d2*d3 + pt2_3)
+    ws[jacc, 9] = acc9 + w*(d3*d3 + pt3_3)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def retract_at(ws, js, jeps):
+    """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
+    On rows of ws: s = ws[js], eps = ws[jeps] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    eps0 = ws[jeps, 0]
+    eps1 = ws[jeps, 1]
+    eps2 = ws[jeps, 2]
+    eps3 = ws[jeps, 3]
+    ws[js, 0] = eps0 + x
+    ws[js, 1] = eps1 + y
+    ws[js, 2] = eps2 + w_x
+    ws[js, 3] = eps3 + w_y
+
+
+@nb.njit(cache=True, error_model="numpy")
+def common_of_state_at(ws, js, jp, jc, jPc):
+    """A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as
+    physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s.
+    On rows of ws: s = ws[js], p = ws[jp], c = ws[jc], Pc = ws[jPc] (derive/codegen/imm_rows.py).
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    p0_0 = ws[jp, 0]
+    p0_1 = ws[jp, 1]
+    p0_2 = ws[jp, 2]
+    p0_3 = ws[jp, 3]
+    p1_1 = ws[jp, 4]
+    p1_2 = ws[jp, 5]
+    p1_3 = ws[jp, 6]
+    p2_2 = ws[jp, 7]
+    p2_3 = ws[jp, 8]
+    p3_3 = ws[jp, 9]
+    xp_x = x
+    xp_y = y
+    xp_w_x = w_x
+    xp_w_y = w_y
+    _t0 = xp_w_x*xp_w_x + xp_w_y*xp_w_y
+    _t1 = 1.0/_t0
+    _t2 = 1.0/math.sqrt(_t0)
+    A2_2 = -(_t1*xp_w_y)
+    A2_3 = _t1*xp_w_x
+    A3_2 = _t2*xp_w_x
+    A3_3 = _t2*xp_w_y
+    U2_2 = A2_2*p2_2 + A2_3*p2_3
+    U2_3 = A2_2*p2_3 + A2_3*p3_3
+    U3_2 = A3_2*p2_2 + A3_3*p2_3
+    U3_3 = A3_2*p2_3 + A3_3*p3_3
+    _t3 = A2_2*p0_2 + A2_3*p0_3
+    _t4 = A3_2*p0_2 + A3_3*p0_3
+    _t5 = A2_2*p1_2 + A2_3*p1_3
+    _t6 = A3_2*p1_2 + A3_3*p1_3
+    _t7 = A3_2*U2_2 + A3_3*U2_3
+    ws[jc, 0] = xp_x
+    ws[jc, 1] = xp_y
+    ws[jc, 2] = math.atan2(xp_w_y, xp_w_x)
+    ws[jc, 3] = math.sqrt(xp_w_x*xp_w_x + xp_w_y*xp_w_y)
+    ws[jc, 4] = 0.0
+    ws[jc, 5] = 0.0
+    ws[jPc, 0] = p0_0
+    ws[jPc, 1] = p0_1
+    ws[jPc, 6] = p0_1
+    ws[jPc, 2] = _t3
+    ws[jPc, 12] = _t3
+    ws[jPc, 3] = _t4
+    ws[jPc, 18] = _t4
+    ws[jPc, 4] = 0.0
+    ws[jPc, 24] = 0.0
+    ws[jPc, 5] = 0.0
+    ws[jPc, 30] = 0.0
+    ws[jPc, 7] = p1_1
+    ws[jPc, 8] = _t5
+    ws[jPc, 13] = _t5
+    ws[jPc, 9] = _t6
+    ws[jPc, 19] = _t6
+    ws[jPc, 10] = 0.0
+    ws[jPc, 25] = 0.0
+    ws[jPc, 11] = 0.0
+    ws[jPc, 31] = 0.0
+    ws[jPc, 14] = A2_2*U2_2 + A2_3*U2_3
+    ws[jPc, 15] = _t7
+    ws[jPc, 20] = _t7
+    ws[jPc, 16] = 0.0
+    ws[jPc, 26] = 0.0
+    ws[jPc, 17] = 0.0
+    ws[jPc, 32] = 0.0
+    ws[jPc, 21] = A3_2*U3_2 + A3_3*U3_3
+    ws[jPc, 22] = 0.0
+    ws[jPc, 27] = 0.0
+    ws[jPc, 23] = 0.0
+    ws[jPc, 33] = 0.0
+    ws[jPc, 28] = 0.0
+    ws[jPc, 29] = 0.0
+    ws[jPc, 34] = 0.0
+    ws[jPc, 35] = 0.0
+
+
+@nb.njit(cache=True, error_model="numpy")
+def state_of_common_at(ws, jc, jPc, js, jp):
+    """A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state
+    s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c.
+    On rows of ws: c = ws[jc], Pc = ws[jPc], s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py).
+    """
+    c0 = ws[jc, 0]
+    c1 = ws[jc, 1]
+    c2 = ws[jc, 2]
+    c3 = ws[jc, 3]
+    c4 = ws[jc, 4]
+    pc0_0 = ws[jPc, 0]
+    pc0_1 = ws[jPc, 1]
+    pc0_2 = ws[jPc, 2]
+    pc0_3 = ws[jPc, 3]
+    pc0_4 = ws[jPc, 4]
+    pc1_1 = ws[jPc, 7]
+    pc1_2 = ws[jPc, 8]
+    pc1_3 = ws[jPc, 9]
+    pc1_4 = ws[jPc, 10]
+    pc2_2 = ws[jPc, 14]
+    pc2_3 = ws[jPc, 15]
+    pc2_4 = ws[jPc, 16]
+    pc3_3 = ws[jPc, 21]
+    pc3_4 = ws[jPc, 22]
+    pc4_4 = ws[jPc, 28]
+    _sin_c2 = math.sin(c2)
+    _cos_c2 = math.cos(c2)
+    xp_x = c0
+    xp_y = c1
+    xp_w_x = _cos_c2*c3 - _sin_c2*c4
+    xp_w_y = _cos_c2*c4 + _sin_c2*c3
+    J2_2 = -(_cos_c2*c4) - _sin_c2*c3
+    J2_3 = _cos_c2
+    J2_4 = -_sin_c2
+    J3_2 = _cos_c2*c3 - _sin_c2*c4
+    J3_3 = _sin_c2
+    J3_4 = _cos_c2
+    V2_2 = J2_2*pc2_2 + J2_3*pc2_3 + J2_4*pc2_4
+    V2_3 = J2_2*pc2_3 + J2_3*pc3_3 + J2_4*pc3_4
+    V2_4 = J2_2*pc2_4 + J2_3*pc3_4 + J2_4*pc4_4
+    V3_2 = J3_2*pc2_2 + J3_3*pc2_3 + J3_4*pc2_4
+    V3_3 = J3_2*pc2_3 + J3_3*pc3_3 + J3_4*pc3_4
+    V3_4 = J3_2*pc2_4 + J3_3*pc3_4 + J3_4*pc4_4
+    ws[js, 0] = xp_x
+    ws[js, 1] = xp_y
+    ws[js, 2] = xp_w_x
+    ws[js, 3] = xp_w_y
+    ws[jp, 0] = pc0_0
+    ws[jp, 1] = pc0_1
+    ws[jp, 2] = J2_2*pc0_2 + J2_3*pc0_3 + J2_4*pc0_4
+    ws[jp, 3] = J3_2*pc0_2 + J3_3*pc0_3 + J3_4*pc0_4
+    ws[jp, 4] = pc1_1
+    ws[jp, 5] = J2_2*pc1_2 + J2_3*pc1_3 + J2_4*pc1_4
+    ws[jp, 6] = J3_2*pc1_2 + J3_3*pc1_3 + J3_4*pc1_4
+    ws[jp, 7] = J2_2*V2_2 + J2_3*V2_3 + J2_4*V2_4
+    ws[jp, 8] = J3_2*V2_2 + J3_3*V2_3 + J3_4*V2_4
+    ws[jp, 9] = J3_2*V3_2 + J3_3*V3_3 + J3_4*V3_4
+
+
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def step_ll_position(ws, js, jp, dt, sigma_a, z_x, z_y, r):
+    """``step_try_position`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),
+    rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.
+    """
+    x = ws[js, 0]
+    y = ws[js, 1]
+    w_x = ws[js, 2]
+    w_y = ws[js, 3]
+    p00 = ws[jp, 0]
+    p01 = ws[jp, 1]
+    p02 = ws[jp, 2]
+    p03 = ws[jp, 3]
+    p11 = ws[jp, 4]
+    p12 = ws[jp, 5]
+    p13 = ws[jp, 6]
+    p22 = ws[jp, 7]
+    p23 = ws[jp, 8]
+    p33 = ws[jp, 9]
+    _t0 = (dt*dt)/2.0
+    g00 = _t0
+    g11 = _t0
+    e00 = dt*w_x + x
+    e01 = dt*w_y + y
+    _t1 = dt*p23
+    m00 = dt*p02 + p00
+    m01 = dt*p12 + p01
+    m02 = dt*p22 + p02
+    m03 = _t1 + p03
+    m11 = dt*p13 + p11
+    m12 = _t1 + p12
+    m13 = dt*p33 + p13
+    _t2 = sigma_a*sigma_a
+    _t3 = _t2*dt
+    _t4 = _t2*(dt*dt)
+    pp00 = _t2*(g00*g00) + dt*m02 + m00
+    pp01 = dt*m03 + m01
+    pp02 = _t3*g00 + m02
+    pp03 = m03
+    pp11 = _t2*(g11*g11) + dt*m13 + m11
+    pp12 = m12
+    pp13 = _t3*g11 + m13
+    pp22 = _t4 + p22
+    pp23 = p23
+    pp33 = _t4 + p33
+    x_p = e00
+    y_p = e01
+    inn00 = -x_p + z_x
+    inn10 = -y_p + z_y
+    _t5 = r*r
+    S00 = _t5 + pp00
+    S11 = _t5 + pp11
+    rdet = 1.0/(S00*S11 - pp01*pp01)
+    Si00 = S11*rdet
+    Si01 = -(pp01*rdet)
+    Si11 = S00*rdet
+    _t6 = Si01*pp01
+    k00 = Si00*pp00 + _t6
+    k01 = Si01*pp00 + Si11*pp01
+    k10 = Si00*pp01 + Si01*pp11
+    k11 = Si11*pp11 + _t6
+    k20 = Si00*pp02 + Si01*pp12
+    k21 = Si01*pp02 + Si11*pp12
+    k30 = Si00*pp03 + Si01*pp13
+    k31 = Si01*pp03 + Si11*pp13
+    nis = Si00*(inn00*inn00) + 2.0*Si01*inn00*inn10 + Si11*(inn10*inn10)
+    nk0 = inn00*k00 + inn10*k01
+    nk1 = inn00*k10 + inn10*k11
+    nk2 = inn00*k20 + inn10*k21
+    nk3 = inn00*k30 + inn10*k31
+    mu00 = nk0 + x_p
+    mu01 = nk1 + y_p
+    mu02 = nk2 + w_x
+    mu03 = nk3 + w_y
+    pj00 = -(k00*pp00) - k01*pp01 + pp00
+    pj01 = -(k00*pp01) - k01*pp11 + pp01
+    pj02 = -(k00*pp02) - k01*pp12 + pp02
+    pj03 = -(k00*pp03) - k01*pp13 + pp03
+    pj11 = -(k10*pp01) - k11*pp11 + pp11
+    pj12 = -(k10*pp02) - k11*pp12 + pp12
+    pj13 = -(k10*pp03) - k11*pp13 + pp13
+    pj22 = -(k20*pp02) - k21*pp12 + pp22
+    pj23 = -(k20*pp03) - k21*pp13 + pp23
+    pj33 = -(k30*pp03) - k31*pp13 + pp33
+    out_p0 = pj00
+    out_p1 = pj01
+    out_p2 = pj02
+    out_p3 = pj03
+    out_p4 = pj11
+    out_p5 = pj12
+    out_p6 = pj13
+    out_p7 = pj22
+    out_p8 = pj23
+    out_p9 = pj33
+    out_s0 = mu00
+    out_s1 = mu01
+    out_s2 = mu02
+    out_s3 = mu03
+    if not covariance_is_pd_fused(out_p0, out_p1, out_p2, out_p3, out_p4, out_p5, out_p6, out_p7, out_p8, out_p9):
+        out_p0 = pp00
+        out_p1 = pp01
+        out_p2 = pp02
+        out_p3 = pp03
+        out_p4 = pp11
+        out_p5 = pp12
+        out_p6 = pp13
+        out_p7 = pp22
+        out_p8 = pp23
+        out_p9 = pp33
+        out_s0 = x_p
+        out_s1 = y_p
+        out_s2 = w_x
+        out_s3 = w_y
+        nis = -1.0
+    ws[jp, 0] = out_p0
+    ws[jp, 1] = out_p1
+    ws[jp, 2] = out_p2
+    ws[jp, 3] = out_p3
+    ws[jp, 4] = out_p4
+    ws[jp, 5] = out_p5
+    ws[jp, 6] = out_p6
+    ws[jp, 7] = out_p7
+    ws[jp, 8] = out_p8
+    ws[jp, 9] = out_p9
+    ws[js, 0] = out_s0
+    ws[js, 1] = out_s1
+    ws[js, 2] = out_s2
+    ws[js, 3] = out_s3
+    return nis, rdet
+
+
+@nb.njit(cache=True, error_model="numpy")
+def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
+    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
+    covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
+    mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
+    |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the
+    iterations used (derive/codegen/imm_rows.py)."""
+    best = 0
+    for i in range(M):
+        if ws[rw, i] > ws[rw, best]:
+            best = i
+    for k in range(4):
+        ws[rs, k] = ws[rS + best, k]
+    it = 0
+    if M > 1:
+        for it in range(1, 51):
+            for k in range(4):
+                ws[rd, k] = 0.0
+            for i in range(M):
+                w = ws[rw, i]
+                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
+                    between_add_at(ws, rs, rS + i, w, rd)
+            retract_at(ws, rs, rd)
+            nrm = 0.0
+            for k in range(4):
+                nrm += ws[rd, k] * ws[rd, k]
+            if nrm < 1e-24:
+                break
+    if M == 1:
+        for k in range(10):
+            ws[rp, k] = ws[rPp, k]
+        return it
+    for k in range(10):
+        ws[rp, k] = 0.0
+    for i in range(M):
+        w = ws[rw, i]
+        if w > 0.0:
+            mix_transport_at(ws, rs, rS + i, rPp + i, w, rp)
+    return it

@@ -470,3 +470,116 @@ def calH_position_into(model, s, out):
         se2r3.calH_position_into(s, out)
     elif model == 4:
         se2se2.calH_position_into(s, out)
+
+
+@nb.njit(cache=True, inline="always")
+def between_add_at(model, ws, js, jt, w, jacc):
+    if model == 0:
+        ctrv.between_add_at(ws, js, jt, w, jacc)
+    elif model == 1:
+        cv.between_add_at(ws, js, jt, w, jacc)
+    elif model == 2:
+        se2r2.between_add_at(ws, js, jt, w, jacc)
+    elif model == 3:
+        se2r3.between_add_at(ws, js, jt, w, jacc)
+    elif model == 4:
+        se2se2.between_add_at(ws, js, jt, w, jacc)
+
+
+@nb.njit(cache=True, inline="always")
+def mix_transport_at(model, ws, js, jt, jpt, w, jacc):
+    if model == 0:
+        ctrv.mix_transport_at(ws, js, jt, jpt, w, jacc)
+    elif model == 1:
+        cv.mix_transport_at(ws, js, jt, jpt, w, jacc)
+    elif model == 2:
+        se2r2.mix_transport_at(ws, js, jt, jpt, w, jacc)
+    elif model == 3:
+        se2r3.mix_transport_at(ws, js, jt, jpt, w, jacc)
+    elif model == 4:
+        se2se2.mix_transport_at(ws, js, jt, jpt, w, jacc)
+
+
+@nb.njit(cache=True, inline="always")
+def retract_at(model, ws, js, jeps):
+    if model == 0:
+        ctrv.retract_at(ws, js, jeps)
+    elif model == 1:
+        cv.retract_at(ws, js, jeps)
+    elif model == 2:
+        se2r2.retract_at(ws, js, jeps)
+    elif model == 3:
+        se2r3.retract_at(ws, js, jeps)
+    elif model == 4:
+        se2se2.retract_at(ws, js, jeps)
+
+
+@nb.njit(cache=True, inline="always")
+def mix_on_group_at(model, ws, M, rw, rs, rp, rS, rPp, rd):
+    if model == 0:
+        return ctrv.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 1:
+        return cv.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 2:
+        return se2r2.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 3:
+        return se2r3.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    elif model == 4:
+        return se2se2.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True, inline="always")
+def common_of_state_at(model, ws, js, jp, jc, jPc):
+    if model == 0:
+        ctrv.common_of_state_at(ws, js, jp, jc, jPc)
+    elif model == 1:
+        cv.common_of_state_at(ws, js, jp, jc, jPc)
+    elif model == 2:
+        se2r2.common_of_state_at(ws, js, jp, jc, jPc)
+    elif model == 3:
+        se2r3.common_of_state_at(ws, js, jp, jc, jPc)
+    elif model == 4:
+        se2se2.common_of_state_at(ws, js, jp, jc, jPc)
+
+
+@nb.njit(cache=True, inline="always")
+def state_of_common_at(model, ws, jc, jPc, js, jp):
+    if model == 0:
+        ctrv.state_of_common_at(ws, jc, jPc, js, jp)
+    elif model == 1:
+        cv.state_of_common_at(ws, jc, jPc, js, jp)
+    elif model == 2:
+        se2r2.state_of_common_at(ws, jc, jPc, js, jp)
+    elif model == 3:
+        se2r3.state_of_common_at(ws, jc, jPc, js, jp)
+    elif model == 4:
+        se2se2.state_of_common_at(ws, jc, jPc, js, jp)
+
+
+@nb.njit(cache=True, inline="always")
+def step_ll_pose(model, ws, js, jp, dt, jq, jz, jr):
+    if model == 0:
+        return ctrv.step_ll_pose(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jz, 0], ws[jz, 1], ws[jz, 2], ws[jr, 0], ws[jr, 1], ws[jr, 2])
+    elif model == 2:
+        return se2r2.step_ll_pose(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jz, 0], ws[jz, 1], ws[jz, 2], ws[jr, 0], ws[jr, 1], ws[jr, 2])
+    elif model == 3:
+        return se2r3.step_ll_pose(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jq, 2], ws[jz, 0], ws[jz, 1], ws[jz, 2], ws[jr, 0], ws[jr, 1], ws[jr, 2])
+    elif model == 4:
+        return se2se2.step_ll_pose(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jq, 2], ws[jz, 0], ws[jz, 1], ws[jz, 2], ws[jr, 0], ws[jr, 1], ws[jr, 2])
+    raise ValueError('dispatch: model index out of range')
+
+
+@nb.njit(cache=True, inline="always")
+def step_ll_position(model, ws, js, jp, dt, jq, jz, jr):
+    if model == 0:
+        return ctrv.step_ll_position(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jz, 0], ws[jz, 1], ws[jr, 0])
+    elif model == 1:
+        return cv.step_ll_position(ws, js, jp, dt, ws[jq, 0], ws[jz, 0], ws[jz, 1], ws[jr, 0])
+    elif model == 2:
+        return se2r2.step_ll_position(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jz, 0], ws[jz, 1], ws[jr, 0])
+    elif model == 3:
+        return se2r3.step_ll_position(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jq, 2], ws[jz, 0], ws[jz, 1], ws[jr, 0])
+    elif model == 4:
+        return se2se2.step_ll_position(ws, js, jp, dt, ws[jq, 0], ws[jq, 1], ws[jq, 2], ws[jz, 0], ws[jz, 1], ws[jr, 0])
+    raise ValueError('dispatch: model index out of range')

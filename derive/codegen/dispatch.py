@@ -7,7 +7,9 @@ Per model (appended to ``generated/<model>.py``):
 * ``physical_to_common_jacobian(x)``: ∂c/∂ε (6 × n) at x, for X = μ·exp(ε);
 * ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0;
 * ``between_add``, ``mix_transport``: the fused terms of mixing on the group; ``common_of_state``,
-  ``state_of_common``: a Gaussian to and from the common coordinates in one kernel (``derive.codegen.mixing``).
+  ``state_of_common``: a Gaussian to and from the common coordinates in one kernel (``derive.codegen.mixing``);
+* their row variants ``*_at`` and ``step_ll_<meas>`` (the fused step on rows, with 1/det S) for the IMM's loop
+  (``derive.codegen.imm_rows``).
 
 ``generated/dispatch.py``: ``predict(model, s, p, dt, q)``, ``update_<meas>(model, s, p, z, r)``,
 ``calH_<meas>(model, s)``, ``innovation_logdet_<meas>(model, s, p, r)`` (log det S), and the conversions and group
@@ -58,7 +60,10 @@ def common_readout_kernels(model, kernels=()) -> list:
     every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
     from .mixing import common_kernels, mixing_kernels
 
-    return own + [into_variant(k) for k in every] + mixing_kernels(model) + common_kernels(model)
+    from .imm_rows import imm_row_kernels
+
+    mixing = mixing_kernels(model) + common_kernels(model)
+    return own + [into_variant(k) for k in every] + mixing + imm_row_kernels(model, [*kernels, *mixing])
 
 
 def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
@@ -123,5 +128,8 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
     for mname in sorted(measurements):
         funcs.append(_chain(f"calH_{mname}_into", "s, out", names,
                             lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}_into(s, out)", False))
+    from .imm_rows import dispatch_chains
+
+    funcs += dispatch_chains(_chain, names, models, fits, measurements)  # the IMM's row variants
     out.append("\n\n" + "\n\n".join(funcs))
     return "".join(out)

@@ -371,12 +371,13 @@ def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLi
     P : ndarray, (B, K, 6, 6)
         Only with ``return_cov``.
     """
-    from .imm_kernels import imm_run_batch
+    from .imm_kernels import imm_run_batch_pose, imm_run_batch_position
 
     s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]
     out_c = np.empty((B, K, 6))
     out_P = np.empty((B, K if return_cov else 0, 6, 6))
     out_mu = np.empty((B, K, s.M))
-    imm_run_batch(s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r, z, dts, s.same_group, s.meas_pose, out_c, out_P, out_mu)
+    run = imm_run_batch_pose if s.meas_pose else imm_run_batch_position  # each compiles its measurement's kernels only
+    run(s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r, z, dts, s.same_group, out_c, out_P, out_mu)
     return (out_c, out_mu, out_P) if return_cov else (out_c, out_mu)

@@ -37,6 +37,22 @@ Likelihood of mode j: N(ν; 0, S) with log det S, S = ℋ P ℋᵀ + R, from the
 the predicted state, and νᵀS⁻¹ν the NIS returned by the fused update; a missed detection (NaN in z) leaves the
 predicted probabilities. The combined output is in the common coordinates (the same reduction with the
 mode probabilities, on the group when ``same_group``, then converted to c).
+
+Speed (issue #11; README "Speed of the IMM"). numba brackets a function with atomic reference counting
+(``NRT_incref``/``NRT_decref``) of the arrays it receives when it passes arrays on to a call that is not inlined or
+can raise; views (``S[j]``) and tuples of arrays multiply the count. So the step loop works on arrays it already
+holds: ONE 2-D float workspace per IMM (``workspace(M)``) carries everything the step reads and writes, a quantity
+per row at offsets fixed by M (``_R_*``, ``_r_*``): the model indices, the modes' internal states and packed
+covariances, μ, the transition matrix, the noise stds, the measurement and every scratch quantity. The helpers take
+that one array (two atomic operations per call, however many quantities it holds) and the generated kernels are
+called in their row variants (``<kernel>_at(ws, row, ...)``, derive/codegen/imm_rows.py, ``error_model="numpy"``),
+which count nothing themselves; the inlined dispatch chain before them counts ``ws`` once per call, and the mixing
+on the group is one generated loop per model (``mix_on_group_at``) that calls them directly. The public functions
+copy their arguments in and the results out (``_load`` / ``_store``); ``imm_batch`` does so once per trajectory.
+``imm_step`` and ``imm_batch`` run each mode's prediction and update as the filter's fused step (``step_ll_<meas>``:
+``step_try_<meas>`` on rows, which also returns 1/det S for the likelihood; a step that fails its LDLᵀ test is
+redone by ``update_<meas>`` from the prediction, as in the filter loops). ``imm_predict`` / ``imm_update`` (the IMM
+class, the smoother's forward pass) keep the separate prediction, log det S and update.
 """
 
 from __future__ import annotations
@@ -49,25 +65,159 @@ import numpy as np
 from ..generated import dispatch as D
 from .packed import pack_from, unpack_into
 
-__all__ = ["imm_predict", "imm_update", "imm_step", "imm_run_one", "imm_run_batch", "mix_on_group", "combined_common",
-           "workspace"]
+__all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "imm_run_batch", "imm_run_batch_position",
+           "imm_run_batch_pose", "mix_on_group", "combined_common", "workspace", "mix_common"]
 
 LOG_2PI = math.log(2.0 * math.pi)
 NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
 LMAX = int(np.max(D.N_INTERNAL))
+NPMAX = NMAX * (NMAX + 1) // 2
 NW = max(NMAX, 6)  # square scratch matrices hold n × n and n × 6 blocks
 SPEED_FLOOR = 1e-9  # m/s: conversions' Jacobians are evaluated at least this far from speed 0
+
+# rows of the workspace (module docstring): fixed ones, then blocks of M rows (_r_* give their first row)
+_R_DELTA = 0  # the mean iteration's Σ w_i d_i (n)
+_R_CBAR = 1  # predicted mode probabilities Σ_i PI_ij μ_i (M)
+_R_LOGLIK = 2  # each mode's log N_j (M)
+_R_PRIOR = 3  # the probabilities before the update (M)
+_R_FILLC = 4  # common coordinates a source lacks: mean (6)
+_R_FILLP = 5  # ... and variance (6 × 6 row-major, diagonal used)
+_R_CM = 6  # a mixed common mean (6)
+_R_PCM = 7  # its covariance (6 × 6 row-major)
+_R_D = 8  # a deviation (6)
+_R_SMIX = 9  # the combined estimate on the group: state (L)
+_R_PMIX = 10  # ... packed covariance (n(n+1)/2)
+_R_MU = 11  # the weights of the combined estimate (M)
+_R_Z = 12  # the measurement (m)
+_R_MODEL = 13  # the modes' model indices (M, as floats)
+_R_MUV = 14  # the mode probabilities μ (M)
+_R_R = 15  # the measurement noise stds
+_R_NIS = 16  # each mode's NIS of the last update (M)
+_R_BLOCKS = 17
+_N_BLOCKS = 12
+
+
+@nb.njit(cache=True, inline="always")
+def _r_w(M):
+    """First of M rows: W[j, i] = w_{i|j}, the mixing weights into mode j."""
+    return _R_BLOCKS
+
+
+@nb.njit(cache=True, inline="always")
+def _r_snew(M):
+    """First of M rows: the mixed states."""
+    return _R_BLOCKS + M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_pnew(M):
+    """First of M rows: the mixed packed covariances."""
+    return _R_BLOCKS + 2 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_c(M):
+    """First of M rows: each mode's common mean (6)."""
+    return _R_BLOCKS + 3 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_pc(M):
+    """First of M rows: each mode's common covariance (6 × 6 row-major)."""
+    return _R_BLOCKS + 4 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_miss(M):
+    """First of M rows: each mode's COMMON_MISSING flags (6)."""
+    return _R_BLOCKS + 5 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_ci(M):
+    """First of M rows: scratch of mix_common (sources with filled coordinates, 6)."""
+    return _R_BLOCKS + 6 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_pi(M):
+    """First of M rows: scratch of mix_common (their covariances, 36)."""
+    return _R_BLOCKS + 7 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_s(M):
+    """First of M rows: the modes' internal states (L)."""
+    return _R_BLOCKS + 8 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_pp(M):
+    """First of M rows: the modes' packed covariances."""
+    return _R_BLOCKS + 9 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_trans(M):
+    """First of M rows: the transition matrix, row i = PI[i, :]."""
+    return _R_BLOCKS + 10 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _r_q(M):
+    """First of M rows: the modes' process-noise stds."""
+    return _R_BLOCKS + 11 * M
+
+
+@nb.njit(cache=True, inline="always")
+def _model(ws, j):
+    return int(ws[_R_MODEL, j])
 
 
 @nb.njit(cache=True)
 def workspace(M):
-    """The scratch arrays of one IMM of M modes (no allocation inside the step loop)."""
-    return (np.empty(NMAX), np.empty(NMAX), np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW),
-            np.empty(NMAX), np.empty(6),
-            np.empty((6, NMAX)), np.empty((M, 6)), np.empty((M, 6, 6)), np.empty((M, 6)), np.empty((M, M)),
-            np.empty((M, LMAX)), np.empty((M, NMAX * (NMAX + 1) // 2)), np.empty(LMAX), np.empty(NMAX * (NMAX + 1) // 2),
-            np.empty(M), np.empty(M), np.empty(6), np.empty((6, 6)), np.empty((M, 6)), np.empty((M, 6, 6)),
-            np.empty((NW, NW)))
+    """The workspace of one IMM of M modes: one 2-D float array, a quantity per row (module docstring; no
+    allocation and no views inside the step loop)."""
+    return np.zeros((_R_BLOCKS + _N_BLOCKS * M, max(36, LMAX, NPMAX, M, 8)))
+
+
+@nb.njit(cache=True)
+def _load_modes(ws, models, S, Pp):
+    """Model indices, states and packed covariances into the workspace."""
+    M = models.shape[0]
+    for j in range(M):
+        ws[_R_MODEL, j] = models[j]
+        for k in range(S.shape[1]):
+            ws[_r_s(M) + j, k] = S[j, k]
+        for k in range(Pp.shape[1]):
+            ws[_r_pp(M) + j, k] = Pp[j, k]
+
+
+@nb.njit(cache=True)
+def _load(ws, models, S, Pp, mu, PI, Q, r):
+    """Everything the step reads into the workspace."""
+    M = models.shape[0]
+    _load_modes(ws, models, S, Pp)
+    for j in range(M):
+        ws[_R_MUV, j] = mu[j]
+        for i in range(M):
+            ws[_r_trans(M) + j, i] = PI[j, i]
+        for i in range(Q.shape[1]):
+            ws[_r_q(M) + j, i] = Q[j, i]
+    for i in range(r.shape[0]):
+        ws[_R_R, i] = r[i]
+
+
+@nb.njit(cache=True)
+def _store(ws, S, Pp, mu):
+    """The states, covariances and probabilities back from the workspace."""
+    M = S.shape[0]
+    for j in range(M):
+        mu[j] = ws[_R_MUV, j]
+        for k in range(S.shape[1]):
+            S[j, k] = ws[_r_s(M) + j, k]
+        for k in range(Pp.shape[1]):
+            Pp[j, k] = ws[_r_pp(M) + j, k]
 
 
 @nb.njit(cache=True)
@@ -96,98 +246,83 @@ def mix_on_group(model, S, Pp, w, s_out, P_out, ws):
     s_out: (L,) receives μ (internal state); P_out (≥ n, ≥ n) the dense covariance; ws: ``workspace(M)``.
     Returns the iterations used.
     """
-    p = ws[15]
-    it = _mix_on_group(model, S, Pp, w, s_out, p, ws[0])
-    unpack_into(p, D.N_TANGENT[model], P_out)
-    return it
-
-
-@nb.njit(cache=True)
-def _mix_on_group(model, S, Pp, w, s_out, p_out, delta):
-    """mix_on_group into the packed covariance p_out; delta (n,) scratch.
-
-    The mean's terms come from the generated ``between_add``, each source's covariance term w_i [Φ(d_i)⁻¹ P_i
-    Φ(d_i)⁻ᵀ + d_i d_iᵀ] from the generated ``mix_transport`` (straight line, packed in and out)."""
     M = S.shape[0]
-    n = D.N_TANGENT[model]
-    ni = D.N_INTERNAL[model]
-    best = 0
     for i in range(M):
-        if w[i] > w[best]:
-            best = i
-    for k in range(ni):
-        s_out[k] = S[best, k]
-    it = 0
-    if M > 1:
-        for it in range(1, 51):
-            for k in range(n):
-                delta[k] = 0.0
-            for i in range(M):
-                if w[i] > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    D.between_add(model, s_out, S[i], w[i], delta)
-            D.retract(model, s_out, delta)
-            nrm = 0.0
-            for k in range(n):
-                nrm += delta[k] * delta[k]
-            if nrm < 1e-24:
-                break
-    npk = n * (n + 1) // 2
-    if M == 1:
-        for k in range(npk):
-            p_out[k] = Pp[0, k]
-        return it
-    for k in range(npk):
-        p_out[k] = 0.0
-    for i in range(M):
-        if w[i] > 0.0:
-            D.mix_transport(model, s_out, S[i], Pp[i], w[i], p_out)
+        ws[_R_MU, i] = w[i]
+        ws[_R_MODEL, i] = model
+    _load_modes(ws, np.full(M, model), S, Pp)
+    it = _mix_on_group(ws, M, model, _R_MU, _R_SMIX, _R_PMIX)
+    for k in range(D.N_INTERNAL[model]):
+        s_out[k] = ws[_R_SMIX, k]
+    unpack_into(ws[_R_PMIX], D.N_TANGENT[model], P_out)
     return it
 
 
-@nb.njit(cache=True)
-def _to_common(model, s, p, c_out, P_out, x, A, row, Pd, ctmp):
-    """Mode state s, packed p -> common c (6,) and its covariance (6, 6) (A P Aᵀ); x, A, row, Pd, ctmp scratch.
+@nb.njit(cache=True, inline="always")
+def _mix_on_group(ws, M, model, rw, rs, rp):
+    """mix_on_group of the modes in the workspace with the weights ws[rw, :M], into the state ws[rs] and the
+    packed covariance ws[rp] (the generated loop ``mix_on_group_at``: the mean iterated with ``between_add`` and
+    ``retract``, then each source's term w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ] from ``mix_transport``, straight
+    line, packed in and out; their row variants). Returns the iterations used."""
+    return D.mix_on_group_at(model, ws, M, rw, rs, rp, _r_s(M), _r_pp(M), _R_DELTA)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _to_common(ws, model, js, jp, rc, rP):
+    """State ws[js], packed covariance ws[jp] of a model -> common c (ws[rc], 6) and its covariance (ws[rP],
+    6 × 6 row-major) (A P Aᵀ, generated ``common_of_state``).
 
     At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
     read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
+    D.common_of_state_at(model, ws, js, jp, rc, rP)  # generated, straight line: c and A P Aᵀ at s
+    if math.hypot(ws[rc, 3], ws[rc, 4]) < SPEED_FLOOR:
+        _to_common_slow(ws, model, js, jp, rc, rP)
+    _cap_heading(ws, rc, rP)
+
+
+@nb.njit(cache=True)
+def _to_common_slow(ws, model, js, jp, rc, rP):
+    """_to_common's path below SPEED_FLOOR (rare: allocates its scratch)."""
     n = D.N_TANGENT[model]
-    D.common_of_state(model, s, p, c_out, P_out)  # generated, straight line: c and A P Aᵀ at s
-    if math.hypot(c_out[3], c_out[4]) >= SPEED_FLOOR:
-        _cap_heading(c_out, P_out)
-        return
+    s, p = ws[js].copy(), ws[jp].copy()
+    x, A, row = np.empty(NMAX), np.empty((6, NMAX)), np.empty(NW)
+    Pd, ctmp, Pc = np.empty((NW, NW)), np.empty(6), np.empty((6, 6))
     D.physical_into(model, s, x)
-    D.physical_to_common_into(model, x, c_out)
-    if math.hypot(c_out[3], c_out[4]) < SPEED_FLOOR:
-        for k in range(6):
-            ctmp[k] = c_out[k]
+    D.physical_to_common_into(model, x, ctmp)
+    for k in range(6):
+        ws[rc, k] = ctmp[k]
+    if math.hypot(ctmp[3], ctmp[4]) < SPEED_FLOOR:
         ctmp[3] = SPEED_FLOOR
         ctmp[4] = 0.0
         D.common_to_state_into(model, ctmp, x)
     D.physical_to_common_jacobian_into(model, x, A)
     unpack_into(p, n, Pd)
-    _congruence_dense(A, 6, Pd, n, row, P_out)
-    _cap_heading(c_out, P_out)
+    _congruence_dense(A, 6, Pd, n, row, Pc)
+    for a in range(6):
+        for b in range(6):
+            ws[rP, 6 * a + b] = Pc[a, b]
 
 
-@nb.njit(cache=True)
-def _cap_heading(c, P):
-    """Cap the std of the common θ at π by congruence scaling (as the filters' limit_angle_variance): a heading
-    read off a velocity near zero (CV) is unknown, not infinitely uncertain; at exactly zero θ = 0, variance π²."""
-    v = P[2, 2]
-    if not (np.isfinite(v) and np.isfinite(c[2])):
-        c[2] = 0.0
+@nb.njit(cache=True, inline="always")
+def _cap_heading(ws, rc, rP):
+    """Cap the std of the common θ (ws[rc, 2], covariance ws[rP] 6 × 6 row-major) at π by congruence scaling (as
+    the filters' limit_angle_variance): a heading read off a velocity near zero (CV) is unknown, not infinitely
+    uncertain; at exactly zero θ = 0, variance π²."""
+    v = ws[rP, 14]
+    if not (np.isfinite(v) and np.isfinite(ws[rc, 2])):
+        ws[rc, 2] = 0.0
         for k in range(6):
-            P[2, k] = 0.0
-            P[k, 2] = 0.0
-        P[2, 2] = math.pi * math.pi
+            ws[rP, 12 + k] = 0.0
+            ws[rP, 6 * k + 2] = 0.0
+        ws[rP, 14] = math.pi * math.pi
     elif v > math.pi * math.pi:
         f = math.pi / math.sqrt(v)
         for k in range(6):
-            P[2, k] *= f
-            P[k, 2] *= f
+            ws[rP, 12 + k] *= f
+            ws[rP, 6 * k + 2] *= f
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, inline="always")
 def _wrap(a):
     return a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))
 
@@ -196,143 +331,211 @@ def _wrap(a):
 def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
     """Moment-match Σ w_i N(c_i, P_c,i) in the common coordinates (θ wrapped); coordinates k a source does not
     carry (miss[i, k] = 1) take fill_c[k] and the variance fill_P[k, k] (no correlation) for that source.
-    Ci (M, 6), Pi (M, 6, 6), d (6,): scratch."""
+    Ci (M, 6), Pi (M, 6, 6), d (6,): scratch. (The IMM's loop runs the same on its workspace rows.)"""
     M = C.shape[0]
+    ws = workspace(M)
+    for i in range(M):
+        ws[_R_MU, i] = w[i]
+        for a in range(6):
+            ws[_r_c(M) + i, a] = C[i, a]
+            ws[_r_miss(M) + i, a] = miss[i, a]
+            for b in range(6):
+                ws[_r_pc(M) + i, 6 * a + b] = PC[i, a, b]
+    for a in range(6):
+        ws[_R_FILLC, a] = fill_c[a]
+        for b in range(6):
+            ws[_R_FILLP, 6 * a + b] = fill_P[a, b]
+    _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
+    for a in range(6):
+        c_out[a] = ws[_R_CM, a]
+        for b in range(6):
+            P_out[a, b] = ws[_R_PCM, 6 * a + b]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _mix_common(ws, M, rw, rfc, rfp, rc, rP):
+    """mix_common on workspace rows: sources c_i, P_c,i, miss_i in the blocks _r_c, _r_pc, _r_miss; weights ws[rw];
+    fill mean ws[rfc], fill covariance ws[rfp] (6 × 6 row-major, diagonal used); result into ws[rc], ws[rP]."""
+    rC, rPC, rMS, rCI, rPI = _r_c(M), _r_pc(M), _r_miss(M), _r_ci(M), _r_pi(M)
     best = 0
     for i in range(M):
-        if w[i] > w[best]:
+        if ws[rw, i] > ws[rw, best]:
             best = i
     for i in range(M):
         for a in range(6):
-            Ci[i, a] = C[i, a]
-            for b in range(6):
-                Pi[i, a, b] = PC[i, a, b]
+            ws[rCI + i, a] = ws[rC + i, a]
+        for e in range(36):
+            ws[rPI + i, e] = ws[rPC + i, e]
         for a in range(6):
-            if miss[i, a] > 0.5:
-                Ci[i, a] = fill_c[a]
+            if ws[rMS + i, a] > 0.5:
+                ws[rCI + i, a] = ws[rfc, a]
                 for b in range(6):
-                    Pi[i, a, b] = 0.0
-                    Pi[i, b, a] = 0.0
-                Pi[i, a, a] = fill_P[a, a]
-    ref = Ci[best, 2]
+                    ws[rPI + i, 6 * a + b] = 0.0
+                    ws[rPI + i, 6 * b + a] = 0.0
+                ws[rPI + i, 7 * a] = ws[rfp, 7 * a]
+    ref = ws[rCI + best, 2]
     for a in range(6):
-        c_out[a] = 0.0
+        ws[rc, a] = 0.0
     for i in range(M):
-        if w[i] == 0.0:
+        w = ws[rw, i]
+        if w == 0.0:
             continue
         for a in range(6):
-            v = Ci[i, a]
+            v = ws[rCI + i, a]
             if a == 2:
                 v = ref + _wrap(v - ref)
-            c_out[a] += w[i] * v
-    for a in range(6):
-        for b in range(6):
-            P_out[a, b] = 0.0
+            ws[rc, a] += w * v
+    for e in range(36):
+        ws[rP, e] = 0.0
     for i in range(M):
-        if w[i] == 0.0:
+        w = ws[rw, i]
+        if w == 0.0:
             continue
         for a in range(6):
-            d[a] = Ci[i, a] - c_out[a]
-        d[2] = _wrap(d[2])
+            ws[_R_D, a] = ws[rCI + i, a] - ws[rc, a]
+        ws[_R_D, 2] = _wrap(ws[_R_D, 2])
         for a in range(6):
             for b in range(6):
-                P_out[a, b] += w[i] * (Pi[i, a, b] + d[a] * d[b])
-    c_out[2] = _wrap(c_out[2])
+                ws[rP, 6 * a + b] += w * (ws[rPI + i, 6 * a + b] + ws[_R_D, a] * ws[_R_D, b])
+    ws[rc, 2] = _wrap(ws[rc, 2])
 
 
-@nb.njit(cache=True)
-def _all_common(models, S, Pp, ws):
-    """Every mode in the common coordinates: ws C (M, 6), PC (M, 6, 6), miss (M, 6)."""
-    C, PC, miss = ws[8], ws[9], ws[10]
-    for i in range(models.shape[0]):
-        _to_common(models[i], S[i], Pp[i], C[i], PC[i], ws[5], ws[7], ws[4], ws[22], ws[6])
+@nb.njit(cache=True, error_model="numpy")
+def _all_common(ws, M):
+    """Every mode in the common coordinates: the workspace blocks _r_c (M, 6), _r_pc (M, 36), _r_miss (M, 6)."""
+    for i in range(M):
+        model = _model(ws, i)
+        _to_common(ws, model, _r_s(M) + i, _r_pp(M) + i, _r_c(M) + i, _r_pc(M) + i)
         for a in range(6):
-            miss[i, a] = D.COMMON_MISSING[models[i], a]
+            ws[_r_miss(M) + i, a] = D.COMMON_MISSING[model, a]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _combined(ws, M, same_group):
+    """The combined estimate (weights ws[_R_MU]) in the common coordinates into ws[_R_CM], ws[_R_PCM]."""
+    if M == 1:
+        _to_common(ws, _model(ws, 0), _r_s(M), _r_pp(M), _R_CM, _R_PCM)
+        return
+    if same_group:
+        model = _model(ws, 0)
+        _mix_on_group(ws, M, model, _R_MU, _R_SMIX, _R_PMIX)
+        _to_common(ws, model, _R_SMIX, _R_PMIX, _R_CM, _R_PCM)
+        return
+    _all_common(ws, M)
+    rC, rPC, rMS = _r_c(M), _r_pc(M), _r_miss(M)
+    # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
+    for e in range(36):
+        ws[_R_FILLP, e] = 0.0
+    for a in range(6):
+        ws[_R_FILLC, a] = 0.0
+        tot = 0.0
+        for i in range(M):
+            if ws[rMS + i, a] < 0.5:
+                tot += ws[_R_MU, i]
+        if tot > 0.0:
+            for i in range(M):
+                if ws[rMS + i, a] < 0.5:
+                    ws[_R_FILLC, a] += ws[_R_MU, i] / tot * ws[rC + i, a]
+            for i in range(M):
+                if ws[rMS + i, a] < 0.5:
+                    e = ws[rC + i, a] - ws[_R_FILLC, a]
+                    ws[_R_FILLP, 7 * a] += ws[_R_MU, i] / tot * (ws[rPC + i, 7 * a] + e * e)
+    _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
 
 
 @nb.njit(cache=True)
 def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
     """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
-    M = models.shape[0]
-    if M == 1:
-        _to_common(models[0], S[0], Pp[0], c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
-        return
-    if same_group:
-        model = models[0]
-        s, p = ws[14], ws[15]
-        _mix_on_group(model, S, Pp, mu, s, p, ws[0])
-        _to_common(model, s, p, c_out, P_out, ws[5], ws[7], ws[4], ws[22], ws[6])
-        return
-    _all_common(models, S, Pp, ws)
-    C, PC, miss = ws[8], ws[9], ws[10]
-    # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
-    fill_c, fill_P = ws[18], ws[19]
+    _load_modes(ws, models, S, Pp)
+    for i in range(models.shape[0]):
+        ws[_R_MU, i] = mu[i]
+    _combined(ws, models.shape[0], same_group)
     for a in range(6):
-        fill_c[a] = 0.0
+        c_out[a] = ws[_R_CM, a]
         for b in range(6):
-            fill_P[a, b] = 0.0
+            P_out[a, b] = ws[_R_PCM, 6 * a + b]
+
+
+@nb.njit(cache=True)
+def _state_of_common_slow(ws, model, rc, rP, rs, rp):
+    """The mixed common Gaussian ws[rc], ws[rP] below SPEED_FLOOR to a mode's state ws[rs] and packed covariance
+    ws[rp] (rare: allocates its scratch)."""
+    n = D.N_TANGENT[model]
+    c, Pc, x = np.empty(6), np.empty((6, 6)), np.empty(NMAX)
+    J, P, row = np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW)
+    s, p = np.empty(LMAX), np.empty(NPMAX)
     for a in range(6):
-        tot = 0.0
+        c[a] = ws[rc, a]
+        for b in range(6):
+            Pc[a, b] = ws[rP, 6 * a + b]
+    D.common_to_state_into(model, c, x)
+    D.state_from_physical_into(model, x, s)
+    c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
+    D.common_jacobian_into(model, c, J)
+    _congruence_dense(J, n, Pc, 6, row, P)
+    pack_from(P, n, p)
+    for k in range(D.N_INTERNAL[model]):
+        ws[rs, k] = s[k]
+    for k in range(n * (n + 1) // 2):
+        ws[rp, k] = p[k]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _mix_rows(ws, M, same_group):
+    """The IMM's interaction step on the workspace: every mode restarts from its mixed estimate; the predicted
+    probabilities cbar_j = Σ_i PI_ij μ_i into ws[_R_CBAR]."""
+    rT = _r_trans(M)
+    for j in range(M):
+        cb = 0.0
         for i in range(M):
-            if miss[i, a] < 0.5:
-                tot += mu[i]
-        if tot > 0.0:
-            for i in range(M):
-                if miss[i, a] < 0.5:
-                    fill_c[a] += mu[i] / tot * C[i, a]
-            for i in range(M):
-                if miss[i, a] < 0.5:
-                    e = C[i, a] - fill_c[a]
-                    fill_P[a, a] += mu[i] / tot * (PC[i, a, a] + e * e)
-    mix_common(C, PC, miss, mu, fill_c, fill_P, c_out, P_out, ws[20], ws[21], ws[6])
+            cb += ws[rT + i, j] * ws[_R_MUV, i]
+        ws[_R_CBAR, j] = cb
+    if M == 1:
+        return
+    rW, rSn, rPn = _r_w(M), _r_snew(M), _r_pnew(M)
+    for j in range(M):
+        cb = ws[_R_CBAR, j]
+        for i in range(M):
+            ws[rW + j, i] = ws[rT + i, j] * ws[_R_MUV, i] / cb if cb > 0.0 else (1.0 if i == j else 0.0)
+    if same_group:
+        model = _model(ws, 0)
+        for j in range(M):
+            _mix_on_group(ws, M, model, rW + j, rSn + j, rPn + j)
+    else:
+        _all_common(ws, M)
+        for j in range(M):
+            _mix_common(ws, M, rW + j, _r_c(M) + j, _r_pc(M) + j, _R_CM, _R_PCM)
+            model = _model(ws, j)
+            if math.hypot(ws[_R_CM, 3], ws[_R_CM, 4]) >= SPEED_FLOOR:  # generated, straight line: state, J Pc Jᵀ
+                D.state_of_common_at(model, ws, _R_CM, _R_PCM, rSn + j, rPn + j)
+            else:
+                _state_of_common_slow(ws, model, _R_CM, _R_PCM, rSn + j, rPn + j)
+    rS, rPp = _r_s(M), _r_pp(M)
+    for j in range(M):
+        model = _model(ws, j)
+        for k in range(D.N_INTERNAL[model]):
+            ws[rS + j, k] = ws[rSn + j, k]
+        n = D.N_TANGENT[model]
+        for k in range(n * (n + 1) // 2):
+            ws[rPp + j, k] = ws[rPn + j, k]
 
 
 @nb.njit(cache=True)
 def _mix(models, S, Pp, mu, PI, same_group, cbar, ws):
     """The IMM's interaction step, in place: every mode restarts from its mixed estimate; cbar_j = Σ_i PI_ij μ_i."""
     M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, np.zeros((M, 1)), np.zeros(1))
+    _mix_rows(ws, M, same_group)
+    _store(ws, S, Pp, mu)
     for j in range(M):
-        cbar[j] = 0.0
-        for i in range(M):
-            cbar[j] += PI[i, j] * mu[i]
-    if M == 1:
-        return
-    W = ws[11]  # W[j, i] = w_{i|j}
+        cbar[j] = ws[_R_CBAR, j]
+
+
+@nb.njit(cache=True)
+def _predict_modes(ws, M, dt):
+    """Every mode's prediction by dt, in place in the workspace (views: used for missed detections only)."""
     for j in range(M):
-        for i in range(M):
-            W[j, i] = PI[i, j] * mu[i] / cbar[j] if cbar[j] > 0.0 else (1.0 if i == j else 0.0)
-    S_new, P_new, P = ws[12], ws[13], ws[3]
-    if same_group:
-        model = models[0]
-        n = D.N_TANGENT[model]
-        for j in range(M):
-            _mix_on_group(model, S, Pp, W[j], S_new[j], P_new[j], ws[0])
-    else:
-        _all_common(models, S, Pp, ws)
-        C, PC, miss = ws[8], ws[9], ws[10]
-        c, Pc, x, J, row = ws[18], ws[19], ws[5], ws[7], ws[4]
-        # (ws[7] is 6 × NMAX; J of common_jacobian is n × 6: use ws[2] (NMAX × NMAX) instead)
-        J = ws[2]
-        for j in range(M):
-            mix_common(C, PC, miss, W[j], C[j], PC[j], c, Pc, ws[20], ws[21], ws[6])
-            model = models[j]
-            n = D.N_TANGENT[model]
-            if math.hypot(c[3], c[4]) >= SPEED_FLOOR:  # generated, straight line: the state and J Pc Jᵀ packed
-                D.state_of_common(model, c, Pc, S_new[j], P_new[j])
-                continue
-            D.common_to_state_into(model, c, x)
-            D.state_from_physical_into(model, x, S_new[j])
-            c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
-            D.common_jacobian_into(model, c, J)
-            _congruence_dense(J, n, Pc, 6, row, P)
-            pack_from(P, n, P_new[j])
-    for j in range(M):
-        model = models[j]
-        for k in range(D.N_INTERNAL[model]):
-            S[j, k] = S_new[j, k]
-        n = D.N_TANGENT[model]
-        for k in range(n * (n + 1) // 2):
-            Pp[j, k] = P_new[j, k]
+        D.predict(_model(ws, j), ws[_r_s(M) + j], ws[_r_pp(M) + j], dt, ws[_r_q(M) + j])
 
 
 @nb.njit(cache=True)
@@ -341,11 +544,36 @@ def imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws):
 
     Q (M, q): the modes' process-noise stds; ws: ``workspace(M)``.
     """
-    cbar = ws[16]
-    _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
-    for j in range(models.shape[0]):
-        D.predict(models[j], S[j], Pp[j], dt, Q[j])
-        mu[j] = cbar[j]
+    M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, Q, np.zeros(1))
+    _mix_rows(ws, M, same_group)
+    _predict_modes(ws, M, dt)
+    for j in range(M):
+        ws[_R_MUV, j] = ws[_R_CBAR, j]
+    _store(ws, S, Pp, mu)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _posterior(ws, M):
+    """μ_j ∝ μ_j exp(loglik_j) (ws[_R_MUV], ws[_R_LOGLIK]); returns log Σ_j μ_j N_j, or −inf (and μ back to
+    ws[_R_PRIOR]) when no mode explains the measurement."""
+    top = -np.inf
+    for j in range(M):
+        if ws[_R_MUV, j] > 0.0 and ws[_R_LOGLIK, j] > top:
+            top = ws[_R_LOGLIK, j]
+    tot = 0.0
+    for j in range(M):
+        ll = ws[_R_LOGLIK, j]
+        v = ws[_R_MUV, j] * math.exp(ll - top) if np.isfinite(ll) else 0.0
+        ws[_R_MUV, j] = v
+        tot += v
+    if not (tot > 0.0) or not np.isfinite(tot):
+        for j in range(M):
+            ws[_R_MUV, j] = ws[_R_PRIOR, j]
+        return -np.inf
+    for j in range(M):
+        ws[_R_MUV, j] /= tot
+    return top + math.log(tot)
 
 
 @nb.njit(cache=True)
@@ -361,7 +589,6 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
             for j in range(M):
                 nis_out[j] = np.nan
             return np.nan
-    loglik, prior = ws[17], ws[16]
     m = z.shape[0]
     for j in range(M):
         sj, pj = S[j], Pp[j]  # one view each (a view costs a reference count)
@@ -372,31 +599,170 @@ def imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws):
             logdet = D.innovation_logdet_position(models[j], sj, pj, r)
             nis = D.update_position(models[j], sj, pj, z, r)
         nis_out[j] = nis
-        loglik[j] = -0.5 * (nis + logdet + m * LOG_2PI)
-        prior[j] = mu[j]
-    top = -np.inf
+        ws[_R_LOGLIK, j] = -0.5 * (nis + logdet + m * LOG_2PI)
+        ws[_R_PRIOR, j] = mu[j]
+        ws[_R_MUV, j] = mu[j]
+    ll = _posterior(ws, M)
     for j in range(M):
-        if mu[j] > 0.0 and loglik[j] > top:
-            top = loglik[j]
-    tot = 0.0
+        mu[j] = ws[_R_MUV, j]
+    return ll
+
+
+@nb.njit(cache=True)
+def _fallback_position(ws, model, j, M, m):
+    """``update_position`` of mode j from its prediction (the fused step's rare FALLBACK: Joseph form, jitter
+    repair); views of the workspace."""
+    return D.update_position(model, ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R])
+
+
+@nb.njit(cache=True)
+def _fallback_pose(ws, model, j, M, m):
+    """``update_pose`` of mode j from its prediction (as _fallback_position)."""
+    return D.update_pose(model, ws[_r_s(M) + j], ws[_r_pp(M) + j], ws[_R_Z, :m], ws[_R_R])
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _modes_position(ws, M, m, dt):
+    """Each mode's fused step ``step_ll_position`` (prediction, 1/det S, update; ``update_position`` when its LDLᵀ
+    test fails) with the measurement ws[_R_Z, :m]; the modes' log-likelihoods into ws[_R_LOGLIK]."""
+    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
     for j in range(M):
-        v = mu[j] * math.exp(loglik[j] - top) if np.isfinite(loglik[j]) else 0.0
-        mu[j] = v
-        tot += v
-    if not (tot > 0.0) or not np.isfinite(tot):
+        model = _model(ws, j)
+        nis, rdet = D.step_ll_position(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
+        if nis < 0.0:  # FALLBACK: the prediction is in the workspace
+            nis = _fallback_position(ws, model, j, M, m)
+        ws[_R_NIS, j] = nis
+        ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
+        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _modes_pose(ws, M, m, dt):
+    """_modes_position with a pose measurement (``step_ll_pose``, ``update_pose``)."""
+    rS, rPp, rQ = _r_s(M), _r_pp(M), _r_q(M)
+    for j in range(M):
+        model = _model(ws, j)
+        nis, rdet = D.step_ll_pose(model, ws, rS + j, rPp + j, dt, rQ + j, _R_Z, _R_R)
+        if nis < 0.0:
+            nis = _fallback_pose(ws, model, j, M, m)
+        ws[_R_NIS, j] = nis
+        ws[_R_LOGLIK, j] = -0.5 * (nis - math.log(rdet) + m * LOG_2PI)
+        ws[_R_PRIOR, j] = ws[_R_MUV, j]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _mix_or_predict(ws, M, m, dt, same_group):
+    """The step's start: mixing, μ ← the predicted probabilities; for a missed detection (NaN in ws[_R_Z, :m]) also
+    each mode's prediction and NaN NIS. Returns whether it was missed."""
+    missed = False
+    for k in range(m):
+        if np.isnan(ws[_R_Z, k]):
+            missed = True
+    _mix_rows(ws, M, same_group)
+    for j in range(M):
+        ws[_R_MUV, j] = ws[_R_CBAR, j]
+    if missed:
+        _predict_modes(ws, M, dt)
         for j in range(M):
-            mu[j] = prior[j]
-        return -np.inf
-    for j in range(M):
-        mu[j] /= tot
-    return top + math.log(tot)
+            ws[_R_NIS, j] = np.nan
+    return missed
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _step_rows(ws, M, m, dt, same_group, meas_pose):
+    """imm_step on the workspace, measurement ws[_R_Z, :m]: mixing, each mode's fused step, the mode
+    probabilities; returns the step log-likelihood (NaN when missed, −inf when no mode explains z)."""
+    if _mix_or_predict(ws, M, m, dt, same_group):
+        return np.nan
+    if meas_pose:
+        _modes_pose(ws, M, m, dt)
+    else:
+        _modes_position(ws, M, m, dt)
+    return _posterior(ws, M)
 
 
 @nb.njit(cache=True)
 def imm_step(models, S, Pp, mu, PI, Q, r, z, dt, same_group, meas_pose, nis_out, ws):
-    """One IMM cycle in place: imm_predict by dt, then imm_update with z (NaN: missed detection)."""
-    imm_predict(models, S, Pp, mu, PI, Q, dt, same_group, ws)
-    return imm_update(models, S, Pp, mu, r, z, meas_pose, nis_out, ws)
+    """One IMM cycle in place: imm_predict by dt, then imm_update with z (NaN: missed detection); returns the step's
+    log-likelihood log Σ_j μ_j N_j (NaN for a missed detection, −inf when no mode explains z).
+
+    Each mode's prediction and update run as the filter's fused step (module docstring); equal to imm_predict
+    followed by imm_update to rounding."""
+    M = models.shape[0]
+    _load(ws, models, S, Pp, mu, PI, Q, r)
+    m = z.shape[0]
+    for k in range(m):
+        ws[_R_Z, k] = z[k]
+    ll = _step_rows(ws, M, m, dt, same_group, meas_pose)
+    _store(ws, S, Pp, mu)
+    for j in range(M):
+        nis_out[j] = ws[_R_NIS, j]
+    return ll
+
+
+@nb.njit(cache=True)
+def imm_loglik_one(models, S, Pp, mu, PI, Q, r, z, dts, start, stop, same_group, meas_pose):
+    """Σ of imm_step's log-likelihood over the steps k in [start, stop) of one track z (K, m), dts (K,), run from
+    step 0 from the state (S, Pp, mu) (modified); missed detections (NaN) are not counted. The same steps as
+    calling imm_step for k < stop, on a workspace loaded once. Returns (the sum, the steps counted); the sum is
+    −inf once no mode explains a measurement."""
+    M = models.shape[0]
+    m = z.shape[1]
+    ws = workspace(M)
+    _load(ws, models, S, Pp, mu, PI, Q, r)
+    tot = 0.0
+    n = 0
+    for k in range(stop):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        v = _step_rows(ws, M, m, dts[k], same_group, meas_pose)
+        if k >= start and not np.isnan(v):
+            tot += v
+            n += 1
+    _store(ws, S, Pp, mu)
+    return tot, n
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _outputs(ws, M, k, same_group, out_c, out_P, out_mu):
+    """After step k: the mode probabilities and the combined estimate (its covariance when out_P has K rows)."""
+    for j in range(M):
+        ws[_R_MU, j] = ws[_R_MUV, j]
+        out_mu[k, j] = ws[_R_MUV, j]
+    _combined(ws, M, same_group)
+    for a in range(6):
+        out_c[k, a] = ws[_R_CM, a]
+    if out_P.shape[0] > k:
+        for a in range(6):
+            for b in range(6):
+                out_P[k, a, b] = ws[_R_PCM, 6 * a + b]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _run_position(ws, M, z, dts, same_group, out_c, out_P, out_mu):
+    """The loop of imm_run_one with position measurements, on a loaded workspace (only the position kernels are
+    compiled for it: ``imm_batch`` of position measurements never compiles the pose ones)."""
+    m = z.shape[1]
+    for k in range(z.shape[0]):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        if not _mix_or_predict(ws, M, m, dts[k], same_group):
+            _modes_position(ws, M, m, dts[k])
+            _posterior(ws, M)
+        _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _run_pose(ws, M, z, dts, same_group, out_c, out_P, out_mu):
+    """_run_position with pose measurements."""
+    m = z.shape[1]
+    for k in range(z.shape[0]):
+        for i in range(m):
+            ws[_R_Z, i] = z[k, i]
+        if not _mix_or_predict(ws, M, m, dts[k], same_group):
+            _modes_pose(ws, M, m, dts[k])
+            _posterior(ws, M)
+        _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
 
 
 @nb.njit(cache=True)
@@ -406,19 +772,14 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
     Writes the combined common estimate out_c (K, 6), its covariance out_P (K, 6, 6) when out_P.shape[0] == K,
     and the mode probabilities out_mu (K, M).
     """
-    K = z.shape[0]
     M = models.shape[0]
-    keep_P = out_P.shape[0] == K
     ws = workspace(M)
-    Pc = np.empty((6, 6))
-    nis = np.empty(M)
-    for k in range(K):
-        imm_step(models, S, Pp, mu, PI, Q, r, z[k], dts[k], same_group, meas_pose, nis, ws)
-        combined_common(models, S, Pp, mu, same_group, out_c[k], Pc, ws)
-        if keep_P:
-            out_P[k, :, :] = Pc
-        for j in range(M):
-            out_mu[k, j] = mu[j]
+    _load(ws, models, S, Pp, mu, PI, Q, r)
+    if meas_pose:
+        _run_pose(ws, M, z, dts, same_group, out_c, out_P, out_mu)
+    else:
+        _run_position(ws, M, z, dts, same_group, out_c, out_P, out_mu)
+    _store(ws, S, Pp, mu)
 
 
 @nb.njit(cache=True, parallel=True)
@@ -429,3 +790,23 @@ def imm_run_batch(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, meas_pose, 
         Pp = P0[b].copy()
         mu = mu0.copy()
         imm_run_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], same_group, meas_pose, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def imm_run_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
+    """imm_run_batch with position measurements (compiles no pose kernel)."""
+    M = models.shape[0]
+    for b in nb.prange(z.shape[0]):
+        ws = workspace(M)
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        _run_position(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, parallel=True)
+def imm_run_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
+    """imm_run_batch with pose measurements (compiles no position kernel)."""
+    M = models.shape[0]
+    for b in nb.prange(z.shape[0]):
+        ws = workspace(M)
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        _run_pose(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])

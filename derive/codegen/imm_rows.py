@@ -1,0 +1,164 @@
+"""Row variants of the IMM's kernels: the same straight-line code reading and writing rows of one 2-D array.
+
+The IMM's loop (``lgekf.estimators.imm_kernels``) keeps every mode's state and covariance as rows of 2-D arrays
+(and everything else its step touches) as rows of one 2-D workspace ``ws``. Passing a row as a view (``S[j]``), a
+tuple of scratch arrays, or one array as several arguments of an inlined call costs numba's reference counting
+(atomic ``NRT_incref``/``NRT_decref``; each array argument of the inlined dispatch chain is an alias, counted once
+per call): measured with ``perf``, about half of the IMM's time before this change. A row variant takes the one
+array and row indices instead, and uses ``error_model="numpy"`` (no exception paths), so the kernel itself needs
+no counting either.
+
+``row_variant(k, arrays)`` rewrites a :class:`~derive.codegen.printer.Kernel` mechanically: the first parameter is
+``ws``, every array parameter ``x`` becomes a row index ``jx`` and ``x[i]`` becomes ``ws[jx, i]``; a 2-D parameter
+``x[a, b]`` of ``ncols`` columns is stored flat in its row, ``ws[jx, a·ncols + b]``. Emitted per model (``imm_row_kernels``):
+
+* ``between_add_at``, ``mix_transport_at``, ``retract_at``: the mean iteration and the transported covariance
+  terms of mixing on the group (``derive.codegen.mixing``);
+* ``common_of_state_at`` / ``state_of_common_at``: a Gaussian to and from the common coordinates, the 6 × 6
+  common covariance stored row-major in one row;
+* ``step_ll_<meas>``: the fused step ``step_try_<meas>`` (``derive.codegen.fused``) on rows, returning
+  ``(nis, rdet)``, rdet = 1/det S of the innovation covariance S = ℋPℋᵀ + R at the predicted state (eq:K), which
+  the step computes anyway: the IMM's likelihood needs log det S = −log rdet, and no separate
+  ``innovation_logdet_<meas>`` pass over the predicted covariance. S does not depend on the update, so rdet holds
+  also when the step returns ``FALLBACK`` (the caller then runs ``update_<meas>``).
+
+``mix_on_group_at`` (a template per model, ``MIX_TEMPLATE``): the whole reduction Σ w_i N_G(μ_i, P_i) → N_G(μ, P) of
+mixing on the group (the iterated mean, then the transported covariance terms; maths in
+``lgekf.estimators.imm_kernels``) as one loop calling the row variants above directly: a call through the inlined
+dispatch chain counts ``ws`` once, a direct call does not, so the loop's 2–4 kernel calls per source and iteration
+count nothing.
+
+``dispatch_chains`` adds their model-index chains to ``generated/dispatch.py``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+from .printer import Kernel, RawStage
+
+__all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE"]
+
+#: (kernel, name of the row variant, {array parameter: columns of its 2-D form, or None for a vector})
+ROW_KERNELS = (
+    ("between_add", "between_add_at", {"s": None, "t": None, "acc": None}),
+    ("mix_transport", "mix_transport_at", {"s": None, "t": None, "pt": None, "acc": None}),
+    ("retract", "retract_at", {"s": None, "eps": None}),
+    ("common_of_state", "common_of_state_at", {"s": None, "p": None, "c": None, "Pc": 6}),
+    ("state_of_common", "state_of_common_at", {"c": None, "Pc": 6, "s": None, "p": None}),
+)
+
+
+def _rewrite(code: str, arrays: dict) -> str:
+    for x, ncols in arrays.items():
+        if ncols is not None:
+            code = re.sub(rf"\b{x}\[(\d+), (\d+)\]", lambda m, x=x, nc=ncols: f"ws[j{x}, {int(m[1]) * nc + int(m[2])}]", code)
+        code = re.sub(rf"\b{x}\[", f"ws[j{x}, ", code)
+    return code
+
+
+def row_variant(k: Kernel, name: str, arrays: dict, ret: str | None = None, doc: str | None = None) -> Kernel:
+    """``k`` on rows of one 2-D array ``ws``: each parameter x of ``arrays`` becomes a row index jx, x[i] → ws[jx, i]
+    (x[a, b] → ws[jx, a·ncols + b] for a 2-D parameter of ncols columns); error_model="numpy" (module docstring)."""
+    if "ws" in k.params:
+        raise ValueError(f"{k.name}: a parameter is already called ws")
+    for x, ncols in arrays.items():
+        if ncols is None and any(re.search(rf"\b{x}\[\d+, ", s) for _, s in k.inputs):
+            raise ValueError(f"{k.name}: {x} is 2-D")
+    params = ["ws"] + [f"j{p}" if p in arrays else p for p in k.params]
+    return replace(
+        k, name=name, params=params,
+        doc=doc or f"{k.doc.rstrip()}\nOn rows of ws: {', '.join(f'{x} = ws[j{x}]' for x in arrays)} (derive/codegen/imm_rows.py).",
+        inputs=[(s, _rewrite(src, arrays)) for s, src in k.inputs],
+        outputs=[(_rewrite(t, arrays), e) for t, e in k.outputs],
+        prologue=[_rewrite(line, arrays) for line in k.prologue],
+        epilogue=[_rewrite(line, arrays) for line in k.epilogue],
+        stages=[RawStage([_rewrite(line, arrays) for line in st.lines], st.uses) if isinstance(st, RawStage) else st
+                for st in k.stages],
+        ret=ret if ret is not None else k.ret, error_model="numpy",
+    )
+
+
+MIX_TEMPLATE = '''
+@nb.njit(cache=True, error_model="numpy")
+def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
+    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
+    covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
+    mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
+    |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the
+    iterations used (derive/codegen/imm_rows.py)."""
+    best = 0
+    for i in range(M):
+        if ws[rw, i] > ws[rw, best]:
+            best = i
+    for k in range({ni}):
+        ws[rs, k] = ws[rS + best, k]
+    it = 0
+    if M > 1:
+        for it in range(1, 51):
+            for k in range({n}):
+                ws[rd, k] = 0.0
+            for i in range(M):
+                w = ws[rw, i]
+                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
+                    between_add_at(ws, rs, rS + i, w, rd)
+            retract_at(ws, rs, rd)
+            nrm = 0.0
+            for k in range({n}):
+                nrm += ws[rd, k] * ws[rd, k]
+            if nrm < 1e-24:
+                break
+    if M == 1:
+        for k in range({npk}):
+            ws[rp, k] = ws[rPp, k]
+        return it
+    for k in range({npk}):
+        ws[rp, k] = 0.0
+    for i in range(M):
+        w = ws[rw, i]
+        if w > 0.0:
+            mix_transport_at(ws, rs, rS + i, rPp + i, w, rp)
+    return it
+'''
+
+
+def imm_row_kernels(model, kernels) -> list:
+    """The row variants of one model (module docstring); ``kernels``: the model's kernels so far."""
+    by_name = {k.name: k for k in kernels if isinstance(k, Kernel)}
+    out = [row_variant(by_name[src], name, arrays) for src, name, arrays in ROW_KERNELS]
+    for kname, k in sorted(by_name.items()):
+        if kname.startswith("step_try_"):
+            meas = kname[len("step_try_"):]
+            out.append(row_variant(
+                k, f"step_ll_{meas}", {"s": None, "p": None}, ret="nis, rdet",
+                doc=(f"``step_try_{meas}`` on rows s = ws[js], p = ws[jp] (derive/codegen/imm_rows.py); returns (nis, rdet),\n"
+                     "rdet = 1/det S, S = ℋPℋᵀ + R at the predicted state (eq:K), also when nis is FALLBACK.")))
+    n = model.n
+    out.append(("mix_on_group_at", MIX_TEMPLATE.format(n=n, ni=len(model.internal), npk=n * (n + 1) // 2)))
+    return out
+
+
+def dispatch_chains(chain, names: list, models: dict, fits: dict, measurements: dict) -> list[str]:
+    """The model-index chains of the row variants (``chain``: derive.codegen.dispatch's chain renderer); one array
+    ``ws`` and row indices: the inlined chain aliases each array argument once (one reference count per call)."""
+    funcs = [
+        chain("between_add_at", "ws, js, jt, w, jacc", names, lambda n: f"{n}.between_add_at(ws, js, jt, w, jacc)", False),
+        chain("mix_transport_at", "ws, js, jt, jpt, w, jacc", names,
+              lambda n: f"{n}.mix_transport_at(ws, js, jt, jpt, w, jacc)", False),
+        chain("retract_at", "ws, js, jeps", names, lambda n: f"{n}.retract_at(ws, js, jeps)", False),
+        chain("mix_on_group_at", "ws, M, rw, rs, rp, rS, rPp, rd", names,
+              lambda n: f"{n}.mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd)", True),
+        chain("common_of_state_at", "ws, js, jp, jc, jPc", names, lambda n: f"{n}.common_of_state_at(ws, js, jp, jc, jPc)", False),
+        chain("state_of_common_at", "ws, jc, jPc, js, jp", names, lambda n: f"{n}.state_of_common_at(ws, jc, jPc, js, jp)", False),
+    ]
+    for mname, meas in sorted(measurements.items()):
+        def call(n, mname=mname, meas=meas):
+            if mname not in fits[n]:
+                return None
+            q = ", ".join(f"ws[jq, {i}]" for i in range(len(models[n].noise_names)))
+            z = ", ".join(f"ws[jz, {i}]" for i in range(meas.m))
+            r = ", ".join(f"ws[jr, {i}]" for i in range(len(meas.noise_names)))
+            return f"{n}.step_ll_{mname}(ws, js, jp, dt, {q}, {z}, {r})"
+        funcs.append(chain(f"step_ll_{mname}", "ws, js, jp, dt, jq, jz, jr", names, call, True))
+    return funcs
