@@ -37,7 +37,7 @@ import numpy as np
 
 from ..core.initiation import DEFAULT_OMEGA_STD, two_point
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
-from .imm_kernels import imm_step, workspace
+from .imm_kernels import imm_loglik_one
 from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _hessian
 
 __all__ = ["ImmFit", "learn_imm", "imm_log_likelihood"]
@@ -129,20 +129,11 @@ def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_
     padded beyond lengths[b]. Writes ll (B,) (−inf once every mode's likelihood vanished) and cnt (B,) the steps
     counted.
     """
-    M = models.shape[0]
     for b in nb.prange(z.shape[0]):
         S = S0[b].copy()
         Pp = P0[b].copy()
         mu = mu0.copy()
-        ws = workspace(M)
-        nis = np.empty(M)
-        tot = 0.0
-        n = 0
-        for k in range(lengths[b]):
-            v = imm_step(models, S, Pp, mu, PI, Q, r, z[b, k], dts[b, k], same_group, meas_pose, nis, ws)
-            if k >= skip[b] and not np.isnan(v):
-                tot += v
-                n += 1
+        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas_pose)
         ll[b] = tot
         cnt[b] = n
 
