@@ -131,3 +131,20 @@ def test_fit_imm_subsamples_long_files(monkeypatch):
     fit, _ = ti.fit_imm(ti.ImmTrackOptions("cv:calm,cv:manoeuvre"), tracks, 0.2, 0.5, {"cv": (0.7,)}, say=lines.append)
     assert fit.n_tracks == 3
     assert len(lines) == 1 and "mode set 1/1 (cv:calm,cv:manoeuvre)" in lines[0] and "90 measurements of 3 tracks" in lines[0]
+
+
+def test_evaluate_imm_fit_falls_back_when_it_cannot_fit():
+    """`evaluate --imm --tune` on a tuning split too small for the IMM's fit (or with nothing free) keeps the run
+    going: the modes take their models' learned noise × level, and the reason takes the fit's place."""
+    from types import SimpleNamespace
+
+    from lgekf.apps.evaluate import _imm_fitted
+    from lgekf.apps.track_imm import ImmTrackOptions
+
+    (t, z), = _turning_tracks(n_obj=1, K=6)
+    tiny = SimpleNamespace(t=t, p=z, starts=np.array([0, 6]), name="tiny")
+    opts = ImmTrackOptions("cv,se2r3:calm,se2r3:0.3/0.3/0.6", 0.05)
+    tuned, why = _imm_fitted(opts, tiny, 0.2, [0], 0.5, {"cv": SimpleNamespace(accel_std=(0.7,)), "se2r3": "too few points"})
+    assert isinstance(why, str) and "too few measurements to fit the IMM" in why
+    assert [m.accel_std for m in tuned.modes] == [(0.7,), opts.modes[1].accel_std, (0.3, 0.3, 0.6)]
+    assert _imm_fitted(None, tiny, 0.2, [0], 0.5, {}) == (None, None)

@@ -102,7 +102,7 @@ def test_learn_imm_refuses_too_few_measurements():
 
 
 @pytest.mark.parametrize("bad, match", [
-    (lambda tr: [(tr[0][0][::-1], tr[0][1])], "times must increase"),
+    (lambda tr: [(tr[0][0][::-1], tr[0][1])], "times must be finite and increase"),
     (lambda tr: [(tr[0][0], tr[0][1][:, :1])], "expected t"),
 ])
 def test_learn_imm_bad_tracks(bad, match):
@@ -115,3 +115,15 @@ def test_learn_imm_bad_tracks(bad, match):
 def test_learn_imm_rejects_bad_noise():
     with pytest.raises(ValueError, match="meas_std"):
         learn_imm("cv:calm,cv:manoeuvre", [], meas_std=-1.0)
+
+
+def test_learn_imm_position_only_and_finite_times():
+    rng = np.random.default_rng(7)
+    tracks = _simulate_cv(rng, 2, 10, 0.1, [0.5], 0.0, 0.2)
+    with pytest.raises(ValueError, match="position measurements only"):
+        learn_imm("cv:calm,cv:manoeuvre", tracks, meas_std=0.2, measurement="pose")
+    t, z = tracks[0]
+    t = t.copy()
+    t[3] = np.nan
+    with pytest.raises(ValueError, match="finite and increase"):
+        imm_log_likelihood("cv", [(t, z)], meas_std=0.2)

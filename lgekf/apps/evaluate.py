@@ -205,7 +205,8 @@ class DatasetResult:
 def _imm_fitted(imm, dtune, meas_std: float, seed_list, omega_std: float, fits: dict):
     """A copy of the IMM options fitted on the tuning split by the IMM's own likelihood
     (``lgekf.apps.track_imm.fit_imm``: each candidate mode set from its models' learned noise, the lowest AIC
-    kept), and the fit; (None, None) without an IMM."""
+    kept), and the fit; (None, None) without an IMM. When it cannot be fitted (too few steps, nothing free) the
+    modes take their models' learned noise × level as given and the fit is the reason (a str)."""
     if imm is None:
         return None, None
     import copy
@@ -215,7 +216,12 @@ def _imm_fitted(imm, dtune, meas_std: float, seed_list, omega_std: float, fits: 
 
     tuned = copy.deepcopy(imm)
     learned = {m: f.accel_std for m, f in fits.items() if not isinstance(f, str)}
-    fit, _ = fit_imm(tuned, noisy_tracks(dtune, meas_std, seed_list, _seed_rng), meas_std, omega_std, learned)
+    try:
+        fit, _ = fit_imm(tuned, noisy_tracks(dtune, meas_std, seed_list, _seed_rng), meas_std, omega_std, learned)
+    except ValueError as e:
+        tuned = copy.deepcopy(imm)
+        tuned.with_learned_noise({m: learned[m] for m in tuned.tunable_models() if m in learned})
+        return tuned, str(e)
     return tuned, fit
 
 

@@ -164,7 +164,7 @@ def _imm_track_smoothed(t, z, starts, meas_std: float, omega_std: float, opts: I
     return c, sd, mu, cs, sds, mus
 
 
-def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float, say=None):
+def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float, say=None, method: str = "lbfgs"):
     """Learn the IMM from the file (module docstring) and set ``opts``' modes, their noise and the switching.
 
     Returns
@@ -172,11 +172,13 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
     r : float
         The measurement std to run with.
     fits : dict
-        {model: NoiseFit} of the single models, and "imm": the kept ``ImmFit``.
+        {model: NoiseFit} of the single models, and "imm": the kept ``ImmFit`` (or why it could not be fitted:
+        then the modes take the learned noise × their level).
     summary : str
         What was learned and used (one line per step).
 
-    ``say`` (optional) gets a line before each of the IMM's fits (they take seconds to minutes).
+    ``say`` (optional) gets a line before each of the IMM's fits (they take seconds to minutes); ``method``: of the
+    single-model fits (``lgekf.apps.smooth_track.tune_models``).
     """
     from .smooth_track import tune_models
 
@@ -187,7 +189,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                 models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
-    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std)
+    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std, method)
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
     learned = "; ".join(f"{m} accel-std {','.join(f'{v:.3g}' for v in f.accel_std)} (log-likelihood {f.loglik:.6g}"
@@ -196,10 +198,19 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
     t = np.asarray(meas.t, float)
     z = np.asarray(meas.z, float)[:, :2]
     tracks = [(t[a:b], z[a:b]) for a, b in zip(starts[:-1], starts[1:]) if b - a >= 3]
-    fit, table = fit_imm(opts, tracks, r, omega_std, {m: f.accel_std for m, f in fits.items()}, say=say)
+    learned_q = {m: f.accel_std for m, f in fits.items()}
+    try:
+        fit, table = fit_imm(opts, tracks, r, omega_std, learned_q, say=say)
+    except ValueError as e:  # too few steps for the IMM's own fit: the learned noise × the levels, as given
+        opts.with_learned_noise({m: learned_q[m] for m in opts.tunable_models() if m in learned_q})
+        fit, table, why = str(e), [], str(e)
+    modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
+    if isinstance(fit, str):
+        return r, dict(fits, imm=fit), (f"imm --tune: learned {learned}; meas-std {r:.3g} m ({src})\n"
+                                        f"  the IMM itself is not fitted ({why.removeprefix('--tune: the IMM could not be fitted: ')}): "
+                                        f"the modes take the learned noise × their level\n  modes {modes}; switch {opts.switch:.3g}")
     fits = dict(fits, imm=fit)
     sets = "; ".join(f"{text}: " + (f"AIC {f.aic:.6g}" if not isinstance(f, str) else f"not fitted ({f})") for text, f in table)
-    modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
     return r, fits, (f"imm --tune: learned {learned}; meas-std {r:.3g} m ({src})\n"
                      + (f"  mode sets compared: {sets}; kept {opts.modes_text}\n" if len(table) > 1 else "")
                      + f"  {fit.report()}\n  modes {modes}; switch {opts.switch:.3g}")
@@ -245,7 +256,8 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
             table.append((text, str(e)))
     fitted = [(text, f) for text, f in table if not isinstance(f, str)]
     if not fitted:
-        raise ValueError(f"--tune: the IMM could not be fitted: {table[0][1]}")
+        why = table[0][1] if len(table) == 1 else "; ".join(f"{text}: {f}" for text, f in table)
+        raise ValueError(f"--tune: the IMM could not be fitted: {why}")
     text, fit = min(fitted, key=lambda tf: tf[1].aic)
     opts.modes_text, opts.modes, opts.switch = text, list(fit.modes), fit.switch
     return fit, table

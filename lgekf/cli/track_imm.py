@@ -41,7 +41,8 @@ def cmd_track_imm(a) -> int:
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
     if getattr(a, "tune", False):
-        r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std, say=say)
+        r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std, say=say,
+                                    method=getattr(a, "tune_method", "lbfgs"))
         say(summary)
         source = "tuned"
     else:

@@ -108,12 +108,18 @@ class ImmFit:
 
     def report(self) -> str:
         """A short human-readable summary (what ``lgekf track --model imm --tune`` prints)."""
-        names = [m.name for m in self.modes] + ["switch"]
+        names = [m.name for m in self.modes] + (["switch"] if len(self.modes) > 1 else [])
         vals = list(self.factors) + [self.switch]
         parts = []
-        for nm, v, lo, hi in zip(names, vals, self.ci_low, self.ci_high):
-            what = f"×{v:.3g}" if nm != "switch" else f"{v:.3g}"
-            parts.append(f"{nm} {what}" + (f" [{lo:.3g}, {hi:.3g}]" if np.isfinite(lo) and np.isfinite(hi) else " [no interval]"))
+        for i, (nm, v, lo, hi) in enumerate(zip(names, vals, self.ci_low, self.ci_high)):
+            what = f"×{v:.3g}" if i < len(self.modes) else f"{v:.3g}"
+            if lo == hi == v:
+                interval = " (given)"
+            elif np.isfinite(lo) and np.isfinite(hi) and hi / max(lo, 1e-300) < 1e6:
+                interval = f" [{lo:.3g}, {hi:.3g}]"
+            else:
+                interval = " [no interval]"
+            parts.append(f"{nm} {what}{interval}")
         head = (f"IMM fitted ({self.n_tracks} tracks, {self.n_updates} steps, {self.n_evals} runs): " + ", ".join(parts)
                 + f"; log-likelihood {self.loglik:.6g} (given modes {self.loglik_start:.6g})")
         if self.problems:
@@ -147,8 +153,8 @@ class _Tracks:
             t, z = (np.asarray(a, dtype=float) for a in tr)
             if z.ndim != 2 or z.shape[1] != m or t.shape != (z.shape[0],):
                 raise ValueError(f"tracks[{i}]: expected t (K,) and z (K, {m}), got {t.shape} and {z.shape}")
-            if np.any(np.diff(t) <= 0):
-                raise ValueError(f"tracks[{i}]: times must increase")
+            if not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+                raise ValueError(f"tracks[{i}]: times must be finite and increase")
             if np.any(np.isnan(z[:2])):
                 raise ValueError(f"tracks[{i}]: the first two measurements start the IMM and must not be NaN")
             if len(t) >= 3:
@@ -207,7 +213,8 @@ def imm_log_likelihood(modes, tracks, *, meas_std: float, switch: float = DEFAUL
         Measurement std.
     switch : float
         Probability of leaving a mode per step.
-    measurement : {"position", "pose"}
+    measurement : {"position"}
+        Only position measurements (the two-point start of ``lgekf track --model imm``).
     omega_std : float
         Turn-rate std of the two-point start.
     baseline : float
@@ -218,7 +225,7 @@ def imm_log_likelihood(modes, tracks, *, meas_std: float, switch: float = DEFAUL
     float
     """
     modes = _modes(modes)
-    m = 2 if measurement == "position" else 3
+    m = _position_only(measurement)
     return _loglik(modes, switch, meas_std, _Tracks(tracks, m, meas_std, omega_std, baseline), measurement)[0]
 
 
@@ -239,7 +246,8 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         Measurement std (held fixed).
     switch : float
         The switching probability to start from (held fixed without ``fit_switch``).
-    measurement : {"position", "pose"}
+    measurement : {"position"}
+        As for :func:`imm_log_likelihood`.
     omega_std, baseline : float
         As for :func:`imm_log_likelihood`.
     fit_switch : bool
@@ -266,13 +274,13 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         raise ValueError(f"meas_std: must be positive, got {meas_std}")
     transition_matrix(M, switch)  # checks the switching probability
     fit_switch = fit_switch and M > 1
+    _position_only(measurement)
     fixed = np.zeros(M, dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool).reshape(-1)
     if fixed.shape != (M,):
         raise ValueError(f"fixed: expected {M} flags, one per mode, got {fixed.shape[0]}")
     free = np.flatnonzero(~fixed)
     F = free.size
-    m = 2 if measurement == "position" else 3
-    tr = _Tracks(tracks, m, meas_std, omega_std, baseline)
+    tr = _Tracks(tracks, 2, meas_std, omega_std, baseline)
     d = F + int(fit_switch)
     if d == 0:
         raise ValueError("nothing to fit: every mode's noise is fixed and the switching probability too")
@@ -299,7 +307,7 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         return -ll if math.isfinite(ll) else PENALTY
 
     th_given = np.concatenate([np.zeros(F), [_logit(min(max(switch, SWITCH_BOUNDS[0]), SWITCH_BOUNDS[1]))] if fit_switch else []])
-    ll_start = -nll(th_given)
+    ll_start, _ = _loglik(modes, switch, meas_std, tr, measurement)  # at the given values (not clipped to the bounds)
     starts = [th_given]
     if fit_switch:
         alt = th_given.copy()
@@ -348,6 +356,13 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
             val = math.exp(th[i]) if i < F else _expit(th[i])
             problems.append(f"{what} at the search bound {val:.3g}")
     return ImmFit(_scaled(modes, a), float(p), a, ci_low, ci_high, -float(fun), ll_start, tr.n_updates, tr.B, problems, d, evals[0])
+
+
+def _position_only(measurement: str) -> int:
+    """The measurement dimension; the fit starts every track from two positions (pose: not supported)."""
+    if measurement != "position":
+        raise ValueError(f"measurement: the IMM's likelihood fit supports position measurements only, got {measurement!r}")
+    return 2
 
 
 def _logit(p: float) -> float:
