@@ -66,6 +66,55 @@ def test_one_mode_likelihood_is_the_kalman_filters():
     assert got == pytest.approx(want, rel=1e-9, abs=1e-7)
 
 
+def _numpy_cv_imm_loglik(tracks, stds, PI, r, baseline):
+    """A two-mode CV IMM (Blom and Bar-Shalom) written out in numpy: mixing with the weights PI_ij μ_i / c̄_j, the
+    mode-matched Kalman filters, the step log-likelihood log Σ_j c̄_j N(ν_j; 0, S_j)."""
+    M = len(stds)
+    total = 0.0
+    for t, z in tracks:
+        c0, var0 = two_point(t[:2], z[:2], np.array([1]), r, DEFAULT_OMEGA_STD)
+        x0 = state_from_common("cv", c0)[0]
+        P0 = covariance_from_common("cv", c0, np.diag(var0[0])[None])[0] + 1e-12 * np.eye(4)
+        xs, Ps, mu = [x0.copy() for _ in range(M)], [P0.copy() for _ in range(M)], np.full(M, 1.0 / M)
+        H = np.eye(2, 4)
+        for k in range(2, len(t)):
+            T = t[k] - t[k - 1]
+            F = np.eye(4)
+            F[0, 2] = F[1, 3] = T
+            G = np.array([[T**2 / 2, 0], [0, T**2 / 2], [T, 0], [0, T]])
+            cbar = PI.T @ mu
+            lik = np.empty(M)
+            new = []
+            for j in range(M):
+                w = PI[:, j] * mu / cbar[j]
+                xm = sum(w[i] * xs[i] for i in range(M))
+                Pm = sum(w[i] * (Ps[i] + np.outer(xs[i] - xm, xs[i] - xm)) for i in range(M))
+                x = F @ xm
+                P = F @ Pm @ F.T + stds[j] ** 2 * G @ G.T
+                S = H @ P @ H.T + r**2 * np.eye(2)
+                nu = z[k] - H @ x
+                lik[j] = math.exp(-0.5 * (np.linalg.slogdet(S)[1] + nu @ np.linalg.solve(S, nu)) - math.log(2 * math.pi))
+                K = P @ H.T @ np.linalg.inv(S)
+                new.append((x + K @ nu, (np.eye(4) - K @ H) @ P))
+            xs, Ps = [a for a, _ in new], [b for _, b in new]
+            if t[k] - t[0] >= baseline:
+                total += math.log(cbar @ lik)
+            mu = cbar * lik / (cbar @ lik)
+    return total
+
+
+def test_two_mode_likelihood_is_a_numpy_imms():
+    """Two CV modes of different noise against the IMM written out in numpy: checks the predicted mode
+    probabilities c̄ in the mixture, the mixing and the conditioning on the first ``baseline`` seconds."""
+    rng = np.random.default_rng(8)
+    tracks = _simulate_cv(rng, 4, 40, 0.1, [0.2, 2.0], 0.05, 0.2)
+    PI = np.array([[0.9, 0.1], [0.1, 0.9]])
+    got = imm_log_likelihood([Mode("cv", (0.2,), "calm"), Mode("cv", (2.0,), "manoeuvre")], tracks, meas_std=0.2,
+                             switch=0.1, baseline=0.5)
+    want = _numpy_cv_imm_loglik(tracks, [0.2, 2.0], PI, 0.2, 0.5)
+    assert got == pytest.approx(want, rel=1e-9, abs=1e-7)
+
+
 def test_identical_modes_give_the_single_modes_likelihood():
     rng = np.random.default_rng(4)
     tracks = _simulate_cv(rng, 5, 30, 0.1, [0.5], 0.0, 0.2)

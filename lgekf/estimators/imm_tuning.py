@@ -299,12 +299,16 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         return a, (_expit(th[F]) if fit_switch else switch)
 
     evals = [0]
+    diverged = [False]
 
     def nll(th):
         evals[0] += 1
         a, p = params(th)
         ll, _ = _loglik(_scaled(modes, a), p, meas_std, tr, measurement)
-        return -ll if math.isfinite(ll) else PENALTY
+        if not math.isfinite(ll):
+            diverged[0] = True
+            return PENALTY
+        return -ll
 
     th_given = np.concatenate([np.zeros(F), [_logit(min(max(switch, SWITCH_BOUNDS[0]), SWITCH_BOUNDS[1]))] if fit_switch else []])
     ll_start, _ = _loglik(modes, switch, meas_std, tr, measurement)  # at the given values (not clipped to the bounds)
@@ -313,12 +317,11 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         alt = th_given.copy()
         alt[F] = _logit(0.01) if switch > 0.02 else _logit(0.1)
         starts.append(alt)
-    best = None
+    results = []
     for th0 in starts:
-        res = minimize(nll, np.clip(th0, [b[0] + 1e-6 for b in bounds], [b[1] - 1e-6 for b in bounds]),
-                       method="L-BFGS-B", bounds=bounds, options={"maxiter": 100, "eps": 1e-3})
-        if best is None or res.fun < best.fun:
-            best = res
+        results.append(minimize(nll, np.clip(th0, [b[0] + 1e-6 for b in bounds], [b[1] - 1e-6 for b in bounds]),
+                                method="L-BFGS-B", bounds=bounds, options={"maxiter": 100, "eps": 1e-3}))
+    best = min(results, key=lambda res: res.fun)
     lo_b = np.array([b[0] for b in bounds])
     hi_b = np.array([b[1] for b in bounds])
     nm = minimize(lambda x: nll(np.clip(x, lo_b, hi_b)), best.x, method="Nelder-Mead",
@@ -329,11 +332,13 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
     problems = []
     ci_low = np.full(M + 1, np.nan)
     ci_high = np.full(M + 1, np.nan)
+    se = np.full(d, np.nan)
     if hessian:
+        diverged[0] = False
         H = _hessian(nll, th, 0.02)
         try:
             cov = np.linalg.inv(H)
-            ok = bool(np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0))
+            ok = bool(np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0)) and not diverged[0]
         except np.linalg.LinAlgError:
             ok = False
         if ok:
@@ -345,11 +350,20 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
                     problems.append(f"{modes[j].name}: the 95 % interval of its factor spans more than ×/÷{WIDE_FACTOR:g}")
             if fit_switch:
                 ci_low[M], ci_high[M] = _expit(th[F] - 1.96 * se[F]), _expit(th[F] + 1.96 * se[F])
+                if 1.96 * se[F] > math.log(WIDE_FACTOR):
+                    problems.append(f"switch: the 95 % interval of its odds spans more than ×/÷{WIDE_FACTOR:g}")
+        elif diverged[0]:
+            problems.append("the IMM diverged next to the optimum (no interval)")
         else:
             problems.append("flat likelihood (the Hessian of −log L is not positive definite)")
     ci_low[:M][fixed] = ci_high[:M][fixed] = 1.0
     if not fit_switch:
         ci_low[M] = ci_high[M] = p
+    for res in results:
+        if res is not best and abs(res.fun - best.fun) < 0.5 and np.any(
+                np.abs(res.x - best.x) > 2 * np.where(np.isfinite(se), se, 0.1) + 0.05):
+            problems.append("several optima with the same likelihood (starts ended at different values)")
+            break
     for i in range(d):
         if th[i] <= lo_b[i] + 0.05 or th[i] >= hi_b[i] - 0.05:
             what = modes[free[i]].name + " factor" if i < F else "switch"
