@@ -110,7 +110,8 @@ def _evaluate(a, runner=None) -> int:
                         min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
                 for m, fit in res.fits.items():
                     if isinstance(fit, str):
-                        fits.append(f"{ds.name}: {m}: {fit}; the default noise is kept")
+                        kept = ("the modes take their models' learned noise × level" if m == "imm" else "the default noise is kept")
+                        fits.append(f"{ds.name}: {m}: {fit}; {kept}")
                         continue
                     fits.append(f"{ds.name}: {fit.report()}")
                     learned += [{"dataset": ds.name, "filter": m, "parameter": nm, "value": v, "ci_lo": lo, "ci_hi": hi,
