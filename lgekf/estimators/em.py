@@ -84,9 +84,9 @@ from numpy.typing import ArrayLike
 from ..core.covariance import pack, unpack
 from ..core.registry import MODELS, get_model
 from ..core.rts import forward_store, smooth_stored
-from .tracks import TrackBatch, batch_tracks, two_point_prior
-from .tuning import (BOUNDS, MIN_UPDATES_PER_PARAMETER, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _loglik_tracks,
-                     _meas_guess)
+from .tracks import TrackBatch, two_point_prior
+from .tuning import (BOUNDS, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _loglik_tracks, _meas_guess,
+                     _noise_problem)
 
 __all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
 
@@ -329,22 +329,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     if measurement not in spec.linear:
         raise ValueError(_refusal(model, measurement))
     m = meas.dim
-    batch = tracks if isinstance(tracks, TrackBatch) else batch_tracks(tracks, m, dt, baseline)
-    nq = len(spec.noise_names)
-    nr = len(meas.noise_names)
-    names = tuple(spec.noise_names) + tuple(f"meas_{nm}" for nm in meas.noise_names)
-    fixed_r = None
-    if meas_std is not None:
-        fixed_r = np.broadcast_to(np.asarray(meas_std, dtype=float).reshape(-1), (nr,)).copy()
-        if np.any(~np.isfinite(fixed_r)) or np.any(fixed_r <= 0):
-            raise ValueError(f"meas_std: must be positive, got {fixed_r.tolist()}")
-    d = nq + (0 if fixed_r is not None else nr)
-    n_upd = batch.n_updates
-    need = MIN_UPDATES_PER_PARAMETER * d
-    if n_upd < need:
-        raise ValueError(
-            f"too few measurements to learn the noise of {model}: {n_upd} filter updates in {batch.z.shape[0]} tracks "
-            f"(each track's two-point start uses its first measurement and one ≥ baseline s later) for {d} parameters; need at least {need}")
+    batch, nq, nr, names, fixed_r, d, n_upd = _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline)
     if meas.noise_inputs is None:
         raise ValueError(f"EM: the noise of the {measurement} measurement is not diagonal with one std per entry")
     x0, prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)

@@ -38,6 +38,7 @@ import numpy as np
 from ..core.initiation import DEFAULT_OMEGA_STD, two_point
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
 from .imm_kernels import imm_loglik_one
+from .tracks import batch_tracks
 from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _hessian
 
 __all__ = ["ImmFit", "learn_imm", "imm_log_likelihood"]
@@ -148,34 +149,21 @@ class _Tracks:
     """Tracks padded for ``imm_loglik_batch``, with each one's two-point start in the common coordinates."""
 
     def __init__(self, tracks, m: int, meas_std: float, omega_std: float, baseline: float):
-        items = []
+        tracks = list(tracks)
+        skip = []
         for i, tr in enumerate(tracks):
             t, z = (np.asarray(a, dtype=float) for a in tr)
-            if z.ndim != 2 or z.shape[1] != m or t.shape != (z.shape[0],):
-                raise ValueError(f"tracks[{i}]: expected t (K,) and z (K, {m}), got {t.shape} and {z.shape}")
-            if not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
-                raise ValueError(f"tracks[{i}]: times must be finite and increase")
-            if np.any(np.isnan(z[:2])):
+            if z.ndim == 2 and z.shape[0] >= 2 and np.any(np.isnan(z[:2])):
                 raise ValueError(f"tracks[{i}]: the first two measurements start the IMM and must not be NaN")
-            if len(t) >= 3:
-                items.append((t, z))
-        B = len(items)
-        K = max((len(t) - 2 for t, _ in items), default=0)
-        self.z = np.full((B, K, m), np.nan)
-        self.dts = np.ones((B, K))
-        self.lengths = np.zeros(B, dtype=np.int64)
-        self.skip = np.zeros(B, dtype=np.int64)
-        t01 = np.empty((2 * B,))
-        z01 = np.empty((2 * B, 2))
-        for b, (t, z) in enumerate(items):
-            L = len(t) - 2
-            self.z[b, :L] = z[2:]
-            self.dts[b, :L] = np.diff(t)[1:]
-            self.lengths[b] = L
-            self.skip[b] = int(np.searchsorted(t[2:] - t[0], baseline, side="left"))
-            t01[2 * b:2 * b + 2] = t[:2]
-            z01[2 * b:2 * b + 2] = z[:2, :2]
-        self.c0, var0 = two_point(t01, z01, np.arange(1, 2 * B, 2), meas_std, omega_std)
+            if t.ndim == 1 and len(t) >= 3:  # the tracks batch_tracks keeps, in its order: steps within ``baseline`` s of t0 not counted
+                skip.append(int(np.searchsorted(t[2:] - t[0], baseline, side="left")))
+        # padded like learn_noise's tracks, but started from the first two measurements (baseline 0)
+        batch = batch_tracks(tracks, m, baseline=0.0)
+        self.z, self.dts, self.lengths = batch.z, batch.dts, batch.lengths
+        self.skip = np.array(skip, dtype=np.int64)
+        B, K = self.z.shape[:2]
+        self.c0, var0 = two_point(batch.t01.reshape(-1), batch.z01[:, :, :2].reshape(-1, 2), np.arange(1, 2 * B, 2),
+                                  meas_std, omega_std)
         self.P0 = np.zeros((B, 6, 6))
         self.P0[:, range(6), range(6)] = var0
         counted = np.arange(K)[None, :]
@@ -184,15 +172,24 @@ class _Tracks:
         self.B = B
 
 
-def _loglik(modes, switch, meas_std, tr: _Tracks, measurement: str) -> tuple[float, int]:
-    s = _Setup(modes, transition_matrix(len(modes), switch) if len(modes) > 1 else None, meas_std, measurement, None)
-    c0, P0c = _common_inputs(tr.c0, tr.P0)
-    S0, Pp0 = s.initial(c0, P0c)
-    ll = np.empty(tr.B)
-    cnt = np.empty(tr.B, dtype=np.int64)
-    imm_loglik_batch(s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r, tr.z, tr.dts, tr.lengths, tr.skip, s.same_group,
-                     s.meas_pose, ll, cnt)
-    return float(np.sum(ll)), int(np.sum(cnt))
+class _Likelihood:
+    """log L of the tracks as a function of the modes' noise factors and the switching probability. The modes'
+    initial states and covariances depend on their models only, so they are converted once, not per evaluation."""
+
+    def __init__(self, modes, meas_std, tr: _Tracks, measurement: str):
+        self.setup = _Setup(modes, None, meas_std, measurement, None)
+        self.S0, self.Pp0 = self.setup.initial(*_common_inputs(tr.c0, tr.P0))
+        self.tr = tr
+
+    def __call__(self, factors, switch: float) -> tuple[float, int]:
+        s, tr = self.setup, self.tr
+        Q = np.ascontiguousarray(s.Q * np.asarray(factors, dtype=float)[:, None])
+        PI = transition_matrix(s.M, switch) if s.M > 1 else s.PI
+        ll = np.empty(tr.B)
+        cnt = np.empty(tr.B, dtype=np.int64)
+        imm_loglik_batch(s.models, self.S0, self.Pp0, s.mu0, PI, Q, s.r, tr.z, tr.dts, tr.lengths, tr.skip, s.same_group,
+                         s.meas_pose, ll, cnt)
+        return float(np.sum(ll)), int(np.sum(cnt))
 
 
 def _scaled(modes, factors) -> list:
@@ -226,7 +223,8 @@ def imm_log_likelihood(modes, tracks, *, meas_std: float, switch: float = DEFAUL
     """
     modes = _modes(modes)
     m = _position_only(measurement)
-    return _loglik(modes, switch, meas_std, _Tracks(tracks, m, meas_std, omega_std, baseline), measurement)[0]
+    tr = _Tracks(tracks, m, meas_std, omega_std, baseline)
+    return _Likelihood(modes, meas_std, tr, measurement)(np.ones(len(modes)), switch)[0]
 
 
 def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH, measurement: str = "position",
@@ -298,20 +296,21 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         a[free] = np.exp(th[:F])
         return a, (_expit(th[F]) if fit_switch else switch)
 
+    loglik = _Likelihood(modes, meas_std, tr, measurement)
     evals = [0]
     diverged = [False]
 
     def nll(th):
         evals[0] += 1
         a, p = params(th)
-        ll, _ = _loglik(_scaled(modes, a), p, meas_std, tr, measurement)
+        ll, _ = loglik(a, p)
         if not math.isfinite(ll):
             diverged[0] = True
             return PENALTY
         return -ll
 
     th_given = np.concatenate([np.zeros(F), [_logit(min(max(switch, SWITCH_BOUNDS[0]), SWITCH_BOUNDS[1]))] if fit_switch else []])
-    ll_start, _ = _loglik(modes, switch, meas_std, tr, measurement)  # at the given values (not clipped to the bounds)
+    ll_start, _ = loglik(np.ones(M), switch)  # at the given values (not clipped to the bounds)
     starts = [th_given]
     if fit_switch:
         alt = th_given.copy()

@@ -55,8 +55,8 @@ def batch_tracks(tracks, m: int, dt: float | None = None, baseline: float = 0.0)
             t, z = (np.asarray(a, dtype=float) for a in tr)
         if z.ndim != 2 or z.shape[1] != m or t.shape != (z.shape[0],):
             raise ValueError(f"tracks[{i}]: expected t (K,) and z (K, {m}), got {t.shape} and {z.shape}")
-        if np.any(np.diff(t) <= 0):
-            raise ValueError(f"tracks[{i}]: times must increase")
+        if not np.all(np.isfinite(t)) or np.any(np.diff(t) <= 0):
+            raise ValueError(f"tracks[{i}]: times must be finite and increase")
         if np.any(np.isnan(z[0])):
             raise ValueError(f"tracks[{i}]: the first measurement starts the filter and must not be NaN")
         j = 1

@@ -180,6 +180,30 @@ def _meas_guess(batch: TrackBatch, m: int) -> float:
     return float(np.clip(np.sqrt(np.median(d2**2) / 6.0 / 0.455), 1e-3, 1e2))  # median of χ²₁ = 0.455
 
 
+def _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline):
+    """The checked inputs of a noise fit (``learn_noise``, ``lgekf.estimators.em.learn_noise_em``): the tracks'
+    batch, the numbers of process and measurement stds, the parameter names, the fixed measurement stds (or
+    None), the number of learned parameters and of filter updates. ValueError for a bad ``meas_std`` or fewer
+    than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter."""
+    batch = tracks if isinstance(tracks, TrackBatch) else batch_tracks(tracks, meas.dim, dt, baseline)
+    nq = len(spec.noise_names)
+    nr = len(meas.noise_names)
+    names = tuple(spec.noise_names) + tuple(f"meas_{nm}" for nm in meas.noise_names)
+    fixed_r = None
+    if meas_std is not None:
+        fixed_r = np.broadcast_to(np.asarray(meas_std, dtype=float).reshape(-1), (nr,)).copy()
+        if np.any(~np.isfinite(fixed_r)) or np.any(fixed_r <= 0):
+            raise ValueError(f"meas_std: must be positive, got {fixed_r.tolist()}")
+    d = nq + (0 if fixed_r is not None else nr)
+    n_upd = batch.n_updates
+    need = MIN_UPDATES_PER_PARAMETER * d
+    if n_upd < need:
+        raise ValueError(
+            f"too few measurements to learn the noise of {model}: {n_upd} filter updates in {batch.z.shape[0]} tracks "
+            f"(each track's two-point start uses its first measurement and one ≥ baseline s later) for {d} parameters; need at least {need}")
+    return batch, nq, nr, names, fixed_r, d, n_upd
+
+
 def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
                 meas_std: float | ArrayLike | None = None, n_starts: int = 3, omega_std: float = 0.5,
                 heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0) -> NoiseFit:
@@ -233,22 +257,7 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     spec = get_model(model)
     meas = spec.measurement(measurement)
     m = meas.dim
-    batch = tracks if isinstance(tracks, TrackBatch) else batch_tracks(tracks, m, dt, baseline)
-    nq = len(spec.noise_names)
-    nr = len(meas.noise_names)
-    names = tuple(spec.noise_names) + tuple(f"meas_{nm}" for nm in meas.noise_names)
-    fixed_r = None
-    if meas_std is not None:
-        fixed_r = np.broadcast_to(np.asarray(meas_std, dtype=float).reshape(-1), (nr,)).copy()
-        if np.any(~np.isfinite(fixed_r)) or np.any(fixed_r <= 0):
-            raise ValueError(f"meas_std: must be positive, got {fixed_r.tolist()}")
-    d = nq + (0 if fixed_r is not None else nr)
-    n_upd = batch.n_updates
-    need = MIN_UPDATES_PER_PARAMETER * d
-    if n_upd < need:
-        raise ValueError(
-            f"too few measurements to learn the noise of {model}: {n_upd} filter updates in {batch.z.shape[0]} tracks "
-            f"(each track's two-point start uses its first measurement and one ≥ baseline s later) for {d} parameters; need at least {need}")
+    batch, nq, nr, names, fixed_r, d, n_upd = _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline)
     x0, prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)
 
     def unpack_theta(th):

@@ -32,6 +32,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numba as nb
 import numpy as np
 
+from .formatting import _two_prod  # a*b = p + e exactly (Dekker), shared with the formatter
+
 __all__ = ["parse", "parse_rows", "hard_values", "group_order", "compiled", "compile_in_background", "warm", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES",
            "COMPILE_MIN_BYTES"]
 
@@ -140,20 +142,6 @@ def _parse_number(buf, a, b):
     if v != v:
         return 0.0, 1
     return (-v if neg else v), 0
-
-
-@nb.njit(cache=True)
-def _two_prod(a, b):
-    """a*b = p + e exactly (Dekker's split)."""
-    p = a * b
-    c = 134217729.0 * a
-    ah = c - (c - a)
-    al = a - ah
-    c = 134217729.0 * b
-    bh = c - (c - b)
-    bl = b - bh
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, e
 
 
 @nb.njit(cache=True)
