@@ -144,7 +144,7 @@ def test_evaluate_imm_fit_falls_back_when_it_cannot_fit():
     (t, z), = _turning_tracks(n_obj=1, K=6)
     tiny = SimpleNamespace(t=t, p=z, starts=np.array([0, 6]), name="tiny")
     opts = ImmTrackOptions("cv,se2r3:calm,se2r3:0.3/0.3/0.6", 0.05)
-    tuned, why = _imm_fitted(opts, tiny, 0.2, [0], 0.5, {"cv": SimpleNamespace(accel_std=(0.7,)), "se2r3": "too few points"})
-    assert isinstance(why, str) and "too few measurements to fit the IMM" in why
+    tuned, why, sets = _imm_fitted(opts, tiny, 0.2, [0], 0.5, {"cv": SimpleNamespace(accel_std=(0.7,)), "se2r3": "too few points"})
+    assert isinstance(why, str) and "too few measurements to fit the IMM" in why and sets == []
     assert [m.accel_std for m in tuned.modes] == [(0.7,), opts.modes[1].accel_std, (0.3, 0.3, 0.6)]
-    assert _imm_fitted(None, tiny, 0.2, [0], 0.5, {}) == (None, None)
+    assert _imm_fitted(None, tiny, 0.2, [0], 0.5, {}) == (None, None, [])

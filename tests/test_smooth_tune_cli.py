@@ -60,12 +60,27 @@ def test_track_tune_with_too_few_points_is_one_line_and_no_output(tmp_path):
 
 @pytest.mark.slow
 def test_evaluate_tune_mle_and_smoothed_rows(tmp_path):
+    """`evaluate --tune --smooth --imm` (one run for the three, to keep CI short): the learned noise in the tuned
+    rows, smoothed rows better than the filters, and the IMM's fit with every candidate mode set in imm_sets.csv."""
+    from lgekf.apps.track_imm import TUNE_MODE_SETS
+
     write_synthetic(tmp_path / "synth.csv", synthetic_tracks(n=8, K=40))
-    r = run("evaluate", "synth.csv", "--seeds", "1", "--tune", "--smooth", "--out", "ev", "--no-figure", cwd=tmp_path)
+    r = run("evaluate", "synth.csv", "--seeds", "1", "--tune", "--smooth", "--imm", "--out", "ev", "--no-figure", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     rows = list(csv.DictReader(open(tmp_path / "ev" / "summary.csv")))
     tuned = {x["filter"]: x for x in rows if x["noise"] == "tuned"}
-    assert set(tuned) == set(FILTERS) | {f"{m}:smoothed" for m in FILTERS}
+    assert set(tuned) == set(FILTERS) | {f"{m}:smoothed" for m in FILTERS} | {"imm"}
+    # every candidate mode set of the IMM's fit: AIC = 2 n_params - 2 log L (n_params = a factor per mode + the
+    # switching probability), the lowest AIC kept, and it is the fit learned.csv reports for the IMM
+    sets = list(csv.DictReader(open(tmp_path / "ev" / "imm_sets.csv")))
+    assert [x["modes"] for x in sets] == list(TUNE_MODE_SETS) and all(x["aic"] for x in sets), sets
+    for x in sets:
+        assert int(x["params"]) == len(x["modes"].split(",")) + 1
+        np.testing.assert_allclose(float(x["aic"]), 2 * int(x["params"]) - 2 * float(x["loglik"]), atol=2e-6)
+    kept = [x for x in sets if x["kept"] == "True"]
+    assert len(kept) == 1 and float(kept[0]["aic"]) == min(float(x["aic"]) for x in sets)
+    imm_learned = [x for x in csv.DictReader(open(tmp_path / "ev" / "learned.csv")) if x["filter"] == "imm"]
+    assert imm_learned and float(imm_learned[0]["loglik"]) == pytest.approx(float(kept[0]["loglik"]), abs=1e-6)
     learned = list(csv.DictReader(open(tmp_path / "ev" / "learned.csv")))
     for m in FILTERS:
         mine = [x for x in learned if x["filter"] == m]

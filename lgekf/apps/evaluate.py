@@ -167,6 +167,7 @@ class DatasetResult:
     n_tune_tracks: int = 0
     accel: dict | None = None  # model -> accel_std when learned (tune_method "mle"), else k·default (scale)
     fits: dict = field(default_factory=dict)  # model -> NoiseFit, or why it could not be learned (tune_method "mle")
+    imm_sets: list = field(default_factory=list)  # the fitted IMM's candidate mode sets: (text, ImmFit or why not, kept)
 
     def summary(self):
         rows = []
@@ -205,10 +206,11 @@ class DatasetResult:
 def _imm_fitted(imm, dtune, meas_std: float, seed_list, omega_std: float, fits: dict):
     """A copy of the IMM options fitted on the tuning split by the IMM's own likelihood
     (``lgekf.apps.track_imm.fit_imm``: each candidate mode set from its models' learned noise, the lowest AIC
-    kept), and the fit; (None, None) without an IMM. When it cannot be fitted (too few steps, nothing free) the
-    modes take their models' learned noise × level as given and the fit is the reason (a str)."""
+    kept), the fit, and every candidate set as (text, ImmFit or why it could not be fitted, kept); (None, None, [])
+    without an IMM. When it cannot be fitted (too few steps, nothing free) the modes take their models' learned
+    noise × level as given and the fit is the reason (a str)."""
     if imm is None:
-        return None, None
+        return None, None, []
     import copy
 
     from .smooth_track import noisy_tracks
@@ -217,12 +219,12 @@ def _imm_fitted(imm, dtune, meas_std: float, seed_list, omega_std: float, fits: 
     tuned = copy.deepcopy(imm)
     learned = {m: f.accel_std for m, f in fits.items() if not isinstance(f, str)}
     try:
-        fit, _ = fit_imm(tuned, noisy_tracks(dtune, meas_std, seed_list, _seed_rng), meas_std, omega_std, learned)
+        fit, table = fit_imm(tuned, noisy_tracks(dtune, meas_std, seed_list, _seed_rng), meas_std, omega_std, learned)
     except ValueError as e:
         tuned = copy.deepcopy(imm)
         tuned.with_learned_noise({m: learned[m] for m in tuned.tunable_models() if m in learned})
-        return tuned, str(e)
-    return tuned, fit
+        return tuned, str(e), []
+    return tuned, fit, [(text, f, f is fit) for text, f in table]
 
 
 def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=False, progress=None, runner=None,
@@ -251,14 +253,14 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
         fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS, method="em" if tune_method == "em" else "lbfgs")
         accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
         cfg = TrackConfig(dict(accel), meas_std).validate()
-        imm_tuned, imm_fit = _imm_fitted(imm, dtune, meas_std, seed_list, cfg.omega_std, fits)
+        imm_tuned, imm_fit, imm_sets = _imm_fitted(imm, dtune, meas_std, seed_list, cfg.omega_std, fits)
         if progress:
             progress(1)
         out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
                                                                     runner=runner, imm=imm), [], len(tune_idx))]
         out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner,
                                                                       imm=imm_tuned), [],
-                                 len(tune_idx), accel, dict(fits, imm=imm_fit) if imm_fit is not None else fits))
+                                 len(tune_idx), accel, dict(fits, imm=imm_fit) if imm_fit is not None else fits, imm_sets))
         return out
     tuning = []
     best = {m: (float("inf"), (1.0, 1.0)) for m in FILTERS}

@@ -92,7 +92,7 @@ def _evaluate(a, runner=None) -> int:
     datasets = [load_dataset(d, root=a.data_root, fmt=a.format, frame_dt=a.frame_dt, min_length=a.min_length) for d in names]
     if len({d.name for d in datasets}) != len(datasets):
         raise ValueError("datasets: the same dataset (name) is given twice")
-    rows, tuning, per_track, fits, learned = [], [], [], [], []
+    rows, tuning, per_track, fits, learned, imm_sets = [], [], [], [], [], []
     steps = 1 + ((2 * len(TUNE_SCALES) + len(TUNE_RATIOS) if a.tune_method == "grid" else 1) if a.tune else 0)  # runs per dataset (tuning grid + evaluation)
     bar = progress_bar(len(datasets) * steps, "lgekf evaluate", not a.quiet and stderr_is_terminal(), unit="runs")
     for ds in datasets:
@@ -118,6 +118,13 @@ def _evaluate(a, runner=None) -> int:
                                  "loglik": fit.loglik, "updates": fit.n_updates, "identified": fit.identified,
                                  "tune_tracks": res.n_tune_tracks}
                                 for nm, v, lo, hi in zip(fit.names, fit.values, fit.ci_low, fit.ci_high)]
+                for text, fit, kept in res.imm_sets:  # every mode set the IMM fit compared (--imm --tune)
+                    ok = not isinstance(fit, str)
+                    imm_sets.append({"dataset": ds.name, "modes": text, "kept": kept, "aic": fit.aic if ok else np.nan,
+                                     "loglik": fit.loglik if ok else np.nan, "params": fit.n_params if ok else "",
+                                     "switch": fit.switch if ok else np.nan,
+                                     "factors": ";".join(f"{v:.4g}" for v in fit.factors) if ok else "",
+                                     "problems": "; ".join(fit.problems) if ok else fit})
             for m, (pos, vel) in res.rmse.items():
                 for si in range(pos.shape[0]):
                     for j, lab in enumerate(res.dataset.labels):
@@ -137,6 +144,9 @@ def _evaluate(a, runner=None) -> int:
         if learned:  # --tune-method mle: the learned noise, its 95 % interval and likelihood
             write_atomic(stage / "learned.csv", _csv_text(["dataset", "filter", "parameter", "value", "ci_lo", "ci_hi", "loglik", "updates",
                                                            "identified", "tune_tracks"], learned))
+        if imm_sets:
+            write_atomic(stage / "imm_sets.csv", _csv_text(["dataset", "modes", "kept", "aic", "loglik", "params", "switch", "factors",
+                                                            "problems"], imm_sets))
         if tuning:
             write_atomic(stage / "tuning.csv", _csv_text(["dataset", "filter", "stage", "scale", "turn_ratio", "tune_pos_rmse", "chosen", "tune_tracks"], tuning))
         meta = {
@@ -167,6 +177,7 @@ def _evaluate(a, runner=None) -> int:
         for r in rows:
             if r["noise"] == "tuned":
                 print(f"tuned {r['dataset']} {r['filter']}: k = {r['scale']:.3g}, ρ = {r['turn_ratio']:.3g} -> accel_std {r['accel_std']}", file=sys.stderr)
-    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}{', learned.csv' if learned else ''}, meta.json"
+    print(f"wrote {out}/summary.csv, per_track.csv{', tuning.csv' if tuning else ''}{', learned.csv' if learned else ''}"
+          f"{', imm_sets.csv' if imm_sets else ''}, meta.json"
           f"{'' if a.no_figure else ', evaluation.png'} ({meta['seconds']:.1f} s)", file=sys.stderr)
     return 0
