@@ -176,3 +176,19 @@ def test_learn_imm_position_only_and_finite_times():
     t[3] = np.nan
     with pytest.raises(ValueError, match="finite and increase"):
         imm_log_likelihood("cv", [(t, z)], meas_std=0.2)
+
+
+def test_report_of_an_unbounded_interval_warns_nothing():
+    """An interval from ~0 to a huge bound (a flat direction) is reported as "[no interval]", without numpy's overflow
+    warning on the user's terminal (lgekf evaluate printed one); a finite one with its bounds; given values as such."""
+    import warnings
+
+    from lgekf.estimators.imm import Mode
+    from lgekf.estimators.imm_tuning import ImmFit
+
+    fit = ImmFit([Mode("cv", (0.1,), "calm"), Mode("cv", (2.0,), "manoeuvre")], 0.02, np.array([0.01, 0.5]),
+                 np.array([1e-300, 0.4, 0.02]), np.array([1e300, 0.6, 0.02]), -10.0, -12.0, 100, 3, [], 2, 50)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        text = fit.report()
+    assert "cv:calm ×0.01 [no interval]" in text and "cv:manoeuvre ×0.5 [0.4, 0.6]" in text and "switch 0.02 (given)" in text

@@ -116,7 +116,7 @@ class ImmFit:
             what = f"×{v:.3g}" if i < len(self.modes) else f"{v:.3g}"
             if lo == hi == v:
                 interval = " (given)"
-            elif np.isfinite(lo) and np.isfinite(hi) and hi / max(lo, 1e-300) < 1e6:
+            elif np.isfinite(lo) and np.isfinite(hi) and hi < 1e6 * lo:  # (no division: lo may be ~0)
                 interval = f" [{lo:.3g}, {hi:.3g}]"
             else:
                 interval = " [no interval]"
