@@ -79,9 +79,10 @@ class ChainFit:
     at_bound: list
 
     def to_dict(self) -> dict:
-        """JSON-ready: the transition matrix (rows), the stationary probabilities and the log-likelihood."""
+        """JSON-ready: the transition matrix (rows), the stationary probabilities, the log-likelihood, the
+        evaluations and the (i, j) of the probabilities on a search bound."""
         return {"transition": self.transition.tolist(), "mu0": self.mu0.tolist(), "loglik": self.loglik,
-                "n_evals": self.n_evals}
+                "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound]}
 
 
 def stationary_distribution(PI: ArrayLike) -> np.ndarray:
