@@ -4,9 +4,11 @@ from the chain's stationary distribution.
 The IMM (Blom and Bar-Shalom 1988) assumes the mode follows a Markov chain with transition matrix
 PI[i, j] = P(mode j at k | mode i at k−1). Nothing in a motion model defines PI or the initial mode probabilities
 μ₀; they are design parameters (Bar-Shalom, Li and Kirubarajan, *Estimation with Applications to Tracking and
-Navigation*, 2001, §11.6.7: the switching probabilities from the expected sojourn times). When tracks of the
+Navigation*, 2001, ch. 11: the switching probabilities from the expected sojourn times). When tracks of the
 motion are available, both follow from the IMM's own likelihood, the product over the steps of its predictive
-density of each measurement,
+density of each measurement, as the transition probabilities of a Markov-switching model are estimated by maximum
+likelihood, its filter started from the chain's ergodic probabilities (Hamilton, "A new approach to the economic
+analysis of nonstationary time series and the business cycle", *Econometrica* 57, 1989):
 
     log L(PI) = Σ_tracks Σ_k log Σ_j c̄_j,k N(ν_j,k; 0, S_j,k),   c̄_j,k = Σ_i PI[i, j] μ_i,k−1,
 
