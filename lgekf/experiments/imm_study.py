@@ -30,8 +30,8 @@ __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUD
 IMM_FILTER = "imm"
 #: the study's default modes (chosen by measurement, see README "The IMM in the study")
 DEFAULT_STUDY_MODES = "cv,se2r3"
-#: the study's default probability of leaving a mode per step (measured: 0.05 leaves the IMM 8 % behind CV at
-#: σ_ω = 0, 0.002 2.8 %; see README)
+#: the study's fixed switching probability before the chain was learned (0.05 left the IMM 8 % behind CV at
+#: σ_ω = 0, 0.002 2.8 %; README); the comparison of ``--imm-switch``
 DEFAULT_STUDY_SWITCH = 0.002
 #: training trajectories per σ_ω for the learned chain (measured: 100 and 200 give the same gaps, README)
 DEFAULT_TRAIN_TRAJECTORIES = 100
