@@ -72,7 +72,10 @@ def study_parser():
     ap.add_argument("--imm-modes", default=None, metavar="LIST",
                     help="modes of the imm filter (with --filters ...,imm): MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3)")
     ap.add_argument("--imm-switch", type=float, default=None, metavar="P",
-                    help="imm: probability of leaving a mode per step (default 0.002)")
+                    help="imm: a fixed probability of leaving a mode per step (default: the transition matrix is "
+                         "learned at each σ_ω on training trajectories)")
+    ap.add_argument("--imm-train", type=int, default=None, metavar="N",
+                    help="imm: training trajectories per σ_ω for the learned transition matrix (default 100)")
     ap.add_argument("--no-figure", action="store_true", help="skip study.png")
     ap.add_argument("--pdf", action="store_true", help="also write study.pdf")
     ap.add_argument("--quiet", action="store_true", help="print only the output folder")
@@ -132,7 +135,7 @@ def cmd_study(argv) -> int:
     cfg = config_from_args(a)
     from ..experiments.imm_study import imm_options_from_args
 
-    imm = imm_options_from_args(a.imm_modes, a.imm_switch)
+    imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train)
     t0 = time.perf_counter()
     from .warmup import compile_estimate, study_jobs, warm_up
 
@@ -165,7 +168,9 @@ def cmd_study(argv) -> int:
         "wrapped_trajectories_per_sigma": {f"{s:.6g}": int(k) for s, k in zip(res.sigmas, res.wrapped)},
         "aliased_trajectories": {name: int(c.sum()) for name, c in res.aliased.items()},
         "filter_measurements": {f: cfg.filter_measurement(f) for f in res.filters},
-        **({"imm": {"modes": imm.modes, "switch": imm.switch}} if "imm" in res.filters else {}),
+        **({"imm": {"modes": imm.modes, "switch": imm.switch,
+                    **({"train_trajectories": imm.train_trajectories, "chains": res.imm_chains} if imm.switch is None else {})}}
+           if "imm" in res.filters else {}),
         "claims": [{"claim": c.text, "holds": c.holds, "evidence": c.evidence} for c in claims],
         "compute_seconds": round(res.compute_seconds, 4),
         "wall_seconds": None,

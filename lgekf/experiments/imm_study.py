@@ -4,6 +4,15 @@ The IMM's modes get the study's matched process noise of their model at each σ_
 ``--noise-scale`` of that model and the mode's named level factor: ``se2r3:calm`` is 0.2 × matched), or the
 stds given in the mode (``se2r3:0.1/0.1/0.5``, used as given at every σ_ω); they start from the same initial
 estimate as every filter (common coordinates, covariance P0_phys); common random numbers as for the filters.
+
+The IMM's Markov chain (the transition matrix and the initial mode probabilities; nothing in the truth defines
+them) is, by default, **learned at each σ_ω** like the noise is matched: :func:`lgekf.estimators.imm_chain.learn_chain`
+fits every transition probability by the IMM's own likelihood on ``train_trajectories`` independent training
+trajectories simulated with the study's protocol at that σ_ω (their own random numbers, from the seed sequence
+[seed, 1]; common to every σ_ω), each started like the study's filters; the IMM then starts from the fitted
+chain's stationary distribution. Only the training draws are used for the fit, never the scored ones. With
+``switch`` given the chain is the symmetric ``transition_matrix(M, switch)`` with uniform initial probabilities
+(the study's IMM before the fit; see README "The IMM: best of both worlds?").
 """
 
 from __future__ import annotations
@@ -15,27 +24,39 @@ import numpy as np
 from ..estimators.imm import NOISE_LEVELS, Mode, imm_batch, parse_modes
 from .metrics import position_rmse
 
-__all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "imm_study_rmse"]
+__all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "DEFAULT_TRAIN_TRAJECTORIES",
+           "imm_study_rmse", "study_chain", "training_draws"]
 
 IMM_FILTER = "imm"
 #: the study's default modes (chosen by measurement, see README "The IMM in the study")
 DEFAULT_STUDY_MODES = "cv,se2r3"
-#: the study's default probability of leaving a mode per step (measured: 0.05 leaves the IMM 8 % behind CV at
-#: σ_ω = 0, 0.002 2.8 %; see README)
+#: the study's fixed switching probability before the chain was learned (0.05 left the IMM 8 % behind CV at
+#: σ_ω = 0, 0.002 2.8 %; README); the comparison of ``--imm-switch``
 DEFAULT_STUDY_SWITCH = 0.002
+#: training trajectories per σ_ω for the learned chain (measured: 100 and 200 give the same gaps, README)
+DEFAULT_TRAIN_TRAJECTORIES = 100
+#: the training draws come from the seed sequence [seed, TRAIN_STREAM] (the scored ones from [seed])
+TRAIN_STREAM = 1
 
 
 @dataclass(frozen=True)
 class ImmStudyOptions:
-    """The IMM of the study: its modes (``parse_modes`` syntax) and the probability of leaving a mode per step."""
+    """The IMM of the study: its modes (``parse_modes`` syntax) and its chain: ``switch`` None (default) learns
+    the transition matrix at each σ_ω on ``train_trajectories`` training trajectories (module docstring); a
+    number is the fixed probability of leaving a mode per step (symmetric, uniform start)."""
 
     modes: str = DEFAULT_STUDY_MODES
-    switch: float = DEFAULT_STUDY_SWITCH
+    switch: float | None = None
+    train_trajectories: int = DEFAULT_TRAIN_TRAJECTORIES
 
     def validate(self) -> None:
         from ..estimators.imm import transition_matrix
 
-        transition_matrix(len(parse_modes(self.modes)), self.switch)
+        M = len(parse_modes(self.modes))
+        if self.switch is not None:
+            transition_matrix(M, self.switch)
+        elif M > 1 and (int(self.train_trajectories) != self.train_trajectories or self.train_trajectories < 2):
+            raise ValueError(f"imm-train: need at least 2 training trajectories, got {self.train_trajectories}")
 
 
 def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:
@@ -51,18 +72,59 @@ def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:
     return out
 
 
+def training_draws(cfg, B: int):
+    """The training trajectories' standard-normal draws (process (B, K, ≥3), measurement (B, K, ≥2), initial error
+    (B, 6)), shaped as the study's own (``run_study``) but from the seed sequence [seed, TRAIN_STREAM]."""
+    from ..core.registry import get_model
+
+    rng = np.random.default_rng([cfg.seed, TRAIN_STREAM])
+    K = cfg.steps
+    truth = get_model(cfg.truth)
+    n_meas = 2 if cfg.measurement == "position" else truth.measurement(cfg.measurement).dim
+    return (rng.standard_normal((B, K, max(3, len(truth.noise_inputs)))), rng.standard_normal((B, K, n_meas)),
+            rng.standard_normal((B, 6)))
+
+
+def _measured(cfg, sim) -> np.ndarray:
+    return sim.z if cfg.measurement != "position" else np.ascontiguousarray(sim.z[..., :2])
+
+
+def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float):
+    """The study IMM's chain learned at σ_ω (module docstring): a :class:`lgekf.estimators.imm_chain.ChainFit`."""
+    from ..estimators.imm_chain import learn_chain
+    from .simulate import simulate
+
+    B = int(opts.train_trajectories)
+    u_proc, u_meas, u_init = training_draws(cfg, B)
+    truth0 = np.tile([0.0, 0.0, 0.0, cfg.v0[0], cfg.v0[1], cfg.w0], (B, 1))
+    sim = simulate(truth0, dt=cfg.dt, steps=cfg.steps, sigma_v=cfg.sigma_v, sigma_w=sigma_w,
+                   meas_std=cfg.meas_noise(cfg.measurement), truth=cfg.truth, measurement=cfg.measurement,
+                   std_normal_process=u_proc, std_normal_meas=u_meas)
+    return learn_chain(study_modes(cfg, opts, sigma_w), _measured(cfg, sim), dt=cfg.dt,
+                       meas_std=cfg.meas_noise(cfg.measurement), x0=truth0 + u_init * np.asarray(cfg.init_std),
+                       P0=np.diag(np.square(cfg.init_std)), measurement=cfg.measurement)
+
+
 def imm_study_rmse(cfg, opts: ImmStudyOptions, sim, sigma_w: float, est0: np.ndarray, P0_phys: np.ndarray,
-                   pos: np.ndarray) -> np.ndarray:
-    """Per-trajectory position RMSE (B,) of the study's IMM on one σ_ω's simulation."""
+                   pos: np.ndarray, chains: list | None = None) -> np.ndarray:
+    """Per-trajectory position RMSE (B,) of the study's IMM on one σ_ω's simulation; a learned chain is appended
+    to ``chains`` (``{"sigma_w": ..., **ChainFit.to_dict()}``) when given."""
     modes = study_modes(cfg, opts, sigma_w)
-    est, _ = imm_batch(sim.z if cfg.measurement != "position" else np.ascontiguousarray(sim.z[..., :2]), modes, opts.switch,
-                       dt=cfg.dt, meas_std=cfg.meas_noise(cfg.measurement), x0=est0, P0=P0_phys, measurement=cfg.measurement)
+    transition, mu0 = opts.switch, None
+    if opts.switch is None and len(modes) > 1:
+        fit = study_chain(cfg, opts, sigma_w)
+        transition, mu0 = fit.transition, fit.mu0
+        if chains is not None:
+            chains.append({"sigma_w": float(sigma_w), **fit.to_dict()})
+    est, _ = imm_batch(_measured(cfg, sim), modes, transition, dt=cfg.dt, meas_std=cfg.meas_noise(cfg.measurement),
+                       x0=est0, P0=P0_phys, measurement=cfg.measurement, mu0=mu0)
     return position_rmse(est, pos)
 
 
-def imm_options_from_args(modes: str | None, switch: float | None) -> ImmStudyOptions:
-    """The study's IMM options from ``--imm-modes`` / ``--imm-switch`` (None: the defaults), validated."""
-    opts = ImmStudyOptions(DEFAULT_STUDY_MODES if modes is None else modes,
-                           DEFAULT_STUDY_SWITCH if switch is None else switch)
+def imm_options_from_args(modes: str | None, switch: float | None, train: int | None = None) -> ImmStudyOptions:
+    """The study's IMM options from ``--imm-modes`` / ``--imm-switch`` / ``--imm-train`` (None: the defaults; no
+    switch: the chain is learned), validated."""
+    opts = ImmStudyOptions(DEFAULT_STUDY_MODES if modes is None else modes, switch,
+                           DEFAULT_TRAIN_TRAJECTORIES if train is None else train)
     opts.validate()
     return opts

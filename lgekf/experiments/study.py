@@ -122,6 +122,7 @@ class StudyResult:
     wrapped: np.ndarray  # (S,) number of trajectories whose ω wrapped
     compute_seconds: float
     aliased: dict = field(default_factory=dict)  # filter -> (S,) trajectories whose truth it cannot represent
+    imm_chains: list = field(default_factory=list)  # the IMM's learned chain per σ_ω (imm_study.imm_study_rmse)
 
     @property
     def filters(self) -> tuple:
@@ -184,6 +185,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     rmse = {name: np.empty((S, B)) for name in (*cfg.filters, "measurements")}
     wrapped = np.zeros(S, dtype=int)
     aliased = {name: np.zeros(S, dtype=int) for name in cfg.filters if name != IMM_FILTER and get_model(name).bounds}
+    imm_chains: list = []
     t0 = time.perf_counter()
     for i, sw in enumerate(sigmas):
         sim = simulate(
@@ -198,7 +200,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
             aliased[name][i] = int(np.any([np.abs(sim.truth[:, :, int(j)]) > v for j, v in b.items()], axis=(0, 2)).sum())
         for name in cfg.filters:
             if name == IMM_FILTER:
-                rmse[name][i] = imm_study_rmse(cfg, imm, sim, sw, est0, P0_phys, pos)
+                rmse[name][i] = imm_study_rmse(cfg, imm, sim, sw, est0, P0_phys, pos, imm_chains)
                 continue
             x0, P0 = inits[name]
             meas = cfg.filter_measurement(name)
@@ -210,7 +212,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
             rmse[name][i] = position_rmse(est, pos)
         if progress is not None:
             progress(i + 1, S)
-    return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0, aliased)
+    return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0, aliased, imm_chains)
 
 
 # ------------------------------------------------------------------------------------ claims

@@ -1,0 +1,252 @@
+"""The IMM's Markov chain learned from data: every transition probability by maximum likelihood, the IMM started
+from the chain's stationary distribution.
+
+The IMM (Blom and Bar-Shalom 1988) assumes the mode follows a Markov chain with transition matrix
+PI[i, j] = P(mode j at k | mode i at k−1). Nothing in a motion model defines PI or the initial mode probabilities
+μ₀; they are design parameters (Bar-Shalom, Li and Kirubarajan, *Estimation with Applications to Tracking and
+Navigation*, 2001, ch. 11: the switching probabilities from the expected sojourn times). When tracks of the
+motion are available, both follow from the IMM's own likelihood, the product over the steps of its predictive
+density of each measurement, as the transition probabilities of a Markov-switching model are estimated by maximum
+likelihood, its filter started from the chain's ergodic probabilities (Hamilton, "A new approach to the economic
+analysis of nonstationary time series and the business cycle", *Econometrica* 57, 1989):
+
+    log L(PI) = Σ_tracks Σ_k log Σ_j c̄_j,k N(ν_j,k; 0, S_j,k),   c̄_j,k = Σ_i PI[i, j] μ_i,k−1,
+
+with every off-diagonal PI[i, j] a free parameter (M(M − 1) of them; each row's diagonal is 1 minus the rest)
+and μ₀ = π(PI), the stationary distribution of the chain (π PI = π): a track observed from an arbitrary moment
+of a chain that has been running finds it in its stationary law, so μ₀ is not a further parameter. An
+asymmetric PI lets the data say which mode is the rule and which the exception (a mode entered rarely and left
+quickly has a small stationary probability and starts small); the symmetric ``transition_matrix(M, p)`` has the
+uniform stationary law.
+
+Contrast :func:`lgekf.estimators.imm_tuning.learn_imm`, which fits one symmetric switching probability and the
+modes' noise factors for tracks started from two measurements; here the modes' noise is given (e.g. matched to
+the simulated truth) and every track starts from a given initial estimate (x0, P0) with all its steps counted,
+as the Monte Carlo study runs its filters (``lgekf.experiments.imm_study``).
+
+Optimiser: L-BFGS-B in θ_ij = logit PI[i, j] (bounded to ``CHAIN_BOUNDS``; each row's off-diagonal mass at
+most the upper bound), finite differences of 1e-3, two starts (every off-diagonal 0.002 and 0.05), the better
+kept. The likelihood of one θ is one IMM run over all the tracks in numba
+(:func:`lgekf.estimators.imm_tuning.imm_loglik_batch`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from ..core.batch import measurements_array, step_lengths
+from ..core.registry import get_model
+from .imm import _common_inputs, _Setup
+from .imm_tuning import imm_loglik_batch
+from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
+
+__all__ = ["ChainFit", "learn_chain", "stationary_distribution", "chain_log_likelihood", "CHAIN_BOUNDS"]
+
+#: search range of each off-diagonal transition probability (the upper bound shared by a row's off-diagonals)
+CHAIN_BOUNDS = (1e-5, 0.5)
+#: the optimiser's starts: every off-diagonal probability at these values (split over a row's M − 1 entries)
+STARTS = (0.002, 0.05)
+
+
+@dataclass
+class ChainFit:
+    """Result of :func:`learn_chain`.
+
+    Attributes
+    ----------
+    transition : ndarray, (M, M)
+        The fitted transition matrix PI[i, j] = P(mode j | mode i).
+    mu0 : ndarray, (M,)
+        Its stationary distribution, the IMM's initial mode probabilities.
+    loglik : float
+        The IMM log-likelihood at the optimum.
+    n_updates : int
+        Steps counted in the likelihood.
+    n_evals : int
+        Likelihood evaluations the fit took (each one IMM run over all the tracks).
+    at_bound : list of tuple
+        The (i, j) of the off-diagonal probabilities that ended on a search bound (a mode the data never leave
+        or always leave at once).
+    """
+
+    transition: np.ndarray
+    mu0: np.ndarray
+    loglik: float
+    n_updates: int
+    n_evals: int
+    at_bound: list
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the transition matrix (rows), the stationary probabilities, the log-likelihood, the
+        evaluations and the (i, j) of the probabilities on a search bound."""
+        return {"transition": self.transition.tolist(), "mu0": self.mu0.tolist(), "loglik": self.loglik,
+                "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound]}
+
+
+def stationary_distribution(PI: ArrayLike) -> np.ndarray:
+    """The stationary distribution π of a transition matrix (π PI = π, Σ π = 1).
+
+    Parameters
+    ----------
+    PI : array_like, (M, M)
+        Row-stochastic; irreducible (every mode reachable from every other), so π is unique.
+
+    Returns
+    -------
+    ndarray, (M,)
+        Solves (PIᵀ − I) π = 0 with the last equation replaced by Σ π = 1.
+    """
+    PI = np.asarray(PI, dtype=float)
+    M = PI.shape[0]
+    A = PI.T - np.eye(M)
+    A[-1] = 1.0
+    b = np.zeros(M)
+    b[-1] = 1.0
+    pi = np.linalg.solve(A, b)
+    pi = np.clip(pi, 0.0, None)
+    return pi / pi.sum()
+
+
+def _transition_of(theta: np.ndarray, M: int) -> np.ndarray:
+    """PI from the logits of its off-diagonal entries (row-major, the diagonal skipped)."""
+    PI = np.zeros((M, M))
+    off = ~np.eye(M, dtype=bool)
+    PI[off] = 0.5 * (1.0 + np.tanh(0.5 * np.asarray(theta, dtype=float)))  # expit without overflow
+    np.fill_diagonal(PI, 1.0 - PI.sum(axis=1))
+    return PI
+
+
+def _logit(p: float) -> float:
+    return math.log(p / (1.0 - p))
+
+
+class _ChainLikelihood:
+    """log L of given tracks as a function of the transition matrix (the IMM started from its stationary law);
+    the modes' initial states are converted once."""
+
+    def __init__(self, modes, z, dt, meas_std, x0, P0, measurement):
+        self.setup = s = _Setup(modes, None, meas_std, measurement, None)
+        z = measurements_array(z, get_model(s.modes[0].model).measurement(measurement).dim)
+        B, K = z.shape[:2]
+        self.z = z
+        self.dts = step_lengths(dt, B, K)
+        c0, P0c = _common_inputs(x0, P0)
+        if c0.shape[0] == 1 and B > 1:
+            c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
+            P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
+        if c0.shape[0] != B:
+            raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
+        self.S0, self.Pp0 = s.initial(c0, P0c)
+        self.lengths = np.full(B, K, dtype=np.int64)
+        self.skip = np.zeros(B, dtype=np.int64)
+        self.n_updates = int(np.sum(~np.any(np.isnan(z), axis=2)))
+        self.B = B
+
+    def __call__(self, PI: np.ndarray) -> float:
+        s = self.setup
+        ll = np.empty(self.B)
+        cnt = np.empty(self.B, dtype=np.int64)
+        imm_loglik_batch(s.models, self.S0, self.Pp0, np.ascontiguousarray(stationary_distribution(PI)),
+                         np.ascontiguousarray(PI), s.Q, s.r, self.z, self.dts, self.lengths, self.skip, s.same_group,
+                         s.meas_pose, ll, cnt)
+        return float(np.sum(ll))
+
+
+def chain_log_likelihood(modes, z: ArrayLike, transition: ArrayLike, *, dt, meas_std, x0: ArrayLike, P0: ArrayLike,
+                         measurement: str = "position") -> float:
+    """The IMM's log-likelihood (module docstring) of tracks z with the transition matrix ``transition``, the IMM
+    started from (x0, P0) and the chain's stationary distribution.
+
+    Parameters
+    ----------
+    modes : str or sequence
+        As for :class:`lgekf.estimators.imm.IMM`.
+    z : array_like, (B, K, m)
+        Measurements (NaN rows: missed, not counted).
+    transition : array_like, (M, M)
+        Row-stochastic, irreducible.
+    dt : float or array_like
+        As for :func:`lgekf.estimators.imm.imm_batch`.
+    meas_std : float or array_like
+        Measurement-noise std(s).
+    x0 : array_like, (B, 6) or (6,)
+        Initial estimates in the common coordinates (x, y, θ, v_x, v_y, ω).
+    P0 : array_like, (6, 6) or (B, 6, 6)
+        Their covariance.
+    measurement : {"position", "pose"}
+
+    Returns
+    -------
+    float
+    """
+    lik = _ChainLikelihood(modes, z, dt, meas_std, x0, P0, measurement)
+    PI = np.asarray(transition, dtype=float)
+    if PI.shape != (lik.setup.M, lik.setup.M):
+        raise ValueError(f"transition: expected ({lik.setup.M}, {lik.setup.M}), got {PI.shape}")
+    return lik(PI)
+
+
+def learn_chain(modes, z: ArrayLike, *, dt, meas_std, x0: ArrayLike, P0: ArrayLike,
+                measurement: str = "position") -> ChainFit:
+    """Fit the IMM's transition matrix by maximum likelihood, the IMM started from its stationary distribution.
+
+    Parameters
+    ----------
+    modes : str or sequence
+        The modes with their process noise (held fixed), as for :class:`lgekf.estimators.imm.IMM`.
+    z : array_like, (B, K, m)
+        Training tracks (NaN rows: missed detections).
+    dt : float or array_like
+        Step length(s), as for :func:`lgekf.estimators.imm.imm_batch`.
+    meas_std : float or array_like
+        Measurement-noise std(s) (given).
+    x0 : array_like, (B, 6) or (6,)
+        Each track's initial estimate in the common coordinates (x, y, θ, v_x, v_y, ω), at the time before
+        its first measurement (every measurement is counted).
+    P0 : array_like, (6, 6) or (B, 6, 6)
+        Its covariance.
+    measurement : {"position", "pose"}
+
+    Returns
+    -------
+    ChainFit
+
+    Raises
+    ------
+    ValueError
+        Bad input, a single mode (no chain to fit), or fewer than ``MIN_UPDATES_PER_PARAMETER`` counted steps
+        per transition probability.
+    """
+    from scipy.optimize import minimize
+
+    lik = _ChainLikelihood(modes, z, dt, meas_std, x0, P0, measurement)
+    M = lik.setup.M
+    if M < 2:
+        raise ValueError("modes: a chain needs two modes or more")
+    d = M * (M - 1)
+    if lik.n_updates < MIN_UPDATES_PER_PARAMETER * d:
+        raise ValueError(f"too few measurements to fit the transition matrix: {lik.n_updates} steps for {d} "
+                         f"probabilities; need at least {MIN_UPDATES_PER_PARAMETER * d}")
+    lo, hi = CHAIN_BOUNDS[0], CHAIN_BOUNDS[1] / (M - 1)
+    bounds = [(_logit(lo), _logit(hi))] * d
+    evals = [0]
+
+    def nll(theta):
+        evals[0] += 1
+        ll = lik(_transition_of(theta, M))
+        return -ll if math.isfinite(ll) else PENALTY
+
+    best = None
+    for p in STARTS:
+        th0 = np.full(d, _logit(min(max(p / (M - 1), lo), hi)))
+        res = minimize(nll, th0, method="L-BFGS-B", bounds=bounds, options={"maxiter": 100, "eps": 1e-3})
+        if best is None or res.fun < best.fun:
+            best = res
+    PI = _transition_of(best.x, M)
+    off = [(i, j) for i in range(M) for j in range(M) if i != j]
+    at_bound = [ij for ij, t in zip(off, best.x) if t <= bounds[0][0] + 0.05 or t >= bounds[0][1] - 0.05]
+    return ChainFit(PI, stationary_distribution(PI), -float(best.fun), lik.n_updates, evals[0], at_bound)
