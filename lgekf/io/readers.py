@@ -27,6 +27,7 @@ Writing: ``lgekf.io.formatting`` (numbers in numba) and ``lgekf.io.files`` (atom
 
 from __future__ import annotations
 
+import codecs
 import csv
 import gzip
 import itertools
@@ -44,6 +45,7 @@ from . import fastcsv
 from .fastcsv import group_order
 from .files import is_stdio, open_input, source_name
 from .geo import to_local
+from .mapped import MAP_MIN_BYTES, MappedFile, parse_mapped
 
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
@@ -515,13 +517,35 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         if os.path.getsize(path) >= fastcsv.COMPILE_MIN_BYTES:  # parser to pay off, it compiles for next time
             fastcsv.compile_in_background()
         return None
+    mapped = None
     try:
-        with open(path, "rb") as raw:
-            data = raw.read()
-        if data[:2] == b"\x1f\x8b":
-            data = gzip.decompress(data)
-    except (OSError, EOFError, zlib.error):
+        if os.path.getsize(path) >= MAP_MIN_BYTES:  # a large file: mapped and parsed in segments (lgekf.io.mapped)
+            mapped = MappedFile(path)
+            if mapped.data[:2] == b"\x1f\x8b":
+                mapped.close()
+                mapped = None
+        if mapped is None:
+            with open(path, "rb") as raw:
+                data = raw.read()
+            if data[:2] == b"\x1f\x8b":
+                data = gzip.decompress(data)
+        else:
+            data = mapped.data
+    except (OSError, EOFError, zlib.error, ValueError):
         return None
+    held = [data]  # handed over: _parse_fast drops the bytes as soon as they are parsed
+    del data
+    try:
+        return _parse_fast(source, held, mapped, use_heading, extra, delimiter)
+    finally:
+        if mapped is not None:
+            mapped.close()
+
+
+def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
+    """The rest of ``_read_csv_fast`` on the file's bytes ``held[0]`` (taken out of the list; ``mapped``: the
+    ``MappedFile`` they are, else None)."""
+    data = held.pop()
     off = 3 if data[:3] == b"\xef\xbb\xbf" else 0
     nl = data.find(b"\n", off)
     if nl < 0:
@@ -538,15 +562,16 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         return None
     num = [(n, c) for n, c in zip(colnames, usecols) if n != "id"]
     idcol = usecols[colnames.index("id")] if "id" in colnames else -1
-    status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim), [c for _, c in num],
-                                                                 idcol, 2)
+    if mapped is not None:
+        status, vals, lines, obj, lab, hard, nonascii = parse_mapped(mapped, nl + 1, -1 if delim is None else ord(delim),
+                                                                     [c for _, c in num], idcol, 2)
+    else:
+        status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim),
+                                                                     [c for _, c in num], idcol, 2)
     if status != fastcsv.OK or lines.size == 0:
         return None
-    if nonascii:
-        try:
-            data.decode("utf-8")
-        except UnicodeDecodeError:
-            return None
+    if nonascii and not _is_utf8(data):
+        return None
     if hard.shape[0]:  # beyond the exact fast path: numpy's correctly rounded parser, all at once
         vals[hard[:, 1], hard[:, 0]] = fastcsv.hard_values(data, hard)
     if idcol >= 0:
@@ -555,10 +580,23 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
             return None
     else:
         labels = ["0"]
-    del data  # the file's bytes are no longer needed: less peak memory for what follows
+    del data  # the file's bytes are no longer needed: less peak memory for what follows (the caller unmaps a mapped file)
     cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
     del vals
     return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels))
+
+
+def _is_utf8(data) -> bool:
+    """Whether bytes (or a mapped file) decode as UTF-8, checked a few MB at a time (no decoded copy of a file)."""
+    dec = codecs.getincrementaldecoder("utf-8")()
+    step = 1 << 22
+    try:
+        for a in range(0, len(data), step):
+            dec.decode(data[a:a + step])
+        dec.decode(b"", final=True)
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=(),
