@@ -75,6 +75,7 @@ REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least thi
 
 ROWS_PER_CHUNK = 1 << 16  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs
 FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
+BATCH_ROWS = 1 << 14  # filter steps of one padded batch (run_batch's inputs and outputs: ~0.25 KB per step)
 SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
@@ -181,7 +182,7 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
     m = zm.shape[1]
     lengths = np.asarray(lengths, dtype=np.int64)
     first_all = np.asarray(first, dtype=np.int64)
-    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
+    for objs in _length_batches(lengths, BATCH_ROWS):
         Lb = np.ascontiguousarray(lengths[objs])
         K = int(Lb.max())
         first = np.ascontiguousarray(first_all[objs])
