@@ -67,7 +67,7 @@ class MappedFile:
 
 
 def _segments(buf, start: int, size: int) -> list:
-    """Byte ranges (a, b) covering buf[start:], each ending after a line feed (the last at the end)."""
+    """Byte ranges (a, b) covering buf[start:], each ending after a line feed (the last at the end); at least one."""
     n = buf.shape[0]
     out = []
     a = start
@@ -81,10 +81,10 @@ def _segments(buf, start: int, size: int) -> list:
             b = n if nl.size == 0 else b + int(nl[0]) + 1
         out.append((a, b))
         a = b
-    return out
+    return out or [(start, n)]  # no body: one empty segment (no rows)
 
 
-def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first_line: int, segment_bytes: int = SEGMENT_BYTES):
+def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first_line: int, segment_bytes: int | None = None):
     """``fastcsv.parse(data, start, delim, cols, idcol, first_line)`` of a mapped file, segment by segment.
 
     Parameters
@@ -93,8 +93,8 @@ def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first
         The file.
     start, delim, cols, idcol, first_line
         As for ``fastcsv.parse``.
-    segment_bytes : int
-        About this many bytes are parsed at a time.
+    segment_bytes : int, optional
+        About this many bytes are parsed at a time (default ``SEGMENT_BYTES``).
 
     Returns
     -------
@@ -103,7 +103,7 @@ def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first
     """
     buf = np.frombuffer(mf.data, dtype=np.uint8)
     cols = np.asarray(cols, dtype=np.int64)
-    segs = _segments(buf, start, max(int(segment_bytes), 1))
+    segs = _segments(buf, start, max(int(SEGMENT_BYTES if segment_bytes is None else segment_bytes), 1))
     caps = []
     for a, b in segs:  # lines per segment (room for every row), the pages released again
         caps.append(int(np.count_nonzero(buf[a:b] == 10)) + (1 if b == len(mf) and buf[b - 1] != 10 else 0))
