@@ -81,12 +81,15 @@ def measured_run(cmd) -> tuple:
     return float(sec), int(kb) / 1024, r.stderr, float(cpu)
 
 
-def fixed_rss(tmp: Path, cli=None) -> float:
-    """Max RSS (MB) of `lgekf track` on a file of 20 rows: what a run holds whatever its input."""
+def fixed_rss(tmp: Path, cli=None, model: str = "se2se2") -> float:
+    """Max RSS (MB) of `lgekf track --model MODEL` on a file of 20 rows: what a run holds whatever its input."""
     tiny = tmp / "tiny.csv"
     tiny.write_text("id,t,x,y\n" + "".join(f"{i % 2},{0.1 * (i // 2):.1f},{0.5 * i:.1f},{0.1 * i:.1f}\n" for i in range(20)))
-    return min(measured_run([*(cli or cli_command()), "track", str(tiny), "-o", str(tmp / "tiny_out.csv"), "--quiet"])[1]
-               for _ in range(2))
+    out = tmp / "tiny_out.csv"
+    mb = min(measured_run([*(cli or cli_command()), "track", str(tiny), "-o", str(out), "--model", model, "--quiet"])[1] for _ in range(2))
+    for f in tmp.glob("tiny_out*.csv"):
+        f.unlink()
+    return mb
 
 
 def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool, compare=None, repeat: int = 1) -> list:
@@ -139,9 +142,11 @@ def _compared(inp: Path, tmp: Path, model: str, compare, repeat: int) -> list:
     return rows
 
 
-def print_end_to_end(title, inp: Path, rows, base_mb: float, fixed_mb: float | None = None, other_fixed: float | None = None) -> None:
+def print_end_to_end(title, inp: Path, rows, base_mb: float, fixed_mb: dict | None = None, other_fixed: dict | None = None) -> None:
+    """The table of ``end_to_end``'s rows; ``fixed_mb`` {"one": MB, "all": MB}: ``fixed_rss`` of one model and of all."""
     mb_in = inp.stat().st_size / 1e6
-    fixed = f"; fixed RSS (lgekf track on 20 rows) {fixed_mb:.0f} MB = {(fixed_mb - base_mb) / mb_in:.2f} x input above base" if fixed_mb else ""
+    fixed = (f"; fixed RSS (lgekf track on 20 rows) {fixed_mb['one']:.0f} MB, --model all {fixed_mb['all']:.0f} MB"
+             if fixed_mb else "")
     print(f"\n{title}: input {mb_in:.1f} MB CSV; baseline RSS (python -c 'import numpy, numba') {base_mb:.0f} MB{fixed}")
     head = f"{'end to end':<40}{'seconds':>9}{'CPU s':>8}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}"
     head += f"{'data / in':>10}" if fixed_mb else ""
@@ -150,12 +155,13 @@ def print_end_to_end(title, inp: Path, rows, base_mb: float, fixed_mb: float | N
         head += f"{'other s':>9}{'time ratio':>11}{'other RSS':>10}{'/ input':>9}{'data / in':>10}{'same':>6}"
     print(head)
     for what, sec, cpu, mb, size, *other in rows:
+        key = "all" if "--model all" in what else "one"
         line = f"{what:<40}{sec:9.2f}{cpu:8.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}"
-        line += f"{(mb - fixed_mb) / mb_in:10.2f}" if fixed_mb else ""
+        line += f"{(mb - fixed_mb[key]) / mb_in:10.2f}" if fixed_mb else ""
         line += f"{size:11.1f}"
         if other:
             o_sec, o_mb, same = other
-            o_fixed = other_fixed or fixed_mb or base_mb
+            o_fixed = (other_fixed or fixed_mb or {key: base_mb})[key]
             line += f"{o_sec:9.2f}{sec / o_sec:11.2f}{o_mb:10.0f}{(o_mb - base_mb) / mb_in:9.2f}{(o_mb - o_fixed) / mb_in:10.2f}{'yes' if same else 'NO':>6}"
         print(line)
 
@@ -260,8 +266,8 @@ def main(argv=None) -> int:
 
 def _end_to_end_only(a, inp, tmp, n, base_mb) -> int:
     compare = None if a.compare is None else [a.compare]
-    fixed_mb = fixed_rss(tmp)
-    other_fixed = None if compare is None else fixed_rss(tmp, compare)
+    fixed_mb = {"one": fixed_rss(tmp, None, a.model), "all": fixed_rss(tmp, None, "all")}
+    other_fixed = None if compare is None else {"one": fixed_rss(tmp, compare, a.model), "all": fixed_rss(tmp, compare, "all")}
     print_end_to_end(f"{a.objects} objects x {a.steps} steps", inp, end_to_end(inp, tmp, a.model, a.parquet, compare, a.repeat), base_mb,
                      fixed_mb, other_fixed)
     if a.one_object:
@@ -270,7 +276,8 @@ def _end_to_end_only(a, inp, tmp, n, base_mb) -> int:
         print_end_to_end(f"one object of {n} measurements", one, end_to_end(one, tmp, a.model, a.parquet, compare, a.repeat), base_mb,
                          fixed_mb, other_fixed)
     if compare is not None:
-        print(f"(other: {a.compare}; its fixed RSS {other_fixed:.0f} MB; time ratio = this / other, best of {a.repeat} each, interleaved)")
+        print(f"(other: {a.compare}; its fixed RSS {other_fixed['one']:.0f} MB, --model all {other_fixed['all']:.0f} MB; "
+              f"time ratio = this / other, best of {a.repeat} each, interleaved)")
     return 0
 
 

@@ -6,6 +6,9 @@ returns to the system; but after freeing such a block it raises the threshold to
 that frees a 24 MB array and then makes and frees many arrays of a few MB (``lgekf track``'s chunks) thus
 holds tens of MB it no longer uses. ``mmap_large_arrays`` fixes the threshold (which also stops its
 adjustment): every array above it is mapped and unmapped on its own.
+
+The price is page faults: every chunk's arrays are fresh pages (``lgekf track``, 10⁶ rows of 10⁴ objects, measured
+under load: 17 MB less peak RSS, 3.5x the minor faults, about 0.1 s more system time per model written).
 """
 
 from __future__ import annotations
@@ -40,3 +43,4 @@ def mmap_large_arrays(threshold: int = MMAP_THRESHOLD) -> bool:
         return bool(libc.mallopt(ctypes.c_int(_M_MMAP_THRESHOLD), ctypes.c_int(int(threshold))))
     except (OSError, AttributeError):  # musl and others: no mallopt
         return False
+
