@@ -41,7 +41,10 @@ def test_grouped_consuming_gives_the_rows_of_grouped(case):
         obj, n_obj = rng.permutation(np.repeat(np.arange(3), [4, 4, 5])), 3
     m = _measurements(obj, n_obj, heading=case != "no heading")
     want, want_starts, _ = _copy(m).grouped(min_length=2)
+    t_in, z_in = m.t, m.z
     got, starts = grouped_consuming(m, min_length=2)
+    if case in ("grouped already", "one object"):  # already in object order: no copy made
+        assert got.t is t_in and got.z is z_in
     assert starts.tolist() == want_starts.tolist()
     assert got.t.tolist() == want.t.tolist()
     assert got.z.tolist() == want.z.tolist()
