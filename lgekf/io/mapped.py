@@ -154,6 +154,7 @@ def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first
                     while size < 2 * lab.shape[0]:  # the table's load stays under 1/2, as in parse_rows
                         size *= 2
                     table = _rehash(buf, lab, lab.shape[0], size)
+                mf.release(start, segs[k][1])  # the earlier ids' pages the merge read again
         elif rows and lab is None:
             lab = lab_k
         hard_k = hard_k.copy()

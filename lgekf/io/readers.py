@@ -580,6 +580,8 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
             return None
     else:
         labels = ["0"]
+    if mapped is not None:  # the pages the ids and hard numbers were read from again
+        mapped.release(0, len(mapped))
     del data  # the file's bytes are no longer needed: less peak memory for what follows (the caller unmaps a mapped file)
     cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
     del vals
