@@ -51,12 +51,15 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     starts = np.zeros(meas.n_objects + 1, dtype=np.int64)
     np.cumsum(counts, out=starts[1:])
     in_order = obj.size < 2 or bool(np.all(obj[1:] >= obj[:-1]))  # the counting sort's order is then the identity
+    meas.obj = None  # not needed any more but for an error below, which rebuilds it from order and starts
     del obj
     t = meas.t if in_order else meas.t[order]
     if t.size > 1:
-        bad = np.diff(t) <= 0
+        bad = t[1:] <= t[:-1]  # np.diff(t) <= 0 for finite times, without a float copy
         bad[starts[1:-1] - 1] = False  # steps between objects do not count
         if bad.any():
+            meas.obj = np.empty(t.size, np.int64)
+            meas.obj[order] = row_objects(starts, 0, len(starts) - 1)
             meas.grouped(min_length)  # raises its error naming the lines
         del bad
     labels = list(meas.labels)
