@@ -45,21 +45,25 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
         As ``Measurements.grouped`` (an object with too few measurements, times not increasing).
     """
     obj = np.ascontiguousarray(meas.obj, dtype=np.int64)
-    order, counts = group_order(obj, meas.n_objects)
+    in_order = obj.size < 2 or bool(np.all(obj[1:] >= obj[:-1]))  # the counting sort's order is then the identity
+    if in_order:
+        order, counts = None, np.bincount(obj, minlength=meas.n_objects).astype(np.int64, copy=False)
+    else:
+        order, counts = group_order(obj, meas.n_objects)
     if np.any(counts < min_length):
         meas.grouped(min_length)  # raises its error naming the object and line
     starts = np.zeros(meas.n_objects + 1, dtype=np.int64)
     np.cumsum(counts, out=starts[1:])
-    in_order = obj.size < 2 or bool(np.all(obj[1:] >= obj[:-1]))  # the counting sort's order is then the identity
     meas.obj = None  # not needed any more but for an error below, which rebuilds it from order and starts
     del obj
-    t = meas.t if in_order else meas.t[order]
+    t = _own(meas.t) if in_order else meas.t[order]
     if t.size > 1:
         bad = t[1:] <= t[:-1]  # np.diff(t) <= 0 for finite times, without a float copy
         bad[starts[1:-1] - 1] = False  # steps between objects do not count
         if bad.any():
-            meas.obj = np.empty(t.size, np.int64)
-            meas.obj[order] = row_objects(starts, 0, len(starts) - 1)
+            meas.obj = row_objects(starts, 0, len(starts) - 1)
+            if order is not None:
+                meas.obj[order] = meas.obj.copy()
             meas.grouped(min_length)  # raises its error naming the lines
         del bad
     labels = list(meas.labels)
@@ -68,15 +72,21 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     for name in ("z", "heading"):
         v = getattr(meas, name)
         setattr(meas, name, None)
-        cols[name] = v if v is None or in_order else v[order]
+        cols[name] = v if v is None else _own(v) if in_order else v[order]
         del v
     extra = {}
     for k in list(meas.extra):
         v = meas.extra.pop(k)
-        extra[k] = v if in_order else v[order]
+        extra[k] = _own(v) if in_order else v[order]
         del v
     out = Measurements(t, cols["z"], cols["heading"], None, labels, None, meas.source, extra, meas.origin)
     return out, starts
+
+
+def _own(a: np.ndarray) -> np.ndarray:
+    """``a`` itself, or a copy when it is a view holding a larger buffer alive (``read_csv``'s positions live in
+    the first two thirds of its parsed numbers' buffer)."""
+    return a.copy() if a.base is not None and a.base.nbytes > a.nbytes else a
 
 
 def row_objects(starts: np.ndarray, first: int, last: int) -> np.ndarray:

@@ -583,9 +583,33 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
     if mapped is not None:  # the pages the ids and hard numbers were read from again
         mapped.release(0, len(mapped))
     del data  # the file's bytes are no longer needed: less peak memory for what follows (the caller unmaps a mapped file)
-    cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
+    names = [n for n, _ in num]
+    z = None
+    if "x" in names and "y" in names and vals.flags.c_contiguous:
+        other = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names) if n not in ("x", "y")}
+        z = _positions_in_place(vals, names.index("x"), names.index("y"))  # vals's buffer reused: no second copy
+        cols = {n: z[:, 0] if n == "x" else z[:, 1] if n == "y" else other[n] for n in names}  # in the header's order
+        del other
+    else:
+        cols = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names)}
     del vals
-    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels))
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels),
+                                     positions=z)
+
+
+def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
+    """Columns ix, iy of the C-contiguous rows ``vals`` (N, k >= 2) as an (N, 2) array in the first 2N numbers of
+    ``vals``'s own buffer (the rest of the buffer is overwritten: take the other columns out first).
+
+    Row r's pair goes to numbers 2r, 2r + 1, never after row r's own place (k r), so copying a block of rows at a
+    time, in order (each block taken out before it is written), never overwrites a row not yet moved.
+    """
+    n = vals.shape[0]
+    flat = vals.reshape(-1)  # a view: vals is C-contiguous
+    for r0 in range(0, n, block):
+        r1 = min(r0 + block, n)
+        flat[2 * r0:2 * r1] = vals[r0:r1][:, [ix, iy]].reshape(-1)
+    return flat[:2 * n].reshape(n, 2)
 
 
 def _is_utf8(data) -> bool:
@@ -602,7 +626,7 @@ def _is_utf8(data) -> bool:
 
 
 def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=(),
-                              objects=None) -> Measurements:
+                              objects=None, positions=None) -> Measurements:
     """Check parsed columns and assemble them into ``Measurements`` (the last step of ``read_csv``).
 
     Parameters
@@ -622,6 +646,9 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         Further numeric columns, kept in ``Measurements.extra``.
     objects : tuple, optional
         (object index per row, labels) already found (``read_csv``'s fast path); ``cols`` then has no ``id``.
+    positions : ndarray, optional
+        (N, 2): ``cols["x"]``, ``cols["y"]`` side by side, used as the positions instead of a stacked copy
+        (``read_csv``'s fast path, where they are its two columns).
 
     Returns
     -------
@@ -647,7 +674,7 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         z = np.column_stack([x, y])
     else:
         origin = None
-        z = np.column_stack([cols["x"], cols["y"]])
+        z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
     ext = {n: cols[n] for n in extra if n in cols}
     return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin)
 
