@@ -111,3 +111,13 @@ def test_track_output_the_same_mapped_and_in_small_batches(tmp_path, monkeypatch
     monkeypatch.setattr(track, "SERIAL_STEPS", 0)  # padded batches even for this little work
     assert cmd_track([*args, "-o", str(tmp_path / "mapped.csv")]) == 0
     assert (tmp_path / "mapped.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
+
+
+@pytest.mark.parametrize("k, ix, iy", [(2, 0, 1), (2, 1, 0), (3, 1, 2), (3, 2, 0), (5, 4, 1)])
+def test_positions_moved_within_the_buffer(k, ix, iy):
+    """read_csv's fast path puts x, y into the first 2N numbers of the parsed rows' own buffer, block by block."""
+    vals = np.random.default_rng(k + ix).standard_normal((1001, k))
+    want = vals[:, [ix, iy]].copy()
+    z = readers._positions_in_place(vals, ix, iy, block=7)
+    assert np.shares_memory(z, vals) and z.flags.c_contiguous
+    assert np.array_equal(z, want)
