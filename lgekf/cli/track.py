@@ -23,6 +23,7 @@ from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
+from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
@@ -222,6 +223,7 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
                           TRACK_HEADING_CAP).validate()
         return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
+    single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
     if is_parquet(a.input):
         meas = read_parquet(a.input, a.use_heading or a.measure == "pose")
     else:
