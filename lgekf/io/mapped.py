@@ -108,16 +108,14 @@ def parse_mapped(mf: MappedFile, start: int, delim: int, cols, idcol: int, first
     for a, b in segs:  # lines per segment (room for every row), the pages released again
         caps.append(int(np.count_nonzero(buf[a:b] == 10)) + (1 if b == len(mf) and buf[b - 1] != 10 else 0))
         mf.release(a, b)
-    offs = np.concatenate([[0], np.cumsum(caps)]).astype(np.int64)
+    offs = np.concatenate([[0], np.cumsum(caps)]).astype(np.int64)  # also the line feeds before each segment
     cap = int(offs[-1])
     vals, line, obj = np.empty((cap, cols.size)), np.empty(cap, np.int64), np.empty(cap, np.int64)
-    # the line number before each segment's first line: the line feeds before it
-    lines_before = np.concatenate([[0], np.cumsum([c for c in caps])]).astype(np.int64)
 
     def one(k):
         a, b = segs[k]
         lo, hi = int(offs[k]), int(offs[k + 1])
-        res = parse_rows(buf[:b], a, delim, cols, idcol, first_line + int(lines_before[k]), vals[lo:hi], line[lo:hi], obj[lo:hi])
+        res = parse_rows(buf[:b], a, delim, cols, idcol, first_line + lo, vals[lo:hi], line[lo:hi], obj[lo:hi])
         mf.release(a, b)
         return res
 
