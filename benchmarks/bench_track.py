@@ -1,7 +1,7 @@
 """Time `lgekf track` on 10⁶ measurements: end to end (a subprocess, as a user runs it) and its parts.
 
     python benchmarks/bench_track.py [--objects 10000] [--steps 100] [--model se2se2] [--keep DIR]
-                                     [--one-object] [--no-parts] [--no-parquet]
+                                     [--one-object] [--no-parts] [--no-parquet] [--compare LGEKF] [--repeat N]
 
 Writes a CSV of OBJECTS x STEPS rows (``id,t,x,y``; objects interleaved in time order, irregular steps
 around 0.1 s, turning trajectories (turn rate a mean-reverting random walk) with 0.2 m noise) to a
@@ -16,12 +16,17 @@ temporary folder, then reports:
            for M and for `--model all`, CSV out and (with pyarrow) Parquet out and in, on the same file and
            (``--one-object``, default on) on one object of the same number of measurements; each with its
            peak memory (max RSS of the process) next to the baseline RSS of ``python -c "import numpy, numba"``
-           and the input file's size.
+           and the input file's size; "fixed" is the max RSS of `lgekf track` on a file of 20 rows (numba's
+           LLVM and the loaded kernels: what any run holds whatever the input), "data" the max RSS minus it.
+  --compare LGEKF  the end-to-end runs also with another ``lgekf`` executable (e.g. /work/main/.venv/bin/lgekf),
+           interleaved with this one's, best of ``--repeat`` runs each, with the ratio of their times and the
+           check that both wrote the same bytes.
 """
 
 from __future__ import annotations
 
 import argparse
+import hashlib
 import os
 import shutil
 import subprocess
@@ -76,8 +81,23 @@ def measured_run(cmd) -> tuple:
     return float(sec), int(kb) / 1024, r.stderr, float(cpu)
 
 
-def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
-    """Rows (what, seconds, max RSS MB, output MB) of `lgekf track` on ``inp``: the model, ``all``, Parquet."""
+def fixed_rss(tmp: Path, cli=None, model: str = "se2se2") -> float:
+    """Max RSS (MB) of `lgekf track --model MODEL` on a file of 20 rows: what a run holds whatever its input."""
+    tiny = tmp / "tiny.csv"
+    tiny.write_text("id,t,x,y\n" + "".join(f"{i % 2},{0.1 * (i // 2):.1f},{0.5 * i:.1f},{0.1 * i:.1f}\n" for i in range(20)))
+    out = tmp / "tiny_out.csv"
+    mb = min(measured_run([*(cli or cli_command()), "track", str(tiny), "-o", str(out), "--model", model, "--quiet"])[1] for _ in range(2))
+    for f in tmp.glob("tiny_out*.csv"):
+        f.unlink()
+    return mb
+
+
+def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool, compare=None, repeat: int = 1) -> list:
+    """Rows (what, seconds, CPU s, max RSS MB, output MB[, other's seconds, other's max RSS MB, same bytes]) of
+    `lgekf track` on ``inp``: the model, ``all``, Parquet; with ``compare`` (another lgekf command) both, interleaved,
+    best of ``repeat``."""
+    if compare is not None:
+        return _compared(inp, tmp, model, compare, repeat)
     rows = []
     runs = [(model, "csv", inp), ("all", "csv", inp)]
     if parquet:
@@ -100,12 +120,50 @@ def end_to_end(inp: Path, tmp: Path, model: str, parquet: bool) -> list:
     return rows
 
 
-def print_end_to_end(title, inp: Path, rows, base_mb: float) -> None:
+def _compared(inp: Path, tmp: Path, model: str, compare, repeat: int) -> list:
+    """Both commands on ``inp`` (CSV out; ``model`` and ``all``), interleaved, best of ``repeat`` each."""
+    rows = []
+    for m in (model, "all"):
+        best = {}
+        outs = {}
+        for _ in range(max(1, repeat)):
+            for who, cli in (("this", cli_command()), ("other", compare)):
+                out = tmp / f"{who}.csv"
+                sec, mb, _, cpu = measured_run([*cli, "track", str(inp), "-o", str(out), "--model", m, "--quiet"])
+                b = best.get(who)
+                best[who] = (min(sec, b[0]), min(cpu, b[1]), max(mb, b[2])) if b else (sec, cpu, mb)
+                files = [out] if m != "all" else sorted(tmp.glob(f"{who}_*.csv"))
+                outs[who] = [hashlib.sha256(f.read_bytes()).hexdigest() for f in files]
+                size = sum(f.stat().st_size for f in files) / 1e6
+                for f in files:
+                    f.unlink()
+        same = outs["this"] == outs["other"]
+        rows.append((f"--model {m}, csv in, csv out", *best["this"], size, best["other"][0], best["other"][2], same))
+    return rows
+
+
+def print_end_to_end(title, inp: Path, rows, base_mb: float, fixed_mb: dict | None = None, other_fixed: dict | None = None) -> None:
+    """The table of ``end_to_end``'s rows; ``fixed_mb`` {"one": MB, "all": MB}: ``fixed_rss`` of one model and of all."""
     mb_in = inp.stat().st_size / 1e6
-    print(f"\n{title}: input {mb_in:.1f} MB CSV; baseline RSS (python -c 'import numpy, numba') {base_mb:.0f} MB")
-    print(f"{'end to end':<40}{'seconds':>9}{'CPU s':>8}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}{'output MB':>11}")
-    for what, sec, cpu, mb, size in rows:
-        print(f"{what:<40}{sec:9.2f}{cpu:8.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}{size:11.1f}")
+    fixed = (f"; fixed RSS (lgekf track on 20 rows) {fixed_mb['one']:.0f} MB, --model all {fixed_mb['all']:.0f} MB"
+             if fixed_mb else "")
+    print(f"\n{title}: input {mb_in:.1f} MB CSV; baseline RSS (python -c 'import numpy, numba') {base_mb:.0f} MB{fixed}")
+    head = f"{'end to end':<40}{'seconds':>9}{'CPU s':>8}{'max RSS MB':>12}{'minus base':>12}{'/ input':>9}"
+    head += f"{'data / in':>10}" if fixed_mb else ""
+    head += f"{'output MB':>11}"
+    if rows and len(rows[0]) > 5:
+        head += f"{'other s':>9}{'time ratio':>11}{'other RSS':>10}{'/ input':>9}{'data / in':>10}{'same':>6}"
+    print(head)
+    for what, sec, cpu, mb, size, *other in rows:
+        key = "all" if "--model all" in what else "one"
+        line = f"{what:<40}{sec:9.2f}{cpu:8.2f}{mb:12.0f}{mb - base_mb:12.0f}{(mb - base_mb) / mb_in:9.2f}"
+        line += f"{(mb - fixed_mb[key]) / mb_in:10.2f}" if fixed_mb else ""
+        line += f"{size:11.1f}"
+        if other:
+            o_sec, o_mb, same = other
+            o_fixed = (other_fixed or fixed_mb or {key: base_mb})[key]
+            line += f"{o_sec:9.2f}{sec / o_sec:11.2f}{o_mb:10.0f}{(o_mb - base_mb) / mb_in:9.2f}{(o_mb - o_fixed) / mb_in:10.2f}{'yes' if same else 'NO':>6}"
+        print(line)
 
 
 def main(argv=None) -> int:
@@ -118,6 +176,9 @@ def main(argv=None) -> int:
                     help="skip the end-to-end runs on one object of OBJECTS x STEPS measurements")
     ap.add_argument("--no-parts", dest="parts", action="store_false", help="skip the in-process timing of the parts")
     ap.add_argument("--no-parquet", dest="parquet", action="store_false", help="skip the Parquet runs")
+    ap.add_argument("--compare", default=None, metavar="LGEKF",
+                    help="another lgekf executable: end-to-end runs (CSV) of both, interleaved, with time ratios and a byte check")
+    ap.add_argument("--repeat", type=int, default=3, help="with --compare: best of this many runs each (default 3)")
     a = ap.parse_args(argv)
     try:
         import pyarrow  # noqa: F401
@@ -204,11 +265,19 @@ def main(argv=None) -> int:
 
 
 def _end_to_end_only(a, inp, tmp, n, base_mb) -> int:
-    print_end_to_end(f"{a.objects} objects x {a.steps} steps", inp, end_to_end(inp, tmp, a.model, a.parquet), base_mb)
+    compare = None if a.compare is None else [a.compare]
+    fixed_mb = {"one": fixed_rss(tmp, None, a.model), "all": fixed_rss(tmp, None, "all")}
+    other_fixed = None if compare is None else {"one": fixed_rss(tmp, compare, a.model), "all": fixed_rss(tmp, compare, "all")}
+    print_end_to_end(f"{a.objects} objects x {a.steps} steps", inp, end_to_end(inp, tmp, a.model, a.parquet, compare, a.repeat), base_mb,
+                     fixed_mb, other_fixed)
     if a.one_object:
         one = tmp / "one_object.csv"
         generate(one, 1, n)
-        print_end_to_end(f"one object of {n} measurements", one, end_to_end(one, tmp, a.model, a.parquet), base_mb)
+        print_end_to_end(f"one object of {n} measurements", one, end_to_end(one, tmp, a.model, a.parquet, compare, a.repeat), base_mb,
+                         fixed_mb, other_fixed)
+    if compare is not None:
+        print(f"(other: {a.compare}; its fixed RSS {other_fixed['one']:.0f} MB, --model all {other_fixed['all']:.0f} MB; "
+              f"time ratio = this / other, best of {a.repeat} each, interleaved)")
     return 0
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 import lgekf.io.fastcsv as fastcsv
+import lgekf.io.mapped as mapped
 import lgekf.io.readers as readers
 from lgekf.io.fastcsv import group_order
 from lgekf.io.readers import DataError, read_csv
@@ -19,11 +20,16 @@ def compiled_parser():
     fastcsv.warm()
 
 
-@pytest.fixture(params=["one part", "two parts"], autouse=True)
+@pytest.fixture(params=["one part", "two parts", "mapped segments"], autouse=True)
 def parts(request, monkeypatch):
-    """Every test both ways: the body parsed in one piece, and split in two halves parsed in two threads."""
+    """Every test three ways: the body parsed in one piece, split in two halves parsed in two threads, and
+    (``lgekf.io.mapped``) the file mapped and parsed in segments of a few lines, two threads at a time."""
     if request.param == "two parts":
         monkeypatch.setattr(fastcsv, "PARALLEL_BYTES", 8)
+        monkeypatch.setattr(fastcsv, "_cpus", lambda: 2)
+    if request.param == "mapped segments":
+        monkeypatch.setattr(readers, "MAP_MIN_BYTES", 0)
+        monkeypatch.setattr(mapped, "SEGMENT_BYTES", 97)
         monkeypatch.setattr(fastcsv, "_cpus", lambda: 2)
     return request.param
 

@@ -59,6 +59,7 @@ from ..core.validate import positive_scalar
 from .divergence import MonitorConfig, recover, speed_limits
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows
+from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
 
 __all__ = [
@@ -74,6 +75,7 @@ REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least thi
 
 ROWS_PER_CHUNK = 1 << 16  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs
 FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
+BATCH_ROWS = 1 << 14  # filter steps of one padded batch (run_batch's inputs and outputs: ~0.25 KB per step)
 SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
@@ -180,7 +182,7 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
     m = zm.shape[1]
     lengths = np.asarray(lengths, dtype=np.int64)
     first_all = np.asarray(first, dtype=np.int64)
-    for objs in _length_batches(lengths, ROWS_PER_CHUNK):
+    for objs in _length_batches(lengths, BATCH_ROWS):
         Lb = np.ascontiguousarray(lengths[objs])
         K = int(Lb.max())
         first = np.ascontiguousarray(first_all[objs])
@@ -387,13 +389,14 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
 
             parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
                                                                                              cfg, h, measurement), r.x, r.p))
+        row_obj = row_objects(starts, o, o2)  # meas.obj of grouped rows (which need not keep it)
         for lo in range(0, b - a, FORMAT_ROWS):  # a block of rows at a time: no text copy of a long object
             hi = min(lo + FORMAT_ROWS, b - a)
             block = np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
             if sink is not None:
-                sink.write_rows(meas.labels, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block)
+                sink.write_rows(meas.labels, row_obj[lo:hi], meas.t[a + lo:a + hi], block)
             else:
-                write_rows(fh, lab, meas.obj[a + lo:a + hi], meas.t[a + lo:a + hi], block, col_digits)
+                write_rows(fh, lab, row_obj[lo:hi], meas.t[a + lo:a + hi], block, col_digits)
         if bar is not None:
             bar.update(b - a)
         o = o2

@@ -18,10 +18,12 @@ from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
+from ..io.grouping import grouped_consuming
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
+from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
@@ -221,11 +223,12 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
                           TRACK_HEADING_CAP).validate()
         return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
+    single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
     if is_parquet(a.input):
         meas = read_parquet(a.input, a.use_heading or a.measure == "pose")
     else:
         meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
-    meas, starts, _ = meas.grouped(min_length=2)
+    meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
     t_read = time.perf_counter() - t0
     if meas.origin is not None:

@@ -27,6 +27,7 @@ Writing: ``lgekf.io.formatting`` (numbers in numba) and ``lgekf.io.files`` (atom
 
 from __future__ import annotations
 
+import codecs
 import csv
 import gzip
 import itertools
@@ -44,6 +45,7 @@ from . import fastcsv
 from .fastcsv import group_order
 from .files import is_stdio, open_input, source_name
 from .geo import to_local
+from .mapped import MAP_MIN_BYTES, MappedFile, parse_mapped
 
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
@@ -515,13 +517,35 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         if os.path.getsize(path) >= fastcsv.COMPILE_MIN_BYTES:  # parser to pay off, it compiles for next time
             fastcsv.compile_in_background()
         return None
+    mapped = None
     try:
-        with open(path, "rb") as raw:
-            data = raw.read()
-        if data[:2] == b"\x1f\x8b":
-            data = gzip.decompress(data)
-    except (OSError, EOFError, zlib.error):
+        if os.path.getsize(path) >= MAP_MIN_BYTES:  # a large file: mapped and parsed in segments (lgekf.io.mapped)
+            mapped = MappedFile(path)
+            if mapped.data[:2] == b"\x1f\x8b":
+                mapped.close()
+                mapped = None
+        if mapped is None:
+            with open(path, "rb") as raw:
+                data = raw.read()
+            if data[:2] == b"\x1f\x8b":
+                data = gzip.decompress(data)
+        else:
+            data = mapped.data
+    except (OSError, EOFError, zlib.error, ValueError):
         return None
+    held = [data]  # handed over: _parse_fast drops the bytes as soon as they are parsed
+    del data
+    try:
+        return _parse_fast(source, held, mapped, use_heading, extra, delimiter)
+    finally:
+        if mapped is not None:
+            mapped.close()
+
+
+def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
+    """The rest of ``_read_csv_fast`` on the file's bytes ``held[0]`` (taken out of the list; ``mapped``: the
+    ``MappedFile`` they are, else None)."""
+    data = held.pop()
     off = 3 if data[:3] == b"\xef\xbb\xbf" else 0
     nl = data.find(b"\n", off)
     if nl < 0:
@@ -538,15 +562,16 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
         return None
     num = [(n, c) for n, c in zip(colnames, usecols) if n != "id"]
     idcol = usecols[colnames.index("id")] if "id" in colnames else -1
-    status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim), [c for _, c in num],
-                                                                 idcol, 2)
+    if mapped is not None:
+        status, vals, lines, obj, lab, hard, nonascii = parse_mapped(mapped, nl + 1, -1 if delim is None else ord(delim),
+                                                                     [c for _, c in num], idcol, 2)
+    else:
+        status, vals, lines, obj, lab, hard, nonascii = fastcsv.parse(data, nl + 1, -1 if delim is None else ord(delim),
+                                                                     [c for _, c in num], idcol, 2)
     if status != fastcsv.OK or lines.size == 0:
         return None
-    if nonascii:
-        try:
-            data.decode("utf-8")
-        except UnicodeDecodeError:
-            return None
+    if nonascii and not _is_utf8(data):
+        return None
     if hard.shape[0]:  # beyond the exact fast path: numpy's correctly rounded parser, all at once
         vals[hard[:, 1], hard[:, 0]] = fastcsv.hard_values(data, hard)
     if idcol >= 0:
@@ -555,14 +580,53 @@ def _read_csv_fast(path, source, use_heading, extra, delimiter):
             return None
     else:
         labels = ["0"]
-    del data  # the file's bytes are no longer needed: less peak memory for what follows
-    cols = {n: np.ascontiguousarray(vals[:, i]) for i, (n, _) in enumerate(num)}
+    if mapped is not None:  # the pages the ids and hard numbers were read from again
+        mapped.release(0, len(mapped))
+    del data  # the file's bytes are no longer needed: less peak memory for what follows (the caller unmaps a mapped file)
+    names = [n for n, _ in num]
+    z = None
+    if "x" in names and "y" in names and vals.flags.c_contiguous:
+        other = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names) if n not in ("x", "y")}
+        z = _positions_in_place(vals, names.index("x"), names.index("y"))  # vals's buffer reused: no second copy
+        cols = {n: z[:, 0] if n == "x" else z[:, 1] if n == "y" else other[n] for n in names}  # in the header's order
+        del other
+    else:
+        cols = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names)}
     del vals
-    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels))
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels),
+                                     positions=z)
+
+
+def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
+    """Columns ix, iy of the C-contiguous rows ``vals`` (N, k >= 2) as an (N, 2) array in the first 2N numbers of
+    ``vals``'s own buffer (the rest of the buffer is overwritten: take the other columns out first).
+
+    Row r's pair goes to numbers 2r, 2r + 1, never after row r's own place (k r), so copying a block of rows at a
+    time, in order (each block taken out before it is written), never overwrites a row not yet moved.
+    """
+    n = vals.shape[0]
+    flat = vals.reshape(-1)  # a view: vals is C-contiguous
+    for r0 in range(0, n, block):
+        r1 = min(r0 + block, n)
+        flat[2 * r0:2 * r1] = vals[r0:r1][:, [ix, iy]].reshape(-1)
+    return flat[:2 * n].reshape(n, 2)
+
+
+def _is_utf8(data) -> bool:
+    """Whether bytes (or a mapped file) decode as UTF-8, checked a few MB at a time (no decoded copy of a file)."""
+    dec = codecs.getincrementaldecoder("utf-8")()
+    step = 1 << 22
+    try:
+        for a in range(0, len(data), step):
+            dec.decode(data[a:a + step])
+        dec.decode(b"", final=True)
+    except UnicodeDecodeError:
+        return False
+    return True
 
 
 def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=(),
-                              objects=None) -> Measurements:
+                              objects=None, positions=None) -> Measurements:
     """Check parsed columns and assemble them into ``Measurements`` (the last step of ``read_csv``).
 
     Parameters
@@ -582,6 +646,9 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         Further numeric columns, kept in ``Measurements.extra``.
     objects : tuple, optional
         (object index per row, labels) already found (``read_csv``'s fast path); ``cols`` then has no ``id``.
+    positions : ndarray, optional
+        (N, 2): ``cols["x"]``, ``cols["y"]`` side by side, used as the positions instead of a stacked copy
+        (``read_csv``'s fast path, where they are its two columns).
 
     Returns
     -------
@@ -607,7 +674,7 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         z = np.column_stack([x, y])
     else:
         origin = None
-        z = np.column_stack([cols["x"], cols["y"]])
+        z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
     ext = {n: cols[n] for n in extra if n in cols}
     return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin)
 
