@@ -172,3 +172,41 @@ def test_study_imm_within_two_percent_of_the_best_single_filter():
     best = np.min([res.mean(f) for f in FILTERS], axis=0)
     gap = res.mean("imm") / best - 1
     assert np.all(gap < 0.02), gap
+
+
+@pytest.mark.parametrize("extra, option", [
+    (["--imm-train", "1000000000"], "imm-train"),
+    (["--imm-train", "99999999999999999999"], "imm-train"),
+    (["--trajectories", "1000000000"], "trajectories"),
+    (["--trajectories", "99999999999999999999"], "trajectories"),
+    (["--imm-train", "2", "--steps", "5"], "imm-train"),  # 10 training steps for 2 probabilities: need 20
+])
+def test_study_cli_refuses_sizes_up_front(tmp_path, capsys, extra, option):
+    """Too many trajectories × steps (scored or training) or too few training steps: one line naming the option,
+    exit 2, no output folder, before anything is drawn."""
+    from lgekf.cli import main
+
+    out = tmp_path / "o"
+    args = ["study", "--filters", "cv,se2r3,imm", "--trajectories", "4", "--steps", "20", "--sigmas", "0,1",
+            "--no-figure", "--out", str(out)]
+    assert main(args + extra) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and option in err[0], err
+    assert not out.exists()
+
+
+def test_study_cli_out_of_memory_is_one_line(tmp_path, capsys, monkeypatch):
+    import lgekf.experiments.study as study
+
+    def no_memory(*a, **k):
+        raise MemoryError
+
+    monkeypatch.setattr(study, "run_study", no_memory)
+    from lgekf.cli import main
+
+    out = tmp_path / "o"
+    assert main(["study", "--filters", "cv", "--trajectories", "4", "--steps", "5", "--sigmas", "0", "--no-figure",
+                 "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "out of memory" in err[0], err
+    assert not out.exists()

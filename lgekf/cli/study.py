@@ -136,6 +136,8 @@ def cmd_study(argv) -> int:
     from ..experiments.imm_study import imm_options_from_args
 
     imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train)
+    if "imm" in cfg.filters:
+        imm.validate(cfg.steps)  # the training draws' size, before any compile or draw
     t0 = time.perf_counter()
     from .warmup import compile_estimate, study_jobs, warm_up
 
@@ -143,7 +145,10 @@ def cmd_study(argv) -> int:
     with compile_notice("lgekf study", enabled=not a.quiet, seconds=compile_estimate(j.cost for j in jobs)):
         warm_up(jobs)  # a cold cache: the kernels compile in parallel processes; warm: milliseconds
         with progress_bar(len(cfg.sigmas), "lgekf study", not a.quiet and stderr_is_terminal(), unit="σ_ω") as bar:
-            res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
+            try:
+                res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
+            except MemoryError:
+                raise ValueError("lgekf study: out of memory; give fewer --trajectories, --steps or --imm-train") from None
     claims = claims_check(res)
     out = a.out
     buf = io.StringIO()

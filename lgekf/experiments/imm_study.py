@@ -17,6 +17,7 @@ chain's stationary distribution. Only the training draws are used for the fit, n
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,14 +50,45 @@ class ImmStudyOptions:
     switch: float | None = None
     train_trajectories: int = DEFAULT_TRAIN_TRAJECTORIES
 
-    def validate(self) -> None:
+    def validate(self, steps: int | None = None) -> None:
+        """Check the options; with the study's ``steps`` also the training draws' size of a learned chain.
+
+        Parameters
+        ----------
+        steps : int, optional
+            Measurements per trajectory: the training draws (``train_trajectories`` × ``steps``) must be at
+            most ``study.MAX_TRAJECTORY_STEPS`` and give at least ``MIN_UPDATES_PER_PARAMETER`` counted steps
+            per transition probability (M (M − 1) of them).
+
+        Raises
+        ------
+        ValueError
+            Bad modes or switch, fewer than 2 training trajectories, or training draws too few or too many.
+        """
         from ..estimators.imm import transition_matrix
+        from ..estimators.tuning import MIN_UPDATES_PER_PARAMETER
 
         M = len(parse_modes(self.modes))
         if self.switch is not None:
             transition_matrix(M, self.switch)
-        elif M > 1 and (int(self.train_trajectories) != self.train_trajectories or self.train_trajectories < 2):
-            raise ValueError(f"imm-train: need at least 2 training trajectories, got {self.train_trajectories}")
+            return
+        if M < 2:
+            return
+        n = self.train_trajectories
+        if isinstance(n, bool) or not isinstance(n, (int, float, np.integer, np.floating)) or not math.isfinite(n) \
+                or int(n) != n or n < 2:
+            raise ValueError(f"imm-train: need a whole number of at least 2 training trajectories, got {n}")
+        if steps is None:
+            return
+        from .study import MAX_TRAJECTORY_STEPS
+
+        n, d = int(n), M * (M - 1)
+        if n * steps > MAX_TRAJECTORY_STEPS:
+            raise ValueError(f"imm-train: training trajectories × steps must be at most {MAX_TRAJECTORY_STEPS:,} "
+                             f"(held in memory), got {n} × {steps}")
+        if n * steps < MIN_UPDATES_PER_PARAMETER * d:
+            raise ValueError(f"imm-train: {n} training trajectories × {steps} steps are too few to learn the {d} "
+                             f"transition probabilities; need at least {MIN_UPDATES_PER_PARAMETER * d} steps")
 
 
 def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:

@@ -41,6 +41,9 @@ from .simulate import measurement_noise, simulate, truth_models
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
 
 FILTERS = tuple(MODELS)  # every registry model, the default filter set
+#: the largest trajectories × steps per σ_ω (the draws and the filters' estimates are held in memory; the
+#: default study has 10⁴); also the limit of the IMM's training draws (``ImmStudyOptions.validate``)
+MAX_TRAJECTORY_STEPS = 10_000_000
 PAPER_FILTERS = ("se2se2", "se2r3", "ctrv", "cv")  # the filters of the paper's Fig. 4 (its claims name them)
 
 
@@ -80,6 +83,9 @@ class StudyConfig:
             raise ValueError(f"steps: must be at least 1, got {self.steps}")
         if self.trajectories < 2:
             raise ValueError(f"trajectories: must be at least 2 (a std is reported), got {self.trajectories}")
+        if self.trajectories * self.steps > MAX_TRAJECTORY_STEPS:
+            raise ValueError(f"trajectories: trajectories × steps must be at most {MAX_TRAJECTORY_STEPS:,} (held in memory), "
+                             f"got {self.trajectories} × {self.steps}")
         if len(self.sigmas) < 1 or any((not math.isfinite(s)) or s < 0 for s in self.sigmas):
             raise ValueError("sigmas: need at least one finite, non-negative σ_ω")
         positive_scalar("meas_std", self.meas_std)
@@ -151,6 +157,8 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     """
     cfg.validate()
     imm = ImmStudyOptions() if imm is None else imm
+    if IMM_FILTER in cfg.filters:
+        imm.validate(cfg.steps)
     rng = np.random.default_rng(cfg.seed)
     B, K = cfg.trajectories, cfg.steps
     truth = get_model(cfg.truth)
