@@ -26,7 +26,7 @@ from ..estimators.imm import NOISE_LEVELS, Mode, imm_batch, parse_modes
 from .metrics import position_rmse
 
 __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "DEFAULT_TRAIN_TRAJECTORIES",
-           "imm_study_rmse", "study_chain", "training_draws"]
+           "imm_options_record", "imm_study_rmse", "study_chain", "training_draws"]
 
 IMM_FILTER = "imm"
 #: the study's default modes (chosen by measurement, see README "The IMM in the study")
@@ -151,6 +151,24 @@ def imm_study_rmse(cfg, opts: ImmStudyOptions, sim, sigma_w: float, est0: np.nda
     est, _ = imm_batch(_measured(cfg, sim), modes, transition, dt=cfg.dt, meas_std=cfg.meas_noise(cfg.measurement),
                        x0=est0, P0=P0_phys, measurement=cfg.measurement, mu0=mu0)
     return position_rmse(est, pos)
+
+
+def imm_options_record(opts: ImmStudyOptions) -> dict:
+    """The IMM's options as written to meta.json (``lgekf study``, ``lgekf sweep``).
+
+    Parameters
+    ----------
+    opts : ImmStudyOptions
+
+    Returns
+    -------
+    dict
+        ``modes``, ``switch`` (None: the chain is learned) and, for a learned chain of two modes or more,
+        ``train_trajectories``.
+    """
+    learned = opts.switch is None and len(parse_modes(opts.modes)) > 1
+    return {"modes": opts.modes, "switch": opts.switch,
+            **({"train_trajectories": int(opts.train_trajectories)} if learned else {})}
 
 
 def imm_options_from_args(modes: str | None, switch: float | None, train: int | None = None) -> ImmStudyOptions:
