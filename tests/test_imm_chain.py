@@ -210,3 +210,18 @@ def test_study_cli_out_of_memory_is_one_line(tmp_path, capsys, monkeypatch):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "out of memory" in err[0], err
     assert not out.exists()
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--filters", "cv,se2r3", "--imm-train", "20"], "--imm-train: only with imm in --filters"),
+    (["--filters", "cv,imm", "--imm-train", "20", "--imm-switch", "0.01"], "not with --imm-switch"),
+])
+def test_study_cli_imm_train_only_for_a_learned_chain(tmp_path, capsys, extra, message):
+    from lgekf.cli import main
+
+    out = tmp_path / "o"
+    assert main(["study", "--trajectories", "4", "--steps", "5", "--sigmas", "0", "--no-figure", "--out", str(out)]
+                + extra) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0], err
+    assert not out.exists()

@@ -135,6 +135,10 @@ def cmd_study(argv) -> int:
     cfg = config_from_args(a)
     from ..experiments.imm_study import imm_options_from_args
 
+    if a.imm_train is not None and "imm" not in cfg.filters:
+        raise UsageError("--imm-train: only with imm in --filters")
+    if a.imm_train is not None and a.imm_switch is not None:
+        raise UsageError("--imm-train: only for the learned chain, not with --imm-switch")
     imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train)
     if "imm" in cfg.filters:
         imm.validate(cfg.steps)  # the training draws' size, before any compile or draw
