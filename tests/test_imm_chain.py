@@ -19,6 +19,31 @@ def test_stationary_distribution():
     pi = stationary_distribution(PI)
     np.testing.assert_allclose(pi @ PI, pi, atol=1e-14)
     assert pi.sum() == pytest.approx(1.0) and np.all(pi > 0)
+    # GTH against the left eigenvector of eigenvalue 1 (numpy's eig, independent), rare switches included
+    rng = np.random.default_rng(0)
+    for M in (2, 3, 5):
+        for _ in range(20):
+            P = rng.random((M, M)) ** 4 + 1e-6
+            P /= P.sum(axis=1, keepdims=True)
+            w, V = np.linalg.eig(P.T)
+            ref = np.real(V[:, np.argmin(np.abs(w - 1))])
+            np.testing.assert_allclose(stationary_distribution(P), ref / ref.sum(), rtol=1e-10, atol=1e-13)
+    a = 1e-5  # the fit's lower bound: π ≈ (1 − 2a, 2a) without cancellation
+    np.testing.assert_allclose(stationary_distribution([[1 - a, a], [0.5, 0.5]]), [0.5 / (0.5 + a), a / (0.5 + a)],
+                               rtol=1e-14)
+
+
+@pytest.mark.parametrize("PI, match", [
+    (np.eye(2), "reducible"),
+    ([[1.0, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.5]], "reducible"),
+    ([[0.9, 0.2], [0.5, 0.5]], "sum to 1"),
+    ([[1.1, -0.1], [0.5, 0.5]], "non-negative"),
+    ([[0.5, np.nan], [0.5, 0.5]], "finite"),
+    ([[0.5, 0.5]], "square"),
+])
+def test_stationary_distribution_refuses_bad_chains(PI, match):
+    with pytest.raises(ValueError, match=match):
+        stationary_distribution(PI)
 
 
 def _switching_cv(rng, n_tracks, steps, dt, stds, PI, r):
