@@ -71,6 +71,10 @@ class ChainFit:
     at_bound : list of tuple
         The (i, j) of the off-diagonal probabilities that ended on a search bound (a mode the data never leave
         or always leave at once).
+    converged : bool
+        Whether L-BFGS-B reported convergence for the best of the starts (``STARTS``).
+    message : str
+        The optimiser's message for that start.
     """
 
     transition: np.ndarray
@@ -79,12 +83,16 @@ class ChainFit:
     n_updates: int
     n_evals: int
     at_bound: list
+    converged: bool = True
+    message: str = ""
 
     def to_dict(self) -> dict:
         """JSON-ready: the transition matrix (rows), the stationary probabilities, the log-likelihood, the
-        evaluations and the (i, j) of the probabilities on a search bound."""
+        counted steps, the evaluations, the (i, j) of the probabilities on a search bound and the optimiser's
+        convergence flag and message."""
         return {"transition": self.transition.tolist(), "mu0": self.mu0.tolist(), "loglik": self.loglik,
-                "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound]}
+                "n_updates": self.n_updates, "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound],
+                "converged": self.converged, "message": self.message}
 
 
 def stationary_distribution(PI: ArrayLike) -> np.ndarray:
@@ -269,4 +277,5 @@ def learn_chain(modes, z: ArrayLike, *, dt, meas_std, x0: ArrayLike, P0: ArrayLi
     PI = _transition_of(best.x, M)
     off = [(i, j) for i in range(M) for j in range(M) if i != j]
     at_bound = [ij for ij, t in zip(off, best.x) if t <= bounds[0][0] + 0.05 or t >= bounds[0][1] - 0.05]
-    return ChainFit(PI, stationary_distribution(PI), -float(best.fun), lik.n_updates, evals[0], at_bound)
+    return ChainFit(PI, stationary_distribution(PI), -float(best.fun), lik.n_updates, evals[0], at_bound,
+                    bool(best.success), str(best.message))
