@@ -7,6 +7,7 @@ import json
 
 import numpy as np
 import pytest
+from _imm_numpy import numpy_cv_imm_loglik
 
 from lgekf.estimators.imm import IMM, Mode, imm_batch
 from lgekf.estimators.imm_chain import chain_log_likelihood, learn_chain, stationary_distribution
@@ -67,22 +68,28 @@ def _switching_cv(rng, n_tracks, steps, dt, stds, PI, r):
     return z, c0
 
 
-def test_chain_likelihood_is_the_imms_step_by_step():
-    """The batch likelihood (numba, fused steps) equals Σ log p(z_k | past) of the IMM class (separate predict and
-    update kernels) run with the same transition matrix and the chain's stationary law as μ₀."""
+def test_chain_likelihood_is_a_numpy_imms():
+    """The batch likelihood (numba, fused steps) equals the IMM written out in numpy (tests/_imm_numpy.py, no lgekf
+    kernel) with the same asymmetric transition matrix, μ₀ its stationary law in closed form (b, a)/(a + b): checks
+    c̄ = PIᵀμ (not PI μ) and the start from μ₀."""
+    from lgekf.core.common import covariance_from_common, state_from_common
+
     rng = np.random.default_rng(3)
-    PI = np.array([[0.97, 0.03], [0.2, 0.8]])
+    a, b = 0.03, 0.2
+    PI = np.array([[1 - a, a], [b, 1 - b]])
     z, c0 = _switching_cv(rng, 3, 40, 0.5, [0.3, 3.0], PI, 0.2)
     P0 = np.diag([0.2**2, 0.2**2, 0.1**2, 0.3**2, 0.3**2, 0.1**2])
     modes = [Mode("cv", (0.3,)), Mode("cv", (3.0,))]
     ll = chain_log_likelihood(modes, z, PI, dt=0.5, meas_std=0.2, x0=c0, P0=P0)
-    ref = 0.0
-    for b in range(3):
-        f = IMM(modes, PI, dt=0.5, meas_std=0.2, x0=c0[b], P0=P0, mu0=stationary_distribution(PI))
-        for k in range(40):
-            f.predict()
-            ref += f.update(z[b, k])
+    ref = sum(numpy_cv_imm_loglik(state_from_common("cv", c0[i]), covariance_from_common("cv", c0[i], P0),
+                                  z[i], np.full(40, 0.5), [0.3, 3.0], PI, 0.2, [b / (a + b), a / (a + b)])
+              for i in range(3))
     assert ll == pytest.approx(ref, rel=1e-9)
+    # the transposed chain (c̄ = PI μ) gives another value: the check can fail
+    ref_t = sum(numpy_cv_imm_loglik(state_from_common("cv", c0[i]), covariance_from_common("cv", c0[i], P0),
+                                    z[i], np.full(40, 0.5), [0.3, 3.0], PI.T, 0.2, [b / (a + b), a / (a + b)])
+                for i in range(3))
+    assert abs(ref_t - ref) > 1e-3
 
 
 def test_learn_chain_recovers_an_asymmetric_chain():
