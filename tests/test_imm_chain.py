@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from _imm_numpy import numpy_cv_imm_loglik
 
-from lgekf.estimators.imm import IMM, Mode, imm_batch
+from lgekf.estimators.imm import Mode, imm_batch
 from lgekf.estimators.imm_chain import chain_log_likelihood, learn_chain, stationary_distribution
 
 
@@ -148,6 +148,11 @@ def test_study_imm_learns_its_chain_on_training_draws_only():
     rng = np.random.default_rng(cfg.seed)
     u_proc, u_meas, u_init = rng.standard_normal((20, 60, 3)), rng.standard_normal((20, 60, 2)), rng.standard_normal((20, 6))
     assert not np.allclose(training_draws(cfg, 20)[2], u_init)
+    # only the scored draws change with the number of scored trajectories (20 -> 21): the chains are identical
+    res21 = run_study(StudyConfig(sigmas=[0.0, 1.0], trajectories=21, steps=60, filters=("cv", "se2r3", "imm"), seed=5),
+                      imm=opts)
+    assert [c["transition"] for c in res21.imm_chains] == [c["transition"] for c in res.imm_chains]
+    assert not np.array_equal(res21.rmse["imm"][:, :20], res.rmse["imm"])  # the scored draws did change
     # the IMM's RMSE is that of imm_batch with the chain fitted at σ_ω = 1
     fit = study_chain(cfg, opts, 1.0)
     np.testing.assert_allclose(fit.transition, res.imm_chains[1]["transition"])
@@ -177,9 +182,9 @@ def test_study_cli_writes_the_learned_chains(tmp_path):
     imm = json.loads((out / "meta.json").read_text())["imm"]
     assert imm["switch"] is None and imm["train_trajectories"] == 20
     assert [c["sigma_w"] for c in imm["chains"]] == [0.0, 2.0]
-    for c in imm["chains"]:
-        np.testing.assert_allclose(np.sum(c["transition"], axis=1), 1.0)
-        assert sum(c["mu0"]) == pytest.approx(1.0)
+    for c in imm["chains"]:  # μ₀ is the written chain's stationary law
+        np.testing.assert_allclose(np.array(c["mu0"]) @ np.array(c["transition"]), c["mu0"], atol=1e-12)
+        assert c["n_updates"] == 20 * 30 and isinstance(c["converged"], bool)
 
 
 def test_study_cli_bad_imm_train(tmp_path):
