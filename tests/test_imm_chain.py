@@ -264,3 +264,14 @@ def test_study_cli_imm_train_only_for_a_learned_chain(tmp_path, capsys, extra, m
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0], err
     assert not out.exists()
+
+
+def test_imm_options_validate_and_record():
+    from lgekf.experiments.imm_study import ImmStudyOptions, imm_options_record
+
+    for n in (float("inf"), float("nan"), 2.5, 1, "3"):
+        with pytest.raises(ValueError, match="imm-train"):
+            ImmStudyOptions(train_trajectories=n).validate()
+    assert imm_options_record(ImmStudyOptions()) == {"modes": "cv,se2r3", "switch": None, "train_trajectories": 100}
+    assert imm_options_record(ImmStudyOptions(switch=0.002)) == {"modes": "cv,se2r3", "switch": 0.002}
+    assert imm_options_record(ImmStudyOptions("cv")) == {"modes": "cv", "switch": None}  # one mode: no chain

@@ -133,7 +133,7 @@ def cmd_study(argv) -> int:
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
-    from ..experiments.imm_study import imm_options_from_args
+    from ..experiments.imm_study import imm_options_from_args, imm_options_record
 
     if a.imm_train is not None and "imm" not in cfg.filters:
         raise UsageError("--imm-train: only with imm in --filters")
@@ -177,8 +177,7 @@ def cmd_study(argv) -> int:
         "wrapped_trajectories_per_sigma": {f"{s:.6g}": int(k) for s, k in zip(res.sigmas, res.wrapped)},
         "aliased_trajectories": {name: int(c.sum()) for name, c in res.aliased.items()},
         "filter_measurements": {f: cfg.filter_measurement(f) for f in res.filters},
-        **({"imm": {"modes": imm.modes, "switch": imm.switch,
-                    **({"train_trajectories": imm.train_trajectories, "chains": res.imm_chains} if imm.switch is None else {})}}
+        **({"imm": {**imm_options_record(imm), **({"chains": res.imm_chains} if res.imm_chains else {})}}
            if "imm" in res.filters else {}),
         "claims": [{"claim": c.text, "holds": c.holds, "evidence": c.evidence} for c in claims],
         "compute_seconds": round(res.compute_seconds, 4),

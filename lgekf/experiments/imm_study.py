@@ -19,11 +19,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..estimators.imm import NOISE_LEVELS, Mode, imm_batch, parse_modes
 from .metrics import position_rmse
+
+if TYPE_CHECKING:
+    from ..estimators.imm_chain import ChainFit
 
 __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "DEFAULT_TRAIN_TRAJECTORIES",
            "imm_options_record", "imm_study_rmse", "study_chain", "training_draws"]
@@ -104,9 +108,26 @@ def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:
     return out
 
 
-def training_draws(cfg, B: int):
-    """The training trajectories' standard-normal draws (process (B, K, ≥3), measurement (B, K, ≥2), initial error
-    (B, 6)), shaped as the study's own (``run_study``) but from the seed sequence [seed, TRAIN_STREAM]."""
+def training_draws(cfg, B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The training trajectories' standard-normal draws, shaped as the study's own (``run_study``) but from the
+    seed sequence [seed, TRAIN_STREAM].
+
+    Parameters
+    ----------
+    cfg : lgekf.experiments.study.StudyConfig
+        The study's protocol (seed, steps, truth, measurement).
+    B : int
+        Training trajectories.
+
+    Returns
+    -------
+    u_proc : ndarray, (B, K, ≥3)
+        Process-noise draws.
+    u_meas : ndarray, (B, K, ≥2)
+        Measurement-noise draws.
+    u_init : ndarray, (B, 6)
+        Initial-error draws.
+    """
     from ..core.registry import get_model
 
     rng = np.random.default_rng([cfg.seed, TRAIN_STREAM])
@@ -121,8 +142,22 @@ def _measured(cfg, sim) -> np.ndarray:
     return sim.z if cfg.measurement != "position" else np.ascontiguousarray(sim.z[..., :2])
 
 
-def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float):
-    """The study IMM's chain learned at σ_ω (module docstring): a :class:`lgekf.estimators.imm_chain.ChainFit`."""
+def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float) -> "ChainFit":
+    """The study IMM's chain learned at σ_ω on the training draws (module docstring).
+
+    Parameters
+    ----------
+    cfg : lgekf.experiments.study.StudyConfig
+        The study's protocol.
+    opts : ImmStudyOptions
+        The IMM's modes and ``train_trajectories``.
+    sigma_w : float
+        The σ_ω of the truth and of the modes' matched noise.
+
+    Returns
+    -------
+    lgekf.estimators.imm_chain.ChainFit
+    """
     from ..estimators.imm_chain import learn_chain
     from .simulate import simulate
 
