@@ -40,6 +40,9 @@ DEFAULT_STUDY_MODES = "cv,se2r3"
 DEFAULT_STUDY_SWITCH = 0.002
 #: training trajectories per σ_ω for the learned chain (measured: 100 and 200 give the same gaps, README)
 DEFAULT_TRAIN_TRAJECTORIES = 100
+#: the largest trajectories × steps per σ_ω of the study (the draws and the filters' estimates are held in memory;
+#: the default study has 10⁴), scored (``StudyConfig.validate``) or the IMM's training draws
+MAX_TRAJECTORY_STEPS = 10_000_000
 #: the training draws come from the seed sequence [seed, TRAIN_STREAM] (the scored ones from [seed])
 TRAIN_STREAM = 1
 
@@ -61,7 +64,7 @@ class ImmStudyOptions:
         ----------
         steps : int, optional
             Measurements per trajectory: the training draws (``train_trajectories`` × ``steps``) must be at
-            most ``study.MAX_TRAJECTORY_STEPS`` and give at least ``MIN_UPDATES_PER_PARAMETER`` counted steps
+            most ``MAX_TRAJECTORY_STEPS`` and give at least ``MIN_UPDATES_PER_PARAMETER`` counted steps
             per transition probability (M (M − 1) of them).
 
         Raises
@@ -84,8 +87,6 @@ class ImmStudyOptions:
             raise ValueError(f"imm-train: need a whole number of at least 2 training trajectories, got {n}")
         if steps is None:
             return
-        from .study import MAX_TRAJECTORY_STEPS
-
         n, d = int(n), M * (M - 1)
         if n * steps > MAX_TRAJECTORY_STEPS:
             raise ValueError(f"imm-train: training trajectories × steps must be at most {MAX_TRAJECTORY_STEPS:,} "

@@ -35,15 +35,12 @@ from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
-from .imm_study import IMM_FILTER, ImmStudyOptions, imm_study_rmse
+from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
 
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
 
 FILTERS = tuple(MODELS)  # every registry model, the default filter set
-#: the largest trajectories × steps per σ_ω (the draws and the filters' estimates are held in memory; the
-#: default study has 10⁴); also the limit of the IMM's training draws (``ImmStudyOptions.validate``)
-MAX_TRAJECTORY_STEPS = 10_000_000
 PAPER_FILTERS = ("se2se2", "se2r3", "ctrv", "cv")  # the filters of the paper's Fig. 4 (its claims name them)
 
 
