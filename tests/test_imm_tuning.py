@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from _imm_numpy import numpy_cv_imm_loglik
 
 from lgekf.core.common import covariance_from_common, state_from_common
 from lgekf.core.initiation import DEFAULT_OMEGA_STD, two_point
@@ -67,39 +68,16 @@ def test_one_mode_likelihood_is_the_kalman_filters():
 
 
 def _numpy_cv_imm_loglik(tracks, stds, PI, r, baseline):
-    """A two-mode CV IMM (Blom and Bar-Shalom) written out in numpy: mixing with the weights PI_ij μ_i / c̄_j, the
-    mode-matched Kalman filters, the step log-likelihood log Σ_j c̄_j N(ν_j; 0, S_j)."""
+    """A two-mode CV IMM written out in numpy (tests/_imm_numpy.py), started by the two-point initiation with
+    uniform mode probabilities, the steps within the first ``baseline`` seconds not counted."""
     M = len(stds)
     total = 0.0
     for t, z in tracks:
         c0, var0 = two_point(t[:2], z[:2], np.array([1]), r, DEFAULT_OMEGA_STD)
         x0 = state_from_common("cv", c0)[0]
         P0 = covariance_from_common("cv", c0, np.diag(var0[0])[None])[0] + 1e-12 * np.eye(4)
-        xs, Ps, mu = [x0.copy() for _ in range(M)], [P0.copy() for _ in range(M)], np.full(M, 1.0 / M)
-        H = np.eye(2, 4)
-        for k in range(2, len(t)):
-            T = t[k] - t[k - 1]
-            F = np.eye(4)
-            F[0, 2] = F[1, 3] = T
-            G = np.array([[T**2 / 2, 0], [0, T**2 / 2], [T, 0], [0, T]])
-            cbar = PI.T @ mu
-            lik = np.empty(M)
-            new = []
-            for j in range(M):
-                w = PI[:, j] * mu / cbar[j]
-                xm = sum(w[i] * xs[i] for i in range(M))
-                Pm = sum(w[i] * (Ps[i] + np.outer(xs[i] - xm, xs[i] - xm)) for i in range(M))
-                x = F @ xm
-                P = F @ Pm @ F.T + stds[j] ** 2 * G @ G.T
-                S = H @ P @ H.T + r**2 * np.eye(2)
-                nu = z[k] - H @ x
-                lik[j] = math.exp(-0.5 * (np.linalg.slogdet(S)[1] + nu @ np.linalg.solve(S, nu)) - math.log(2 * math.pi))
-                K = P @ H.T @ np.linalg.inv(S)
-                new.append((x + K @ nu, (np.eye(4) - K @ H) @ P))
-            xs, Ps = [a for a, _ in new], [b for _, b in new]
-            if t[k] - t[0] >= baseline:
-                total += math.log(cbar @ lik)
-            mu = cbar * lik / (cbar @ lik)
+        total += numpy_cv_imm_loglik(x0, P0, z[2:], np.diff(t)[1:], stds, PI, r, np.full(M, 1.0 / M),
+                                     counted=t[2:] - t[0] >= baseline)
     return total
 
 

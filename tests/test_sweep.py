@@ -207,3 +207,30 @@ def test_lgekf_never_imports_dask_unless_asked(folder):
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=folder)
     assert r.returncode == 0, r.stderr
     assert r.stdout.strip().splitlines()[-1] == "[]"
+
+
+def test_the_imm_options_are_recorded_and_compared_on_resume(tmp_path):
+    """A sweep with the imm filter records its chain (learned on 100 training trajectories: the study's default)
+    in meta.json; a folder whose meta.json records another chain, or none (a sweep from before the chain was
+    learned), is refused rather than mixing fixed- and learned-chain rows under the same cell keys."""
+    import json
+
+    from lgekf.apps.sweep import check_folder
+    from lgekf.experiments.grid import parse_grid
+    from lgekf.apps.sweep_table import TableError
+
+    fixed = {"sigmas": [0.5], "trajectories": 3, "steps": 5}
+    g = parse_grid({"fixed": {**fixed, "filters": ["cv", "imm"]}})
+    meta = check_folder(g, tmp_path / "res", "csv")
+    assert meta["imm"] == {"modes": "cv,se2r3", "switch": None, "train_trajectories": 100}
+    assert "imm" not in check_folder(parse_grid({"fixed": {**fixed, "filters": ["cv"]}}), tmp_path / "x", "csv")
+    (tmp_path / "res").mkdir()
+    for recorded in ({"modes": "cv,se2r3", "switch": 0.002}, None):
+        old = {k: v for k, v in meta.items() if k != "imm"}
+        if recorded is not None:
+            old["imm"] = recorded
+        (tmp_path / "res" / "meta.json").write_text(json.dumps(old))
+        with pytest.raises(TableError, match="imm filter ran with other options"):
+            check_folder(g, tmp_path / "res", "csv")
+    (tmp_path / "res" / "meta.json").write_text(json.dumps(meta))
+    assert check_folder(g, tmp_path / "res", "csv")["imm"] == meta["imm"]

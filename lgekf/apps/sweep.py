@@ -9,8 +9,9 @@ the cell seeds of ``lgekf.experiments.grid`` the table is the same, byte for byt
 workers, the batches or the interruptions.
 
 ``out/meta.json`` holds the grid, the columns, the versions and one entry per run (workers, cells
-computed and skipped, wall time, summed task time); a folder holding another grid's results is refused
-before any work.
+computed and skipped, wall time, summed task time) and, with the ``imm`` filter, its options (the study's
+default: the chain learned on 100 training trajectories per σ_ω; a grid cannot change them); a folder holding
+another grid's results, or imm results of other (or unrecorded) options, is refused before any work.
 """
 
 from __future__ import annotations
@@ -25,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from ..experiments.grid import SIGMA_COLUMN, Grid, config_from_options, value_text
+from ..experiments.imm_study import IMM_FILTER, ImmStudyOptions, imm_options_record
 from ..experiments.study import run_study
 from ..io.output import write_atomic
 from .sweep_table import TableError, read_table, table_columns, table_name, write_table
@@ -120,6 +122,8 @@ def check_folder(grid: Grid, out: Path, fmt: str) -> dict:
     columns = [c for c, _ in table_columns(grid.axis_columns())]
     fresh = {"command": "lgekf sweep", "format": fmt, "columns": columns, "filters": grid.filters,
              "grid": grid.describe(), "runs": []}
+    if IMM_FILTER in grid.filters:  # the study's default IMM (compute_cell): its chain, learned or fixed
+        fresh["imm"] = imm_options_record(ImmStudyOptions())
     meta_path = out / META
     other = out / table_name("parquet" if fmt == "csv" else "csv")
     if not meta_path.exists():
@@ -141,6 +145,9 @@ def check_folder(grid: Grid, out: Path, fmt: str) -> dict:
     if not same(meta.get("grid", {}).get("fixed"), fresh["grid"]["fixed"]) or not same(meta.get("filters"), fresh["filters"]):
         raise TableError(f"{out}: holds a sweep with other [fixed] options or filters; give another output folder "
                          "(only the values of the axes may change between runs)")
+    if not same(meta.get("imm"), fresh.get("imm")):
+        raise TableError(f"{out}: holds a sweep whose imm filter ran with other options ({meta.get('imm', 'not recorded')}; "
+                         f"now {fresh.get('imm')}); give another output folder")
     if meta.get("columns") != columns:
         raise TableError(f"{out}: holds a sweep over other axes ({', '.join(meta.get('columns', []))}); give another output folder")
     meta["grid"] = fresh["grid"]  # the axes' values may have grown

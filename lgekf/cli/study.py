@@ -133,9 +133,15 @@ def cmd_study(argv) -> int:
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
-    from ..experiments.imm_study import imm_options_from_args
+    from ..experiments.imm_study import imm_options_from_args, imm_options_record
 
+    if a.imm_train is not None and "imm" not in cfg.filters:
+        raise UsageError("--imm-train: only with imm in --filters")
+    if a.imm_train is not None and a.imm_switch is not None:
+        raise UsageError("--imm-train: only for the learned chain, not with --imm-switch")
     imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train)
+    if "imm" in cfg.filters:
+        imm.validate(cfg.steps)  # the training draws' size, before any compile or draw
     t0 = time.perf_counter()
     from .warmup import compile_estimate, study_jobs, warm_up
 
@@ -143,7 +149,10 @@ def cmd_study(argv) -> int:
     with compile_notice("lgekf study", enabled=not a.quiet, seconds=compile_estimate(j.cost for j in jobs)):
         warm_up(jobs)  # a cold cache: the kernels compile in parallel processes; warm: milliseconds
         with progress_bar(len(cfg.sigmas), "lgekf study", not a.quiet and stderr_is_terminal(), unit="σ_ω") as bar:
-            res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
+            try:
+                res = run_study(cfg, progress=lambda done, total: bar.update(1), imm=imm)
+            except MemoryError:
+                raise ValueError("lgekf study: out of memory; give fewer --trajectories, --steps or --imm-train") from None
     claims = claims_check(res)
     out = a.out
     buf = io.StringIO()
@@ -168,8 +177,7 @@ def cmd_study(argv) -> int:
         "wrapped_trajectories_per_sigma": {f"{s:.6g}": int(k) for s, k in zip(res.sigmas, res.wrapped)},
         "aliased_trajectories": {name: int(c.sum()) for name, c in res.aliased.items()},
         "filter_measurements": {f: cfg.filter_measurement(f) for f in res.filters},
-        **({"imm": {"modes": imm.modes, "switch": imm.switch,
-                    **({"train_trajectories": imm.train_trajectories, "chains": res.imm_chains} if imm.switch is None else {})}}
+        **({"imm": {**imm_options_record(imm), **({"chains": res.imm_chains} if res.imm_chains else {})}}
            if "imm" in res.filters else {}),
         "claims": [{"claim": c.text, "holds": c.holds, "evidence": c.evidence} for c in claims],
         "compute_seconds": round(res.compute_seconds, 4),

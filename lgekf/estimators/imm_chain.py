@@ -71,6 +71,10 @@ class ChainFit:
     at_bound : list of tuple
         The (i, j) of the off-diagonal probabilities that ended on a search bound (a mode the data never leave
         or always leave at once).
+    converged : bool
+        Whether L-BFGS-B reported convergence for the best of the starts (``STARTS``).
+    message : str
+        The optimiser's message for that start.
     """
 
     transition: np.ndarray
@@ -79,12 +83,16 @@ class ChainFit:
     n_updates: int
     n_evals: int
     at_bound: list
+    converged: bool = True
+    message: str = ""
 
     def to_dict(self) -> dict:
         """JSON-ready: the transition matrix (rows), the stationary probabilities, the log-likelihood, the
-        evaluations and the (i, j) of the probabilities on a search bound."""
+        counted steps, the evaluations, the (i, j) of the probabilities on a search bound and the optimiser's
+        convergence flag and message."""
         return {"transition": self.transition.tolist(), "mu0": self.mu0.tolist(), "loglik": self.loglik,
-                "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound]}
+                "n_updates": self.n_updates, "n_evals": self.n_evals, "at_bound": [list(ij) for ij in self.at_bound],
+                "converged": self.converged, "message": self.message}
 
 
 def stationary_distribution(PI: ArrayLike) -> np.ndarray:
@@ -93,21 +101,41 @@ def stationary_distribution(PI: ArrayLike) -> np.ndarray:
     Parameters
     ----------
     PI : array_like, (M, M)
-        Row-stochastic; irreducible (every mode reachable from every other), so π is unique.
+        Row-stochastic (non-negative, each row sums to 1 within 1e-9); irreducible (every mode reachable from
+        every other), so π is unique.
 
     Returns
     -------
     ndarray, (M,)
-        Solves (PIᵀ − I) π = 0 with the last equation replaced by Σ π = 1.
+        By Grassmann–Taksar–Heyman elimination (GTH 1985: the states eliminated from the last, every step a sum
+        of non-negative numbers, no subtraction; accurate even for switching probabilities near 0).
+
+    Raises
+    ------
+    ValueError
+        PI not square, not finite, negative, not row-stochastic, or reducible.
     """
-    PI = np.asarray(PI, dtype=float)
-    M = PI.shape[0]
-    A = PI.T - np.eye(M)
-    A[-1] = 1.0
-    b = np.zeros(M)
-    b[-1] = 1.0
-    pi = np.linalg.solve(A, b)
-    pi = np.clip(pi, 0.0, None)
+    P = np.array(PI, dtype=float)
+    if P.ndim != 2 or P.shape[0] != P.shape[1] or P.shape[0] < 1:
+        raise ValueError(f"transition: expected a square matrix, got shape {P.shape}")
+    if not np.all(np.isfinite(P)) or np.any(P < 0):
+        raise ValueError("transition: entries must be finite and non-negative")
+    if np.any(np.abs(P.sum(axis=1) - 1.0) > 1e-9):
+        raise ValueError(f"transition: each row must sum to 1, got row sums {P.sum(axis=1).tolist()}")
+    M = P.shape[0]
+    reach = (P > 0) | np.eye(M, dtype=bool)
+    for _ in range(max(1, M.bit_length())):  # transitive closure by squaring
+        reach = (reach.astype(np.int64) @ reach.astype(np.int64)) > 0
+    if not np.all(reach):
+        raise ValueError("transition: the chain is reducible (some mode cannot reach another), so its stationary "
+                         "distribution is not unique")
+    for n in range(M - 1, 0, -1):  # GTH: censor the chain on states 0..n-1
+        P[:n, n] /= P[n, :n].sum()  # > 0: irreducible
+        P[:n, :n] += np.outer(P[:n, n], P[n, :n])
+    pi = np.zeros(M)
+    pi[0] = 1.0
+    for j in range(1, M):
+        pi[j] = pi[:j] @ P[:j, j]
     return pi / pi.sum()
 
 
@@ -249,4 +277,5 @@ def learn_chain(modes, z: ArrayLike, *, dt, meas_std, x0: ArrayLike, P0: ArrayLi
     PI = _transition_of(best.x, M)
     off = [(i, j) for i in range(M) for j in range(M) if i != j]
     at_bound = [ij for ij, t in zip(off, best.x) if t <= bounds[0][0] + 0.05 or t >= bounds[0][1] - 0.05]
-    return ChainFit(PI, stationary_distribution(PI), -float(best.fun), lik.n_updates, evals[0], at_bound)
+    return ChainFit(PI, stationary_distribution(PI), -float(best.fun), lik.n_updates, evals[0], at_bound,
+                    bool(best.success), str(best.message))

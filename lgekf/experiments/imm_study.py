@@ -17,15 +17,20 @@ chain's stationary distribution. Only the training draws are used for the fit, n
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..estimators.imm import NOISE_LEVELS, Mode, imm_batch, parse_modes
 from .metrics import position_rmse
 
+if TYPE_CHECKING:
+    from ..estimators.imm_chain import ChainFit
+
 __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "DEFAULT_TRAIN_TRAJECTORIES",
-           "imm_study_rmse", "study_chain", "training_draws"]
+           "imm_options_record", "imm_study_rmse", "study_chain", "training_draws"]
 
 IMM_FILTER = "imm"
 #: the study's default modes (chosen by measurement, see README "The IMM in the study")
@@ -35,6 +40,9 @@ DEFAULT_STUDY_MODES = "cv,se2r3"
 DEFAULT_STUDY_SWITCH = 0.002
 #: training trajectories per σ_ω for the learned chain (measured: 100 and 200 give the same gaps, README)
 DEFAULT_TRAIN_TRAJECTORIES = 100
+#: the largest trajectories × steps per σ_ω of the study (the draws and the filters' estimates are held in memory;
+#: the default study has 10⁴), scored (``StudyConfig.validate``) or the IMM's training draws
+MAX_TRAJECTORY_STEPS = 10_000_000
 #: the training draws come from the seed sequence [seed, TRAIN_STREAM] (the scored ones from [seed])
 TRAIN_STREAM = 1
 
@@ -49,14 +57,43 @@ class ImmStudyOptions:
     switch: float | None = None
     train_trajectories: int = DEFAULT_TRAIN_TRAJECTORIES
 
-    def validate(self) -> None:
+    def validate(self, steps: int | None = None) -> None:
+        """Check the options; with the study's ``steps`` also the training draws' size of a learned chain.
+
+        Parameters
+        ----------
+        steps : int, optional
+            Measurements per trajectory: the training draws (``train_trajectories`` × ``steps``) must be at
+            most ``MAX_TRAJECTORY_STEPS`` and give at least ``MIN_UPDATES_PER_PARAMETER`` counted steps
+            per transition probability (M (M − 1) of them).
+
+        Raises
+        ------
+        ValueError
+            Bad modes or switch, fewer than 2 training trajectories, or training draws too few or too many.
+        """
         from ..estimators.imm import transition_matrix
+        from ..estimators.tuning import MIN_UPDATES_PER_PARAMETER
 
         M = len(parse_modes(self.modes))
         if self.switch is not None:
             transition_matrix(M, self.switch)
-        elif M > 1 and (int(self.train_trajectories) != self.train_trajectories or self.train_trajectories < 2):
-            raise ValueError(f"imm-train: need at least 2 training trajectories, got {self.train_trajectories}")
+            return
+        if M < 2:
+            return
+        n = self.train_trajectories
+        if isinstance(n, bool) or not isinstance(n, (int, float, np.integer, np.floating)) or not math.isfinite(n) \
+                or int(n) != n or n < 2:
+            raise ValueError(f"imm-train: need a whole number of at least 2 training trajectories, got {n}")
+        if steps is None:
+            return
+        n, d = int(n), M * (M - 1)
+        if n * steps > MAX_TRAJECTORY_STEPS:
+            raise ValueError(f"imm-train: training trajectories × steps must be at most {MAX_TRAJECTORY_STEPS:,} "
+                             f"(held in memory), got {n} × {steps}")
+        if n * steps < MIN_UPDATES_PER_PARAMETER * d:
+            raise ValueError(f"imm-train: {n} training trajectories × {steps} steps are too few to learn the {d} "
+                             f"transition probabilities; need at least {MIN_UPDATES_PER_PARAMETER * d} steps")
 
 
 def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:
@@ -72,9 +109,26 @@ def study_modes(cfg, opts: ImmStudyOptions, sigma_w: float) -> list[Mode]:
     return out
 
 
-def training_draws(cfg, B: int):
-    """The training trajectories' standard-normal draws (process (B, K, ≥3), measurement (B, K, ≥2), initial error
-    (B, 6)), shaped as the study's own (``run_study``) but from the seed sequence [seed, TRAIN_STREAM]."""
+def training_draws(cfg, B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The training trajectories' standard-normal draws, shaped as the study's own (``run_study``) but from the
+    seed sequence [seed, TRAIN_STREAM].
+
+    Parameters
+    ----------
+    cfg : lgekf.experiments.study.StudyConfig
+        The study's protocol (seed, steps, truth, measurement).
+    B : int
+        Training trajectories.
+
+    Returns
+    -------
+    u_proc : ndarray, (B, K, ≥3)
+        Process-noise draws.
+    u_meas : ndarray, (B, K, ≥2)
+        Measurement-noise draws.
+    u_init : ndarray, (B, 6)
+        Initial-error draws.
+    """
     from ..core.registry import get_model
 
     rng = np.random.default_rng([cfg.seed, TRAIN_STREAM])
@@ -89,8 +143,22 @@ def _measured(cfg, sim) -> np.ndarray:
     return sim.z if cfg.measurement != "position" else np.ascontiguousarray(sim.z[..., :2])
 
 
-def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float):
-    """The study IMM's chain learned at σ_ω (module docstring): a :class:`lgekf.estimators.imm_chain.ChainFit`."""
+def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float) -> "ChainFit":
+    """The study IMM's chain learned at σ_ω on the training draws (module docstring).
+
+    Parameters
+    ----------
+    cfg : lgekf.experiments.study.StudyConfig
+        The study's protocol.
+    opts : ImmStudyOptions
+        The IMM's modes and ``train_trajectories``.
+    sigma_w : float
+        The σ_ω of the truth and of the modes' matched noise.
+
+    Returns
+    -------
+    lgekf.estimators.imm_chain.ChainFit
+    """
     from ..estimators.imm_chain import learn_chain
     from .simulate import simulate
 
@@ -119,6 +187,24 @@ def imm_study_rmse(cfg, opts: ImmStudyOptions, sim, sigma_w: float, est0: np.nda
     est, _ = imm_batch(_measured(cfg, sim), modes, transition, dt=cfg.dt, meas_std=cfg.meas_noise(cfg.measurement),
                        x0=est0, P0=P0_phys, measurement=cfg.measurement, mu0=mu0)
     return position_rmse(est, pos)
+
+
+def imm_options_record(opts: ImmStudyOptions) -> dict:
+    """The IMM's options as written to meta.json (``lgekf study``, ``lgekf sweep``).
+
+    Parameters
+    ----------
+    opts : ImmStudyOptions
+
+    Returns
+    -------
+    dict
+        ``modes``, ``switch`` (None: the chain is learned) and, for a learned chain of two modes or more,
+        ``train_trajectories``.
+    """
+    learned = opts.switch is None and len(parse_modes(opts.modes)) > 1
+    return {"modes": opts.modes, "switch": opts.switch,
+            **({"train_trajectories": int(opts.train_trajectories)} if learned else {})}
 
 
 def imm_options_from_args(modes: str | None, switch: float | None, train: int | None = None) -> ImmStudyOptions:

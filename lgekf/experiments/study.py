@@ -35,7 +35,7 @@ from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
-from .imm_study import IMM_FILTER, ImmStudyOptions, imm_study_rmse
+from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
 
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
@@ -80,6 +80,9 @@ class StudyConfig:
             raise ValueError(f"steps: must be at least 1, got {self.steps}")
         if self.trajectories < 2:
             raise ValueError(f"trajectories: must be at least 2 (a std is reported), got {self.trajectories}")
+        if self.trajectories * self.steps > MAX_TRAJECTORY_STEPS:
+            raise ValueError(f"trajectories: trajectories × steps must be at most {MAX_TRAJECTORY_STEPS:,} (held in memory), "
+                             f"got {self.trajectories} × {self.steps}")
         if len(self.sigmas) < 1 or any((not math.isfinite(s)) or s < 0 for s in self.sigmas):
             raise ValueError("sigmas: need at least one finite, non-negative σ_ω")
         positive_scalar("meas_std", self.meas_std)
@@ -151,6 +154,8 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     """
     cfg.validate()
     imm = ImmStudyOptions() if imm is None else imm
+    if IMM_FILTER in cfg.filters:
+        imm.validate(cfg.steps)
     rng = np.random.default_rng(cfg.seed)
     B, K = cfg.trajectories, cfg.steps
     truth = get_model(cfg.truth)
