@@ -85,7 +85,7 @@ from ..core.covariance import pack, unpack
 from ..core.registry import MODELS, get_model
 from ..core.rts import forward_store, smooth_stored
 from .tracks import TrackBatch, two_point_prior
-from .tuning import (BOUNDS, WIDE_FACTOR, NoiseFit, _angle_index, _hessian, _loglik_tracks, _meas_guess,
+from .tuning import (BOUNDS, FLAT_LIKELIHOOD, WIDE_FACTOR, NoiseFit, _angle_index, _loglik_tracks, _meas_guess, _standard_errors,
                      _noise_problem)
 
 __all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
@@ -462,16 +462,11 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
 
     if hessian:
         with _numba_threads(threads):
-            H = _hessian(nll, th, 0.02)
-        try:
-            cov = np.linalg.inv(H)
-            ok = np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0)
-        except np.linalg.LinAlgError:
-            ok = False
-        if ok:
-            log_se[free] = np.sqrt(np.diag(cov))
+            se = _standard_errors(nll, th)
+        if se is not None:
+            log_se[free] = se
         else:
-            problems.append("flat likelihood (the Hessian of −log L is not positive definite)")
+            problems.append(FLAT_LIKELIHOOD)
     ci_low = values.copy()
     ci_high = values.copy()
     for i in free:

@@ -38,9 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.batch import measurements_array, step_lengths
-from ..core.registry import get_model
-from .imm import _common_inputs, _Setup
+from .imm import _batch_inputs
 from .imm_tuning import imm_loglik_batch
 from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
 
@@ -157,21 +155,11 @@ class _ChainLikelihood:
     the modes' initial states are converted once."""
 
     def __init__(self, modes, z, dt, meas_std, x0, P0, measurement):
-        self.setup = s = _Setup(modes, None, meas_std, measurement, None)
-        z = measurements_array(z, get_model(s.modes[0].model).measurement(measurement).dim)
-        B, K = z.shape[:2]
-        self.z = z
-        self.dts = step_lengths(dt, B, K)
-        c0, P0c = _common_inputs(x0, P0)
-        if c0.shape[0] == 1 and B > 1:
-            c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
-            P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
-        if c0.shape[0] != B:
-            raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
-        self.S0, self.Pp0 = s.initial(c0, P0c)
+        self.setup, self.z, self.dts, self.S0, self.Pp0 = _batch_inputs(z, modes, None, dt, meas_std, x0, P0, measurement, None)
+        B, K = self.z.shape[:2]
         self.lengths = np.full(B, K, dtype=np.int64)
         self.skip = np.zeros(B, dtype=np.int64)
-        self.n_updates = int(np.sum(~np.any(np.isnan(z), axis=2)))
+        self.n_updates = int(np.sum(~np.any(np.isnan(self.z), axis=2)))
         self.B = B
 
     def __call__(self, PI: np.ndarray) -> float:

@@ -39,7 +39,7 @@ from ..core.initiation import DEFAULT_OMEGA_STD, two_point
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
 from .imm_kernels import imm_loglik_one
 from .tracks import batch_tracks
-from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _hessian
+from .tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
 
 __all__ = ["ImmFit", "learn_imm", "imm_log_likelihood"]
 
@@ -334,14 +334,10 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
     se = np.full(d, np.nan)
     if hessian:
         diverged[0] = False
-        H = _hessian(nll, th, 0.02)
-        try:
-            cov = np.linalg.inv(H)
-            ok = bool(np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0)) and not diverged[0]
-        except np.linalg.LinAlgError:
-            ok = False
+        se_fit = _standard_errors(nll, th)
+        ok = se_fit is not None and not diverged[0]
         if ok:
-            se = np.sqrt(np.diag(cov))
+            se = se_fit
             with np.errstate(over="ignore"):  # a flat direction: the interval reaches 0 or ∞
                 ci_low[free], ci_high[free] = a[free] * np.exp(-1.96 * se[:F]), a[free] * np.exp(1.96 * se[:F])
             for i, j in enumerate(free):
@@ -354,7 +350,7 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         elif diverged[0]:
             problems.append("the IMM diverged next to the optimum (no interval)")
         else:
-            problems.append("flat likelihood (the Hessian of −log L is not positive definite)")
+            problems.append(FLAT_LIKELIHOOD)
     ci_low[:M][fixed] = ci_high[:M][fixed] = 1.0
     if not fit_switch:
         ci_low[M] = ci_high[M] = p

@@ -302,16 +302,11 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     problems = []
     log_se = np.full(nq + nr, np.nan)
     if hessian:
-        H = _hessian(nll, th, 0.02)
-        try:
-            cov = np.linalg.inv(H)
-            ok = np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0)
-        except np.linalg.LinAlgError:
-            ok = False
-        if ok:
-            log_se[:d] = np.sqrt(np.diag(cov))  # the free parameters come first
+        se = _standard_errors(nll, th)
+        if se is not None:
+            log_se[:d] = se  # the free parameters come first
         else:
-            problems.append("flat likelihood (the Hessian of −log L is not positive definite)")
+            problems.append(FLAT_LIKELIHOOD)
     free = [i for i in range(nq + nr) if not fixed[i]]
     ci_low = values.copy()
     ci_high = values.copy()
@@ -333,6 +328,23 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
             break
     return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(best[2]), n_upd,
                     int(batch.z.shape[0]), fixed, [(s[0], s[1], s[2]) for s in starts], problems)
+
+
+#: what the fits report when the observed information is not positive definite
+FLAT_LIKELIHOOD = "flat likelihood (the Hessian of −log L is not positive definite)"
+
+
+def _standard_errors(nll, th, h: float = 0.02):
+    """Standard errors of the parameters th (log scale) from the observed information: the square roots of the
+    diagonal of the inverse central-difference Hessian of −log L (``_hessian``, step h), or None when that Hessian
+    is singular or not positive definite (a flat direction)."""
+    H = _hessian(nll, th, h)
+    try:
+        cov = np.linalg.inv(H)
+        ok = bool(np.all(np.linalg.eigvalsh(0.5 * (H + H.T)) > 0))
+    except np.linalg.LinAlgError:
+        ok = False
+    return np.sqrt(np.diag(cov)) if ok else None
 
 
 def _hessian(f, x, h):
