@@ -129,10 +129,11 @@ def _put_pairs4(buf, at, u):
     hundred = np.uint64(100)
     a = u // hundred
     b = u - a * hundred
-    buf[at] = _PAIRS[2 * a]
-    buf[at + 1] = _PAIRS[2 * a + 1]
-    buf[at + 2] = _PAIRS[2 * b]
-    buf[at + 3] = _PAIRS[2 * b + 1]
+    i = np.uint64(at)  # an unsigned index: no test for a negative one
+    buf[i] = _PAIRS[2 * a]
+    buf[i + np.uint64(1)] = _PAIRS[2 * a + np.uint64(1)]
+    buf[i + np.uint64(2)] = _PAIRS[2 * b]
+    buf[i + np.uint64(3)] = _PAIRS[2 * b + np.uint64(1)]
 
 
 @nb.njit(cache=True, error_model="numpy", inline="always")
