@@ -203,38 +203,38 @@ def _put_decimal(buf, pos, q, n, e, p):
     """Write q·10^(e+1-n) (q of n digits) as ``%g`` with precision p into buf at pos: fixed notation for
     -4 <= e < p, else d.ddde±XX; trailing zeros (and a bare point) dropped. Return the new position.
 
-    Writes up to 23 bytes past pos (the digits are laid down first, then moved) even when the text is shorter.
+    The trailing zeros are dropped from q before writing (the end is known without reading the text back).
+    Writes up to 23 bytes past pos (digits in groups of 8, then the integer part moved) even when the text
+    is shorter.
     """
-    if 0 <= e < p:  # d.ddd: the digits at pos+1.., the integer part moved one left, then the point
-        _put_digits(buf, pos + 1, q, n)
-        for i in range(e + 1):
-            buf[pos + i] = buf[pos + 1 + i]
-        end = pos + 1 + n
-        if e + 1 == n:  # no fraction digits
-            end = pos + n
-        else:
+    u = np.uint64(q)
+    ten = np.uint64(10)
+    while n > 1 and u % ten == 0:
+        u = u // ten
+        n -= 1
+    if 0 <= e < p:
+        if n <= e + 1:  # an integer: e + 1 digits, no point
+            _put_digits(buf, pos, u * _POW10U[e + 1 - n], e + 1)
+            end = pos + e + 1
+        else:  # d.ddd: the digits at pos+1.., the integer part moved one left, then the point
+            _put_digits(buf, pos + 1, u, n)
+            for i in range(e + 1):
+                buf[pos + i] = buf[pos + 1 + i]
             buf[pos + e + 1] = 46
-            while buf[end - 1] == 48:
-                end -= 1
-            if end == pos + e + 2:  # only zeros after the point
-                end -= 1
+            end = pos + 1 + n
     elif -4 <= e < 0:  # 0.000ddd
-        for i in range(2 - e):
-            buf[pos + i] = 48
+        buf[pos] = 48
         buf[pos + 1] = 46
-        end = pos + 2 - e - 1 + n
-        _put_digits(buf, pos + 1 - e, q, n)
-        while buf[end - 1] == 48:
-            end -= 1
+        buf[pos + 2] = 48
+        buf[pos + 3] = 48
+        buf[pos + 4] = 48
+        _put_digits(buf, pos + 1 - e, u, n)
+        end = pos + 1 - e + n
     else:  # d.ddde±XX
-        _put_digits(buf, pos + 1, q, n)
+        _put_digits(buf, pos + 1, u, n)
         buf[pos] = buf[pos + 1]
-        buf[pos + 1] = 46
-        end = pos + 1 + n
-        while buf[end - 1] == 48:
-            end -= 1
-        if end == pos + 2:  # one digit: no point
-            end -= 1
+        buf[pos + 1] = 46  # overwritten by the 'e' if there is one digit only
+        end = pos + n + np.int64(n > 1)
         buf[end] = 101  # 'e'
         x = e
         if x < 0:
