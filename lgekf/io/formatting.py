@@ -71,6 +71,7 @@ def _round_scaled(a, k):
 _POW10 = np.array([10**i for i in range(19)], dtype=np.int64)
 _POW10U = _POW10.astype(np.uint64)
 _PAIRS = np.frombuffer(b"".join(b"%02d" % i for i in range(100)), dtype=np.uint8).copy()
+_PAIRS16 = _PAIRS[0::2].astype(np.uint16) | (_PAIRS[1::2].astype(np.uint16) << 8)  # "ab" as one little-endian uint16
 _TWO52 = 4503599627370496.0  # 2^52: below it a double's ulp is at most 1/2
 
 
@@ -128,12 +129,13 @@ def _put_pairs4(buf, at, u):
     """Write the 4 digits of u < 10^4 (zero-padded) into buf[at:at + 4]."""
     hundred = np.uint64(100)
     a = u // hundred
-    b = u - a * hundred
-    i = np.uint64(at)  # an unsigned index: no test for a negative one
-    buf[i] = _PAIRS[2 * a]
-    buf[i + np.uint64(1)] = _PAIRS[2 * a + np.uint64(1)]
-    buf[i + np.uint64(2)] = _PAIRS[2 * b]
-    buf[i + np.uint64(3)] = _PAIRS[2 * b + np.uint64(1)]
+    w = np.uint64(_PAIRS16[a]) | (np.uint64(_PAIRS16[u - a * hundred]) << np.uint64(16))  # 4 ASCII digits, little-endian
+    i = np.uint64(at)  # an unsigned index: no test for a negative one (and the 4 stores can merge into one)
+    m = np.uint64(255)
+    buf[i] = w & m
+    buf[i + np.uint64(1)] = (w >> np.uint64(8)) & m
+    buf[i + np.uint64(2)] = (w >> np.uint64(16)) & m
+    buf[i + np.uint64(3)] = w >> np.uint64(24)
 
 
 @nb.njit(cache=True, error_model="numpy", inline="always")
