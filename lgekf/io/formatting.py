@@ -125,26 +125,33 @@ def _round_scaled_fast(a, k):
 
 
 @nb.njit(cache=True, error_model="numpy", inline="always")
-def _put_pairs4(buf, at, u):
-    """Write the 4 digits of u < 10^4 (zero-padded) into buf[at:at + 4]."""
+def _ascii4(u):
+    """The 4 ASCII digits of u < 10^4 (zero-padded) in one integer, the first digit in the lowest byte."""
     hundred = np.uint64(100)
     a = u // hundred
-    w = np.uint64(_PAIRS16[a]) | (np.uint64(_PAIRS16[u - a * hundred]) << np.uint64(16))  # 4 ASCII digits, little-endian
-    i = np.uint64(at)  # an unsigned index: no test for a negative one (and the 4 stores can merge into one)
-    m = np.uint64(255)
-    buf[i] = w & m
-    buf[i + np.uint64(1)] = (w >> np.uint64(8)) & m
-    buf[i + np.uint64(2)] = (w >> np.uint64(16)) & m
-    buf[i + np.uint64(3)] = w >> np.uint64(24)
+    return np.uint64(_PAIRS16[a]) | (np.uint64(_PAIRS16[u - a * hundred]) << np.uint64(16))
 
 
 @nb.njit(cache=True, error_model="numpy", inline="always")
 def _put_digits8(buf, at, u):
-    """Write the 8 digits of u < 10^8 (zero-padded) into buf[at:at + 8]: two independent halves."""
+    """Write the 8 digits of u < 10^8 (zero-padded) into buf[at:at + 8].
+
+    Two independent 4-digit halves; the byte stores at an unsigned index (no test for a negative one) of one
+    integer's bytes, which LLVM merges into one 8-byte store.
+    """
     ten4 = np.uint64(10000)
     a = u // ten4
-    _put_pairs4(buf, at, a)
-    _put_pairs4(buf, at + 4, u - a * ten4)
+    w = _ascii4(a) | (_ascii4(u - a * ten4) << np.uint64(32))
+    i = np.uint64(at)
+    m = np.uint64(255)
+    buf[i] = w & m
+    buf[i + np.uint64(1)] = (w >> np.uint64(8)) & m
+    buf[i + np.uint64(2)] = (w >> np.uint64(16)) & m
+    buf[i + np.uint64(3)] = (w >> np.uint64(24)) & m
+    buf[i + np.uint64(4)] = (w >> np.uint64(32)) & m
+    buf[i + np.uint64(5)] = (w >> np.uint64(40)) & m
+    buf[i + np.uint64(6)] = (w >> np.uint64(48)) & m
+    buf[i + np.uint64(7)] = w >> np.uint64(56)
 
 
 @nb.njit(cache=True, error_model="numpy", inline="always")
