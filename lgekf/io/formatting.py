@@ -192,7 +192,7 @@ def _decimal_digits(v, p):
 
     q has n digits: n = p, except for an integer v of at most p digits (then q = v, n = e + 1, exact).
     Digits are round(v·10^(p-1-e)) (``_round_scaled_fast``, the double-double ``_round_scaled`` where one
-    product is not enough): when |p-1-e| <= 21 and 1e-22 <= v < 1e22 (p = 17: v in [1e-6, 1e22); p = 10:
+    product is not enough): when |p-1-e| <= 21 and 1e-22 <= v < 1e22 (p = 17: v in [1e-5, 1e22); p = 10:
     [1e-12, 1e22)) this is the correctly rounded decimal except in rare near-ties (the scaled value's fraction
     within about 2^-54 of 1/2: ``_round_scaled``'s double-double rounds it as 1/2); outside, the last of 16-17
     digits can be off by one unit, and next to a power of ten (log10's start) the result can be the
