@@ -238,16 +238,18 @@ def _put_decimal(buf, pos, q, n, e, p):
             end = pos + e + 1
         else:  # d.ddd: the digits at pos+1.., the integer part moved one left, then the point
             _put_digits(buf, pos + 1, u, n)
-            for i in range(e + 1):
-                buf[pos + i] = buf[pos + 1 + i]
-            buf[pos + e + 1] = 46
+            b = np.uint64(pos)  # unsigned indices here: no test for a negative one
+            for i in range(np.uint64(e + 1)):
+                buf[b + i] = buf[b + i + np.uint64(1)]
+            buf[b + np.uint64(e + 1)] = 46
             end = pos + 1 + n
     elif -4 <= e < 0:  # 0.000ddd
-        buf[pos] = 48
-        buf[pos + 1] = 46
-        buf[pos + 2] = 48
-        buf[pos + 3] = 48
-        buf[pos + 4] = 48
+        b = np.uint64(pos)
+        buf[b] = 48
+        buf[b + np.uint64(1)] = 46
+        buf[b + np.uint64(2)] = 48
+        buf[b + np.uint64(3)] = 48
+        buf[b + np.uint64(4)] = 48
         _put_digits(buf, pos + 1 - e, u, n)
         end = pos + 1 - e + n
     else:  # d.ddde±XX
@@ -320,14 +322,14 @@ def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
             else:
                 v = vals[i, j]
                 p = digits[j]
-            buf[pos] = 44
+            buf[np.uint64(pos)] = 44
             pos += 1
             a = abs(v)
             if a == 0.0 or not a < np.inf:  # 0, nan, inf
                 pos = _put_special(buf, pos, v)
             else:
                 q, nd, e = _decimal_digits(a, p)
-                buf[pos] = 45  # '-', kept if v < 0 (no branch on the sign)
+                buf[np.uint64(pos)] = 45  # '-', kept if v < 0 (no branch on the sign)
                 pos += np.int64(v < 0.0)
                 pos = _put_decimal(buf, pos, q, nd, e, p)
         buf[pos] = 10
