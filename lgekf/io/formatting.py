@@ -232,17 +232,13 @@ def _put_decimal(buf, pos, q, n, e, p):
     while n > 1 and u % ten == 0:
         u = u // ten
         n -= 1
-    if 0 <= e < p:
-        if n <= e + 1:  # an integer: e + 1 digits, no point
-            _put_digits(buf, pos, u * _POW10U[e + 1 - n], e + 1)
-            end = pos + e + 1
-        else:  # d.ddd: the digits at pos+1.., the integer part moved one left, then the point
-            _put_digits(buf, pos + 1, u, n)
-            b = np.uint64(pos)  # unsigned indices here: no test for a negative one
-            for i in range(np.uint64(e + 1)):
-                buf[b + i] = buf[b + i + np.uint64(1)]
-            buf[b + np.uint64(e + 1)] = 46
-            end = pos + 1 + n
+    if 0 <= e < p and n > e + 1:  # d.ddd: the digits at pos+1.., the integer part moved one left, the point
+        _put_digits(buf, pos + 1, u, n)
+        b = np.uint64(pos)  # unsigned indices here: no test for a negative one
+        for i in range(np.uint64(e + 1)):
+            buf[b + i] = buf[b + i + np.uint64(1)]
+        buf[b + np.uint64(e + 1)] = 46
+        end = pos + 1 + n
     elif -4 <= e < 0:  # 0.000ddd
         b = np.uint64(pos)
         buf[b] = 48
@@ -252,25 +248,32 @@ def _put_decimal(buf, pos, q, n, e, p):
         buf[b + np.uint64(4)] = 48
         _put_digits(buf, pos + 1 - e, u, n)
         end = pos + 1 - e + n
-    else:  # d.ddde±XX
-        _put_digits(buf, pos + 1, u, n)
-        buf[pos] = buf[pos + 1]
-        buf[pos + 1] = 46  # overwritten by the 'e' if there is one digit only
-        end = pos + n + np.int64(n > 1)
-        buf[end] = 101  # 'e'
-        x = e
-        if x < 0:
-            buf[end + 1] = 45
-            x = -x
+    else:  # the rarer layouts share one (inlined) digit writer: an integer (e + 1 digits), d.ddde±XX
+        integer = 0 <= e < p
+        if integer:
+            u *= _POW10U[e + 1 - n]
+            n = e + 1
+        _put_digits(buf, pos + 1 - np.int64(integer), u, n)
+        if integer:
+            end = pos + n
         else:
-            buf[end + 1] = 43
-        end += 2
-        if x >= 100:
-            buf[end] = 48 + x // 100
-            end += 1
-        buf[end] = 48 + (x // 10) % 10
-        buf[end + 1] = 48 + x % 10
-        end += 2
+            buf[pos] = buf[pos + 1]
+            buf[pos + 1] = 46  # overwritten by the 'e' if there is one digit only
+            end = pos + n + np.int64(n > 1)
+            buf[end] = 101  # 'e'
+            x = e
+            if x < 0:
+                buf[end + 1] = 45
+                x = -x
+            else:
+                buf[end + 1] = 43
+            end += 2
+            if x >= 100:
+                buf[end] = 48 + x // 100
+                end += 1
+            buf[end] = 48 + (x // 10) % 10
+            buf[end + 1] = 48 + x % 10
+            end += 2
     return end
 
 
