@@ -51,7 +51,7 @@ def check(values, p: int) -> None:
             assert s == want or near_tie(float(v), p), (repr(float(v)), p)
 
 
-@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=400, deadline=None, derandomize=True, suppress_health_check=[HealthCheck.too_slow])
 @given(st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True), st.integers(1, 17))
 @example(0.5, 1)
 @example(2.5, 1)

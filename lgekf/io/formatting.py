@@ -5,7 +5,7 @@ A number's digits: its decimal exponent from the binary one (``_decimal_exponent
 ONE double product or quotient, exact but where the scaled value's fraction is exactly 1/2 (then the
 double-double ``_round_scaled``; ``_round_scaled_fast`` has the proof). The text is written 8 digits a store
 (``_put_digits``) straight into the output (no scratch copy), trailing zeros dropped from the integer first.
-``tests/test_formatting_exact.py`` checks every byte against the formatter this replaced (2.6x slower) and
+``tests/test_formatting_exact.py`` checks every byte against the formatter this replaced (about 2.7x slower) and
 against Python's ``%g``; ``benchmarks/bench_format.py`` times both.
 """
 
