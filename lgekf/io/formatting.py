@@ -144,8 +144,8 @@ def _ascii4(u):
 def _put_digits8(buf, at, u):
     """Write the 8 digits of u < 10^8 (zero-padded) into buf[at:at + 8].
 
-    Two independent 4-digit halves; the byte stores at an unsigned index (no test for a negative one) of one
-    integer's bytes, which LLVM merges into one 8-byte store.
+    Two independent 4-digit halves (two digits per table entry) in one integer, stored byte by byte at unsigned
+    indices (no test for a negative one), stores that LLVM merges into wider ones.
     """
     ten4 = np.uint64(10000)
     a = u // ten4
@@ -166,8 +166,8 @@ def _put_digits8(buf, at, u):
 def _put_digits(buf, start, q, n):
     """Write the n digits of q (10^(n-1) <= q < 10^n, n <= 17) into buf[start:start + n].
 
-    q is first scaled to 8 or 16 digits (trailing zeros), written in 4-digit groups that do not wait for each
-    other (two digits per table entry): so up to start + 17 is overwritten (scratch beyond start + n).
+    q is first scaled to 8 or 16 digits (trailing zeros) and written 8 digits at a time (``_put_digits8``): so
+    up to start + 17 is overwritten (scratch beyond start + n).
     """
     u = np.uint64(q)
     ten8 = np.uint64(100000000)
@@ -303,9 +303,9 @@ def _put_special(buf, pos, v):
 def _format_rows(lab_bytes, lab_off, row_lab, t, t_digits, vals, digits):
     """The bytes of the CSV lines ``label,t,v_0,...`` (see ``format_rows``); each number as ``'%.{p}g'``.
 
-    The buffer-writing helpers are inlined and call nothing, and ``_decimal_digits`` (scalars only) is
-    called here: so numba keeps no reference counting of ``buf`` inside the loop (an atomic increment and
-    decrement per number otherwise, about a quarter of the time).
+    Every helper that takes ``buf`` is inlined (numba ``inline="always"``) and calls no other compiled
+    function (``_decimal_digits``, on scalars, is called from this loop): otherwise numba increments and
+    decrements ``buf``'s reference count, atomically, for every number (a quarter of the old formatter's time).
     """
     n, m = vals.shape
     maxlab = 0
