@@ -46,7 +46,7 @@ _EXP_SCALE = np.concatenate([_P10F[:0:-1], np.ones(23)])
 _EXP_BOUND = np.concatenate([np.ones(22), _P10F])
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def _round_scaled(a, k):
     """round(a * 10^k) as an int64 (a > 0), ties to even.
 
@@ -71,9 +71,7 @@ def _round_scaled(a, k):
     g = math.floor(frac)
     frac -= g
     q = np.int64(f) + np.int64(g)
-    if frac > 0.5 or (frac == 0.5 and q % 2 == 1):
-        q += 1
-    return q
+    return q + np.int64((frac > 0.5) | ((frac == 0.5) & (q % 2 == 1)))  # up, or a tie to even: no branch
 
 
 _POW10 = np.array([10**i for i in range(19)], dtype=np.int64)
