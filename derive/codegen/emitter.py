@@ -15,7 +15,7 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
-  missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
+  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
   of the whole group (smoothing and mixing on the group);
@@ -193,7 +193,7 @@ def angle_limit_kernel(n: int, angles: tuple):
 
 # --------------------------------------------------------------------------- loop templates
 BATCH_TEMPLATE = '''
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
 def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter one trajectory with {meas} measurements: z (K, {m}), dts (K,), x0 ({n},), p0 ({npk},).
 
@@ -248,6 +248,16 @@ def simulate_batch(x0, dts, noise, out_x):
         for k in range(K):
             propagate(s, dts[b, k], {nargs})
             physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_rows(x, dts, out_x):
+    """The noise-free exact motion of each row: out_x[i] = X_i exp([Ω(X_i)]^) over dts[i] (simulate_batch with
+    zero noise, one step per row); x (N, {n}) and out_x (N, {n}) physical states, dts (N,)."""
+    for i in range(x.shape[0]):
+        s = state_from_physical(x[i])
+        propagate(s, dts[i], {zeros})
+        physical_into(s, out_x[i])
 '''
 
 MEASURE_TEMPLATE = '''
@@ -263,7 +273,7 @@ def measure_batch_{meas}(X, noise, out):
 '''
 
 WORLD_VELOCITY_TEMPLATE = '''
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
@@ -400,7 +410,8 @@ def model_kernels(model, measurements: dict) -> list:
         params=["s", "dt", *nparams], inputs=sin_ + [(dt, "dt")] + list(zip(nn, nparams)),
         stages=[pdefs], outputs=[(f"s[{i}]", Ps[0, k]) for k, i in enumerate(new)],
     ))
-    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "))))
+    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
+                                                    zeros=", ".join(["0.0"] * len(nn)))))
     # ---- common coordinates
     cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
     csub = dict(zip(COMMON, cs))

@@ -76,7 +76,7 @@ class NoiseEstimate:
         return f"quadratic residuals of {self.windows} windows of 4 points{extra}"
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _dd3(t, z, starts, out):
     """Normalised third divided differences of every 4-point window inside an object into out; returns
     how many were written."""
@@ -139,7 +139,7 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     return NoiseEstimate(s, e.shape[0])
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _chords(t, z, starts, lag, out):
     """out[i] = |z_j - z_i| / (t_j - t_i), j the first row of i's object with t_j - t_i >= lag (else its
     last row); nan for an object's last row."""
@@ -263,7 +263,7 @@ def subsample_objects(starts, max_rows: int = SEARCH_ROWS) -> np.ndarray:
 
 def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     """Squared one-step prediction errors (N,): ‖z_k − position of f(x_{k−1}, t_k − t_{k−1})‖², f the
-    model's noise-free motion (generated ``simulate_batch`` with zero noise) from the posterior x_{k−1};
+    model's noise-free motion (generated ``propagate_rows``: ``simulate_batch`` with zero noise) from the posterior x_{k−1};
     nan on each object's rows 0 and 1."""
     spec = get_model(model)
     N = len(t)
@@ -276,11 +276,10 @@ def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     if k.size == 0:
         return out
     prev = np.ascontiguousarray(x[k - 1], dtype=float)
-    dts = np.ascontiguousarray((t[k] - t[k - 1])[:, None])
-    noise = np.zeros((k.size, 1, len(spec.noise_inputs)))
-    pred = np.empty((k.size, 2, spec.n))
-    spec.kernels.simulate_batch(prev, dts, noise, pred)
-    out[k] = np.sum((z[k, :2] - pred[:, 1, :2]) ** 2, axis=1)
+    dts = np.ascontiguousarray(t[k] - t[k - 1], dtype=float)
+    pred = np.empty((k.size, spec.n))
+    spec.kernels.propagate_rows(prev, dts, pred)  # serial, nogil: the search runs this in threads
+    out[k] = np.sum((z[k, :2] - pred[:, :2]) ** 2, axis=1)
     return out
 
 
