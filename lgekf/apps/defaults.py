@@ -15,8 +15,9 @@ import numpy as np
 from ..core.registry import get_model
 from .divergence import MonitorConfig
 from .noise import (
-    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, process_noise_search, subsample_objects, typical_speed,
+    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, subsample_objects, typical_speed,
 )
+from .search import PARALLEL_MIN_ROWS, process_noise_searches, usable_cpus
 from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
@@ -68,7 +69,7 @@ class NoisePlan:
 
 
 def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std, heading_std, heading_cap=math.pi, heading=None,
-               measurement=None, monitor: MonitorConfig | None = MonitorConfig()) -> NoisePlan:
+               measurement=None, monitor: MonitorConfig | None = MonitorConfig(), workers: int | None = None) -> NoisePlan:
     """Noise of every model: the given values, the rest from the data.
 
     Parameters
@@ -88,6 +89,9 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         Model -> measurement ("position" / "pose"); default position.
     monitor : MonitorConfig or None
         The divergence monitor of the search runs.
+    workers : int, optional
+        Threads of the process-noise search (``lgekf.apps.search``; the same plan whatever the number);
+        default: every usable CPU, 1 for a subsample of fewer than ``PARALLEL_MIN_ROWS`` rows.
     """
     accel_std = dict(accel_std or {})
     measurement = measurement or {}
@@ -119,17 +123,21 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
     for j in range(BURN_IN):
         idx = sub_starts[:-1] + 2 + j
         skip[idx[idx < sub_starts[1:]]] = True
+    runs = {}
     for m in todo:
         meas = measurement.get(m, "position")
         get_model(m).measurement(meas)
 
-        def run(q, m=m, meas=meas):
+        def run(q, m=m, meas=meas):  # no shared mutable state: process_noise_searches calls it from several threads
             cfg = TrackConfig({m: q}, plan.meas_std, omega_std, heading_std, heading_cap)
             r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor)
             err2 = one_step_errors(m, ts, zs, r.x, sub_starts)
             return np.where(skip, np.nan, r.nis), np.where(skip, np.nan, err2)
 
-        res = process_noise_search(run, m, plan.v_typ)
+        runs[m] = run
+    if workers is None:
+        workers = usable_cpus() if rows.size >= PARALLEL_MIN_ROWS else 1
+    for m, res in process_noise_searches(runs, plan.v_typ, workers=workers).items():
         plan.accel_std[m] = res.q
         plan.accel_source[m] = "data" if np.isfinite(res.mse) else "default"
         plan.accel_k[m] = res.k
