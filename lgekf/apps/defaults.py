@@ -17,7 +17,7 @@ from .divergence import MonitorConfig
 from .noise import (
     SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, subsample_objects, typical_speed,
 )
-from .search import PARALLEL_MIN_ROWS, process_noise_searches, usable_cpus
+from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
 from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
@@ -96,6 +96,9 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
     accel_std = dict(accel_std or {})
     measurement = measurement or {}
     est = None
+    speed = None  # the typical speed, computed meanwhile in a thread of its own (nogil kernels) when there are CPUs to spare
+    if meas_std is None and any(m not in accel_std for m in models) and len(t) >= PARALLEL_MIN_ROWS and (workers or usable_cpus()) > 1:
+        speed = in_thread(typical_speed, t, z, starts)
     if meas_std is None:
         est = measurement_std(t, z, starts)
         if est.windows:
@@ -111,7 +114,7 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
             plan.accel_source[m] = "given"
     if not todo:
         return plan
-    plan.v_typ = typical_speed(t, z, starts)
+    plan.v_typ = typical_speed(t, z, starts) if speed is None else speed.result()
     objs = subsample_objects(starts)
     lens = np.minimum(np.diff(starts)[objs], SEARCH_ROWS)  # an object longer than that: its first SEARCH_ROWS rows
     rows = np.concatenate([np.arange(starts[o], starts[o] + n) for o, n in zip(objs, lens)])

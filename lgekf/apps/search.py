@@ -17,11 +17,11 @@ whatever the order the runs finished in. A run that raises: the error raised is 
 from __future__ import annotations
 
 import os
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 
 from .noise import K_GRID, SearchResult, candidate_key, process_noise_search, run_score, search_stages
 
-__all__ = ["usable_cpus", "process_noise_searches", "PARALLEL_MIN_ROWS"]
+__all__ = ["usable_cpus", "process_noise_searches", "in_thread", "PARALLEL_MIN_ROWS"]
 
 PARALLEL_MIN_ROWS = 2_000  # subsamples with fewer rows search serially: a run is then shorter than a thread hand-off is worth
 
@@ -32,6 +32,15 @@ def usable_cpus() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # no affinity on this OS
         return max(1, os.cpu_count() or 1)
+
+
+def in_thread(fn, *args) -> Future:
+    """``fn(*args)`` started in a thread of its own; its ``Future`` (``result()`` waits, and raises what fn raised)."""
+    pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="lgekf-search")
+    try:
+        return pool.submit(fn, *args)
+    finally:
+        pool.shutdown(wait=False)  # the thread ends when fn returns
 
 
 def _scored(run, q):
