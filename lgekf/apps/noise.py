@@ -268,18 +268,19 @@ def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     spec = get_model(model)
     N = len(t)
     out = np.full(N, np.nan)
-    first = np.asarray(starts[:-1], dtype=np.int64)
-    rows = np.ones(N, bool)
-    rows[first] = False
-    rows[np.minimum(first + 1, N - 1)] = False
-    k = np.flatnonzero(rows)
-    if k.size == 0:
+    if N < 2:
         return out
-    prev = np.ascontiguousarray(x[k - 1], dtype=float)
-    dts = np.ascontiguousarray(t[k] - t[k - 1], dtype=float)
-    pred = np.empty((k.size, spec.n))
-    spec.kernels.propagate_rows(prev, dts, pred)  # serial, nogil: the search runs this in threads
-    out[k] = np.sum((z[k, :2] - pred[:, :2]) ** 2, axis=1)
+    first = np.asarray(starts[:-1], dtype=np.int64)
+    # every row from its predecessor in one pass over contiguous rows (no gathers): the rows whose predecessor is
+    # in another object (an object's rows 0 and 1) are set to nan afterwards
+    dts = np.diff(np.asarray(t, dtype=float))
+    dts[first[first > 0] - 1] = 1.0  # across an object boundary: any positive step (its row is discarded)
+    pred = np.empty((N - 1, spec.n))
+    spec.kernels.propagate_rows(np.ascontiguousarray(x[:-1], dtype=float), dts, pred)  # serial, nogil: the search runs this in threads
+    e = z[1:, :2] - pred[:, :2]
+    out[1:] = e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1]
+    out[first] = np.nan
+    out[np.minimum(first + 1, N - 1)] = np.nan
     return out
 
 
