@@ -2,7 +2,8 @@
 (``lgekf.apps.noise``): the measurement std from local quadratic residuals, then per model the process
 noise that minimises the filter's mean squared one-step prediction error on a subsample of the objects
 (the filter run as ``lgekf track`` runs it: the measurement std just found, the divergence monitor on;
-the first ``BURN_IN`` updates of every object, which the two-point initialisation dominates, left out).
+the first ``BURN_IN`` updates of every object, which the two-point initialisation dominates, left out). The
+search's runs go to a pool of threads, one per usable CPU (``lgekf.apps.search``; the same plan as serially).
 """
 
 from __future__ import annotations

@@ -32,6 +32,8 @@ rotational noise matters: at 1–2 Hz the LG filters and CTRV become unstable wi
 0.2–0.3 rad/s² that is harmless at 10 Hz, and the NIS (the consistency check one might use instead) hardly
 depends on it. The search runs on a subsample of whole objects (at most ``SEARCH_ROWS`` rows). The median
 NIS at the choice is reported (a consistent filter has the chi-square median, 1.39 for 2 degrees of freedom).
+The scans are ``search_stages`` (a generator of stages of independent candidates): ``process_noise_search``
+runs them one after the other, ``lgekf.apps.search.process_noise_searches`` in threads with the same result.
 
 Typical speed (``chord_speeds``): the speed of the chord between a measurement and the first one at least
 ``CHORD_S`` = 1 s later (noise contributes √2·σ/1 s instead of √2·σ/Δt), median over all objects.
