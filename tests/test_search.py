@@ -196,6 +196,7 @@ def test_usable_cpus_and_the_serial_fallback(data, monkeypatch):
     monkeypatch.setattr(defaults, "process_noise_searches", spy)
     monkeypatch.setattr(defaults, "usable_cpus", lambda: 2)
     t, z, starts, _ = data
+    assert 900 < search.PARALLEL_MIN_ROWS <= t.size
     plan_noise(t[:900], z[:900], starts[:11], ["cv"], omega_std=0.5, heading_std=0.1)  # 900 rows: serial
-    plan_noise(t, z, starts, ["cv"], omega_std=0.5, heading_std=0.1)  # 4320 rows: every usable CPU
+    plan_noise(t, z, starts, ["cv"], omega_std=0.5, heading_std=0.1)  # 4320 rows (>= PARALLEL_MIN_ROWS): every usable CPU
     assert seen == [1, 2]
