@@ -8,7 +8,8 @@ around 0.1 s, turning trajectories (turn rate a mean-reverting random walk) with
 temporary folder, then reports:
   read     lgekf.io.read_csv + grouping/validation
   init     two-point initialisation of every object (x0, P0 via common_jacobian)
-  noise    the noise from the data (lgekf.apps.defaults.plan_noise: measurement std, process-noise search)
+  noise    the noise from the data (lgekf.apps.defaults.plan_noise: measurement std, process-noise search in
+           threads), and the same with 1 thread (their ratio)
   filter   the filter over all objects (generated run_batch kernels, objects bucketed by length)
   monitor  the divergence monitor and any re-initialisations (track_monitored minus the filter)
   format   CSV text of the output (numba formatter) and writing it
@@ -223,6 +224,10 @@ def main(argv=None) -> int:
         plan = plan_noise(meas.t, meas.z, starts, [a.model], omega_std=0.5, heading_std=0.1, heading_cap=TRACK_HEADING_CAP)
         rows.append(("noise", time.perf_counter() - t0))
         print(plan.describe())
+        t0 = time.perf_counter()  # the same search serially: the threads' gain (benchmarks/bench_noise_search.py: best of N)
+        plan_noise(meas.t, meas.z, starts, [a.model], omega_std=0.5, heading_std=0.1, heading_cap=TRACK_HEADING_CAP, workers=1)
+        t_serial = time.perf_counter() - t0
+        print(f"noise with 1 thread: {t_serial:.3f} s, {t_serial / rows[-1][1]:.2f}x the threaded search")
         cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, heading_cap=TRACK_HEADING_CAP)
         t0 = time.perf_counter()
         c, var = initial_common(meas.t, meas.z, starts, cfg.meas_std, heading_cap=TRACK_HEADING_CAP)

@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'propagate_rows', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -850,7 +850,7 @@ def measure_pose(s, m0, m1, m2):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
 def run_one_pose(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter one trajectory with pose measurements: z (K, 3), dts (K,), x0 (5,), p0 (15,).
 
@@ -1742,7 +1742,7 @@ def measure_position(s, m0, m1):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
 def run_one_position(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter one trajectory with position measurements: z (K, 2), dts (K,), x0 (5,), p0 (15,).
 
@@ -2319,6 +2319,17 @@ def simulate_batch(x0, dts, noise, out_x):
             physical_into(s, out_x[b, k + 1])
 
 
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_rows(x, dts, out_x):
+    """The noise-free exact motion of each row: out_x[i] = X_i exp([Ω(X_i)]^) over dts[i] (simulate_batch with
+    zero noise, one step per row); x (N, 5) and out_x (N, 5) physical states, dts (N,)."""
+    s = np.empty(6)
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], s)
+        propagate(s, dts[i], 0.0, 0.0)
+        physical_into(s, out_x[i])
+
+
 @nb.njit(cache=True)
 def world_velocity(x):
     """World-frame velocity (2,) of a physical state x of this model.
@@ -2333,7 +2344,7 @@ def world_velocity(x):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
@@ -2386,6 +2397,25 @@ def common_jacobian(c):
     out[3, 4] = _t2*c4
     out[4, 5] = 1.0
     return out
+
+
+@nb.njit(cache=True, nogil=True)
+def common_to_states(c, out):
+    """common_to_state of every row of c (B, 6) into out (B, n) (the two-point initialisation of many objects)."""
+    for b in range(c.shape[0]):
+        x = common_to_state(c[b])
+        for i in range(out.shape[1]):
+            out[b, i] = x[i]
+
+
+@nb.njit(cache=True, nogil=True)
+def common_jacobians(c, out):
+    """common_jacobian of every row of c (B, 6) into out (B, n, 6)."""
+    for b in range(c.shape[0]):
+        J = common_jacobian(c[b])
+        for i in range(out.shape[1]):
+            for j in range(out.shape[2]):
+                out[b, i, j] = J[i, j]
 
 
 @nb.njit(cache=True)

@@ -8,14 +8,15 @@ Kernels of a model module (``s`` the internal state, ``p`` the packed covariance
 row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 
 * conversions: ``state_from_physical``, ``state_to_physical``, ``physical_into``, ``group_mean``,
-  ``common_to_state``, ``common_jacobian``, ``world_velocity``, ``world_velocities``, ``tangent_error``;
+  ``common_to_state``, ``common_jacobian`` (``common_to_states`` / ``common_jacobians`` over rows),
+  ``world_velocity``, ``world_velocities``, ``tangent_error``;
 * the paper's quantities: ``motion_omega`` (Ω), ``calC`` (𝒞), ``transition`` (F), ``process_noise`` (Q),
   ``calH_<meas>`` (ℋ);
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
-  missed detection: predict only), ``propagate`` / ``simulate_batch`` (the exact motion),
+  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
   of the whole group (smoothing and mixing on the group);
@@ -193,7 +194,7 @@ def angle_limit_kernel(n: int, angles: tuple):
 
 # --------------------------------------------------------------------------- loop templates
 BATCH_TEMPLATE = '''
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
 def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter one trajectory with {meas} measurements: z (K, {m}), dts (K,), x0 ({n},), p0 ({npk},).
 
@@ -248,6 +249,17 @@ def simulate_batch(x0, dts, noise, out_x):
         for k in range(K):
             propagate(s, dts[b, k], {nargs})
             physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_rows(x, dts, out_x):
+    """The noise-free exact motion of each row: out_x[i] = X_i exp([Ω(X_i)]^) over dts[i] (simulate_batch with
+    zero noise, one step per row); x (N, {n}) and out_x (N, {n}) physical states, dts (N,)."""
+    s = np.empty({ni})
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], s)
+        propagate(s, dts[i], {zeros})
+        physical_into(s, out_x[i])
 '''
 
 MEASURE_TEMPLATE = '''
@@ -262,8 +274,28 @@ def measure_batch_{meas}(X, noise, out):
             out[i, j] = z[j]
 '''
 
+COMMON_BATCH_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)
+def common_to_states(c, out):
+    """common_to_state of every row of c (B, 6) into out (B, n) (the two-point initialisation of many objects)."""
+    for b in range(c.shape[0]):
+        x = common_to_state(c[b])
+        for i in range(out.shape[1]):
+            out[b, i] = x[i]
+
+
+@nb.njit(cache=True, nogil=True)
+def common_jacobians(c, out):
+    """common_jacobian of every row of c (B, 6) into out (B, n, 6)."""
+    for b in range(c.shape[0]):
+        J = common_jacobian(c[b])
+        for i in range(out.shape[1]):
+            for j in range(out.shape[2]):
+                out[b, i, j] = J[i, j]
+'''
+
 WORLD_VELOCITY_TEMPLATE = '''
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
@@ -400,7 +432,8 @@ def model_kernels(model, measurements: dict) -> list:
         params=["s", "dt", *nparams], inputs=sin_ + [(dt, "dt")] + list(zip(nn, nparams)),
         stages=[pdefs], outputs=[(f"s[{i}]", Ps[0, k]) for k, i in enumerate(new)],
     ))
-    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "))))
+    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
+                                                    zeros=", ".join(["0.0"] * len(nn)), ni=len(model.internal))))
     # ---- common coordinates
     cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
     csub = dict(zip(COMMON, cs))
@@ -412,6 +445,7 @@ def model_kernels(model, measurements: dict) -> list:
                             ["c"], cin, [sp.sympify(e).subs(csub, simultaneous=True) for e in model.from_common()]))
     ks.append(matrix_kernel("common_jacobian", "J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).",
                             ["c"], cin, model.common_jacobian.subs(csub, simultaneous=True)))
+    ks.append(("common_to_states", COMMON_BATCH_TEMPLATE))
     # ---- estimation error in the filter's tangent coordinates (NEES)
     G = model.group
     true_mean = model.mean_of_common.subs(csub, simultaneous=True)

@@ -2,7 +2,8 @@
 (``lgekf.apps.noise``): the measurement std from local quadratic residuals, then per model the process
 noise that minimises the filter's mean squared one-step prediction error on a subsample of the objects
 (the filter run as ``lgekf track`` runs it: the measurement std just found, the divergence monitor on;
-the first ``BURN_IN`` updates of every object, which the two-point initialisation dominates, left out).
+the first ``BURN_IN`` updates of every object, which the two-point initialisation dominates, left out). The
+search's runs go to a pool of threads, one per usable CPU (``lgekf.apps.search``; the same plan as serially).
 """
 
 from __future__ import annotations
@@ -15,8 +16,9 @@ import numpy as np
 from ..core.registry import get_model
 from .divergence import MonitorConfig
 from .noise import (
-    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, process_noise_search, subsample_objects, typical_speed,
+    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, subsample_objects, typical_speed,
 )
+from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
 from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
@@ -68,7 +70,7 @@ class NoisePlan:
 
 
 def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std, heading_std, heading_cap=math.pi, heading=None,
-               measurement=None, monitor: MonitorConfig | None = MonitorConfig()) -> NoisePlan:
+               measurement=None, monitor: MonitorConfig | None = MonitorConfig(), workers: int | None = None) -> NoisePlan:
     """Noise of every model: the given values, the rest from the data.
 
     Parameters
@@ -88,10 +90,16 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         Model -> measurement ("position" / "pose"); default position.
     monitor : MonitorConfig or None
         The divergence monitor of the search runs.
+    workers : int, optional
+        Threads of the process-noise search (``lgekf.apps.search``; the same plan whatever the number);
+        default: every usable CPU, 1 for a subsample of fewer than ``PARALLEL_MIN_ROWS`` rows.
     """
     accel_std = dict(accel_std or {})
     measurement = measurement or {}
     est = None
+    speed = None  # the typical speed, computed meanwhile in a thread of its own (nogil kernels) when there are CPUs to spare
+    if meas_std is None and any(m not in accel_std for m in models) and len(t) >= PARALLEL_MIN_ROWS and (workers or usable_cpus()) > 1:
+        speed = in_thread(typical_speed, t, z, starts)
     if meas_std is None:
         est = measurement_std(t, z, starts)
         if est.windows:
@@ -107,7 +115,7 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
             plan.accel_source[m] = "given"
     if not todo:
         return plan
-    plan.v_typ = typical_speed(t, z, starts)
+    plan.v_typ = typical_speed(t, z, starts) if speed is None else speed.result()
     objs = subsample_objects(starts)
     lens = np.minimum(np.diff(starts)[objs], SEARCH_ROWS)  # an object longer than that: its first SEARCH_ROWS rows
     rows = np.concatenate([np.arange(starts[o], starts[o] + n) for o, n in zip(objs, lens)])
@@ -119,17 +127,21 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
     for j in range(BURN_IN):
         idx = sub_starts[:-1] + 2 + j
         skip[idx[idx < sub_starts[1:]]] = True
+    runs = {}
     for m in todo:
         meas = measurement.get(m, "position")
         get_model(m).measurement(meas)
 
-        def run(q, m=m, meas=meas):
+        def run(q, m=m, meas=meas):  # no shared mutable state: process_noise_searches calls it from several threads
             cfg = TrackConfig({m: q}, plan.meas_std, omega_std, heading_std, heading_cap)
             r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor)
             err2 = one_step_errors(m, ts, zs, r.x, sub_starts)
             return np.where(skip, np.nan, r.nis), np.where(skip, np.nan, err2)
 
-        res = process_noise_search(run, m, plan.v_typ)
+        runs[m] = run
+    if workers is None:
+        workers = usable_cpus() if rows.size >= PARALLEL_MIN_ROWS else 1
+    for m, res in process_noise_searches(runs, plan.v_typ, workers=workers).items():
         plan.accel_std[m] = res.q
         plan.accel_source[m] = "data" if np.isfinite(res.mse) else "default"
         plan.accel_k[m] = res.k

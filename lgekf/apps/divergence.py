@@ -141,7 +141,7 @@ def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _finite_rows(x, p, rows, out):
     """out[i] = every entry of x[rows[i]] and p[rows[i]] is finite."""
     for i in range(rows.shape[0]):
@@ -156,7 +156,7 @@ def _finite_rows(x, p, rows, out):
         out[i] = ok
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _scan(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
           out_from):
     """First alarm per segment (row or -1), its kind, value (window mean NIS) and the first flagged row.

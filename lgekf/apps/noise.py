@@ -32,6 +32,8 @@ rotational noise matters: at 1–2 Hz the LG filters and CTRV become unstable wi
 0.2–0.3 rad/s² that is harmless at 10 Hz, and the NIS (the consistency check one might use instead) hardly
 depends on it. The search runs on a subsample of whole objects (at most ``SEARCH_ROWS`` rows). The median
 NIS at the choice is reported (a consistent filter has the chi-square median, 1.39 for 2 degrees of freedom).
+The scans are ``search_stages`` (a generator of stages of independent candidates): ``process_noise_search``
+runs them one after the other, ``lgekf.apps.search.process_noise_searches`` in threads with the same result.
 
 Typical speed (``chord_speeds``): the speed of the chord between a measurement and the first one at least
 ``CHORD_S`` = 1 s later (noise contributes √2·σ/1 s instead of √2·σ/Δt), median over all objects.
@@ -51,7 +53,7 @@ from ..core.registry import get_model
 __all__ = [
     "measurement_std", "NoiseEstimate", "chord_speeds", "typical_speed", "accel_std_family", "process_noise_search",
     "one_step_errors", "angular_grid", "with_angular", "SearchResult", "subsample_objects",
-    "chi2_quantile", "SEARCH_ROWS", "CHORD_S", "MIN_MEAS_STD", "K_GRID",
+    "chi2_quantile", "SEARCH_ROWS", "CHORD_S", "MIN_MEAS_STD", "K_GRID", "search_stages", "candidate_key", "run_score",
 ]
 
 MAD_SCALE = 0.6744897501960817  # Φ⁻¹(0.75): median |N(0, 1)|
@@ -76,7 +78,7 @@ class NoiseEstimate:
         return f"quadratic residuals of {self.windows} windows of 4 points{extra}"
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _dd3(t, z, starts, out):
     """Normalised third divided differences of every 4-point window inside an object into out; returns
     how many were written."""
@@ -139,7 +141,7 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     return NoiseEstimate(s, e.shape[0])
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _chords(t, z, starts, lag, out):
     """out[i] = |z_j - z_i| / (t_j - t_i), j the first row of i's object with t_j - t_i >= lag (else its
     last row); nan for an object's last row."""
@@ -263,24 +265,24 @@ def subsample_objects(starts, max_rows: int = SEARCH_ROWS) -> np.ndarray:
 
 def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     """Squared one-step prediction errors (N,): ‖z_k − position of f(x_{k−1}, t_k − t_{k−1})‖², f the
-    model's noise-free motion (generated ``simulate_batch`` with zero noise) from the posterior x_{k−1};
+    model's noise-free motion (generated ``propagate_rows``: ``simulate_batch`` with zero noise) from the posterior x_{k−1};
     nan on each object's rows 0 and 1."""
     spec = get_model(model)
     N = len(t)
     out = np.full(N, np.nan)
-    first = np.asarray(starts[:-1], dtype=np.int64)
-    rows = np.ones(N, bool)
-    rows[first] = False
-    rows[np.minimum(first + 1, N - 1)] = False
-    k = np.flatnonzero(rows)
-    if k.size == 0:
+    if N < 2:
         return out
-    prev = np.ascontiguousarray(x[k - 1], dtype=float)
-    dts = np.ascontiguousarray((t[k] - t[k - 1])[:, None])
-    noise = np.zeros((k.size, 1, len(spec.noise_inputs)))
-    pred = np.empty((k.size, 2, spec.n))
-    spec.kernels.simulate_batch(prev, dts, noise, pred)
-    out[k] = np.sum((z[k, :2] - pred[:, 1, :2]) ** 2, axis=1)
+    first = np.asarray(starts[:-1], dtype=np.int64)
+    # every row from its predecessor in one pass over contiguous rows (no gathers): the rows whose predecessor is
+    # in another object (an object's rows 0 and 1) are set to nan afterwards
+    dts = np.diff(np.asarray(t, dtype=float))
+    dts[first[first > 0] - 1] = 1.0  # across an object boundary: any positive step (its row is discarded)
+    pred = np.empty((N - 1, spec.n))
+    spec.kernels.propagate_rows(np.ascontiguousarray(x[:-1], dtype=float), dts, pred)  # serial, nogil: the search runs this in threads
+    e = z[1:, :2] - pred[:, :2]
+    out[1:] = e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1]
+    out[first] = np.nan
+    out[np.minimum(first + 1, N - 1)] = np.nan
     return out
 
 
@@ -319,36 +321,64 @@ def process_noise_search(run, model: str, v_typ: float, grid=K_GRID) -> SearchRe
     steps) at the chosen rotational std: about 20 runs. A filter that becomes unstable with some q makes
     large prediction errors there before each alarm, so the search avoids it. With nothing to score (every
     object too short) the model's defaults are returned (``mse`` inf).
-    """
-    cache = {}
 
-    def score(q):
-        key = tuple(round(v, 12) for v in q)
-        if key not in cache:
-            nis, err2 = run(q)
-            e = err2[np.isfinite(err2)]
-            n = nis[np.isfinite(nis)]
-            mse = float(np.mean(e)) if e.size else float("inf")
-            cache[key] = (mse if math.isfinite(mse) else float("inf"), float(np.median(n)) if n.size else float("nan"))
-        return cache[key]
+    The runs one after the other, in the order of ``search_stages``; ``lgekf.apps.search`` runs the
+    candidates of a stage (of several models) in threads, with the same result.
+    """
+    scores = {}
+    stages = search_stages(model, v_typ, scores, grid)
+    cands = next(stages)
+    while True:
+        for q in cands:
+            key = candidate_key(q)
+            if key not in scores:
+                scores[key] = run_score(*run(q))
+        try:
+            cands = stages.send(None)
+        except StopIteration as stop:
+            return stop.value
+
+
+def candidate_key(q) -> tuple:
+    """The key of a candidate q in a search's score table (rounded: the same q reached by two products)."""
+    return tuple(round(v, 12) for v in q)
+
+
+def run_score(nis, err2) -> tuple:
+    """(mse, median NIS) of one search run: the mean of the finite squared one-step errors (inf if none) and
+    the median of the finite NIS (nan if none)."""
+    e = err2[np.isfinite(err2)]
+    n = nis[np.isfinite(nis)]
+    mse = float(np.mean(e)) if e.size else float("inf")
+    return (mse if math.isfinite(mse) else float("inf"), float(np.median(n)) if n.size else float("nan"))
+
+
+def search_stages(model: str, v_typ: float, scores: dict, grid=K_GRID):
+    """The scans of ``process_noise_search`` as a generator: yields each stage's candidates (a list of q),
+    to be scored into ``scores`` (``candidate_key(q)`` -> ``run_score``) by the caller before it is resumed
+    with ``send(None)``; the candidates of one stage are independent. Returns (``StopIteration.value``) the
+    ``SearchResult``; ``runs`` = the number of entries of ``scores``. The choice of a stage is the first
+    candidate of least mse in list order, whatever order the runs were made in.
+    """
 
     def best(cands):
-        return min(cands, key=lambda c: score(c[1])[0])
+        yield [q for _, q in cands]
+        return min(cands, key=lambda c: scores[candidate_key(c[1])][0])
 
     def around(i, steps):
         return [grid[j] for j in sorted({min(max(i + d, 0), len(grid) - 1) for d in steps})]
 
     spec = get_model(model)
     coarse = list(range(0, len(grid), 2))  # factors of 2
-    k, q = best([(grid[i], accel_std_family(model, grid[i], v_typ)) for i in coarse])
-    k, q = best([(kk, accel_std_family(model, kk, v_typ)) for kk in around(grid.index(k), (-1, 0, 1))])
+    k, q = yield from best([(grid[i], accel_std_family(model, grid[i], v_typ)) for i in coarse])
+    k, q = yield from best([(kk, accel_std_family(model, kk, v_typ)) for kk in around(grid.index(k), (-1, 0, 1))])
     ang = angular_grid(model)
     if ang:
-        _, q = best([(k, with_angular(model, q, a)) for a in ang])
+        _, q = yield from best([(k, with_angular(model, q, a)) for a in ang])
         a = [v for v, kind in zip(q, spec.matched_noise) if kind == "w"][0]
-        k, q = best([(kk, with_angular(model, accel_std_family(model, kk, v_typ), a))
-                     for kk in around(grid.index(k), (-2, -1, 0, 1, 2))])
-    mse, med = score(q)
+        k, q = yield from best([(kk, with_angular(model, accel_std_family(model, kk, v_typ), a))
+                                for kk in around(grid.index(k), (-2, -1, 0, 1, 2))])
+    mse, med = scores[candidate_key(q)]
     if not math.isfinite(mse):  # no update to score (objects too short): the model's defaults
         k, q = 1.0, tuple(float(v) for v in get_model(model).default_accel_std)
-    return SearchResult(k, tuple(float(v) for v in q), mse, med, len(cache))
+    return SearchResult(k, tuple(float(v) for v in q), mse, med, len(scores))

@@ -131,7 +131,7 @@ def _length_batches(lengths, max_rows):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _gather(t, z, first, lens, K, zb, dts):
     """Padded batch inputs: object b's filter steps are rows first[b] .. first[b] + lens[b] - 1."""
     m = zb.shape[2]
@@ -148,7 +148,7 @@ def _gather(t, z, first, lens, K, zb, dts):
                 dts[b, k] = 1.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, nogil=True)
 def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
     # element loops, not slice assignment: the same machine work, a tenth of the compile time
     for b in range(first.shape[0]):

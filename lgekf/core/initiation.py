@@ -71,9 +71,8 @@ def initial_estimates(model, c, var):
     # evaluate it just off zero
     tiny = 1e-9 * np.sqrt(var[:, 3])
     cj[:, 3] = np.where(np.abs(cj[:, 3]) < tiny, np.where(cj[:, 3] < 0, -tiny, tiny), cj[:, 3])
-    for b in range(B):
-        x0[b] = k.common_to_state(c[b])
-        J[b] = k.common_jacobian(cj[b])
+    k.common_to_states(np.ascontiguousarray(c, dtype=float), x0)  # common_to_state / common_jacobian of every row
+    k.common_jacobians(np.ascontiguousarray(cj, dtype=float), J)
     P0 = np.einsum("bij,bj,bkj->bik", J, var, J)
     P0 = 0.5 * (P0 + np.swapaxes(P0, 1, 2))
     for a in spec.angles:
