@@ -46,6 +46,7 @@ with pose, except under ``--model all`` where it gets the positions (said on std
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -73,7 +74,7 @@ DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
-ROWS_PER_CHUNK = 1 << 16  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs
+ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
 FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
 BATCH_ROWS = 1 << 14  # filter steps of one padded batch (run_batch's inputs and outputs: ~0.25 KB per step)
 SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
@@ -346,9 +347,13 @@ def output_path(out, model: str, all_models: bool):
 def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
                 monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False, parquet: bool = False):
     """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
-    (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
-    ``parquet``: a Parquet file (``lgekf.io.parquet``, one row group per
-    chunk) instead of CSV text; CSV text is formatted ``FORMAT_ROWS`` rows at a time.
+    written (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
+    ``parquet``: a Parquet file (``lgekf.io.parquet``, one row group per chunk) instead of CSV text; CSV
+    text is formatted ``FORMAT_ROWS`` rows at a time.
+
+    The two jobs overlap: one writer thread formats and writes chunk i while this thread tracks chunk i + 1
+    (the formatter and the file writes release the GIL), so that at most two chunks' outputs are held. The
+    chunks are written in order: the file's bytes are those of doing one after the other.
 
     Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
     """
@@ -364,32 +369,8 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
-    B = len(starts) - 1
-    o = 0
-    alarms = []
-    flagged = 0
-    while o < B:
-        o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
-        o2 = min(max(o2, o + 1), B)
-        a, b = int(starts[o]), int(starts[o2])
-        sub_starts = starts[o:o2 + 1] - a
-        h = None if meas.heading is None else meas.heading[a:b]
-        r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
-        for al in r.alarms:
-            al.obj += o
-            al.row += a
-        alarms += r.alarms
-        flagged += int(r.flag.sum())
-        parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
-        if origin:
-            parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
-        parts.append(r.flag[:, None])
-        if smooth:
-            from .smooth_track import smoothed_columns
 
-            parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
-                                                                                             cfg, h, measurement), r.x, r.p))
-        row_obj = row_objects(starts, o, o2)  # meas.obj of grouped rows (which need not keep it)
+    def emit(parts, row_obj, a, b):  # the writer thread: chunk rows a..b as text (or a row group), in blocks
         for lo in range(0, b - a, FORMAT_ROWS):  # a block of rows at a time: no text copy of a long object
             hi = min(lo + FORMAT_ROWS, b - a)
             block = np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
@@ -397,9 +378,51 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 sink.write_rows(meas.labels, row_obj[lo:hi], meas.t[a + lo:a + hi], block)
             else:
                 write_rows(fh, lab, row_obj[lo:hi], meas.t[a + lo:a + hi], block, col_digits)
-        if bar is not None:
-            bar.update(b - a)
-        o = o2
+        return b - a
+
+    B = len(starts) - 1
+    o = 0
+    alarms = []
+    flagged = 0
+    with ThreadPoolExecutor(1) as writer:  # on an error here, leaving the block waits for the chunk being written
+        pending = None
+        while o < B:
+            o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
+            o2 = min(max(o2, o + 1), B)
+            a, b = int(starts[o]), int(starts[o2])
+            sub_starts = starts[o:o2 + 1] - a
+            h = None if meas.heading is None else meas.heading[a:b]
+            r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
+            for al in r.alarms:
+                al.obj += o
+                al.row += a
+            alarms += r.alarms
+            flagged += int(r.flag.sum())
+            parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
+            if origin:
+                parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+            parts.append(r.flag[:, None])
+            if smooth:
+                from .smooth_track import smoothed_columns
+
+                parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
+                                                                                                 cfg, h, measurement), r.x, r.p))
+            row_obj = row_objects(starts, o, o2)  # meas.obj of grouped rows (which need not keep it)
+            del r
+            _written(pending, bar)
+            pending = writer.submit(emit, parts, row_obj, a, b)
+            del parts, row_obj
+            o = o2
+        _written(pending, bar)
     if sink is not None:
         sink.close()
     return starts[-1], alarms, flagged
+
+
+def _written(pending, bar) -> None:
+    """Wait for the writer's chunk (its error raised here) and count its rows on the progress bar."""
+    if pending is None:
+        return
+    rows = pending.result()
+    if bar is not None:
+        bar.update(rows)
