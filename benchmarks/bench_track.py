@@ -72,7 +72,7 @@ def byte_compile() -> str:
     """
     import compileall
 
-    import generated
+    import lgekf.generated as generated
     import lgekf
 
     roots = [Path(m.__file__).resolve().parent for m in (lgekf, generated)]
