@@ -88,9 +88,8 @@ def test_every_segment_is_released_once_parsed(tmp_path):
     assert sorted(released[n:2 * n]) == segs  # after parsing each (two threads: any order)
 
 
-def test_track_output_the_same_mapped_and_in_small_batches(tmp_path, monkeypatch):
-    """lgekf track: the same bytes when the input is mapped in segments and the filter runs in batches of few steps."""
-    import lgekf.apps.track as track
+def test_track_output_the_same_mapped_and_whole(tmp_path, monkeypatch):
+    """lgekf track: the same bytes when the input is mapped in segments."""
     import lgekf.io.mapped as mapped
     from lgekf.cli.track import cmd_track
 
@@ -107,8 +106,6 @@ def test_track_output_the_same_mapped_and_in_small_batches(tmp_path, monkeypatch
     assert cmd_track([*args, "-o", str(tmp_path / "whole.csv")]) == 0
     monkeypatch.setattr(readers, "MAP_MIN_BYTES", 0)
     monkeypatch.setattr(mapped, "SEGMENT_BYTES", 300)
-    monkeypatch.setattr(track, "BATCH_ROWS", 40)
-    monkeypatch.setattr(track, "SERIAL_STEPS", 0)  # padded batches even for this little work
     assert cmd_track([*args, "-o", str(tmp_path / "mapped.csv")]) == 0
     assert (tmp_path / "mapped.csv").read_bytes() == (tmp_path / "whole.csv").read_bytes()
 

@@ -15,7 +15,7 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
-* loops: ``run_one_<meas>`` / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
+* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
@@ -217,6 +217,27 @@ def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
         if keep_p:
             for i in range({npk}):
                 out_p[k, i] = p[i]
+
+
+@nb.njit(cache=True, nogil=True)
+def run_segments_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``run_one_{meas}`` on segments of rows, one after the other (no Python per segment).
+
+    Segment i is rows first[i] .. first[i] + lengths[i] - 1 (first[i] >= 1) of z (N, {m}) and t (N,), filtered
+    from x0[i] ({n},), p0[i] ({npk},) at time t[first[i] - 1]; its outputs go to the same rows of out_x (N, {n}),
+    out_p (N, {npk}) and out_nis (N,). The numbers of ``run_one_{meas}`` called per segment with
+    dts = t[a:b] - t[a - 1:b - 1].
+    """
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
 @nb.njit(cache=True, parallel=True)

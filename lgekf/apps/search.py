@@ -2,11 +2,11 @@
 
 A search is a few stages of independent candidate runs (about 22 in all per model); the candidates of a
 stage — of every model at once under ``--model all`` — run in a pool of threads, one per usable CPU
-(``usable_cpus``). The filter's kernels release the GIL (``nogil=True``: the generated ``run_one_<meas>``,
+(``usable_cpus``). The filter's kernels release the GIL (``nogil=True``: the generated ``run_one_<meas>`` and ``run_segments_<meas>``,
 ``propagate_rows``, ``world_velocities``, the divergence monitor's ``_finite_rows`` / ``_scan``), so the
-threads overlap; none of the kernels a search run calls is a numba ``parallel=True`` one (the subsample's
-batches always run through ``run_one``: ``lgekf.apps.track.BATCH_ROWS`` <= ``SERIAL_STEPS``, which
-``tests/test_search.py`` checks), so no two threads enter numba's threading layer at once.
+threads overlap; none of the kernels a search run calls is a numba ``parallel=True`` one (the filter runs
+through the serial ``run_segments_<meas>``; ``tests/test_search.py`` replaces every parallel kernel by one that
+raises), so no two threads enter numba's threading layer at once.
 
 The result is that of the serial search, exactly: every run is deterministic, each stage's choice is made
 only after all its candidates are scored, and it is the first candidate of least mse in list order

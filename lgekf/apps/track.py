@@ -50,7 +50,6 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import numba as nb
 import numpy as np
 
 from ..core.covariance import pack, packed_diagonal
@@ -76,8 +75,6 @@ REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least thi
 
 ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
 FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
-BATCH_ROWS = 1 << 14  # filter steps of one padded batch (run_batch's inputs and outputs: ~0.25 KB per step)
-SERIAL_STEPS = 1 << 15  # batches with fewer filter steps run serially (run_one: same numbers, no thread start-up)
 
 
 @dataclass
@@ -115,53 +112,6 @@ def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=
     return two_point(t, z, np.asarray(starts)[:-1] + 1, meas_std, omega_std, heading, heading_std, heading_cap)
 
 
-def _length_batches(lengths, max_rows):
-    """Group objects (indices) of similar filter length: padding waste <= 25 %, at most ~max_rows cells."""
-    order = np.argsort(lengths, kind="stable")
-    order = order[lengths[order] > 0]
-    i = 0
-    out = []
-    while i < len(order):
-        lo = lengths[order[i]]
-        hi_allowed = max(int(lo * 1.25), lo + 4)
-        j = int(np.searchsorted(lengths[order], hi_allowed, side="right"))
-        cap = max(1, max_rows // max(int(lengths[order[j - 1]]), 1))
-        j = min(j, i + cap)
-        out.append(order[i:j])
-        i = j
-    return out
-
-
-@nb.njit(cache=True, nogil=True)
-def _gather(t, z, first, lens, K, zb, dts):
-    """Padded batch inputs: object b's filter steps are rows first[b] .. first[b] + lens[b] - 1."""
-    m = zb.shape[2]
-    for b in range(first.shape[0]):
-        a = first[b]
-        for k in range(K):
-            if k < lens[b]:
-                for j in range(m):
-                    zb[b, k, j] = z[a + k, j]
-                dts[b, k] = t[a + k] - t[a + k - 1]
-            else:  # padding after the object's end: never read back
-                for j in range(m):
-                    zb[b, k, j] = zb[b, k - 1, j]
-                dts[b, k] = 1.0
-
-
-@nb.njit(cache=True, nogil=True)
-def _scatter(bx, bp, bn, first, lens, out_x, out_p, out_nis):
-    # element loops, not slice assignment: the same machine work, a tenth of the compile time
-    for b in range(first.shape[0]):
-        a = first[b]
-        for k in range(lens[b]):
-            for j in range(bx.shape[2]):
-                out_x[a + k, j] = bx[b, k, j]
-            for j in range(bp.shape[2]):
-                out_p[a + k, j] = bp[b, k, j]
-            out_nis[a + k] = bn[b, k]
-
-
 def _measurement_inputs(spec, z, heading, cfg, measurement):
     """(measurements (N, m), noise stds r) of the measurement model."""
     spec.measurement(measurement)
@@ -174,43 +124,17 @@ def _measurement_inputs(spec, z, heading, cfg, measurement):
 
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
-    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place. Segments of similar length are
-    bucketed into padded batches for the generated ``run_batch`` kernel (no Python per step); a batch of
-    fewer than ``SERIAL_STEPS`` steps runs through ``run_one`` object by object (identical results)."""
-    spec = get_model(model)
-    kern = spec.kernels
-    n, npk = spec.n, spec.n_packed
-    m = zm.shape[1]
+    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place, straight on the rows (no padded copies).
+
+    One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment
+    or step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the
+    process-noise search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used.
+    """
     lengths = np.asarray(lengths, dtype=np.int64)
-    first_all = np.asarray(first, dtype=np.int64)
-    for objs in _length_batches(lengths, BATCH_ROWS):
-        Lb = np.ascontiguousarray(lengths[objs])
-        K = int(Lb.max())
-        first = np.ascontiguousarray(first_all[objs])
-        B = len(objs)
-        if B == 1 or B * K <= SERIAL_STEPS:  # one long object or small work: straight on the rows, no copies
-            _run_in_place(getattr(kern, f"run_one_{measurement}"), t, zm, first, Lb, x0[objs], p0[objs], q, r, out_x, out_p, out_nis)
-            continue
-        zb = np.empty((B, K, m))
-        dts = np.empty((B, K))
-        _gather(t, zm, first, Lb, K, zb, dts)
-        bx = np.empty((B, K, n))
-        bp = np.empty((B, K, npk))
-        bn = np.empty((B, K))
-        xb, pb = np.ascontiguousarray(x0[objs]), np.ascontiguousarray(p0[objs])
-        getattr(kern, f"run_batch_{measurement}")(zb, dts, xb, pb, q, r, bx, bp, bn)
-        _scatter(bx, bp, bn, first, Lb, out_x, out_p, out_nis)
-
-
-def _run_in_place(run_one, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
-    """The generated ``run_one`` object by object on views of the rows (no padded copies, no scatter): the
-    numbers of ``run_batch`` (which runs ``run_one`` per object), for small batches (numba's thread start-up
-    costs more than the filter) and for one long object (no second copy of its states and covariances)."""
-    x0 = np.ascontiguousarray(x0)
-    p0 = np.ascontiguousarray(p0)
-    for i in range(first.shape[0]):
-        a, b = int(first[i]), int(first[i] + lengths[i])
-        run_one(zm[a:b], t[a:b] - t[a - 1:b - 1], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
+    keep = np.flatnonzero(lengths > 0)
+    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
+    run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
+        np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
 
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
