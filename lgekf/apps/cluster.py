@@ -15,8 +15,9 @@ those commands asks for a cluster; without it they stop with one line saying how
 from __future__ import annotations
 
 import logging
-import os
 from contextlib import contextmanager
+
+from ..io.cpus import usable_cpus
 
 __all__ = ["INSTALL_HINT", "DaskMissing", "require_dask", "dask_client", "default_workers", "worker_count", "WORKER_ENV"]
 
@@ -48,10 +49,7 @@ def require_dask(what: str):
 
 def default_workers() -> int:
     """The number of cores this process may use (the default ``--workers``)."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not on Linux
-        return os.cpu_count() or 1
+    return usable_cpus()
 
 
 def _lgekf_version():

@@ -16,23 +16,15 @@ whatever the order the runs finished in. A run that raises: the error raised is 
 
 from __future__ import annotations
 
-import os
 from concurrent.futures import Future, ThreadPoolExecutor
 
+from ..io.cpus import usable_cpus
 from .noise import K_GRID, SearchResult, candidate_key, process_noise_search, run_score, search_stages
 
 __all__ = ["usable_cpus", "process_noise_searches", "in_thread", "PARALLEL_MIN_ROWS"]
 
 PARALLEL_MIN_ROWS = 4_000  # subsamples with fewer rows search serially: threads cost more than they gain (2 cores, quiet:
 # serial / 2 threads 0.60 at 500 rows, 0.94 at 2 000, 1.21 at 5 000, 1.4 at 10 000, 1.5 at 30 000; one model)
-
-
-def usable_cpus() -> int:
-    """The CPUs this process may run on (its affinity mask where the OS has one, else ``os.cpu_count()``)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # no affinity on this OS
-        return max(1, os.cpu_count() or 1)
 
 
 def in_thread(fn, *args) -> Future:

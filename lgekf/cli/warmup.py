@@ -31,6 +31,8 @@ import subprocess
 import sys
 from dataclasses import dataclass, field
 
+from ..io.cpus import usable_cpus
+
 __all__ = ["Job", "warm_up", "study_jobs", "track_jobs", "tiny_track", "model_compile_seconds", "compile_estimate", "worker_count"]
 
 # compile seconds per byte of a generated model module (only its predict/update/run kernels compile in a
@@ -79,10 +81,7 @@ def worker_count() -> int:
     """How many processes compile at once: the CPUs this process may use, minus those the load average says
     are busy (compiling in a second process only pays on a free core), at least 1; ``LGEKF_COMPILE_WORKERS``
     sets it."""
-    try:
-        n = len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        n = os.cpu_count() or 1
+    n = usable_cpus()
     given = os.environ.get("LGEKF_COMPILE_WORKERS", "").strip()
     if given.isdigit():
         return max(1, int(given))

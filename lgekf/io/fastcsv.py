@@ -32,6 +32,8 @@ from concurrent.futures import ThreadPoolExecutor
 import numba as nb
 import numpy as np
 
+from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
+
 from .formatting import _two_prod  # a*b = p + e exactly (Dekker), shared with the formatter
 
 __all__ = ["parse", "parse_rows", "hard_values", "group_order", "compiled", "compile_in_background", "warm", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES",
@@ -567,13 +569,6 @@ def warm() -> None:
             PARALLEL_BYTES = saved
     hard_values(text, out[5])
     group_order(out[3], len(out[4]))
-
-
-def _cpus() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
 
 
 @nb.njit(cache=True)

@@ -12,12 +12,13 @@ against Python's ``%g``; ``benchmarks/bench_format.py`` times both.
 from __future__ import annotations
 
 import math
-import os
 import re
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
 import numpy as np
+
+from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
 
 __all__ = ["format_rows", "write_rows", "format_g", "label_bytes"]
 
@@ -397,13 +398,6 @@ def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
     with ThreadPoolExecutor(threads) as pool:
         return list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
                                                     int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
-
-
-def _cpus() -> int:
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
 
 
 def format_g(values, digits: int) -> list:
