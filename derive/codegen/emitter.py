@@ -9,7 +9,8 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 
 * conversions: ``state_from_physical``, ``state_to_physical``, ``physical_into``, ``group_mean``,
   ``common_to_state``, ``common_jacobian`` (``common_to_states`` / ``common_jacobians`` over rows),
-  ``world_velocity``, ``world_velocities``, ``tangent_error``;
+  ``world_velocity``, ``world_velocity_into``, ``world_velocities``, ``row_speeds`` (|world velocity| of
+  given rows), ``tangent_error``;
 * the paper's quantities: ``motion_omega`` (Ω), ``calC`` (𝒞), ``transition`` (F), ``process_noise`` (Q),
   ``calH_<meas>`` (ℋ);
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
@@ -320,9 +321,17 @@ WORLD_VELOCITY_TEMPLATE = '''
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
-        v = world_velocity(X[i])
-        out[i, 0] = v[0]
-        out[i, 1] = v[1]
+        world_velocity_into(X[i], out[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def row_speeds(X, rows, out):
+    """Speed |world_velocity| of the rows X[rows[i]] of physical states X (N, n) into out (R,): no per-row
+    allocation nor gathered copy of X (the divergence monitor's speeds)."""
+    v = np.empty(2)
+    for i in range(rows.shape[0]):
+        world_velocity_into(X[rows[i]], v)
+        out[i] = math.hypot(v[0], v[1])
 '''
 
 
@@ -461,6 +470,9 @@ def model_kernels(model, measurements: dict) -> list:
     cin = vec_inputs("c", cs)
     ks.append(vector_kernel("world_velocity", "World-frame velocity (2,) of a physical state x of this model.", ["x"],
                             vec_inputs("x", model.physical), model.world_velocity()))
+    ks.append(Kernel(name="world_velocity_into", doc="world_velocity of a physical state x written into out (2,) (no allocation).",
+                     params=["x", "out"], inputs=vec_inputs("x", model.physical),
+                     outputs=[(f"out[{i}]", e) for i, e in enumerate(model.world_velocity())]))
     ks.append(("world_velocities", WORLD_VELOCITY_TEMPLATE))
     ks.append(vector_kernel("common_to_state", "The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.",
                             ["c"], cin, [sp.sympify(e).subs(csub, simultaneous=True) for e in model.from_common()]))

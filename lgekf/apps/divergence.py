@@ -95,22 +95,37 @@ class Alarm:
         return KIND_NAMES[self.kind]
 
 
+@nb.njit(cache=True, nogil=True)
+def _segment_finite_max(c, starts, out):
+    """out[b] = the largest finite value of c[starts[b]:starts[b + 1]] (0 if none or below 0)."""
+    for b in range(starts.shape[0] - 1):
+        top = 0.0
+        for i in range(starts[b], starts[b + 1]):
+            v = c[i]
+            if np.isfinite(v) and v > top:
+                top = v
+        out[b] = top
+
+
 def speed_limits(t, z, starts, meas_std: float, cfg: MonitorConfig) -> np.ndarray:
     """Per object (B,): the speed above which an estimate is absurd for it (m/s)."""
     c = chord_speeds(t, z, starts)
-    B = len(starts) - 1
-    obj = np.repeat(np.arange(B), np.diff(starts))
-    top = np.zeros(B)
-    ok = np.isfinite(c)
-    np.maximum.at(top, obj[ok], c[ok])
+    top = np.empty(len(starts) - 1)
+    _segment_finite_max(c, np.asarray(starts, dtype=np.int64), top)
     return cfg.speed_factor * top + 5.0 * math.sqrt(2.0) * meas_std / CHORD_S + cfg.speed_margin
 
 
-def speeds(model: str, x: np.ndarray) -> np.ndarray:
-    """|world velocity| (N,) of physical states x (N, n)."""
-    out = np.empty((x.shape[0], 2))
-    get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), out)
-    return np.hypot(out[:, 0], out[:, 1])
+def speeds(model: str, x: np.ndarray, rows: np.ndarray | None = None) -> np.ndarray:
+    """|world velocity| (N,) of physical states x (N, n), or (R,) of its rows ``rows`` (R,) only.
+
+    The generated ``row_speeds`` (``hypot`` of the definition's ``world_velocity``): no per-row allocation and
+    no gathered copy of x[rows].
+    """
+    x = np.ascontiguousarray(x, dtype=float)
+    rows = np.arange(x.shape[0], dtype=np.int64) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+    out = np.empty(rows.shape[0])
+    get_model(model).kernels.row_speeds(x, rows, out)
+    return out
 
 
 def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -213,11 +228,7 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
         finite = np.empty(rows.size, np.bool_)
         _finite_rows(x, p, rows, finite)
         bad[rows] = ~finite
-        sp = np.zeros(rows.size)
-        ok = np.flatnonzero(finite)
-        for lo in range(0, ok.size, SPEED_ROWS):  # in blocks: no copy of every state of a long object at once
-            j = ok[lo:lo + SPEED_ROWS]
-            sp[j] = speeds(model, x[rows[j]])
+        sp = speeds(model, x, rows)  # a non-finite row's speed (nan) is not used: that row is an alarm of its own
         o = finite & (sp > lim_row)
         over[rows] = o
         if o.any():
@@ -235,7 +246,7 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
     sp_hit = out_kind == 2
     if np.any(hit & sp_hit):
         j = np.flatnonzero(hit & sp_hit)
-        out_val[j] = speeds(model, x[out_row[j]])
+        out_val[j] = speeds(model, x, out_row[j])
     short = (out_kind == 1) & (out_row - out_from + 1 == cfg.short)
     limit = np.where(out_kind == 1, np.where(short, thr_short / cfg.short, thr / cfg.window), np.asarray(limit_seg, float))
     return out_row, out_kind, out_val, out_from, limit

@@ -61,6 +61,7 @@ from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows
 from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
+from .reinit_rows import reinit_first_rows
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
@@ -212,13 +213,10 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     q = cfg.q(model)
 
-    obj_start = np.repeat(starts[:-1], np.diff(starts))
-
     def reinit(rows, scale):
         # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
-        first = np.array([max(int(obj_start[g]), int(np.searchsorted(t[obj_start[g]:g], t[g] - REINIT_BASELINE, side="right"))
-                              + int(obj_start[g]) - 1) for g in rows], dtype=np.int64)
-        first = np.minimum(first, np.asarray(rows) - 1)
+        rows = np.asarray(rows, dtype=np.int64)
+        first = reinit_first_rows(t, rows, starts[np.searchsorted(starts, rows, side="right") - 1], REINIT_BASELINE)
         c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
                            cfg.heading_cap, first)
         x0, P0 = initial_estimates(model, c, var)

@@ -1,0 +1,101 @@
+"""The divergence monitor's fixed work done with less (issue #10): the generated ``row_speeds`` kernel of every
+model against an independent speed (numpy cos/sin of the common heading times the body velocity), the
+speeds of chosen rows, the speed limits' per-object maximum and the re-initialisation baseline search,
+each against the straightforward numpy formula it replaced."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from lgekf.apps.divergence import MonitorConfig, speed_limits, speeds
+from lgekf.apps.noise import CHORD_S, chord_speeds
+from lgekf.apps.reinit_rows import reinit_first_rows
+from lgekf.core.registry import MODELS, get_model
+
+
+def _common_states(rng, n):
+    """Common states c = (x, y, θ, v_x, v_y, ω) (body-frame velocity) with speeds 0.1 .. 30 m/s."""
+    c = np.empty((n, 6))
+    c[:, :2] = rng.uniform(-1e3, 1e3, (n, 2))
+    c[:, 2] = rng.uniform(-math.pi, math.pi, n)
+    c[:, 3] = rng.uniform(0.1, 30.0, n)
+    c[:, 4] = rng.uniform(-3.0, 3.0, n)
+    c[:, 5] = rng.uniform(-1.0, 1.0, n)
+    return c
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_row_speeds_is_the_world_speed_of_every_model(model):
+    """The speed of each model's state made from a common state is |R(θ) (v_x, v_y)|, computed here with numpy."""
+    rng = np.random.default_rng(3)
+    c = _common_states(rng, 500)
+    spec = get_model(model)
+    x = np.empty((c.shape[0], spec.n))
+    spec.kernels.common_to_states(c, x)
+    wx = np.cos(c[:, 2]) * c[:, 3] - np.sin(c[:, 2]) * c[:, 4]
+    wy = np.sin(c[:, 2]) * c[:, 3] + np.cos(c[:, 2]) * c[:, 4]
+    np.testing.assert_allclose(speeds(model, x), np.sqrt(wx * wx + wy * wy), rtol=1e-12)
+    v = np.empty((c.shape[0], 2))  # and the no-allocation world velocity behind it, component by component
+    spec.kernels.world_velocities(x, v)
+    np.testing.assert_allclose(v, np.column_stack([wx, wy]), rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_speeds_of_rows_equal_hypot_of_the_world_velocity_bit_for_bit(model):
+    """``speeds(model, x, rows)`` is exactly np.hypot of the allocating ``world_velocity`` of each row (the monitor's
+    former computation; numba's math.hypot is the C library's, as numpy's, not Python's), in any row order, with
+    repeats; a non-finite state gives nan, not an error."""
+    rng = np.random.default_rng(4)
+    spec = get_model(model)
+    x = 10.0 * rng.standard_normal((400, spec.n))
+    x[7, :] = np.nan
+    x[9, -1] = np.inf
+    rows = rng.integers(0, x.shape[0], 1000)
+    w = np.array([spec.kernels.world_velocity(x[r]) for r in rows])
+    expect = np.where(np.isfinite(x[rows]).all(axis=1), np.hypot(w[:, 0], w[:, 1]), np.nan)
+    got = speeds(model, x, rows)
+    ok = np.isfinite(expect)
+    assert np.array_equal(got[ok], expect[ok])
+    assert np.isnan(got[rows == 7]).all()
+    assert np.array_equal(speeds(model, x)[rows], got, equal_nan=True)
+    assert speeds(model, x, np.empty(0, np.int64)).shape == (0,)
+
+
+def test_speed_limits_take_each_objects_largest_finite_chord():
+    """The per-object maximum against np.maximum.at over the finite chords (objects of 1, 2 and many rows)."""
+    rng = np.random.default_rng(5)
+    lens = np.array([1, 2, 5, 1, 40, 3, 17])
+    starts = np.concatenate([[0], np.cumsum(lens)])
+    t = np.concatenate([np.cumsum(rng.uniform(0.05, 0.6, n)) for n in lens])
+    z = np.cumsum(rng.normal(0, 1.0, (t.size, 2)), axis=0)
+    cfg = MonitorConfig()
+    c = chord_speeds(t, z, starts)
+    obj = np.repeat(np.arange(lens.size), lens)
+    top = np.zeros(lens.size)
+    ok = np.isfinite(c)
+    np.maximum.at(top, obj[ok], c[ok])
+    expect = cfg.speed_factor * top + 5.0 * math.sqrt(2.0) * 0.3 / CHORD_S + cfg.speed_margin
+    assert np.array_equal(speed_limits(t, z, starts, 0.3, cfg), expect)
+    assert top[0] == 0.0 and top[3] == 0.0  # one-row objects: no chord
+
+
+def test_reinit_first_rows_is_the_per_row_searchsorted():
+    """The compiled baseline search against numpy's searchsorted per row (irregular steps, equal times too)."""
+    rng = np.random.default_rng(6)
+    lens = rng.integers(2, 80, 300)
+    starts = np.concatenate([[0], np.cumsum(lens)])
+    steps = [rng.choice([0.0, 0.05, 0.1, 0.25, 0.5, 0.7], n) for n in lens]
+    t = np.concatenate([5.0 * rng.random() + np.cumsum(s) for s in steps])
+    obj_first = np.repeat(starts[:-1], lens)
+    rows = np.flatnonzero(np.arange(t.size) > obj_first)
+    rng.shuffle(rows)
+    a = obj_first[rows]
+    expect = np.array([max(int(f), int(np.searchsorted(t[f:g], t[g] - 0.5, side="right")) + int(f) - 1) for g, f in zip(rows, a)])
+    expect = np.minimum(expect, rows - 1)
+    got = reinit_first_rows(t, rows, a, 0.5)
+    assert got.dtype == np.int64
+    assert np.array_equal(got, expect)
+    assert (got >= a).all() and (got < rows).all()
