@@ -195,18 +195,24 @@ class Tracked:
 
 
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
-                    monitor: MonitorConfig | None = MonitorConfig()) -> Tracked:
+                    monitor: MonitorConfig | None = MonitorConfig(), start=None, limits=None) -> Tracked:
     """``track_arrays`` with divergence monitoring and recovery (``lgekf.apps.divergence``).
 
     Objects whose filter never raises an alarm get exactly the ``track_arrays`` output (flag 0); at an
     alarm the object is re-initialised from its last two measurements and continues, and the rows of the
     alarm through the re-initialisation are flagged 1. ``monitor=None``: no monitoring (all flags 0).
+
+    ``start`` = (x0 (B, n), P0 (B, n, n)) and ``limits`` (B,): the objects' two-point start (``initial_common``
+    + ``initial_estimates``) and speed limits (``divergence.speed_limits``) when already made from the same t,
+    z, heading and cfg (they do not depend on the process noise: the noise search makes them once for its
+    ~22 runs, ``lgekf.apps.defaults``); default (None): made here.
     """
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
-    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, measurement=measurement)
+    x0, P0 = (None, None) if start is None else start
+    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
     flag = np.zeros(t.size, np.int8)
     if monitor is None:
         return Tracked(x, p, nis, flag, [])
@@ -227,7 +233,8 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
             j = np.flatnonzero(scale == s)
             _run_segments(model, measurement, t, zm, first[j], lengths[j], x0[j], p0[j], q * s, r * s, x, p, nis)
 
-    limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
+    if limits is None:
+        limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
     flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
     return Tracked(x, p, nis, flag, alarms)
 

@@ -1,7 +1,8 @@
-"""The divergence monitor's fixed work done with less (issue #10): the generated ``row_speeds`` kernel of every
-model against an independent speed (numpy cos/sin of the common heading times the body velocity), the
-speeds of chosen rows, the speed limits' per-object maximum and the re-initialisation baseline search,
-each against the straightforward numpy formula it replaced."""
+"""The divergence monitor and the noise search do less work (issue #10): the generated ``row_speeds`` kernel of
+every model against an independent speed (numpy cos/sin of the common heading times the body velocity), the
+speeds of chosen rows, the speed limits' per-object maximum and the re-initialisation baseline search, each
+against the straightforward numpy formula it replaced; ``track_monitored`` with a given start and speed
+limits, and the noise search that makes them once per model, against the per-run path (the same bits)."""
 
 from __future__ import annotations
 
@@ -10,9 +11,12 @@ import math
 import numpy as np
 import pytest
 
+from lgekf.apps import defaults
+from lgekf.apps.defaults import plan_noise
 from lgekf.apps.divergence import MonitorConfig, speed_limits, speeds
 from lgekf.apps.noise import CHORD_S, chord_speeds
 from lgekf.apps.reinit_rows import reinit_first_rows
+from lgekf.apps.track import TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, track_monitored
 from lgekf.core.registry import MODELS, get_model
 
 
@@ -99,3 +103,59 @@ def test_reinit_first_rows_is_the_per_row_searchsorted():
     assert got.dtype == np.int64
     assert np.array_equal(got, expect)
     assert (got >= a).all() and (got < rows).all()
+
+
+def _objects(B=40, K=70, seed=8):
+    """B turning objects of K measurements (irregular steps, 0.2 m noise, some 20 m outliers: alarms)."""
+    rng = np.random.default_rng(seed)
+    dt = rng.uniform(0.07, 0.13, (B, K))
+    t = np.cumsum(dt, axis=1)
+    th = rng.uniform(-np.pi, np.pi, (B, 1)) + np.cumsum(np.cumsum(0.1 * rng.standard_normal((B, K)), axis=1) * dt, axis=1)
+    v = rng.uniform(1.0, 15.0, (B, 1))
+    z = np.stack([np.cumsum(v * np.cos(th) * dt, axis=1), np.cumsum(v * np.sin(th) * dt, axis=1)], -1).reshape(-1, 2)
+    z += 0.2 * rng.standard_normal(z.shape)
+    out = rng.random(B * K) < 0.01
+    z[out] += 20.0 * rng.standard_normal((int(out.sum()), 2))
+    heading = (th.ravel() + 0.05 * rng.standard_normal(B * K) + np.pi) % (2 * np.pi) - np.pi
+    return t.ravel(), z, K * np.arange(B + 1), heading
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_track_monitored_with_a_given_start_and_limits_is_the_same(model):
+    """Start and limits made beforehand (as the noise search does) give the same bits, alarms included."""
+    t, z, starts, heading = _objects()
+    cfg = TrackConfig({model: tuple(0.3 * np.asarray(get_model(model).default_accel_std))}, 0.2, heading_cap=TRACK_HEADING_CAP)
+    ref = track_monitored(model, t, z, starts, cfg, heading=heading)
+    assert len(ref.alarms) > 0  # the recovery path is exercised
+    start = initial_estimates(model, *initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap))
+    limits = speed_limits(t, z, starts, cfg.meas_std, MonitorConfig())
+    got = track_monitored(model, t, z, starts, cfg, heading=heading, start=start, limits=limits)
+    for a, b in ((ref.x, got.x), (ref.p, got.p), (ref.nis, got.nis), (ref.flag, got.flag)):
+        assert np.array_equal(a, b, equal_nan=True)
+    assert ref.alarms == got.alarms
+
+
+def test_the_search_with_its_shared_start_gives_the_per_run_plan(monkeypatch):
+    """plan_noise makes each model's start and the speed limits once; forcing every run to make its own (the
+    former path) gives the same NoisePlan exactly: q, k, mse, median NIS and runs of every model."""
+    t, z, starts, heading = _objects(B=30, K=60, seed=9)
+    models = list(MODELS)
+
+    def plan():
+        return plan_noise(t, z, starts, models, omega_std=0.5, heading_std=0.1, heading_cap=TRACK_HEADING_CAP, heading=heading,
+                          measurement={"se2se2": "pose"}, workers=1)
+
+    shared = plan()
+    real = defaults.track_monitored
+    seen = []
+
+    def per_run(*a, start=None, limits=None, **kw):
+        seen.append(start is not None and limits is not None)
+        return real(*a, **kw)  # the start and the limits made inside, as every run did before
+
+    monkeypatch.setattr(defaults, "track_monitored", per_run)
+    alone = plan()
+    assert len(seen) > 15 * len(models) and all(seen)  # the search did hand its shared start to every run
+    for m in models:
+        assert alone.search[m] == shared.search[m], m
+        assert (alone.accel_std[m], alone.accel_k[m], alone.median_nis[m]) == (shared.accel_std[m], shared.accel_k[m], shared.median_nis[m])
