@@ -17,6 +17,7 @@ from lgekf.apps.divergence import MonitorConfig, speed_limits, speeds
 from lgekf.apps.noise import CHORD_S, chord_speeds
 from lgekf.apps.reinit_rows import reinit_first_rows
 from lgekf.apps.track import TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, track_monitored
+from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
 
 
@@ -159,3 +160,28 @@ def test_the_search_with_its_shared_start_gives_the_per_run_plan(monkeypatch):
     for m in models:
         assert alone.search[m] == shared.search[m], m
         assert (alone.accel_std[m], alone.accel_k[m], alone.median_nis[m]) == (shared.accel_std[m], shared.accel_k[m], shared.median_nis[m])
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_run_segments_noise_is_run_segments_per_noise_level(model):
+    """The reruns' one call with noise stds per segment (generated ``run_segments_noise_position``) against
+    ``run_segments_position`` called once per distinct inflation with q·s, r·s (the former reruns): same bits."""
+    t, z, starts, _ = _objects(B=12, K=50, seed=10)
+    spec = get_model(model)
+    k = spec.kernels
+    cfg = TrackConfig({}, 0.2)
+    x0, P0 = initial_estimates(model, *initial_common(t, z, starts, cfg.meas_std))
+    p0 = pack(P0)
+    first = starts[:-1] + 2 + np.arange(12) % 5
+    lengths = starts[1:] - first - np.arange(12) % 3
+    scale = np.array([1.0, 2.0, 1.0, 3.7, 2.0, 1.0, 1.5, 1.5, 3.7, 1.0, 2.0, 1.25])
+    q = cfg.q(model)
+    r = np.array([cfg.meas_std])
+    outs = [(np.zeros((t.size, spec.n)), np.zeros((t.size, spec.n_packed)), np.zeros(t.size)) for _ in range(2)]
+    for s in np.unique(scale):
+        j = np.flatnonzero(scale == s)
+        k.run_segments_position(z, t, first[j], lengths[j], x0[j], p0[j], q * s, r * s, *outs[0])
+    k.run_segments_noise_position(z, t, first, lengths, x0, p0, q[None, :] * scale[:, None], r[None, :] * scale[:, None], *outs[1])
+    for a, b in zip(*outs):
+        assert np.array_equal(a, b)
+    assert np.count_nonzero(outs[1][2]) > 0.8 * lengths.sum()

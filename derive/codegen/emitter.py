@@ -16,7 +16,8 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
-* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
+* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows; ``run_segments_noise_<meas>`` with
+  noise stds per segment) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
@@ -255,6 +256,24 @@ def run_batch_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
         run_one_{meas}(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
 '''
 
+SEGMENT_NOISE_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)
+def run_segments_noise_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_{meas}`` called
+    per segment i with q[i], r[i]."""
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+'''
+
 SIMULATE_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True)
 def simulate_batch(x0, dts, noise, out_x):
@@ -383,6 +402,8 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     ))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
+    kernels.append((f"run_segments_noise_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
+        meas=meas.name, nq=len(model.noise_names), nr=len(meas.noise_names))))
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
         from .fused import fused_step_kernel, step_wrapper
 

@@ -138,6 +138,17 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
 
+def _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``_run_segments`` with the noise stds of each segment's own, q (S, nq) and r (S, nr) (the generated
+    ``run_segments_noise_<meas>``): one call whatever the segments' noise inflations (``track_monitored``'s reruns)."""
+    lengths = np.asarray(lengths, dtype=np.int64)
+    keep = np.flatnonzero(lengths > 0)
+    run = getattr(get_model(model).kernels, f"run_segments_noise_{measurement}")
+    run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
+        np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep]),
+        out_x, out_p, out_nis)
+
+
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
     """Track every object of sorted measurements; no Python per filter step.
 
@@ -228,10 +239,9 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
         x0, P0 = initial_estimates(model, c, var)
         return x0, pack(P0)
 
-    def rerun(first, lengths, x0, p0, scale):
-        for s in np.unique(scale):  # objects with the same noise inflation run together
-            j = np.flatnonzero(scale == s)
-            _run_segments(model, measurement, t, zm, first[j], lengths[j], x0[j], p0[j], q * s, r * s, x, p, nis)
+    def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
+        scale = np.asarray(scale, dtype=float)[:, None]
+        _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
 
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
