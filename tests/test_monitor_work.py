@@ -185,3 +185,21 @@ def test_run_segments_noise_is_run_segments_per_noise_level(model):
     for a, b in zip(*outs):
         assert np.array_equal(a, b)
     assert np.count_nonzero(outs[1][2]) > 0.8 * lengths.sum()
+
+
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_propagate_positions_are_the_positions_of_propagate_rows(model):
+    """The noise search's one-step predictions: ``propagate_positions`` gives exactly the first two columns of
+    ``propagate_rows`` (the former computation), every other coordinate left out."""
+    rng = np.random.default_rng(11)
+    spec = get_model(model)
+    c = _common_states(rng, 300)
+    x = np.empty((c.shape[0], spec.n))
+    spec.kernels.common_to_states(c, x)
+    dts = rng.uniform(0.01, 1.0, c.shape[0])
+    full = np.empty_like(x)
+    spec.kernels.propagate_rows(x, dts, full)
+    pos = np.empty((c.shape[0], 2))
+    spec.kernels.propagate_positions(x, dts, pos)
+    assert np.array_equal(pos, full[:, :2])
+    assert not np.array_equal(pos, x[:, :2])  # the states did move

@@ -18,7 +18,8 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows; ``run_segments_noise_<meas>`` with
   noise stds per segment) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
-  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
+  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` /
+  ``propagate_positions`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
   of the whole group (smoothing and mixing on the group);
@@ -301,6 +302,17 @@ def propagate_rows(x, dts, out_x):
         state_from_physical_into(x[i], s)
         propagate(s, dts[i], {zeros})
         physical_into(s, out_x[i])
+
+
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_positions(x, dts, out_xy):
+    """The position (the first two physical coordinates) of ``propagate_rows``'s rows, bit for bit, into
+    out_xy (N, 2): the other coordinates are not converted (the noise search's one-step errors)."""
+    s = np.empty({ni})
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], s)
+        propagate(s, dts[i], {zeros})
+        position_into(s, out_xy[i])
 '''
 
 MEASURE_TEMPLATE = '''
@@ -483,6 +495,8 @@ def model_kernels(model, measurements: dict) -> list:
         params=["s", "dt", *nparams], inputs=sin_ + [(dt, "dt")] + list(zip(nn, nparams)),
         stages=[pdefs], outputs=[(f"s[{i}]", Ps[0, k]) for k, i in enumerate(new)],
     ))
+    ks.append(Kernel(name="position_into", doc="The position (the first two physical coordinates) of the internal state into ``out`` (2,).",
+                     params=["s", "out"], inputs=sin_, outputs=[(f"out[{i}]", e) for i, e in enumerate(model.physical_from_internal()[:2])]))
     ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
                                                     zeros=", ".join(["0.0"] * len(nn)), ni=len(model.internal))))
     # ---- common coordinates
