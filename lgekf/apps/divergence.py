@@ -14,7 +14,7 @@ Monitor (per object, over the rows the filter produced since its last (re-)initi
   the data's finite differences show. The speed std is √λ_max of P on the state coordinates the speed
   depends on, times the gradient norm (exact for the models on Rⁿ and the R² / R³ velocity parts, an
   upper bound for the others' anisotropic blocks); the speed and its gradient come from the generated
-  ``world_velocity``.
+  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place: no copy, no per-row allocation).
 * **Non-finite**: a NaN or infinite state or covariance entry.
 
 Recovery: at the alarm row g the object is re-initialised by the two-point rule of its start
