@@ -303,29 +303,25 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         grow = np.flatnonzero((row < 0) & (scan_end < seg_end))
         if hit.size == 0 and grow.size == 0:
             break
-        keep = []
-        finish = []  # monitoring stops at this alarm: the current run must still reach the object's end
-        for i in hit:
-            o = int(seg_obj[i])
-            g = int(row[i])
-            count[o] += 1
-            again = kind[i] == 1 and g - last[o] <= cfg.repeat * cfg.window
-            if again:  # the same object again soon after its re-initialisation: its noise is too small
-                scale[o] *= min(math.sqrt(max(float(val[i]) / m, 1.0)), cfg.max_inflation)
-            alarms.append(Alarm(o, g, int(kind[i]), float(val[i]), float(lim[i]),
-                                g - int(start[i]) + 1 if kind[i] == 1 else 0, count[o] <= cfg.max_reinit, float(scale[o])))
-            # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before
-            # the alarm's first update (at most back to the segment's initialisation row)
-            flag[max(int(start[i]), int(seg_first[i])) - 1:g + 1] = 1
-            if count[o] <= cfg.max_reinit:
-                keep.append(i)
-                last[o] = g
-            elif scan_end[i] < seg_end[i]:
-                finish.append(i)
-        finish = np.asarray(finish, dtype=np.int64)
+        # every alarm of the round at once: the segments of a round are of distinct objects (one each)
+        o, g, k, v = seg_obj[hit], row[hit], kind[hit], val[hit]
+        count[o] += 1
+        again = (k == 1) & (g - last[o] <= cfg.repeat * cfg.window)
+        if again.any():  # the same object again soon after its re-initialisation: its noise is too small
+            scale[o[again]] *= np.minimum(np.sqrt(np.maximum(v[again] / m, 1.0)), cfg.max_inflation)
+        ok = count[o] <= cfg.max_reinit
+        alarms.extend(map(Alarm, o.tolist(), g.tolist(), k.tolist(), v.tolist(), lim[hit].tolist(),
+                          np.where(k == 1, g - start[hit] + 1, 0).tolist(), ok.tolist(), scale[o].tolist()))
+        # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before the
+        # alarm's first update (at most back to the segment's initialisation row) through the alarm row
+        lo = np.maximum(start[hit], seg_first[hit]) - 1
+        n = g + 1 - lo
+        flag[np.repeat(lo - np.cumsum(n) + n, n) + np.arange(int(n.sum()))] = 1
+        keep = hit[ok]
+        last[o[ok]] = g[ok]
+        finish = hit[~ok & (scan_end[hit] < seg_end[hit])]  # monitoring stops at this alarm: the run must still reach the end
         if finish.size:
             rerun(seg_first[finish], seg_end[finish] - seg_first[finish], seg_x0[finish], seg_p0[finish], seg_scale[finish])
-        keep = np.asarray(keep, dtype=np.int64)
         g = row[keep]
         obj = seg_obj[keep]
         if keep.size:
