@@ -17,7 +17,9 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
 * loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows; ``run_segments_noise_<meas>`` with
-  noise stds per segment) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
+  noise stds per segment) / ``run_one_from_<meas>`` /
+  ``run_segments_from_<meas>`` (the same from internal states, which they leave at the last row's posterior: a long
+  object in windows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` /
   ``propagate_positions`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
@@ -196,16 +198,9 @@ def angle_limit_kernel(n: int, angles: tuple):
 
 
 # --------------------------------------------------------------------------- loop templates
-BATCH_TEMPLATE = '''
-@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
-def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """Filter one trajectory with {meas} measurements: z (K, {m}), dts (K,), x0 ({n},), p0 ({npk},).
-
-    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
-    """
-    s = state_from_physical(x0)
-    p = p0.copy()
-    K = z.shape[0]
+# the filter loop over the rows of one trajectory from (s, p): one text for run_one_<meas> and run_one_from_<meas>,
+# so that both compile to the same numbers (a long object filtered in windows = in one call)
+FILTER_LOOP = '''    K = z.shape[0]
     keep_p = out_p.shape[0] == K
     for k in range(K):
         if {nan_test}:
@@ -220,7 +215,18 @@ def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
         if keep_p:
             for i in range({npk}):
                 out_p[k, i] = p[i]
+'''
 
+BATCH_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)  # nogil: the process-noise search (lgekf.apps.search) runs filters in threads
+def run_one_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
+    """Filter one trajectory with {meas} measurements: z (K, {m}), dts (K,), x0 ({n},), p0 ({npk},).
+
+    A row of z containing NaN is a missed detection: the step predicts only (its NIS is NaN).
+    """
+    s = state_from_physical(x0)
+    p = p0.copy()
+{loop}
 
 @nb.njit(cache=True, nogil=True)
 def run_segments_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
@@ -241,6 +247,35 @@ def run_segments_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_ni
         for k in range(a, b):
             dts[k - a] = t[k] - t[k - 1]
         run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
+
+
+@nb.njit(cache=True, nogil=True)
+def run_one_from_{meas}(z, dts, s0, p0, q, r, out_x, out_p, out_nis):
+    """``run_one_{meas}`` from the internal state s0 ({ni},) (the layout of ``state_from_physical``) and p0 ({npk},),
+    which on return hold the posterior of the last row: a later call from them continues exactly (the numbers
+    of one call over both rows). ``lgekf track`` filters a long object in windows of rows with it.
+    """
+    s = s0.copy()
+    p = p0.copy()
+{loop}    s0[:] = s
+    p0[:] = p
+
+
+@nb.njit(cache=True, nogil=True)
+def run_segments_from_{meas}(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_{meas}`` from internal states s0 (S, {ni}) and p0 (S, {npk}) (``run_one_from_{meas}``): on
+    return s0[i], p0[i] hold the posterior of segment i's last row (unchanged for an empty segment).
+    """
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_from_{meas}(z[a:b], dts[:b - a], s0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
 @nb.njit(cache=True, parallel=True)
@@ -407,11 +442,10 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
         [sub(e) for e in meas.vector(Z)],
     )
     nan_test = " or ".join(f"np.isnan(z[k, {i}])" for i in range(m))
-    batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(
-        meas=meas.name, m=m, n=model.n, npk=model.n * (model.n + 1) // 2, ni=len(model.internal), nq=len(model.noise_names),
-        nr=len(meas.noise_names), qargs=_args("q", len(model.noise_names)), zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
-        rargs=_args("r", len(meas.noise_names)), nan_test=nan_test,
-    ))
+    fmt = dict(meas=meas.name, m=m, n=model.n, npk=model.n * (model.n + 1) // 2, ni=len(model.internal), nq=len(model.noise_names),
+               nr=len(meas.noise_names), qargs=_args("q", len(model.noise_names)), zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
+               rargs=_args("r", len(meas.noise_names)), nan_test=nan_test)
+    batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(loop=FILTER_LOOP.format(**fmt), **fmt))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
     kernels.append((f"run_segments_noise_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(

@@ -57,6 +57,7 @@ from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_F
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
 from .divergence import MonitorConfig, recover, speed_limits
+from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows
 from ..io.grouping import row_objects
@@ -66,7 +67,7 @@ from .reinit_rows import reinit_first_rows
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "reinit_estimates", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -205,6 +206,18 @@ class Tracked:
     alarms: list
 
 
+def reinit_estimates(model, t, z, cfg: TrackConfig, heading, rows, scale, obj_first):
+    """The re-initialisation at each of ``rows`` (``divergence.recover``'s ``reinit``): the two-point estimate from
+    the measurement of the row and the latest earlier one at least ``REINIT_BASELINE`` s back (else the object's
+    first row, ``obj_first``), with the measurement std times ``scale``. Returns (x0 (R, n), packed P0)."""
+    # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
+    first = reinit_first_rows(t, rows, obj_first, REINIT_BASELINE)
+    c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
+                       cfg.heading_cap, first)
+    x0, P0 = initial_estimates(model, c, var)
+    return x0, pack(P0)
+
+
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
                     monitor: MonitorConfig | None = MonitorConfig(), start=None, limits=None) -> Tracked:
     """``track_arrays`` with divergence monitoring and recovery (``lgekf.apps.divergence``).
@@ -231,13 +244,8 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     q = cfg.q(model)
 
     def reinit(rows, scale):
-        # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
         rows = np.asarray(rows, dtype=np.int64)
-        first = reinit_first_rows(t, rows, starts[np.searchsorted(starts, rows, side="right") - 1], REINIT_BASELINE)
-        c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
-                           cfg.heading_cap, first)
-        x0, P0 = initial_estimates(model, c, var)
-        return x0, pack(P0)
+        return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
 
     def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
         scale = np.asarray(scale, dtype=float)[:, None]
@@ -247,6 +255,31 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
     flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
     return Tracked(x, p, nis, flag, alarms)
+
+
+def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="position",
+                  monitor: MonitorConfig | None = MonitorConfig(), rows: int = WINDOW_ROWS):
+    """``track_monitored`` of ONE object (every row of t, z), a window of ``rows`` rows at a time: the same numbers,
+    bit for bit, with the memory of a window (``lgekf.apps.windows``).
+
+    Yields (a, Tracked) for consecutive row ranges [a, a + len) covering the object in order; each Tracked holds
+    the alarms detected since the previous one (object 0, rows of the object).
+    """
+    spec = get_model(model)
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(z, dtype=float)
+    starts = np.array([0, t.size], dtype=np.int64)
+    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
+    x0, P0 = initial_estimates(model, c, var)
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    limit = 0.0 if monitor is None else float(speed_limits(t, z, starts, cfg.meas_std, monitor)[0])
+
+    def reinit(rows_, scale):
+        return reinit_estimates(model, t, z, cfg, heading, rows_, scale, np.zeros(len(rows_), np.int64))
+
+    for a, x, p, nis, flag, alarms in filter_windows(model, measurement, t, zm, cfg.q(model), r, x0[0], pack(P0)[0], reinit, monitor,
+                                                     limit, rows):
+        yield a, Tracked(x, p, nis, flag, alarms)
 
 
 # ------------------------------------------------------------------------------------------ CLI
@@ -325,32 +358,44 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     flagged = 0
     with ThreadPoolExecutor(1) as writer:  # on an error here, leaving the block waits for the chunk being written
         pending = None
+
+        def submit(r, o, o2, a, extra=()):  # the rows a .. a + len(r.x) of objects o .. o2 - 1 to the writer thread
+            nonlocal pending, flagged
+            b = a + r.x.shape[0]
+            for al in r.alarms:
+                al.obj += o
+                al.row += a
+            alarms.extend(r.alarms)
+            flagged += int(r.flag.sum())
+            parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
+            if origin:
+                parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+            parts.append(r.flag[:, None])
+            parts.extend(extra)
+            row_obj = row_objects(starts, o, o2) if o2 > o + 1 else np.full(b - a, o, dtype=np.int64)  # meas.obj of grouped rows
+            _written(pending, bar)
+            pending = writer.submit(emit, parts, row_obj, a, b)
+
         while o < B:
             o2 = int(np.searchsorted(starts, starts[o] + ROWS_PER_CHUNK, side="right")) - 1
             o2 = min(max(o2, o + 1), B)
             a, b = int(starts[o]), int(starts[o2])
             sub_starts = starts[o:o2 + 1] - a
             h = None if meas.heading is None else meas.heading[a:b]
-            r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
-            for al in r.alarms:
-                al.obj += o
-                al.row += a
-            alarms += r.alarms
-            flagged += int(r.flag.sum())
-            parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
-            if origin:
-                parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
-            parts.append(r.flag[:, None])
-            if smooth:
-                from .smooth_track import smoothed_columns
+            if b - a > ROWS_PER_CHUNK and not smooth:  # one long object: a window of rows at a time (lgekf.apps.windows)
+                for a2, r in track_windows(model, meas.t[a:b], meas.z[a:b], cfg, h, measurement, monitor, ROWS_PER_CHUNK):
+                    submit(r, o, o2, a + a2)
+                    del r
+            else:
+                r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
+                extra = []
+                if smooth:
+                    from .smooth_track import smoothed_columns
 
-                parts.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
-                                                                                                 cfg, h, measurement), r.x, r.p))
-            row_obj = row_objects(starts, o, o2)  # meas.obj of grouped rows (which need not keep it)
-            del r
-            _written(pending, bar)
-            pending = writer.submit(emit, parts, row_obj, a, b)
-            del parts, row_obj
+                    extra.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
+                                                                                                     cfg, h, measurement), r.x, r.p))
+                submit(r, o, o2, a, extra)
+                del r, extra
             o = o2
         _written(pending, bar)
     if sink is not None:

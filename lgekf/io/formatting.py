@@ -23,6 +23,7 @@ from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
 __all__ = ["format_rows", "write_rows", "format_g", "label_bytes"]
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
+PARTS_PER_THREAD = 4  # the rows are cut into this many parts per thread (load balance; see _formatted_parts)
 
 
 @nb.njit(cache=True)
@@ -393,11 +394,13 @@ def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
     if threads < 2:
         return [_format_rows(lab[0], lab[1], row_label, t, int(t_digits), values, d)]
     # contiguous parts of the rows in parallel threads (the kernel releases the GIL), in order: the same
-    # bytes as one call
-    cut = np.linspace(0, n, threads + 1).astype(np.int64)
+    # bytes as one call. PARTS_PER_THREAD parts a thread, taken as threads free up: a thread that shares its
+    # core with other work (`lgekf track` tracks the next chunk meanwhile) does not hold the others up
+    parts = threads * PARTS_PER_THREAD
+    cut = np.linspace(0, n, parts + 1).astype(np.int64)
     with ThreadPoolExecutor(threads) as pool:
         return list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
-                                                    int(t_digits), values[cut[i]:cut[i + 1]], d), range(threads)))
+                                                    int(t_digits), values[cut[i]:cut[i + 1]], d), range(parts)))
 
 
 def format_g(values, digits: int) -> list:

@@ -1,0 +1,151 @@
+"""One long object tracked in windows of rows, with the memory of a window instead of the object's.
+
+``track_monitored`` holds every row's state and covariance of what it tracks (the divergence monitor re-runs the
+filter from a re-initialisation anywhere in the object): for one object of 10⁶ rows, SE(2)×SE(2) (21 packed
+covariance entries a row), that is 230 MB, ten times its CSV. ``filter_windows`` gives the same rows, bit for bit,
+a window at a time:
+
+* the filter continues from the internal state and covariance of the previous window's last row (the generated
+  ``run_segments_from_<meas>``), so a window's numbers are those of one run over the object;
+* the monitor (``divergence.recover``) scans a window's rows from ``window`` (W) rows before it, or from the
+  object's last re-initialisation if later: every test it makes from the window's first row on sums the same
+  NIS values, over the same updates since the (re-)initialisation, as one scan over the object; the rows
+  before the window were tested there already (without an alarm, else the previous window would have
+  recovered). Its memory of the object (re-initialisations so far, noise inflation, last re-initialisation)
+  goes from window to window (``divergence.MonitorMemory``); once ``max_reinit`` is used up the object is
+  no longer monitored, as in one scan;
+* an alarm flags rows back to at most W rows before the window (the NIS window, the row before it), so the
+  last W + 1 rows of a window are held back and given out with the next one.
+
+Conventions as ``track_monitored``: rows 0 and 1 carry the two-point start, the filter runs from row 2;
+states physical, covariances packed in the filter's tangent coordinates (X = μ·exp(ε)).
+"""
+
+from __future__ import annotations
+
+from typing import Iterator
+
+import numpy as np
+
+from ..core.registry import get_model
+from .divergence import NEVER, MonitorConfig, MonitorMemory, recover
+
+__all__ = ["filter_windows", "WINDOW_ROWS"]
+
+WINDOW_ROWS = 1 << 15  # rows filtered and monitored at a time
+
+
+def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, monitor: MonitorConfig | None, limit: float,
+                   rows: int = WINDOW_ROWS) -> Iterator[tuple]:
+    """Filter and monitor ONE object (every row of ``t``, ``zm``) as ``track_monitored`` does, a window of rows at a
+    time (``lgekf.apps.track.track_windows`` prepares the inputs from a ``TrackConfig``).
+
+    Parameters
+    ----------
+    model, measurement : str
+        Registry model and its measurement.
+    t, zm : ndarray, shape (N,), (N, m)
+        The object's times (increasing) and measurements, N >= 2.
+    q, r : ndarray
+        Process and measurement noise stds.
+    x0 : ndarray, shape (n,)
+        The two-point start (physical) at row 1; row 0 carries it with the first measured position.
+    p0 : ndarray, shape (n(n+1)/2,)
+        Its packed covariance.
+    reinit : callable
+        ``reinit(rows (R,), scale (R,)) -> (x0 (R, n), packed P0)``, rows of the object (``divergence.recover``).
+    monitor : MonitorConfig or None
+        None: no monitoring (all flags 0).
+    limit : float
+        The object's speed limit (``divergence.speed_limits``).
+    rows : int
+        Rows filtered per window (at least 1).
+
+    Yields
+    ------
+    (a, x, p, nis, flag, alarms)
+        Consecutive row ranges [a, a + len(x)) covering 0 .. N - 1 in order, each with what ``track_monitored``
+        gives on those rows and the alarms detected since the previous piece (``obj`` 0, ``row`` in the
+        object's rows).
+    """
+    if rows < 1:
+        raise ValueError(f"rows: must be at least 1, got {rows}")
+    spec = get_model(model)
+    kern = spec.kernels
+    run = getattr(kern, f"run_segments_from_{measurement}")
+    N = t.size
+    limits = np.array([limit], dtype=float)
+    x0 = np.asarray(x0, dtype=float)[None, :]
+    p0 = np.asarray(p0, dtype=float)[None, :]
+    ni = kern.state_from_physical(x0[0]).size
+    carry_s = np.empty((1, ni))  # the filter's internal state and covariance after the last row filtered
+    kern.state_from_physical_into(x0[0], carry_s[0])
+    carry_p = p0.copy()
+    memory = MonitorMemory.fresh(1)  # `last` in the object's rows
+    hold = 1 if monitor is None else int(monitor.window) + 1  # rows an alarm of the next window may flag (and the row before it: its time)
+    run_scale = 1.0  # the noise inflation of the run that filtered the last row (after max_reinit, not the object's latest)
+    tail = None  # the held-back rows: (x, p, nis, flag) of rows [L, A)
+    L, A = 0, 2  # the window's arrays start at row L; the filter goes on from row A
+    while True:
+        B = min(N, A + rows)
+        x = np.empty((B - L, spec.n))
+        p = np.empty((B - L, spec.n_packed))
+        nis = np.full(B - L, np.nan)
+        flag = np.zeros(B - L, np.int8)
+        if tail is None:  # rows 0 and 1: the two-point start (as track_arrays)
+            x[0] = x0[0]
+            x[0, :2] = zm[0, :2]
+            x[1] = x0[0]
+            p[0] = p[1] = p0[0]
+        else:
+            x[:A - L], p[:A - L], nis[:A - L], flag[:A - L] = tail
+        run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
+            x, p, nis)
+        alarms = []
+        if monitor is not None and memory.count[0] <= monitor.max_reinit:
+            end = B - L
+
+            def reinit_at(g, sc):
+                nonlocal run_scale
+                x0g, p0g = reinit(np.asarray(g, dtype=np.int64) + L, sc)
+                last = np.flatnonzero(np.asarray(g) == end - 1)  # the window's last row: the next window starts from it
+                if last.size:
+                    kern.state_from_physical_into(x0g[last[-1]], carry_s[0])
+                    carry_p[0] = p0g[last[-1]]
+                    run_scale = float(np.asarray(sc, dtype=float)[last[-1]])
+                return x0g, p0g
+
+            def rerun(first, lengths, xs, ps, sc):
+                nonlocal run_scale
+                for s in np.unique(sc):  # as track_monitored's rerun, from internal states
+                    j = np.flatnonzero(sc == s)
+                    s0 = np.empty((j.size, ni))
+                    for i, jj in enumerate(j):
+                        kern.state_from_physical_into(xs[jj], s0[i])
+                    pj = np.array(ps[j], dtype=float)
+                    run(zm[L:B], t[L:B], np.asarray(first[j], np.int64), np.asarray(lengths[j], np.int64), s0, pj, q * s, r * s, x, p, nis)
+                    reach = np.flatnonzero(first[j] + lengths[j] == end)
+                    if reach.size:
+                        carry_s[0] = s0[reach[-1]]
+                        carry_p[0] = pj[reach[-1]]
+                        run_scale = float(s)
+
+            last_global = int(memory.last[0])
+            scan_from = max(A - int(monitor.window), 2, last_global + 1 if last_global != NEVER else 2)
+            if last_global != NEVER:
+                memory.last[0] = last_global - L
+            f, alarms = recover(model, x, p, nis, np.array([0, end], np.int64), limits, zm.shape[1], monitor, reinit_at, rerun,
+                                first=np.array([scan_from - L], np.int64), memory=memory)
+            if memory.last[0] != NEVER:
+                memory.last[0] += L
+            flag |= f
+            for al in alarms:
+                al.row += L
+        done = B == N
+        keep = 0 if done else min(hold, B - L)
+        cut = B - L - keep
+        yield L, x[:cut], p[:cut], nis[:cut], flag[:cut], alarms
+        if done:
+            return
+        tail = (x[cut:].copy(), p[cut:].copy(), nis[cut:].copy(), flag[cut:].copy())
+        L, A = B - keep, B

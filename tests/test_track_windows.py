@@ -1,0 +1,116 @@
+"""A long object tracked in windows of rows (``lgekf.apps.track.track_windows``, ``lgekf.apps.windows``) gives the rows of one run, bit for bit.
+
+Compared with ``track_monitored`` over the whole object (the path of every object up to ``ROWS_PER_CHUNK`` rows):
+states, covariances, NIS, flags and alarms, for every model, with the monitor quiet, busy (noise inflation), out of
+re-initialisations (``max_reinit``) and off, and windows shorter than the monitor's NIS window; then `lgekf track`
+on a file whose long object goes through the windows against the same file in one chunk.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lgekf.apps.track as track
+from lgekf.apps.divergence import MonitorConfig
+from lgekf.apps.track import TrackConfig, track_monitored
+from lgekf.apps.track import track_windows
+from lgekf.cli import main
+from lgekf.core.registry import MODELS
+
+
+def _long_object(n=1500, seed=11):
+    """A car at about 8 m/s whose turn rate jumps now and then (manoeuvres the filters with little process noise
+    lose), positions with 0.1 m noise and a few runs of outliers; steps of 0.08-0.12 s."""
+    rng = np.random.default_rng(seed)
+    dt = rng.uniform(0.08, 0.12, n)
+    t = np.cumsum(dt)
+    w = np.repeat(rng.choice([0.0, 0.0, 0.6, -0.9, 1.5], n // 50 + 1), 50)[:n]
+    th = np.cumsum(w * dt)
+    v = 8.0 + np.cumsum(0.05 * rng.standard_normal(n))
+    x = np.cumsum(v * np.cos(th) * dt)
+    y = np.cumsum(v * np.sin(th) * dt)
+    z = np.column_stack([x, y]) + 0.1 * rng.standard_normal((n, 2))
+    for k in rng.choice(np.arange(50, n - 10), 6, replace=False):
+        z[k:k + 4] += rng.normal(0.0, 3.0, 2)
+    return t, z
+
+
+MONITORS = {
+    "default": MonitorConfig(),
+    "busy": MonitorConfig(alpha=0.2, repeat=20),  # many alarms, noise inflated again and again
+    "exhausted": MonitorConfig(alpha=0.2, max_reinit=3),  # the object runs unmonitored after its 4th alarm
+    "off": None,
+}
+
+
+def _alarms(alarms):
+    return [(a.obj, a.row, a.kind, a.value, a.limit, a.updates, bool(a.reinitialised), a.scale) for a in alarms]
+
+
+@pytest.mark.parametrize("model", list(MODELS))
+def test_windows_give_the_rows_of_one_run(model):
+    t, z = _long_object()
+    cfg = TrackConfig(dict(track.DEFAULT_ACCEL_STD), meas_std=0.1, heading_cap=track.TRACK_HEADING_CAP)
+    seen_kinds = set()
+    for name, mon in MONITORS.items():
+        ref = track_monitored(model, t, z, np.array([0, t.size]), cfg, monitor=mon)
+        if mon is not None:
+            assert ref.alarms, f"{name}: the test object should raise alarms"
+        if name == "exhausted":
+            assert any(not a.reinitialised for a in ref.alarms)
+        if name == "busy":
+            assert any(a.scale > 1.0 for a in ref.alarms)
+        seen_kinds |= {a.kind for a in ref.alarms}
+        for rows in (4, 97, 700):
+            pieces = list(track_windows(model, t, z, cfg, monitor=mon, rows=rows))
+            assert [a for a, _ in pieces] == list(np.cumsum([0] + [r.x.shape[0] for _, r in pieces[:-1]]))
+            got = {k: np.concatenate([getattr(r, k) for _, r in pieces]) for k in ("x", "p", "nis", "flag")}
+            what = f"{model}, monitor {name}, windows of {rows} rows"
+            assert np.array_equal(got["x"], ref.x), what
+            assert np.array_equal(got["p"], ref.p), what
+            assert np.array_equal(got["nis"], ref.nis, equal_nan=True), what
+            assert np.array_equal(got["flag"], ref.flag), what
+            assert _alarms([a for _, r in pieces for a in r.alarms]) == _alarms(ref.alarms), what
+    assert 1 in seen_kinds
+
+
+def test_rows_must_be_positive():
+    t, z = _long_object(200)
+    with pytest.raises(ValueError, match="rows"):
+        next(track_windows("cv", t, z, TrackConfig(), rows=0))
+
+
+def _file(path, long_rows=700, seed=5):
+    t, z = _long_object(long_rows, seed)
+    lines = ["id,t,x,y"]
+    rows = [(float(t[k]), "long", z[k]) for k in range(t.size)]
+    rng = np.random.default_rng(seed)
+    for o in range(3):  # short objects around it
+        for k in range(40):
+            rows.append((0.1 * k + 0.01 * o, f"walker{o}", np.array([o + 1.2 * 0.1 * k, 0.3 * o]) + 0.05 * rng.standard_normal(2)))
+    rows.sort(key=lambda r: r[0])
+    lines += [f"{lab},{tt!r},{float(p[0])!r},{float(p[1])!r}" for tt, lab, p in rows]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("model", ["cv", "se2se2"])
+@pytest.mark.parametrize("extra", [[], ["--no-monitor"], ["--full-cov", "--meas-std", "0.03"]])
+def test_cli_long_object_in_windows_writes_the_bytes_of_one_chunk(tmp_path, monkeypatch, model, extra):
+    inp = _file(tmp_path / "in.csv")
+    args = ["track", str(inp), "--model", model, "--quiet", "--accel-std", ",".join(["0.5"] * len(MODELS[model].noise_names)), *extra]
+    assert main([*args, "-o", str(tmp_path / "one.csv")]) == 0  # 820 rows: one chunk, no windows
+    monkeypatch.setattr(track, "ROWS_PER_CHUNK", 64)  # the long object (700 rows) in windows of 64 rows
+    windows = []
+    real = track.track_windows
+
+    def counted(*a, **k):
+        for piece in real(*a, **k):
+            windows.append(piece[0])
+            yield piece
+
+    monkeypatch.setattr(track, "track_windows", counted)
+    assert main([*args, "-o", str(tmp_path / "windows.csv")]) == 0
+    assert len(windows) >= 700 // 64
+    assert (tmp_path / "windows.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()
