@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'simulate_batch', 'propagate_rows', 'world_velocity', 'world_velocities', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -1171,6 +1171,23 @@ def calH_bank_pose(s, live, out):
                     out[i, a, b] = h[a, b]
 
 
+@nb.njit(cache=True, nogil=True)
+def run_segments_noise_pose(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_pose`` with noise stds of each segment's own: q (S, 3), r (S, 3) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_pose`` called
+    per segment i with q[i], r[i]."""
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_pose(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+
+
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_pose(W, j, sigma_x, sigma_y, sigma_omega, r_x, r_y, r_theta):
     """step_pose on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
@@ -2274,6 +2291,23 @@ def calH_bank_position(s, live, out):
                     out[i, a, b] = h[a, b]
 
 
+@nb.njit(cache=True, nogil=True)
+def run_segments_noise_position(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_position`` with noise stds of each segment's own: q (S, 3), r (S, 1) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_position`` called
+    per segment i with q[i], r[i]."""
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_position(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+
+
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_position(W, j, sigma_x, sigma_y, sigma_omega, r):
     """step_position on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
@@ -2848,6 +2882,16 @@ def propagate(s, dt, n0, n1, n2):
     s[6] = xn06
 
 
+@nb.njit(cache=True)
+def position_into(s, out):
+    """The position (the first two physical coordinates) of the internal state into ``out`` (2,).
+    """
+    x = s[0]
+    y = s[1]
+    out[0] = x
+    out[1] = y
+
+
 @nb.njit(cache=True, parallel=True)
 def simulate_batch(x0, dts, noise, out_x):
     """Simulate the motion model X_{k+1} = X_k exp([Ω(X_k) + G n_k]^) for B trajectories (prange).
@@ -2876,6 +2920,17 @@ def propagate_rows(x, dts, out_x):
         physical_into(s, out_x[i])
 
 
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_positions(x, dts, out_xy):
+    """The position (the first two physical coordinates) of ``propagate_rows``'s rows, bit for bit, into
+    out_xy (N, 2): the other coordinates are not converted (the noise search's one-step errors)."""
+    s = np.empty(7)
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], s)
+        propagate(s, dts[i], 0.0, 0.0, 0.0)
+        position_into(s, out_xy[i])
+
+
 @nb.njit(cache=True)
 def world_velocity(x):
     """World-frame velocity (2,) of a physical state x of this model.
@@ -2891,13 +2946,34 @@ def world_velocity(x):
     return out
 
 
+@nb.njit(cache=True)
+def world_velocity_into(x, out):
+    """world_velocity of a physical state x written into out (2,) (no allocation).
+    """
+    theta = x[2]
+    v_x = x[3]
+    v_y = x[4]
+    _sin_theta = math.sin(theta)
+    _cos_theta = math.cos(theta)
+    out[0] = _cos_theta*v_x - _sin_theta*v_y
+    out[1] = _cos_theta*v_y + _sin_theta*v_x
+
+
 @nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
-        v = world_velocity(X[i])
-        out[i, 0] = v[0]
-        out[i, 1] = v[1]
+        world_velocity_into(X[i], out[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def row_speeds(X, rows, out):
+    """Speed |world_velocity| of the rows X[rows[i]] of physical states X (N, n) into out (R,): no per-row
+    allocation nor gathered copy of X (the divergence monitor's speeds)."""
+    v = np.empty(2)
+    for i in range(rows.shape[0]):
+        world_velocity_into(X[rows[i]], v)
+        out[i] = math.hypot(v[0], v[1])
 
 
 @nb.njit(cache=True)

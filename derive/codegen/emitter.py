@@ -9,16 +9,19 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 
 * conversions: ``state_from_physical``, ``state_to_physical``, ``physical_into``, ``group_mean``,
   ``common_to_state``, ``common_jacobian`` (``common_to_states`` / ``common_jacobians`` over rows),
-  ``world_velocity``, ``world_velocities``, ``tangent_error``;
+  ``world_velocity``, ``world_velocity_into``, ``world_velocities``, ``row_speeds`` (|world velocity| of
+  given rows), ``tangent_error``;
 * the paper's quantities: ``motion_omega`` (Ω), ``calC`` (𝒞), ``transition`` (F), ``process_noise`` (Q),
   ``calH_<meas>`` (ℋ);
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
-* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows) / ``run_one_from_<meas>`` /
+* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows; ``run_segments_noise_<meas>`` with
+  noise stds per segment) / ``run_one_from_<meas>`` /
   ``run_segments_from_<meas>`` (the same from internal states, which they leave at the last row's posterior: a long
   object in windows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
-  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` (the exact motion),
+  missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` /
+  ``propagate_positions`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
 * group operations: ``retract`` (μ·exp ε), ``between`` (log(μ_s⁻¹μ_t)), ``right_jacobian`` / ``right_jacobian_inv``
   of the whole group (smoothing and mixing on the group);
@@ -289,6 +292,24 @@ def run_batch_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
         run_one_{meas}(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
 '''
 
+SEGMENT_NOISE_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)
+def run_segments_noise_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_{meas}`` called
+    per segment i with q[i], r[i]."""
+    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+'''
+
 SIMULATE_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True)
 def simulate_batch(x0, dts, noise, out_x):
@@ -316,6 +337,17 @@ def propagate_rows(x, dts, out_x):
         state_from_physical_into(x[i], s)
         propagate(s, dts[i], {zeros})
         physical_into(s, out_x[i])
+
+
+@nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
+def propagate_positions(x, dts, out_xy):
+    """The position (the first two physical coordinates) of ``propagate_rows``'s rows, bit for bit, into
+    out_xy (N, 2): the other coordinates are not converted (the noise search's one-step errors)."""
+    s = np.empty({ni})
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], s)
+        propagate(s, dts[i], {zeros})
+        position_into(s, out_xy[i])
 '''
 
 MEASURE_TEMPLATE = '''
@@ -355,9 +387,17 @@ WORLD_VELOCITY_TEMPLATE = '''
 def world_velocities(X, out):
     """world_velocity of every row of X (N, n) into out (N, 2)."""
     for i in range(X.shape[0]):
-        v = world_velocity(X[i])
-        out[i, 0] = v[0]
-        out[i, 1] = v[1]
+        world_velocity_into(X[i], out[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def row_speeds(X, rows, out):
+    """Speed |world_velocity| of the rows X[rows[i]] of physical states X (N, n) into out (R,): no per-row
+    allocation nor gathered copy of X (the divergence monitor's speeds)."""
+    v = np.empty(2)
+    for i in range(rows.shape[0]):
+        world_velocity_into(X[rows[i]], v)
+        out[i] = math.hypot(v[0], v[1])
 '''
 
 
@@ -408,6 +448,8 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(loop=FILTER_LOOP.format(**fmt), **fmt))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
+    kernels.append((f"run_segments_noise_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
+        meas=meas.name, nq=len(model.noise_names), nr=len(meas.noise_names))))
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
         from .fused import fused_step_kernel, step_wrapper
 
@@ -487,6 +529,8 @@ def model_kernels(model, measurements: dict) -> list:
         params=["s", "dt", *nparams], inputs=sin_ + [(dt, "dt")] + list(zip(nn, nparams)),
         stages=[pdefs], outputs=[(f"s[{i}]", Ps[0, k]) for k, i in enumerate(new)],
     ))
+    ks.append(Kernel(name="position_into", doc="The position (the first two physical coordinates) of the internal state into ``out`` (2,).",
+                     params=["s", "out"], inputs=sin_, outputs=[(f"out[{i}]", e) for i, e in enumerate(model.physical_from_internal()[:2])]))
     ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
                                                     zeros=", ".join(["0.0"] * len(nn)), ni=len(model.internal))))
     # ---- common coordinates
@@ -495,6 +539,9 @@ def model_kernels(model, measurements: dict) -> list:
     cin = vec_inputs("c", cs)
     ks.append(vector_kernel("world_velocity", "World-frame velocity (2,) of a physical state x of this model.", ["x"],
                             vec_inputs("x", model.physical), model.world_velocity()))
+    ks.append(Kernel(name="world_velocity_into", doc="world_velocity of a physical state x written into out (2,) (no allocation).",
+                     params=["x", "out"], inputs=vec_inputs("x", model.physical),
+                     outputs=[(f"out[{i}]", e) for i, e in enumerate(model.world_velocity())]))
     ks.append(("world_velocities", WORLD_VELOCITY_TEMPLATE))
     ks.append(vector_kernel("common_to_state", "The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.",
                             ["c"], cin, [sp.sympify(e).subs(csub, simultaneous=True) for e in model.from_common()]))

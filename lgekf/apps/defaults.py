@@ -14,12 +14,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.registry import get_model
-from .divergence import MonitorConfig
+from .divergence import MonitorConfig, speed_limits
 from .noise import (
     SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, subsample_objects, typical_speed,
 )
 from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
-from .track import DEFAULT_MEAS_STD, TrackConfig, track_monitored
+from .track import DEFAULT_MEAS_STD, TrackConfig, initial_common, initial_estimates, track_monitored
 
 __all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
 
@@ -128,13 +128,17 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         idx = sub_starts[:-1] + 2 + j
         skip[idx[idx < sub_starts[1:]]] = True
     runs = {}
+    # what every run of the search shares (it does not depend on the process noise): made once, read by all
+    common = initial_common(ts, zs, sub_starts, plan.meas_std, omega_std, hs, heading_std, heading_cap)
+    limits = None if monitor is None else speed_limits(ts, zs, sub_starts, plan.meas_std, monitor)
     for m in todo:
         meas = measurement.get(m, "position")
         get_model(m).measurement(meas)
+        start = initial_estimates(m, *common)  # the model's two-point start (x0, P0) of every object
 
-        def run(q, m=m, meas=meas):  # no shared mutable state: process_noise_searches calls it from several threads
+        def run(q, m=m, meas=meas, start=start):  # no shared mutable state: process_noise_searches calls it from several threads
             cfg = TrackConfig({m: q}, plan.meas_std, omega_std, heading_std, heading_cap)
-            r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor)
+            r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor, start=start, limits=limits)
             err2 = one_step_errors(m, ts, zs, r.x, sub_starts)
             return np.where(skip, np.nan, r.nis), np.where(skip, np.nan, err2)
 

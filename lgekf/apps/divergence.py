@@ -14,7 +14,7 @@ Monitor (per object, over the rows the filter produced since its last (re-)initi
   the data's finite differences show. The speed std is √λ_max of P on the state coordinates the speed
   depends on, times the gradient norm (exact for the models on Rⁿ and the R² / R³ velocity parts, an
   upper bound for the others' anisotropic blocks); the speed and its gradient come from the generated
-  ``world_velocity``.
+  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place: no copy, no per-row allocation).
 * **Non-finite**: a NaN or infinite state or covariance entry.
 
 Recovery: at the alarm row g the object is re-initialised by the two-point rule of its start
@@ -98,22 +98,37 @@ class Alarm:
         return KIND_NAMES[self.kind]
 
 
+@nb.njit(cache=True, nogil=True)
+def _segment_finite_max(c, starts, out):
+    """out[b] = the largest finite value of c[starts[b]:starts[b + 1]] (0 if none or below 0)."""
+    for b in range(starts.shape[0] - 1):
+        top = 0.0
+        for i in range(starts[b], starts[b + 1]):
+            v = c[i]
+            if np.isfinite(v) and v > top:
+                top = v
+        out[b] = top
+
+
 def speed_limits(t, z, starts, meas_std: float, cfg: MonitorConfig) -> np.ndarray:
     """Per object (B,): the speed above which an estimate is absurd for it (m/s)."""
     c = chord_speeds(t, z, starts)
-    B = len(starts) - 1
-    obj = np.repeat(np.arange(B), np.diff(starts))
-    top = np.zeros(B)
-    ok = np.isfinite(c)
-    np.maximum.at(top, obj[ok], c[ok])
+    top = np.empty(len(starts) - 1)
+    _segment_finite_max(c, np.asarray(starts, dtype=np.int64), top)
     return cfg.speed_factor * top + 5.0 * math.sqrt(2.0) * meas_std / CHORD_S + cfg.speed_margin
 
 
-def speeds(model: str, x: np.ndarray) -> np.ndarray:
-    """|world velocity| (N,) of physical states x (N, n)."""
-    out = np.empty((x.shape[0], 2))
-    get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), out)
-    return np.hypot(out[:, 0], out[:, 1])
+def speeds(model: str, x: np.ndarray, rows: np.ndarray | None = None) -> np.ndarray:
+    """|world velocity| (N,) of physical states x (N, n), or (R,) of its rows ``rows`` (R,) only.
+
+    The generated ``row_speeds`` (``hypot`` of the definition's ``world_velocity``): no per-row allocation and
+    no gathered copy of x[rows].
+    """
+    x = np.ascontiguousarray(x, dtype=float)
+    rows = np.arange(x.shape[0], dtype=np.int64) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+    out = np.empty(rows.shape[0])
+    get_model(model).kernels.row_speeds(x, rows, out)
+    return out
 
 
 def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -217,11 +232,7 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
         finite = np.empty(rows.size, np.bool_)
         _finite_rows(x, p, rows, finite)
         bad[rows] = ~finite
-        sp = np.zeros(rows.size)
-        ok = np.flatnonzero(finite)
-        for lo in range(0, ok.size, SPEED_ROWS):  # in blocks: no copy of every state of a long object at once
-            j = ok[lo:lo + SPEED_ROWS]
-            sp[j] = speeds(model, x[rows[j]])
+        sp = speeds(model, x, rows)  # a non-finite row's speed (nan) is not used: that row is an alarm of its own
         o = finite & (sp > lim_row)
         over[rows] = o
         if o.any():
@@ -239,7 +250,7 @@ def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, c
     sp_hit = out_kind == 2
     if np.any(hit & sp_hit):
         j = np.flatnonzero(hit & sp_hit)
-        out_val[j] = speeds(model, x[out_row[j]])
+        out_val[j] = speeds(model, x, out_row[j])
     short = (out_kind == 1) & (out_row - out_from + 1 == cfg.short)
     limit = np.where(out_kind == 1, np.where(short, thr_short / cfg.short, thr / cfg.window), np.asarray(limit_seg, float))
     return out_row, out_kind, out_val, out_from, limit
@@ -322,29 +333,26 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         grow = np.flatnonzero((row < 0) & (scan_end < seg_end))
         if hit.size == 0 and grow.size == 0:
             break
-        keep = []
-        finish = []  # monitoring stops at this alarm: the current run must still reach the object's end
-        for i in hit:
-            o = int(seg_obj[i])
-            g = int(row[i])
-            count[o] += 1
-            again = kind[i] == 1 and g - last[o] <= cfg.repeat * cfg.window
-            if again:  # the same object again soon after its re-initialisation: its noise is too small
-                scale[o] *= min(math.sqrt(max(float(val[i]) / m, 1.0)), cfg.max_inflation)
-            alarms.append(Alarm(o, g, int(kind[i]), float(val[i]), float(lim[i]),
-                                g - int(start[i]) + 1 if kind[i] == 1 else 0, count[o] <= cfg.max_reinit, float(scale[o])))
-            # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before
-            # the alarm's first update (at most back to the segment's initialisation row)
-            flag[max(int(start[i]), int(seg_first[i])) - 1:g + 1] = 1
-            if count[o] <= cfg.max_reinit:
-                keep.append(i)
-                last[o] = g
-            elif scan_end[i] < seg_end[i]:
-                finish.append(i)
-        finish = np.asarray(finish, dtype=np.int64)
+        # every alarm of the round at once: the segments of a round are of distinct objects (one each)
+        o, g, k, v = seg_obj[hit], row[hit], kind[hit], val[hit]
+        count[o] += 1
+        again = (k == 1) & (g - last[o] <= cfg.repeat * cfg.window)
+        if again.any():  # the same object again soon after its re-initialisation: its noise is too small
+            scale[o[again]] *= np.minimum(np.sqrt(np.maximum(v[again] / m, 1.0)), cfg.max_inflation)
+        ok = count[o] <= cfg.max_reinit
+        alarms.extend(map(Alarm, o.tolist(), g.tolist(), k.tolist(), v.tolist(), lim[hit].tolist(),
+                          np.where(k == 1, g - start[hit] + 1, 0).tolist(), ok.tolist(), scale[o].tolist()))
+        # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before the
+        # alarm's first update (at most back to the segment's initialisation row) through the alarm row
+        lo = np.maximum(start[hit], seg_first[hit]) - 1
+        lo = np.where(lo < 0, lo + flag.shape[0], lo)  # as the slice flag[lo:g + 1] (a segment from row 0: lo = -1)
+        n = np.maximum(g + 1 - lo, 0)
+        flag[np.repeat(lo - np.cumsum(n) + n, n) + np.arange(int(n.sum()))] = 1
+        keep = hit[ok]
+        last[o[ok]] = g[ok]
+        finish = hit[~ok & (scan_end[hit] < seg_end[hit])]  # monitoring stops at this alarm: the run must still reach the end
         if finish.size:
             rerun(seg_first[finish], seg_end[finish] - seg_first[finish], seg_x0[finish], seg_p0[finish], seg_scale[finish])
-        keep = np.asarray(keep, dtype=np.int64)
         g = row[keep]
         obj = seg_obj[keep]
         if keep.size:

@@ -265,7 +265,8 @@ def subsample_objects(starts, max_rows: int = SEARCH_ROWS) -> np.ndarray:
 
 def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     """Squared one-step prediction errors (N,): ‖z_k − position of f(x_{k−1}, t_k − t_{k−1})‖², f the
-    model's noise-free motion (generated ``propagate_rows``: ``simulate_batch`` with zero noise) from the posterior x_{k−1};
+    model's noise-free motion (generated ``propagate_positions``: the positions of ``propagate_rows``, ``simulate_batch`` with
+    zero noise) from the posterior x_{k−1};
     nan on each object's rows 0 and 1."""
     spec = get_model(model)
     N = len(t)
@@ -277,9 +278,9 @@ def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     # in another object (an object's rows 0 and 1) are set to nan afterwards
     dts = np.diff(np.asarray(t, dtype=float))
     dts[first[first > 0] - 1] = 1.0  # across an object boundary: any positive step (its row is discarded)
-    pred = np.empty((N - 1, spec.n))
-    spec.kernels.propagate_rows(np.ascontiguousarray(x[:-1], dtype=float), dts, pred)  # serial, nogil: the search runs this in threads
-    e = z[1:, :2] - pred[:, :2]
+    pred = np.empty((N - 1, 2))  # the positions of propagate_rows only (propagate_positions): serial, nogil (the search's threads)
+    spec.kernels.propagate_positions(np.ascontiguousarray(x[:-1], dtype=float), dts, pred)
+    e = z[1:, :2] - pred
     out[1:] = e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1]
     out[first] = np.nan
     out[np.minimum(first + 1, N - 1)] = np.nan

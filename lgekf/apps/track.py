@@ -62,6 +62,7 @@ from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows
 from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
+from .reinit_rows import reinit_first_rows
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
@@ -138,6 +139,17 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
 
+def _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
+    """``_run_segments`` with the noise stds of each segment's own, q (S, nq) and r (S, nr) (the generated
+    ``run_segments_noise_<meas>``): one call whatever the segments' noise inflations (``track_monitored``'s reruns)."""
+    lengths = np.asarray(lengths, dtype=np.int64)
+    keep = np.flatnonzero(lengths > 0)
+    run = getattr(get_model(model).kernels, f"run_segments_noise_{measurement}")
+    run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
+        np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep]),
+        out_x, out_p, out_nis)
+
+
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
     """Track every object of sorted measurements; no Python per filter step.
 
@@ -199,9 +211,7 @@ def reinit_estimates(model, t, z, cfg: TrackConfig, heading, rows, scale, obj_fi
     the measurement of the row and the latest earlier one at least ``REINIT_BASELINE`` s back (else the object's
     first row, ``obj_first``), with the measurement std times ``scale``. Returns (x0 (R, n), packed P0)."""
     # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
-    first = np.array([max(int(f), int(np.searchsorted(t[f:g], t[g] - REINIT_BASELINE, side="right")) + int(f) - 1)
-                      for g, f in zip(rows, obj_first)], dtype=np.int64)
-    first = np.minimum(first, np.asarray(rows) - 1)
+    first = reinit_first_rows(t, rows, obj_first, REINIT_BASELINE)
     c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
                        cfg.heading_cap, first)
     x0, P0 = initial_estimates(model, c, var)
@@ -209,35 +219,40 @@ def reinit_estimates(model, t, z, cfg: TrackConfig, heading, rows, scale, obj_fi
 
 
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
-                    monitor: MonitorConfig | None = MonitorConfig()) -> Tracked:
+                    monitor: MonitorConfig | None = MonitorConfig(), start=None, limits=None) -> Tracked:
     """``track_arrays`` with divergence monitoring and recovery (``lgekf.apps.divergence``).
 
     Objects whose filter never raises an alarm get exactly the ``track_arrays`` output (flag 0); at an
     alarm the object is re-initialised from its last two measurements and continues, and the rows of the
     alarm through the re-initialisation are flagged 1. ``monitor=None``: no monitoring (all flags 0).
+
+    ``start`` = (x0 (B, n), P0 (B, n, n)) and ``limits`` (B,): the objects' two-point start (``initial_common``
+    + ``initial_estimates``) and speed limits (``divergence.speed_limits``) when already made from the same t,
+    z, heading and cfg (they do not depend on the process noise: the noise search makes them once for its
+    ~22 runs, ``lgekf.apps.defaults``); default (None): made here.
     """
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
-    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, measurement=measurement)
+    x0, P0 = (None, None) if start is None else start
+    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
     flag = np.zeros(t.size, np.int8)
     if monitor is None:
         return Tracked(x, p, nis, flag, [])
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     q = cfg.q(model)
 
-    obj_start = np.repeat(starts[:-1], np.diff(starts))
-
     def reinit(rows, scale):
-        return reinit_estimates(model, t, z, cfg, heading, rows, scale, obj_start[np.asarray(rows, dtype=np.int64)])
+        rows = np.asarray(rows, dtype=np.int64)
+        return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
 
-    def rerun(first, lengths, x0, p0, scale):
-        for s in np.unique(scale):  # objects with the same noise inflation run together
-            j = np.flatnonzero(scale == s)
-            _run_segments(model, measurement, t, zm, first[j], lengths[j], x0[j], p0[j], q * s, r * s, x, p, nis)
+    def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
+        scale = np.asarray(scale, dtype=float)[:, None]
+        _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
 
-    limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
+    if limits is None:
+        limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
     flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
     return Tracked(x, p, nis, flag, alarms)
 
