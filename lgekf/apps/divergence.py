@@ -48,7 +48,6 @@ from .noise import CHORD_S, chi2_quantile, chord_speeds
 
 __all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "speed_limits", "speeds", "speed_std", "first_alarms", "KIND_NAMES"]
 
-SPEED_ROWS = 1 << 16  # rows whose speeds first_alarms computes at a time (bounds the temporary copies)
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
 # the first window of rows filtered again after a re-initialisation (then doubled until the next alarm): 2¹⁰ rather
