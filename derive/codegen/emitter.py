@@ -198,6 +198,26 @@ def angle_limit_kernel(n: int, angles: tuple):
 
 
 # --------------------------------------------------------------------------- loop templates
+# the loop over segments of rows (each segment's steps dts from t, then one call per segment): one text for
+# run_segments_<meas>, run_segments_from_<meas> and run_segments_noise_<meas>, formatted with the call
+SEGMENT_LOOP = '''    longest = 0
+    for i in range(first.shape[0]):
+        longest = max(longest, lengths[i])
+    dts = np.empty(longest)
+    for i in range(first.shape[0]):
+        a = first[i]
+        b = a + lengths[i]
+        for k in range(a, b):
+            dts[k - a] = t[k] - t[k - 1]
+        {call}
+'''
+
+
+def _segments(call: str) -> str:
+    """SEGMENT_LOOP with ``call`` (a template line of the kernel it runs per segment) as its body."""
+    return SEGMENT_LOOP.replace("{call}", call)
+
+
 # the filter loop over the rows of one trajectory from (s, p): one text for run_one_<meas> and run_one_from_<meas>,
 # so that both compile to the same numbers (a long object filtered in windows = in one call)
 FILTER_LOOP = '''    K = z.shape[0]
@@ -237,17 +257,7 @@ def run_segments_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_ni
     out_p (N, {npk}) and out_nis (N,). The numbers of ``run_one_{meas}`` called per segment with
     dts = t[a:b] - t[a - 1:b - 1].
     """
-    longest = 0
-    for i in range(first.shape[0]):
-        longest = max(longest, lengths[i])
-    dts = np.empty(longest)
-    for i in range(first.shape[0]):
-        a = first[i]
-        b = a + lengths[i]
-        for k in range(a, b):
-            dts[k - a] = t[k] - t[k - 1]
-        run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
-
+{segments}
 
 @nb.njit(cache=True, nogil=True)
 def run_one_from_{meas}(z, dts, s0, p0, q, r, out_x, out_p, out_nis):
@@ -266,17 +276,7 @@ def run_segments_from_{meas}(z, t, first, lengths, s0, p0, q, r, out_x, out_p, o
     """``run_segments_{meas}`` from internal states s0 (S, {ni}) and p0 (S, {npk}) (``run_one_from_{meas}``): on
     return s0[i], p0[i] hold the posterior of segment i's last row (unchanged for an empty segment).
     """
-    longest = 0
-    for i in range(first.shape[0]):
-        longest = max(longest, lengths[i])
-    dts = np.empty(longest)
-    for i in range(first.shape[0]):
-        a = first[i]
-        b = a + lengths[i]
-        for k in range(a, b):
-            dts[k - a] = t[k] - t[k - 1]
-        run_one_from_{meas}(z[a:b], dts[:b - a], s0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])
-
+{segments_from}
 
 @nb.njit(cache=True, parallel=True)
 def run_batch_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
@@ -298,17 +298,14 @@ def run_segments_noise_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, 
     """``run_segments_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
     recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_{meas}`` called
     per segment i with q[i], r[i]."""
-    longest = 0
-    for i in range(first.shape[0]):
-        longest = max(longest, lengths[i])
-    dts = np.empty(longest)
-    for i in range(first.shape[0]):
-        a = first[i]
-        b = a + lengths[i]
-        for k in range(a, b):
-            dts[k - a] = t[k] - t[k - 1]
-        run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
-'''
+{segments_noise}'''
+
+BATCH_TEMPLATE = (BATCH_TEMPLATE
+                  .replace("{segments}", _segments("run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])"))
+                  .replace("{segments_from}",
+                           _segments("run_one_from_{meas}(z[a:b], dts[:b - a], s0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])")))
+SEGMENT_NOISE_TEMPLATE = SEGMENT_NOISE_TEMPLATE.replace(
+    "{segments_noise}", _segments("run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])"))
 
 SIMULATE_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True)
