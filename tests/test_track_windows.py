@@ -40,12 +40,13 @@ MONITORS = {
     "default": MonitorConfig(),
     "busy": MonitorConfig(alpha=0.2, repeat=20),  # many alarms, noise inflated again and again
     "exhausted": MonitorConfig(alpha=0.2, max_reinit=3),  # the object runs unmonitored after its 4th alarm
+    "short > window": MonitorConfig(window=2, short=6, alpha=0.05),  # the scan restarts max(window, short) rows back
     "off": None,
 }
 
 
-def _alarms(alarms):
-    return [(a.obj, a.row, a.kind, a.value, a.limit, a.updates, bool(a.reinitialised), a.scale) for a in alarms]
+def _alarms(alarms):  # repr: a non-finite alarm's value (NaN) compares equal to itself
+    return [repr((a.obj, a.row, a.kind, a.value, a.limit, a.updates, bool(a.reinitialised), a.scale)) for a in alarms]
 
 
 @pytest.mark.parametrize("model", list(MODELS))
@@ -114,3 +115,23 @@ def test_cli_long_object_in_windows_writes_the_bytes_of_one_chunk(tmp_path, monk
     assert main([*args, "-o", str(tmp_path / "windows.csv")]) == 0
     assert len(windows) >= 700 // 64
     assert (tmp_path / "windows.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()
+
+
+def test_cli_long_object_alarms_after_the_first_window_warn_as_one_chunk(tmp_path, monkeypatch, capsys):
+    """The divergence warnings (alarm rows, times) of a long object in windows are those of one chunk: an object that
+    jumps by 5 m at row 400, in windows of 64 and 128 rows (the alarm well after the first window)."""
+    rng = np.random.default_rng(1)
+    t = 0.1 * np.arange(700)
+    z = np.column_stack([8.0 * t, 0.0 * t]) + 0.1 * rng.standard_normal((700, 2))
+    z[400:] += 5.0
+    inp = tmp_path / "in.csv"
+    inp.write_text("id,t,x,y\n" + "".join(f"long,{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, (b, c) in zip(t, z)))
+    args = ["track", str(inp), "--model", "cv", "--accel-std", "0.5", "--meas-std", "0.1", "--quiet"]
+    assert main([*args, "-o", str(tmp_path / "one.csv")]) == 0
+    one = capsys.readouterr().err
+    assert "diverged at t = 40" in one
+    for rows in (64, 128):
+        monkeypatch.setattr(track, "ROWS_PER_CHUNK", rows)
+        assert main([*args, "-o", str(tmp_path / f"w{rows}.csv")]) == 0
+        assert capsys.readouterr().err == one
+        assert (tmp_path / f"w{rows}.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()

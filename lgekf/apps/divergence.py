@@ -179,7 +179,9 @@ def _scan(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, 
     """First alarm per segment (row or -1), its kind, value (window mean NIS) and the first flagged row.
     Every row of a segment carries a NIS (no missed detections in ``lgekf track``). Each window's sum is added
     up afresh from its own rows (not a running sum), so that it does not depend on where the scan began: a
-    scan from any row of the segment gives the same sums from there on (``lgekf.apps.windows``)."""
+    scan from any row of the segment gives the same sums from there on (``lgekf.apps.windows``). A NaN NIS
+    (possible through the library, not ``lgekf track``) silences only the windows that hold it; a running sum
+    stayed NaN for the rest of the segment."""
     for s in range(seg_first.shape[0]):
         a, e = seg_first[s], seg_end[s]
         out_row[s] = -1

@@ -263,7 +263,8 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     bit for bit, with the memory of a window (``lgekf.apps.windows``).
 
     Yields (a, Tracked) for consecutive row ranges [a, a + len) covering the object in order; each Tracked holds
-    the alarms detected since the previous one (object 0, rows of the object).
+    the alarms detected since the previous one (object 0), their rows counted from the object's first row (not
+    from a) and possibly among the rows of the next piece (held back for its flags).
     """
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
@@ -359,12 +360,14 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     with ThreadPoolExecutor(1) as writer:  # on an error here, leaving the block waits for the chunk being written
         pending = None
 
-        def submit(r, o, o2, a, extra=()):  # the rows a .. a + len(r.x) of objects o .. o2 - 1 to the writer thread
+        def submit(r, o, o2, a, extra=(), alarm_row0=None):
+            # the rows a .. a + len(r.x) of objects o .. o2 - 1 to the writer thread; r.alarms' rows count from row
+            # alarm_row0 (default a: a chunk's; a window's count from its object's first row)
             nonlocal pending, flagged
             b = a + r.x.shape[0]
             for al in r.alarms:
                 al.obj += o
-                al.row += a
+                al.row += a if alarm_row0 is None else alarm_row0
             alarms.extend(r.alarms)
             flagged += int(r.flag.sum())
             parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
@@ -384,7 +387,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             h = None if meas.heading is None else meas.heading[a:b]
             if b - a > ROWS_PER_CHUNK and not smooth:  # one long object: a window of rows at a time (lgekf.apps.windows)
                 for a2, r in track_windows(model, meas.t[a:b], meas.z[a:b], cfg, h, measurement, monitor, ROWS_PER_CHUNK):
-                    submit(r, o, o2, a + a2)
+                    submit(r, o, o2, a + a2, alarm_row0=a)
                     del r
             else:
                 r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)

@@ -7,14 +7,14 @@ a window at a time:
 
 * the filter continues from the internal state and covariance of the previous window's last row (the generated
   ``run_segments_from_<meas>``), so a window's numbers are those of one run over the object;
-* the monitor (``divergence.recover``) scans a window's rows from ``window`` (W) rows before it, or from the
-  object's last re-initialisation if later: every test it makes from the window's first row on sums the same
+* the monitor (``divergence.recover``) scans a window's rows from W = max(``window``, ``short``) rows before it (the
+  furthest its NIS tests reach back), or from the object's last re-initialisation if later: every test it makes from the window's first row on sums the same
   NIS values, over the same updates since the (re-)initialisation, as one scan over the object; the rows
   before the window were tested there already (without an alarm, else the previous window would have
   recovered). Its memory of the object (re-initialisations so far, noise inflation, last re-initialisation)
   goes from window to window (``divergence.MonitorMemory``); once ``max_reinit`` is used up the object is
   no longer monitored, as in one scan;
-* an alarm flags rows back to at most W rows before the window (the NIS window, the row before it), so the
+* an alarm flags rows from at most the row before its scan's first row, W + 1 rows before the window, so the
   last W + 1 rows of a window are held back and given out with the next one.
 
 Conventions as ``track_monitored``: rows 0 and 1 carry the two-point start, the filter runs from row 2;
@@ -65,8 +65,8 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
     ------
     (a, x, p, nis, flag, alarms)
         Consecutive row ranges [a, a + len(x)) covering 0 .. N - 1 in order, each with what ``track_monitored``
-        gives on those rows and the alarms detected since the previous piece (``obj`` 0, ``row`` in the
-        object's rows).
+        gives on those rows and the alarms detected since the previous piece (``obj`` 0, ``row`` counted from the
+        object's first row, not from a; an alarm's row may be among the rows held back for the next piece).
     """
     if rows < 1:
         raise ValueError(f"rows: must be at least 1, got {rows}")
@@ -82,7 +82,11 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
     kern.state_from_physical_into(x0[0], carry_s[0])
     carry_p = p0.copy()
     memory = MonitorMemory.fresh(1)  # `last` in the object's rows
-    hold = 1 if monitor is None else int(monitor.window) + 1  # rows an alarm of the next window may flag (and the row before it: its time)
+    # the NIS tests reach back `reach` rows; the next window's scan starts at most that far back, and its alarms flag
+    # rows from at most the row before its scan's first row: those rows are held back (without a monitor, one row:
+    # the time of the row before the next window)
+    reach = 0 if monitor is None else max(int(monitor.window), int(monitor.short))
+    hold = reach + 1
     run_scale = 1.0  # the noise inflation of the run that filtered the last row (after max_reinit, not the object's latest)
     tail = None  # the held-back rows: (x, p, nis, flag) of rows [L, A)
     L, A = 0, 2  # the window's arrays start at row L; the filter goes on from row A
@@ -131,7 +135,7 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
                         run_scale = float(s)
 
             last_global = int(memory.last[0])
-            scan_from = max(A - int(monitor.window), 2, last_global + 1 if last_global != NEVER else 2)
+            scan_from = max(A - reach, 2, last_global + 1 if last_global != NEVER else 2)
             if last_global != NEVER:
                 memory.last[0] = last_global - L
             f, alarms = recover(model, x, p, nis, np.array([0, end], np.int64), limits, zm.shape[1], monitor, reinit_at, rerun,
