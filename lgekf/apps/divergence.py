@@ -345,8 +345,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
                           np.where(k == 1, g - start[hit] + 1, 0).tolist(), ok.tolist(), scale[o].tolist()))
         # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before the
         # alarm's first update (at most back to the segment's initialisation row) through the alarm row
-        lo = np.maximum(start[hit], seg_first[hit]) - 1
-        lo = np.where(lo < 0, lo + flag.shape[0], lo)  # as the slice flag[lo:g + 1] (a segment from row 0: lo = -1)
+        lo = np.maximum(np.maximum(start[hit], seg_first[hit]) - 1, 0)
         n = np.maximum(g + 1 - lo, 0)
         flag[np.repeat(lo - np.cumsum(n) + n, n) + np.arange(int(n.sum()))] = 1
         keep = hit[ok]

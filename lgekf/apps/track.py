@@ -127,27 +127,22 @@ def _measurement_inputs(spec, z, heading, cfg, measurement):
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
     (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place, straight on the rows (no padded copies).
+    q (nq,), r (nr,): the noise stds of every segment; or q (S, nq), r (S, nr): each segment's own (the divergence
+    recovery's reruns, each object's noise inflated by its own factor).
 
-    One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment
-    or step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the
-    process-noise search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used.
+    One call of the generated ``run_segments_<meas>`` (``run_segments_noise_<meas>`` with noise per segment):
+    ``run_one`` segment after segment, no Python per segment or step. It is serial and releases the GIL, so that
+    the writer thread (``write_model``) and the process-noise search's threads (``lgekf.apps.search``) run beside
+    it; no numba parallel kernel is used.
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
-    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
+    per_segment = np.ndim(q) == 2
+    if per_segment:
+        q, r = np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep])
+    run = getattr(get_model(model).kernels, f"run_segments{'_noise' if per_segment else ''}_{measurement}")
     run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
-
-
-def _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
-    """``_run_segments`` with the noise stds of each segment's own, q (S, nq) and r (S, nr) (the generated
-    ``run_segments_noise_<meas>``): one call whatever the segments' noise inflations (``track_monitored``'s reruns)."""
-    lengths = np.asarray(lengths, dtype=np.int64)
-    keep = np.flatnonzero(lengths > 0)
-    run = getattr(get_model(model).kernels, f"run_segments_noise_{measurement}")
-    run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
-        np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep]),
-        out_x, out_p, out_nis)
 
 
 def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P0=None, measurement="position"):
@@ -249,7 +244,7 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
 
     def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
         scale = np.asarray(scale, dtype=float)[:, None]
-        _run_segments_noise(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
+        _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
 
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)

@@ -75,12 +75,12 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
     run = getattr(kern, f"run_segments_from_{measurement}")
     N = t.size
     limits = np.array([limit], dtype=float)
-    x0 = np.asarray(x0, dtype=float)[None, :]
-    p0 = np.asarray(p0, dtype=float)[None, :]
-    ni = kern.state_from_physical(x0[0]).size
+    x0 = np.asarray(x0, dtype=float)
+    p0 = np.asarray(p0, dtype=float)
+    ni = kern.state_from_physical(x0).size
     carry_s = np.empty((1, ni))  # the filter's internal state and covariance after the last row filtered
-    kern.state_from_physical_into(x0[0], carry_s[0])
-    carry_p = p0.copy()
+    kern.state_from_physical_into(x0, carry_s[0])
+    carry_p = p0[None, :].copy()
     memory = MonitorMemory.fresh(1)  # `last` in the object's rows
     # the NIS tests reach back `reach` rows; the next window's scan starts at most that far back, and its alarms flag
     # rows from at most the row before its scan's first row: those rows are held back (without a monitor, one row:
@@ -97,10 +97,10 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
         nis = np.full(B - L, np.nan)
         flag = np.zeros(B - L, np.int8)
         if tail is None:  # rows 0 and 1: the two-point start (as track_arrays)
-            x[0] = x0[0]
+            x[0] = x0
             x[0, :2] = zm[0, :2]
-            x[1] = x0[0]
-            p[0] = p[1] = p0[0]
+            x[1] = x0
+            p[0] = p[1] = p0
         else:
             x[:A - L], p[:A - L], nis[:A - L], flag[:A - L] = tail
         run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
@@ -119,20 +119,18 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
                     run_scale = float(np.asarray(sc, dtype=float)[last[-1]])
                 return x0g, p0g
 
-            def rerun(first, lengths, xs, ps, sc):
+            def rerun(first, lengths, xs, ps, sc):  # as track_monitored's rerun, from internal states
                 nonlocal run_scale
-                for s in np.unique(sc):  # as track_monitored's rerun, from internal states
-                    j = np.flatnonzero(sc == s)
-                    s0 = np.empty((j.size, ni))
-                    for i, jj in enumerate(j):
-                        kern.state_from_physical_into(xs[jj], s0[i])
-                    pj = np.array(ps[j], dtype=float)
-                    run(zm[L:B], t[L:B], np.asarray(first[j], np.int64), np.asarray(lengths[j], np.int64), s0, pj, q * s, r * s, x, p, nis)
-                    reach = np.flatnonzero(first[j] + lengths[j] == end)
-                    if reach.size:
-                        carry_s[0] = s0[reach[-1]]
-                        carry_p[0] = pj[reach[-1]]
-                        run_scale = float(s)
+                for i in range(len(first)):  # one object: a round reruns at most one segment
+                    s0 = np.empty((1, ni))
+                    kern.state_from_physical_into(xs[i], s0[0])
+                    p0i = np.array(ps[i:i + 1], dtype=float)
+                    run(zm[L:B], t[L:B], np.asarray(first[i:i + 1], np.int64), np.asarray(lengths[i:i + 1], np.int64), s0, p0i,
+                        q * sc[i], r * sc[i], x, p, nis)
+                    if first[i] + lengths[i] == end:  # it reached the window's last row: the next window goes on from it
+                        carry_s[0] = s0[0]
+                        carry_p[0] = p0i[0]
+                        run_scale = float(sc[i])
 
             last_global = int(memory.last[0])
             scan_from = max(A - reach, 2, last_global + 1 if last_global != NEVER else 2)
