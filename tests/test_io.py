@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from lgekf.io.files import AtomicFiles
-from lgekf.io.formatting import format_g, format_rows, label_bytes
+from lgekf.io.formatting import format_g, format_rows, label_bytes, write_rows_made
 from lgekf.io.readers import DataError, parse_delimiter, read_csv, read_pedestrian
 
 
@@ -134,6 +134,59 @@ def test_format_rows_quotes_labels():
     lab = label_bytes(["a", 'b,"c"'])
     text = format_rows(lab, [0, 1], [0.5, 1.0], np.array([[1.0, 2.0], [3.0, np.nan]]), 6).decode()
     assert text == 'a,0.5,1,2\n"b,""c""",1,3,nan\n'
+
+
+@pytest.mark.parametrize("cpus", [1, 3])
+@pytest.mark.parametrize("n", [0, 1, 6, 7, 8, 50])
+def test_rows_made_part_by_part_are_format_rows_bytes(monkeypatch, cpus, n):
+    """Parts of 7 rows made by a callable, formatted in threads, written in order: the bytes of one call."""
+    import io
+
+    import lgekf.io.formatting as formatting
+
+    monkeypatch.setattr(formatting, "PART_ROWS", 7)
+    monkeypatch.setattr(formatting, "_cpus", lambda: cpus)
+    rng = np.random.default_rng(n)
+    lab = label_bytes(["a", "b,c", "d"])
+    obj = rng.integers(0, 3, n)
+    t = np.cumsum(rng.uniform(0.0, 1.0, n))
+    values = rng.standard_normal((n, 4)) * 10.0 ** rng.integers(-5, 5, (n, 4))
+    asked = []
+
+    def values_of(lo, hi):
+        asked.append((lo, hi))
+        return values[lo:hi]
+
+    out = io.BytesIO()
+    write_rows_made(out, lab, obj, t, values_of, n, [3, 10, 17, 6])
+    assert out.getvalue() == format_rows(lab, obj, t, values, [3, 10, 17, 6])
+    assert asked == [(lo, min(lo + 7, n)) for lo in range(0, n, 7)]  # each part made once, in order
+
+
+def test_rows_made_with_a_wrong_shape_or_a_failing_part(monkeypatch):
+    import io
+
+    import lgekf.io.formatting as formatting
+
+    monkeypatch.setattr(formatting, "PART_ROWS", 4)
+    monkeypatch.setattr(formatting, "_cpus", lambda: 2)
+    lab = label_bytes(["a"])
+    obj, t = np.zeros(20, dtype=np.int64), np.arange(20.0)
+    with pytest.raises(ValueError, match=r"values_of\(0, 4\): expected 4 rows of values, got shape \(3, 2\)"):
+        write_rows_made(io.BytesIO(), lab, obj, t, lambda lo, hi: np.ones((3, 2)), 20, 6)
+    with pytest.raises(ValueError, match="expected 20 rows"):
+        write_rows_made(io.BytesIO(), lab, obj[:19], t, lambda lo, hi: np.ones((hi - lo, 2)), 20, 6)
+
+    def failing(lo, hi):
+        if lo == 8:
+            raise OSError("disk gone")
+        return np.ones((hi - lo, 2))
+
+    out = io.BytesIO()
+    with pytest.raises(OSError, match="disk gone"):
+        write_rows_made(out, lab, obj, t, failing, 20, 6)
+    # at most the parts before it (those already formatted when it failed), nothing of it or after it
+    assert format_rows(lab, obj[:8], t[:8], np.ones((8, 2)), 6).startswith(out.getvalue())
 
 
 def test_atomic_files_all_or_nothing(tmp_path):
