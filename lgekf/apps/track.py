@@ -126,21 +126,17 @@ def _measurement_inputs(spec, z, heading, cfg, measurement):
 
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
-    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place, straight on the rows (no padded copies).
-    q (nq,), r (nr,): the noise stds of every segment; or q (S, nq), r (S, nr): each segment's own (the divergence
-    recovery's reruns, each object's noise inflated by its own factor).
+    (x0[i], p0[i]) at time t[first[i] - 1] with the noise stds q (nq,), r (nr,); outputs written in place,
+    straight on the rows (no padded copies).
 
-    One call of the generated ``run_segments_<meas>`` (``run_segments_noise_<meas>`` with noise per segment):
-    ``run_one`` segment after segment, no Python per segment or step. It is serial and releases the GIL, so that
-    the writer thread (``write_model``) and the process-noise search's threads (``lgekf.apps.search``) run beside
-    it; no numba parallel kernel is used.
+    One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment or
+    step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the process-noise
+    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (The divergence
+    monitor's reruns, with noise per segment and from internal states: ``run_segments_noise_from_<meas>``.)
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
-    per_segment = np.ndim(q) == 2
-    if per_segment:
-        q, r = np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep])
-    run = getattr(get_model(model).kernels, f"run_segments{'_noise' if per_segment else ''}_{measurement}")
+    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
     run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
@@ -242,9 +238,12 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
         rows = np.asarray(rows, dtype=np.int64)
         return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
 
-    def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
+    rerun_kernel = getattr(spec.kernels, f"run_segments_noise_from_{measurement}")
+
+    def rerun(first, lengths, s0, p0, scale):  # every segment with its object's noise inflation, in one call; s0, p0 in place
         scale = np.asarray(scale, dtype=float)[:, None]
-        _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
+        rerun_kernel(zm, t, np.asarray(first, dtype=np.int64), np.asarray(lengths, dtype=np.int64), s0, p0,
+                     q[None, :] * scale, r[None, :] * scale, x, p, nis)
 
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
