@@ -50,10 +50,12 @@ __all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "speed_limits", "speeds", 
 
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
-# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm): 2¹⁰ rather
-# than 2¹² cuts the noise search on one long object (an alarm every ~10³ rows for the low-noise candidates) by a
-# third of its CPU (1.13 -> 0.74 s, SE(2)xSE(2) + CV, 10⁶ rows); no change on 10⁴ objects or in the final tracking
-RERUN_ROWS = 1 << 10
+# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm). The rows of
+# a window past the next alarm are filtered in vain, a window costs a round of Python (~0.15 ms, the filtering of
+# ~2000 rows); the noise search's low-noise candidates on one long object raise an alarm every few hundred rows:
+# there 2⁸ rows cost least (the five searches, serial, on one object of 10⁶ rows: 2⁸ 1.36 CPU-s, 2¹⁰ 1.53, 2¹²
+# 2.57, 2¹⁴ 6.6; 2⁶ and 2⁷ with windows growing 4x 1.50 and 1.38; the same plans); no change on 10⁴ objects
+RERUN_ROWS = 1 << 8
 
 
 @dataclass(frozen=True)
