@@ -83,20 +83,30 @@ def byte_compile() -> str:
 
 
 def byte_compile_other(lgekf_exe: str) -> str:
-    """``byte_compile`` for the checkout of another ``lgekf`` executable (``--compare``), through its own Python: without
-    it, with ``PYTHONDONTWRITEBYTECODE`` set, every run of the other would compile its generated modules from source
-    (about 0.07 s and 23 MB each) and the comparison would favour this checkout."""
-    python = Path(lgekf_exe).with_name("python")
+    """``byte_compile`` for the checkout of another ``lgekf`` executable (``--compare``), through the Python of its
+    script (its ``#!`` line): without it, with ``PYTHONDONTWRITEBYTECODE`` set, every run of the other would compile
+    its generated modules from source (about 0.07 s and 23 MB each) and the comparison would favour this checkout.
+    Stops the benchmark (SystemExit) when that fails."""
+    exe = shutil.which(lgekf_exe) or lgekf_exe
+    try:
+        with open(exe, "rb") as f:
+            first = f.readline().decode(errors="replace").strip()
+    except OSError as e:
+        raise SystemExit(f"--compare {lgekf_exe}: cannot read the script ({e})")
+    if not first.startswith("#!"):
+        raise SystemExit(f"--compare {lgekf_exe}: not a Python script with a #! line; cannot byte-compile its checkout")
+    python = first[2:].strip().split()[0]
     code = ("import compileall, pathlib, lgekf, lgekf.generated as g; "
             "print(all(compileall.compile_dir(str(pathlib.Path(m.__file__).resolve().parent), quiet=1) for m in (lgekf, g)))")
-    r = subprocess.run([str(python), "-c", code], capture_output=True, text=True)
-    ok = r.returncode == 0 and r.stdout.strip() == "True"
-    return f"the other checkout's modules byte-compiled too{'' if ok else ' (FAILED: ' + (r.stderr.strip() or r.stdout.strip()) + ')'}"
+    r = subprocess.run([python, "-c", code], capture_output=True, text=True)
+    if r.returncode != 0 or r.stdout.strip() != "True":
+        raise SystemExit(f"--compare {lgekf_exe}: byte-compiling its checkout with {python} failed: {(r.stderr or r.stdout).strip()}")
+    return f"the other checkout's modules byte-compiled too (with {python})"
 
 
 def cli_command():
     exe = Path(sys.executable).with_name("lgekf")
-    return [str(exe)] if exe.exists() else [sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())"]
+    return [str(exe)] if exe.exists() else [sys.executable, "-c", "from lgekf.cli import run; run()"]
 
 
 def measured_run(cmd) -> tuple:

@@ -325,10 +325,12 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     seg_first = first[seg_obj]
     seg_end = starts[seg_obj + 1]
     # after a re-initialisation the filter is rerun over a window of rows that doubles until the next alarm (or the
-    # object's end); each window goes on from the filter's internal state at the end of the previous one and is
-    # scanned from `reach` rows before it, so every row is filtered once and the numbers and alarms are those of one
-    # rerun to the end scanned at once (a scan's NIS tests reach back at most `reach` rows: from there on they are
-    # the same tests as from the segment's first row, and the rows before were tested already)
+    # object's end); each window goes on from the filter's internal state at the end of the previous one (no window
+    # refilters its predecessor's rows; the rows of a window past the next alarm are still filtered in vain) and is
+    # scanned from `reach` rows before it, so that the numbers and alarms are those of one rerun to the end scanned
+    # at once (a scan's tests at a row look back fewer than `reach` rows — NIS windows, the run of rows over the
+    # speed limit: from `reach` rows on they are the tests of a scan from the segment's first row, and the rows
+    # before were tested already)
     reach = max(int(cfg.window), int(cfg.short))
     kernels = get_model(model).kernels
     ni = kernels.state_from_physical(np.zeros(x.shape[1])).size  # the length of the filter's internal state

@@ -417,7 +417,7 @@ def write_rows_made(fh, lab, row_label, t, values_of, n: int, digits, t_digits: 
     ``values_of(lo, hi)`` returns the (hi - lo, m) values of rows lo..hi-1. Parts of ``PART_ROWS`` rows are
     made here, formatted in threads (one per CPU; the formatter releases the GIL, making the values does not,
     so it stays in this thread) and written in order as each is ready: making the next part's values,
-    formatting and the file writes overlap, and at most two parts per thread are held.
+    formatting and the file writes overlap, and at most 2 · threads + 1 parts are held.
 
     Parameters
     ----------
@@ -431,20 +431,30 @@ def write_rows_made(fh, lab, row_label, t, values_of, n: int, digits, t_digits: 
         The number of rows.
     digits, t_digits
         As for ``format_rows``.
+
+    Raises
+    ------
+    ValueError
+        Digits outside 1..17, row_label or t not of n rows, a part of the wrong shape or with another m than the
+        first; an error of ``values_of``, of the formatter or of ``fh.write`` is raised as it is. Parts written
+        before the error stay written (whole lines); the parts after it are not made.
     """
     row_label = np.ascontiguousarray(row_label, dtype=np.int64)
     t = np.ascontiguousarray(t, dtype=float)
     if row_label.shape != (n,) or t.shape != (n,):
         raise ValueError(f"row_label, t: expected {n} rows, got {row_label.shape} and {t.shape}")
-    checked = {}
+    _checked_digits(digits, np.size(digits), t_digits)  # the range now, also when there are no rows
+    checked = []  # (m, digits per column) of the first part
 
     def values(lo, hi):
         v = np.ascontiguousarray(values_of(lo, hi), dtype=float)
         if v.ndim != 2 or v.shape[0] != hi - lo:
             raise ValueError(f"values_of({lo}, {hi}): expected {hi - lo} rows of values, got shape {v.shape}")
-        d = checked.get(v.shape[1])
-        if d is None:
-            d = checked.setdefault(v.shape[1], _checked_digits(digits, v.shape[1], t_digits))
+        if not checked:
+            checked.append((v.shape[1], _checked_digits(digits, v.shape[1], t_digits)))
+        m, d = checked[0]
+        if v.shape[1] != m:
+            raise ValueError(f"values_of({lo}, {hi}): {v.shape[1]} columns, the first part had {m}")
         return v, d
 
     def text(lo, hi, v, d):
