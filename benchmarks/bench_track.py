@@ -21,7 +21,7 @@ temporary folder, then reports:
            LLVM and the loaded kernels: what any run holds whatever the input), "data" the max RSS minus it.
   --compare LGEKF  the end-to-end runs also with another ``lgekf`` executable (e.g. /work/main/.venv/bin/lgekf),
            interleaved with this one's, best of ``--repeat`` runs each, with the ratio of their times and the
-           check that both wrote the same bytes.
+           check that both wrote the same bytes (both checkouts byte-compiled first: ``byte_compile_other``).
 """
 
 from __future__ import annotations
@@ -82,9 +82,31 @@ def byte_compile() -> str:
             + (f"; PYTHONDONTWRITEBYTECODE={env} is set here" if env else ""))
 
 
+def byte_compile_other(lgekf_exe: str) -> str:
+    """``byte_compile`` for the checkout of another ``lgekf`` executable (``--compare``), through the Python of its
+    script (its ``#!`` line): without it, with ``PYTHONDONTWRITEBYTECODE`` set, every run of the other would compile
+    its generated modules from source (about 0.07 s and 23 MB each) and the comparison would favour this checkout.
+    Stops the benchmark (SystemExit) when that fails."""
+    exe = shutil.which(lgekf_exe) or lgekf_exe
+    try:
+        with open(exe, "rb") as f:
+            first = f.readline().decode(errors="replace").strip()
+    except OSError as e:
+        raise SystemExit(f"--compare {lgekf_exe}: cannot read the script ({e})")
+    if not first.startswith("#!"):
+        raise SystemExit(f"--compare {lgekf_exe}: not a Python script with a #! line; cannot byte-compile its checkout")
+    python = first[2:].strip().split()[0]
+    code = ("import compileall, pathlib, lgekf, lgekf.generated as g; "
+            "print(all(compileall.compile_dir(str(pathlib.Path(m.__file__).resolve().parent), quiet=1) for m in (lgekf, g)))")
+    r = subprocess.run([python, "-c", code], capture_output=True, text=True)
+    if r.returncode != 0 or r.stdout.strip() != "True":
+        raise SystemExit(f"--compare {lgekf_exe}: byte-compiling its checkout with {python} failed: {(r.stderr or r.stdout).strip()}")
+    return f"the other checkout's modules byte-compiled too (with {python})"
+
+
 def cli_command():
     exe = Path(sys.executable).with_name("lgekf")
-    return [str(exe)] if exe.exists() else [sys.executable, "-c", "import sys; from lgekf.cli import main; sys.exit(main())"]
+    return [str(exe)] if exe.exists() else [sys.executable, "-c", "from lgekf.cli import run; run()"]
 
 
 def measured_run(cmd) -> tuple:
@@ -204,6 +226,8 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     if a.byte_compile:
         print(byte_compile())
+        if a.compare is not None:
+            print(byte_compile_other(a.compare))
     try:
         import pyarrow  # noqa: F401
     except ImportError:

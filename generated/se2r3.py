@@ -14,7 +14,7 @@ from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_from_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_from_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -1172,9 +1172,10 @@ def calH_bank_pose(s, live, out):
 
 
 @nb.njit(cache=True, nogil=True)
-def run_segments_noise_pose(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
-    """``run_segments_pose`` with noise stds of each segment's own: q (S, 3), r (S, 3) (the divergence
-    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_pose`` called
+def run_segments_noise_from_pose(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_from_pose`` with noise stds of each segment's own: q (S, 3), r (S, 3) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_pose`` called
     per segment i with q[i], r[i]."""
     longest = 0
     for i in range(first.shape[0]):
@@ -1185,7 +1186,7 @@ def run_segments_noise_pose(z, t, first, lengths, x0, p0, q, r, out_x, out_p, ou
         b = a + lengths[i]
         for k in range(a, b):
             dts[k - a] = t[k] - t[k - 1]
-        run_one_pose(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+        run_one_from_pose(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
@@ -2292,9 +2293,10 @@ def calH_bank_position(s, live, out):
 
 
 @nb.njit(cache=True, nogil=True)
-def run_segments_noise_position(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
-    """``run_segments_position`` with noise stds of each segment's own: q (S, 3), r (S, 1) (the divergence
-    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_position`` called
+def run_segments_noise_from_position(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_from_position`` with noise stds of each segment's own: q (S, 3), r (S, 1) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_position`` called
     per segment i with q[i], r[i]."""
     longest = 0
     for i in range(first.shape[0]):
@@ -2305,7 +2307,7 @@ def run_segments_noise_position(z, t, first, lengths, x0, p0, q, r, out_x, out_p
         b = a + lengths[i]
         for k in range(a, b):
             dts[k - a] = t[k] - t[k - 1]
-        run_one_position(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
+        run_one_from_position(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
@@ -2907,6 +2909,13 @@ def simulate_batch(x0, dts, noise, out_x):
         for k in range(K):
             propagate(s, dts[b, k], noise[b, k, 0], noise[b, k, 1], noise[b, k, 2])
             physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True, nogil=True)
+def states_from_physical(x, out):
+    """state_from_physical of every row: physical states x (N, 6) into internal states out (N, 7)."""
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], out[i])
 
 
 @nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)

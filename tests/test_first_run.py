@@ -145,8 +145,7 @@ def test_worker_count_follows_free_cpus_and_the_variable(monkeypatch):
 
 
 def test_output_in_blocks_and_threads_is_the_same_bytes(tmp_path, monkeypatch):
-    """Text made FORMAT_ROWS rows at a time, each block split over threads: the bytes of one piece."""
-    import lgekf.apps.track as track
+    """Text made, formatted and written PART_ROWS rows at a time in threads: the bytes of one piece."""
     import lgekf.io.formatting as formatting
     from lgekf.cli.track import cmd_track
 
@@ -159,8 +158,7 @@ def test_output_in_blocks_and_threads_is_the_same_bytes(tmp_path, monkeypatch):
     (tmp_path / "in.csv").write_text("\n".join(lines) + "\n")
     args = ["--model", "se2r3", "--meas-std", "0.1", "--accel-std", "0.5,0.5,1", "--quiet"]
     assert cmd_track([str(tmp_path / "in.csv"), "-o", str(tmp_path / "one.csv"), *args]) == 0
-    monkeypatch.setattr(track, "FORMAT_ROWS", 7)
-    monkeypatch.setattr(formatting, "PARALLEL_ROWS", 2)
+    monkeypatch.setattr(formatting, "PART_ROWS", 7)
     monkeypatch.setattr(formatting, "_cpus", lambda: 3)
     assert cmd_track([str(tmp_path / "in.csv"), "-o", str(tmp_path / "blocks.csv"), *args]) == 0
     assert (tmp_path / "blocks.csv").read_bytes() == (tmp_path / "one.csv").read_bytes()

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from lgekf.io.files import AtomicFiles
-from lgekf.io.formatting import format_g, format_rows, label_bytes
+from lgekf.io.formatting import format_g, format_rows, label_bytes, write_rows_made
 from lgekf.io.readers import DataError, parse_delimiter, read_csv, read_pedestrian
 
 
@@ -134,6 +134,125 @@ def test_format_rows_quotes_labels():
     lab = label_bytes(["a", 'b,"c"'])
     text = format_rows(lab, [0, 1], [0.5, 1.0], np.array([[1.0, 2.0], [3.0, np.nan]]), 6).decode()
     assert text == 'a,0.5,1,2\n"b,""c""",1,3,nan\n'
+
+
+@pytest.mark.parametrize("cpus", [1, 3])
+@pytest.mark.parametrize("n", [0, 1, 6, 7, 8, 50])
+def test_rows_made_part_by_part_are_format_rows_bytes(monkeypatch, cpus, n):
+    """Parts of 7 rows made by a callable, formatted in threads, written in order: the bytes of one call."""
+    import io
+
+    import lgekf.io.formatting as formatting
+
+    monkeypatch.setattr(formatting, "PART_ROWS", 7)
+    monkeypatch.setattr(formatting, "_cpus", lambda: cpus)
+    rng = np.random.default_rng(n)
+    lab = label_bytes(["a", "b,c", "d"])
+    obj = rng.integers(0, 3, n)
+    t = np.cumsum(rng.uniform(0.0, 1.0, n))
+    values = rng.standard_normal((n, 4)) * 10.0 ** rng.integers(-5, 5, (n, 4))
+    asked = []
+
+    def values_of(lo, hi):
+        asked.append((lo, hi))
+        return values[lo:hi]
+
+    out = io.BytesIO()
+    write_rows_made(out, lab, obj, t, values_of, n, [3, 10, 17, 6])
+    assert out.getvalue() == format_rows(lab, obj, t, values, [3, 10, 17, 6])
+    assert asked == [(lo, min(lo + 7, n)) for lo in range(0, n, 7)]  # each part made once, in order
+
+
+def test_rows_made_with_a_wrong_shape_or_a_failing_part(monkeypatch):
+    import io
+
+    import lgekf.io.formatting as formatting
+
+    monkeypatch.setattr(formatting, "PART_ROWS", 4)
+    monkeypatch.setattr(formatting, "_cpus", lambda: 2)
+    lab = label_bytes(["a"])
+    obj, t = np.zeros(20, dtype=np.int64), np.arange(20.0)
+    with pytest.raises(ValueError, match=r"values_of\(0, 4\): expected 4 rows of values, got shape \(3, 2\)"):
+        write_rows_made(io.BytesIO(), lab, obj, t, lambda lo, hi: np.ones((3, 2)), 20, 6)
+    with pytest.raises(ValueError, match="expected 20 rows"):
+        write_rows_made(io.BytesIO(), lab, obj[:19], t, lambda lo, hi: np.ones((hi - lo, 2)), 20, 6)
+
+    def failing(lo, hi):
+        if lo == 8:
+            raise OSError("disk gone")
+        return np.ones((hi - lo, 2))
+
+    out = io.BytesIO()
+    with pytest.raises(OSError, match="disk gone"):
+        write_rows_made(out, lab, obj, t, failing, 20, 6)
+    # at most the parts before it (those already formatted when it failed), whole lines, nothing of it or after it
+    assert format_rows(lab, obj[:8], t[:8], np.ones((8, 2)), 6).startswith(out.getvalue())
+    assert out.getvalue().count(b"\n") in (0, 4, 8) and out.getvalue()[-1:] in (b"", b"\n")
+    with pytest.raises(ValueError, match="digits: must be between 1 and 17"):  # also with no rows to format
+        write_rows_made(io.BytesIO(), lab, obj[:0], t[:0], lambda lo, hi: np.ones((hi - lo, 2)), 0, 0)
+    with pytest.raises(ValueError, match=r"values_of\(4, 8\): 3 columns, the first part had 2"):
+        write_rows_made(io.BytesIO(), lab, obj, t, lambda lo, hi: np.ones((hi - lo, 2 if lo == 0 else 3)), 20, 6)
+
+
+@pytest.mark.parametrize("cpus", [1, 2])
+def test_rows_made_with_a_failing_formatter_or_write(monkeypatch, cpus):
+    """An error in a formatting thread or in fh.write reaches the caller; what was written is whole parts, in order."""
+    import io
+
+    import lgekf.io.formatting as formatting
+
+    monkeypatch.setattr(formatting, "PART_ROWS", 4)
+    monkeypatch.setattr(formatting, "_cpus", lambda: cpus)
+    lab = label_bytes(["a"])
+    obj, t, vals = np.zeros(20, dtype=np.int64), np.arange(20.0), np.arange(40.0).reshape(20, 2)
+    full = format_rows(lab, obj, t, vals, 6)
+    real = formatting._format_rows
+
+    def formatter(lab_bytes, lab_off, row_lab, tt, t_digits, v, d):
+        if tt[0] == 12.0:  # the part of rows 12..15
+            raise RuntimeError("formatter failed")
+        return real(lab_bytes, lab_off, row_lab, tt, t_digits, v, d)
+
+    monkeypatch.setattr(formatting, "_format_rows", formatter)
+    out = io.BytesIO()
+    with pytest.raises(RuntimeError, match="formatter failed"):
+        write_rows_made(out, lab, obj, t, lambda lo, hi: vals[lo:hi], 20, 6)
+    assert full.startswith(out.getvalue()) and out.getvalue().count(b"\n") in (0, 4, 8, 12)
+    monkeypatch.setattr(formatting, "_format_rows", real)
+
+    class Full(io.BytesIO):
+        def write(self, b):
+            if self.tell() > 0:
+                raise OSError("no space left")
+            return super().write(b)
+
+    out = Full()
+    with pytest.raises(OSError, match="no space left"):
+        write_rows_made(out, lab, obj, t, lambda lo, hi: vals[lo:hi], 20, 6)
+    assert out.getvalue() == format_rows(lab, obj[:4], t[:4], vals[:4], 6)  # the first part only
+
+
+@pytest.mark.parametrize("n", [5, 64, 1001])
+def test_format_rows_in_threads_is_one_part(monkeypatch, n):
+    """format_rows / write_rows cut the rows into PARTS_PER_THREAD parts per thread (PARALLEL_ROWS rows a thread):
+    the bytes of one call on one thread, parts in order."""
+    import io
+
+    import lgekf.io.formatting as formatting
+    from lgekf.io.formatting import write_rows
+
+    rng = np.random.default_rng(n)
+    lab = label_bytes(["x", "y"])
+    obj, t, vals = rng.integers(0, 2, n), np.cumsum(rng.uniform(0, 1, n)), rng.standard_normal((n, 3))
+    monkeypatch.setattr(formatting, "_cpus", lambda: 1)
+    one = format_rows(lab, obj, t, vals, 8)
+    monkeypatch.setattr(formatting, "PARALLEL_ROWS", 2)
+    monkeypatch.setattr(formatting, "_cpus", lambda: 3)
+    assert len(formatting._formatted_parts(lab, obj, t, vals, 8, 15)) == (3 * formatting.PARTS_PER_THREAD if n >= 6 else 2 * formatting.PARTS_PER_THREAD)
+    assert format_rows(lab, obj, t, vals, 8) == one
+    out = io.BytesIO()
+    write_rows(out, lab, obj, t, vals, 8)
+    assert out.getvalue() == one
 
 
 def test_atomic_files_all_or_nothing(tmp_path):

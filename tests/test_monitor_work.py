@@ -163,9 +163,11 @@ def test_the_search_with_its_shared_start_gives_the_per_run_plan(monkeypatch):
 
 
 @pytest.mark.parametrize("model", sorted(MODELS))
-def test_run_segments_noise_is_run_segments_per_noise_level(model):
-    """The reruns' one call with noise stds per segment (generated ``run_segments_noise_position``) against
-    ``run_segments_position`` called once per distinct inflation with q·s, r·s (the former reruns): same bits."""
+def test_run_segments_noise_from_is_run_segments_per_noise_level(model):
+    """The reruns' one call with noise stds per segment from internal states (generated
+    ``run_segments_noise_from_position``) against ``run_segments_position`` called once per distinct inflation with
+    q·s, r·s (the former reruns): same bits; and the states it leaves continue a segment exactly (a segment run
+    in two calls = in one)."""
     t, z, starts, _ = _objects(B=12, K=50, seed=10)
     spec = get_model(model)
     k = spec.kernels
@@ -177,14 +179,30 @@ def test_run_segments_noise_is_run_segments_per_noise_level(model):
     scale = np.array([1.0, 2.0, 1.0, 3.7, 2.0, 1.0, 1.5, 1.5, 3.7, 1.0, 2.0, 1.25])
     q = cfg.q(model)
     r = np.array([cfg.meas_std])
-    outs = [(np.zeros((t.size, spec.n)), np.zeros((t.size, spec.n_packed)), np.zeros(t.size)) for _ in range(2)]
+    qs, rs = q[None, :] * scale[:, None], r[None, :] * scale[:, None]
+    outs = [(np.zeros((t.size, spec.n)), np.zeros((t.size, spec.n_packed)), np.zeros(t.size)) for _ in range(3)]
     for s in np.unique(scale):
         j = np.flatnonzero(scale == s)
         k.run_segments_position(z, t, first[j], lengths[j], x0[j], p0[j], q * s, r * s, *outs[0])
-    k.run_segments_noise_position(z, t, first, lengths, x0, p0, q[None, :] * scale[:, None], r[None, :] * scale[:, None], *outs[1])
-    for a, b in zip(*outs):
+    s0 = np.empty((12, k.state_from_physical(x0[0]).size))
+    k.states_from_physical(x0, s0)
+    for i in range(12):
+        assert np.array_equal(s0[i], k.state_from_physical(x0[i]))
+    s1, p1 = s0.copy(), p0.copy()
+    k.run_segments_noise_from_position(z, t, first, lengths, s1, p1, qs, rs, *outs[1])
+    for a, b in zip(*outs[:2]):
         assert np.array_equal(a, b)
     assert np.count_nonzero(outs[1][2]) > 0.8 * lengths.sum()
+    # in two calls: the first part of every segment, then the rest from the states the first call left
+    cut = lengths // 3
+    s2, p2 = s0.copy(), p0.copy()
+    k.run_segments_noise_from_position(z, t, first, cut, s2, p2, qs, rs, *outs[2])
+    k.run_segments_noise_from_position(z, t, first + cut, lengths - cut, s2, p2, qs, rs, *outs[2])
+    for a, b in zip(outs[1], outs[2]):
+        assert np.array_equal(a, b)
+    assert np.array_equal(s1, s2) and np.array_equal(p1, p2)
+    last = first + lengths - 1
+    assert np.array_equal(p1, outs[1][1][last])  # left at the posterior of each segment's last row
 
 
 @pytest.mark.parametrize("model", sorted(MODELS))

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import lgekf.apps.track as track
+import lgekf.io.formatting as formatting
 from lgekf.cli import main
 
 
@@ -32,7 +33,7 @@ def test_many_chunks_write_the_bytes_of_one(tmp_path, monkeypatch, model):
     args = ["track", str(inp), "--model", model, "--quiet", "--meas-std", "0.05"]
     assert main([*args, "-o", str(tmp_path / "one.csv")]) == 0  # 360 rows: one chunk
     monkeypatch.setattr(track, "ROWS_PER_CHUNK", 31)  # about one object per chunk: 12 chunks through the writer
-    monkeypatch.setattr(track, "FORMAT_ROWS", 7)
+    monkeypatch.setattr(formatting, "PART_ROWS", 7)
     calls = []
     real = track.track_monitored
     monkeypatch.setattr(track, "track_monitored", lambda *a, **k: calls.append(1) or real(*a, **k))
@@ -56,8 +57,8 @@ def test_a_writer_error_stops_the_run(tmp_path, monkeypatch, capsys):
         written.append(1)
         return real_write(fh, *a, **k)
 
-    real_write = track.write_rows
-    monkeypatch.setattr(track, "write_rows", failing)
+    real_write = track.write_rows_made
+    monkeypatch.setattr(track, "write_rows_made", failing)
     calls = []
     real = track.track_monitored
     monkeypatch.setattr(track, "track_monitored", lambda *a, **k: calls.append(1) or real(*a, **k))

@@ -16,10 +16,10 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)):
 * the fused steps: ``predict`` and ``update_<meas>`` (CSE over each whole step), ``step_<meas>`` (both in one
   kernel, what the loops call; derive/codegen/fused.py), safeguards
   ``limit_angle_variance``, ``covariance_is_pd``, ``repair_pd``;
-* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows; ``run_segments_noise_<meas>`` with
-  noise stds per segment) / ``run_one_from_<meas>`` /
+* loops: ``run_one_<meas>`` / ``run_segments_<meas>`` (segments of rows) / ``run_one_from_<meas>`` /
   ``run_segments_from_<meas>`` (the same from internal states, which they leave at the last row's posterior: a long
-  object in windows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
+  object in windows) / ``run_segments_noise_from_<meas>`` (with noise stds per segment: the divergence monitor's
+  reruns) / ``states_from_physical`` (internal states of many rows) / ``run_batch_<meas>`` (prange over trajectories; a NaN measurement row is a
   missed detection: predict only), ``propagate`` / ``simulate_batch`` / ``propagate_rows`` /
   ``propagate_positions`` (the exact motion),
   ``measure_<meas>`` / ``measure_batch_<meas>`` (simulated measurements Z = h(X)·exp(m));
@@ -199,7 +199,7 @@ def angle_limit_kernel(n: int, angles: tuple):
 
 # --------------------------------------------------------------------------- loop templates
 # the loop over segments of rows (each segment's steps dts from t, then one call per segment): one text for
-# run_segments_<meas>, run_segments_from_<meas> and run_segments_noise_<meas>, formatted with the call
+# run_segments_<meas>, run_segments_from_<meas> and run_segments_noise_from_<meas>, formatted with the call
 SEGMENT_LOOP = '''    longest = 0
     for i in range(first.shape[0]):
         longest = max(longest, lengths[i])
@@ -294,9 +294,10 @@ def run_batch_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
 
 SEGMENT_NOISE_TEMPLATE = '''
 @nb.njit(cache=True, nogil=True)
-def run_segments_noise_{meas}(z, t, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
-    """``run_segments_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
-    recovery's reruns, each object's noise inflated by its own factor). The numbers of ``run_one_{meas}`` called
+def run_segments_noise_from_{meas}(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
+    """``run_segments_from_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
+    recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_{meas}`` called
     per segment i with q[i], r[i]."""
 {segments_noise}'''
 
@@ -305,7 +306,7 @@ BATCH_TEMPLATE = (BATCH_TEMPLATE
                   .replace("{segments_from}",
                            _segments("run_one_from_{meas}(z[a:b], dts[:b - a], s0[i], p0[i], q, r, out_x[a:b], out_p[a:b], out_nis[a:b])")))
 SEGMENT_NOISE_TEMPLATE = SEGMENT_NOISE_TEMPLATE.replace(
-    "{segments_noise}", _segments("run_one_{meas}(z[a:b], dts[:b - a], x0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])"))
+    "{segments_noise}", _segments("run_one_from_{meas}(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])"))
 
 SIMULATE_TEMPLATE = '''
 @nb.njit(cache=True, parallel=True)
@@ -323,6 +324,13 @@ def simulate_batch(x0, dts, noise, out_x):
         for k in range(K):
             propagate(s, dts[b, k], {nargs})
             physical_into(s, out_x[b, k + 1])
+
+
+@nb.njit(cache=True, nogil=True)
+def states_from_physical(x, out):
+    """state_from_physical of every row: physical states x (N, {n}) into internal states out (N, {ni})."""
+    for i in range(x.shape[0]):
+        state_from_physical_into(x[i], out[i])
 
 
 @nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
@@ -445,7 +453,7 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(loop=FILTER_LOOP.format(**fmt), **fmt))
     meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
-    kernels.append((f"run_segments_noise_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
+    kernels.append((f"run_segments_noise_from_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
         meas=meas.name, nq=len(model.noise_names), nr=len(meas.noise_names))))
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
         from .fused import fused_step_kernel, step_wrapper

@@ -50,10 +50,12 @@ __all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "speed_limits", "speeds", 
 
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
-# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm): 2¹⁰ rather
-# than 2¹² cuts the noise search on one long object (an alarm every ~10³ rows for the low-noise candidates) by a
-# third of its CPU (1.13 -> 0.74 s, SE(2)xSE(2) + CV, 10⁶ rows); no change on 10⁴ objects or in the final tracking
-RERUN_ROWS = 1 << 10
+# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm). The rows of
+# a window past the next alarm are filtered in vain, a window costs a round of Python (~0.15 ms, the filtering of
+# ~2000 rows); the noise search's low-noise candidates on one long object raise an alarm every few hundred rows:
+# there 2⁸ rows cost least (the five searches, serial, on one object of 10⁶ rows: 2⁸ 1.36 CPU-s, 2¹⁰ 1.53, 2¹²
+# 2.57, 2¹⁴ 6.6; 2⁶ and 2⁷ with windows growing 4x 1.50 and 1.38; the same plans); no change on 10⁴ objects
+RERUN_ROWS = 1 << 8
 
 
 @dataclass(frozen=True)
@@ -296,9 +298,11 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         ``reinit(rows (R,), scale (R,)) -> (x0 (R, n), P0 packed (R, n(n+1)/2))``: the two-point estimate
         at each row, with the measurement std multiplied by ``scale``.
     rerun : callable
-        ``rerun(first (R,), lengths (R,), x0, p0, scale (R,))``: filter rows first .. first + length - 1
-        of each segment from (x0, p0) at row first - 1, every noise std multiplied by ``scale``, writing
-        into x, p, nis.
+        ``rerun(first (R,), lengths (R,), s0 (R, ni), p0 (R, n(n+1)/2), scale (R,))``: filter rows first ..
+        first + length - 1 of each segment from the filter's internal state s0 (the layout of the generated
+        ``state_from_physical``) and packed covariance p0 at row first - 1, every noise std multiplied by
+        ``scale``, writing into x, p, nis; s0 and p0 are left (in place) at the posterior of each segment's last
+        row, from which a later call continues exactly.
     first : ndarray, (B,), optional
         The first monitored row of each object (default ``starts[:-1] + 2``: rows 0 and 1 of an object are its
         two-point start). An object with no row from there on is not monitored.
@@ -320,16 +324,24 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     seg_obj = np.flatnonzero(first < starts[1:])
     seg_first = first[seg_obj]
     seg_end = starts[seg_obj + 1]
-    # after a re-initialisation the filter is rerun over a window of rows that doubles until the next alarm
-    # (or the object's end): each rerun restarts from the re-initialisation, so the numbers are those of one
-    # rerun to the end, at a cost linear in the rows instead of (alarms x rows) on a long object
+    # after a re-initialisation the filter is rerun over a window of rows that doubles until the next alarm (or the
+    # object's end); each window goes on from the filter's internal state at the end of the previous one (no window
+    # refilters its predecessor's rows; the rows of a window past the next alarm are still filtered in vain) and is
+    # scanned from `reach` rows before it, so that the numbers and alarms are those of one rerun to the end scanned
+    # at once (a scan's tests at a row look back fewer than `reach` rows — NIS windows, the run of rows over the
+    # speed limit: from `reach` rows on they are the tests of a scan from the segment's first row, and the rows
+    # before were tested already)
+    reach = max(int(cfg.window), int(cfg.short))
+    kernels = get_model(model).kernels
+    ni = kernels.state_from_physical(np.zeros(x.shape[1])).size  # the length of the filter's internal state
     scan_end = seg_end.copy()
-    seg_x0 = seg_p0 = None
+    scan_from = seg_first.copy()
+    seg_s = seg_p = None  # each rerun segment's internal state and covariance at its row scan_end - 1
     memory = MonitorMemory.fresh(B) if memory is None else memory
     count, scale, last = memory.count, memory.scale, memory.last  # updated in place: the caller's memory
     seg_scale = scale[seg_obj].copy()  # the noise inflation of each segment's run
     while seg_obj.size:
-        row, kind, val, start, lim = first_alarms(model, x, p, nis, seg_first, scan_end, limits[seg_obj], m, cfg)
+        row, kind, val, start, lim = first_alarms(model, x, p, nis, scan_from, scan_end, limits[seg_obj], m, cfg)
         hit = np.flatnonzero(row >= 0)
         grow = np.flatnonzero((row < 0) & (scan_end < seg_end))
         if hit.size == 0 and grow.size == 0:
@@ -352,7 +364,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         last[o[ok]] = g[ok]
         finish = hit[~ok & (scan_end[hit] < seg_end[hit])]  # monitoring stops at this alarm: the run must still reach the end
         if finish.size:
-            rerun(seg_first[finish], seg_end[finish] - seg_first[finish], seg_x0[finish], seg_p0[finish], seg_scale[finish])
+            rerun(scan_end[finish], seg_end[finish] - scan_end[finish], seg_s[finish], seg_p[finish], seg_scale[finish])
         g = row[keep]
         obj = seg_obj[keep]
         if keep.size:
@@ -365,12 +377,18 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         end = seg_end[keep]
         more = g + 1 < end
         new_first = g[more] + 1
-        nxt = [(obj[more], new_first, end[more], np.minimum(end[more], new_first + RERUN_ROWS), x0[more], p0[more], scale[obj[more]])]
+        s0 = np.empty((int(more.sum()), ni))
+        kernels.states_from_physical(np.ascontiguousarray(x0[more], dtype=float), s0)
+        # (object, first row, end, scan from, scan end, run from, state, covariance, noise inflation) of the next round
+        nxt = [(obj[more], new_first, end[more], new_first, np.minimum(end[more], new_first + RERUN_ROWS), new_first, s0,
+                np.array(p0[more], dtype=float), scale[obj[more]])]
         if grow.size:
             width = scan_end[grow] - seg_first[grow]
-            nxt.append((seg_obj[grow], seg_first[grow], seg_end[grow], np.minimum(seg_end[grow], seg_first[grow] + 2 * width),
-                        seg_x0[grow], seg_p0[grow], seg_scale[grow]))
-        seg_obj, seg_first, seg_end, scan_end, seg_x0, seg_p0, seg_scale = (np.concatenate(parts) for parts in zip(*nxt))
+            nxt.append((seg_obj[grow], seg_first[grow], seg_end[grow], np.maximum(seg_first[grow], scan_end[grow] - reach),
+                        np.minimum(seg_end[grow], seg_first[grow] + 2 * width), scan_end[grow], seg_s[grow], seg_p[grow],
+                        seg_scale[grow]))
+        seg_obj, seg_first, seg_end, scan_from, scan_end, run_from, seg_s, seg_p, seg_scale = (np.concatenate(parts)
+                                                                                               for parts in zip(*nxt))
         if seg_obj.size:
-            rerun(seg_first, scan_end - seg_first, seg_x0, seg_p0, seg_scale)
+            rerun(run_from, scan_end - run_from, seg_s, seg_p, seg_scale)  # leaves seg_s, seg_p at row scan_end - 1
     return flag, alarms

@@ -3,7 +3,7 @@
 A search is a few stages of independent candidate runs (about 22 in all per model); the candidates of a
 stage — of every model at once under ``--model all`` — run in a pool of threads, one per usable CPU
 (``usable_cpus``). The filter's kernels release the GIL (``nogil=True``: the generated ``run_one_<meas>`` and ``run_segments_<meas>``,
-``propagate_positions``, ``row_speeds``, ``run_segments_noise_<meas>``, the divergence monitor's ``_finite_rows`` / ``_scan``), so the
+``propagate_positions``, ``row_speeds``, ``run_segments_noise_from_<meas>``, the divergence monitor's ``_finite_rows`` / ``_scan``), so the
 threads overlap; none of the kernels a search run calls is a numba ``parallel=True`` one (the filter runs
 through the serial ``run_segments_<meas>``; ``tests/test_search.py`` replaces every parallel kernel by one that
 raises), so no two threads enter numba's threading layer at once.

@@ -59,7 +59,7 @@ from ..core.validate import positive_scalar
 from .divergence import MonitorConfig, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
-from ..io.formatting import label_bytes, write_rows
+from ..io.formatting import label_bytes, write_rows_made
 from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
 from .reinit_rows import reinit_first_rows
@@ -76,7 +76,7 @@ TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad);
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
 ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
-FORMAT_ROWS = 1 << 15  # rows of output text (or of a Parquet row group) made at a time
+FORMAT_ROWS = 1 << 15  # rows of a Parquet row group made at a time (CSV text: lgekf.io.formatting.PART_ROWS)
 
 
 @dataclass
@@ -126,21 +126,17 @@ def _measurement_inputs(spec, z, heading, cfg, measurement):
 
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):
     """Filter segments of rows: segment i is rows first[i] .. first[i] + lengths[i] - 1, predicted from
-    (x0[i], p0[i]) at time t[first[i] - 1]; outputs written in place, straight on the rows (no padded copies).
-    q (nq,), r (nr,): the noise stds of every segment; or q (S, nq), r (S, nr): each segment's own (the divergence
-    recovery's reruns, each object's noise inflated by its own factor).
+    (x0[i], p0[i]) at time t[first[i] - 1] with the noise stds q (nq,), r (nr,); outputs written in place,
+    straight on the rows (no padded copies).
 
-    One call of the generated ``run_segments_<meas>`` (``run_segments_noise_<meas>`` with noise per segment):
-    ``run_one`` segment after segment, no Python per segment or step. It is serial and releases the GIL, so that
-    the writer thread (``write_model``) and the process-noise search's threads (``lgekf.apps.search``) run beside
-    it; no numba parallel kernel is used.
+    One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment or
+    step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the process-noise
+    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (The divergence
+    monitor's reruns, with noise per segment and from internal states: ``run_segments_noise_from_<meas>``.)
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
-    per_segment = np.ndim(q) == 2
-    if per_segment:
-        q, r = np.ascontiguousarray(q[keep]), np.ascontiguousarray(r[keep])
-    run = getattr(get_model(model).kernels, f"run_segments{'_noise' if per_segment else ''}_{measurement}")
+    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
     run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
@@ -242,9 +238,12 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
         rows = np.asarray(rows, dtype=np.int64)
         return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
 
-    def rerun(first, lengths, x0, p0, scale):  # every segment with its object's noise inflation, in one call
+    rerun_kernel = getattr(spec.kernels, f"run_segments_noise_from_{measurement}")
+
+    def rerun(first, lengths, s0, p0, scale):  # every segment with its object's noise inflation, in one call; s0, p0 in place
         scale = np.asarray(scale, dtype=float)[:, None]
-        _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q[None, :] * scale, r[None, :] * scale, x, p, nis)
+        rerun_kernel(zm, t, np.asarray(first, dtype=np.int64), np.asarray(lengths, dtype=np.int64), s0, p0,
+                     q[None, :] * scale, r[None, :] * scale, x, p, nis)
 
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
@@ -316,11 +315,12 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False, parquet: bool = False):
     """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
     written (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
-    ``parquet``: a Parquet file (``lgekf.io.parquet``, one row group per chunk) instead of CSV text; CSV
-    text is formatted ``FORMAT_ROWS`` rows at a time.
+    ``parquet``: a Parquet file (``lgekf.io.parquet``, a row group per ``FORMAT_ROWS`` rows of a chunk) instead of
+    CSV text; CSV text is made, formatted and written a few thousand rows at a time (``write_rows_made``).
 
     The two jobs overlap: one writer thread formats and writes chunk i while this thread tracks chunk i + 1
-    (the formatter and the file writes release the GIL), so that at most two chunks' outputs are held. The
+    (the formatter and the file writes release the GIL), so that at most two chunks' outputs (and a few parts'
+    text) are held. The
     chunks are written in order: the file's bytes are those of doing one after the other.
 
     Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
@@ -338,14 +338,16 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     col_digits = np.full(ncol, digits, dtype=np.int64)
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
 
-    def emit(parts, row_obj, a, b):  # the writer thread: chunk rows a..b as text (or a row group), in blocks
-        for lo in range(0, b - a, FORMAT_ROWS):  # a block of rows at a time: no text copy of a long object
+    def emit(parts, row_obj, a, b):  # the writer thread: chunk rows a..b as text (or row groups)
+        def block(lo, hi):  # the output values of the chunk's rows lo..hi-1 (r.p at 1: its diagonal's stds)
+            return np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
+
+        if sink is None:  # made, formatted and written part by part in threads
+            write_rows_made(fh, lab, row_obj, meas.t[a:b], block, b - a, col_digits)
+            return b - a
+        for lo in range(0, b - a, FORMAT_ROWS):  # a row group at a time
             hi = min(lo + FORMAT_ROWS, b - a)
-            block = np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
-            if sink is not None:
-                sink.write_rows(meas.labels, row_obj[lo:hi], meas.t[a + lo:a + hi], block)
-            else:
-                write_rows(fh, lab, row_obj[lo:hi], meas.t[a + lo:a + hi], block, col_digits)
+            sink.write_rows(meas.labels, row_obj[lo:hi], meas.t[a + lo:a + hi], block(lo, hi))
         return b - a
 
     B = len(starts) - 1

@@ -119,17 +119,14 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
                     run_scale = float(np.asarray(sc, dtype=float)[last[-1]])
                 return x0g, p0g
 
-            def rerun(first, lengths, xs, ps, sc):  # as track_monitored's rerun, from internal states
+            def rerun(first, lengths, ss, ps, sc):  # as track_monitored's rerun (ss, ps internal, left at the last row)
                 nonlocal run_scale
                 for i in range(len(first)):  # one object: a round reruns at most one segment
-                    s0 = np.empty((1, ni))
-                    kern.state_from_physical_into(xs[i], s0[0])
-                    p0i = np.array(ps[i:i + 1], dtype=float)
-                    run(zm[L:B], t[L:B], np.asarray(first[i:i + 1], np.int64), np.asarray(lengths[i:i + 1], np.int64), s0, p0i,
-                        q * sc[i], r * sc[i], x, p, nis)
+                    run(zm[L:B], t[L:B], np.asarray(first[i:i + 1], np.int64), np.asarray(lengths[i:i + 1], np.int64), ss[i:i + 1],
+                        ps[i:i + 1], q * sc[i], r * sc[i], x, p, nis)
                     if first[i] + lengths[i] == end:  # it reached the window's last row: the next window goes on from it
-                        carry_s[0] = s0[0]
-                        carry_p[0] = p0i[0]
+                        carry_s[0] = ss[i]
+                        carry_p[0] = ps[i]
                         run_scale = float(sc[i])
 
             last_global = int(memory.last[0])

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import re
 import sys
 
-__all__ = ["main", "UsageError", "ArgumentParser"]
+__all__ = ["main", "run", "UsageError", "ArgumentParser"]
 
 
 class UsageError(ValueError):
@@ -98,3 +99,25 @@ def main(argv=None) -> int:
     except KeyboardInterrupt:
         print("lgekf: interrupted", file=sys.stderr)
         return 130
+
+
+def run() -> None:
+    """The ``lgekf`` script (and ``python -m lgekf``): ``main`` on ``sys.argv``, then exit with its status.
+
+    Two things only a whole process may decide, both about time, neither about results:
+
+    * ``OPENBLAS_NUM_THREADS=1`` unless set: NumPy and SciPy each load an OpenBLAS whose worker threads spin for
+      about 0.1 s after loading, on the core that reads the file. lgekf's BLAS calls are on matrices too small
+      for OpenBLAS to split over threads, so nothing else changes (the variable is read when NumPy is imported,
+      which ``main`` does later). A value the user gave ``OPENBLAS_NUM_THREADS`` is kept; one given only to
+      ``OMP_NUM_THREADS`` or ``GOTO_NUM_THREADS`` no longer reaches OpenBLAS, which reads ``OPENBLAS_NUM_THREADS``
+      first.
+    * ``gc.freeze()`` before exiting: the interpreter's final garbage collections walk every object the run made
+      (numba's and the data's; about 0.1 s) to free memory the operating system takes back anyway. Every output
+      of a command is closed inside ``main``; objects are still freed by reference counting, but the finalizers of
+      objects in reference cycles at that moment do not run.
+    """
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    status = main()
+    gc.freeze()
+    sys.exit(status)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections import deque
 from concurrent.futures import ThreadPoolExecutor
 
 import numba as nb
@@ -20,10 +21,11 @@ import numpy as np
 
 from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
 
-__all__ = ["format_rows", "write_rows", "format_g", "label_bytes"]
+__all__ = ["format_rows", "write_rows", "write_rows_made", "format_g", "label_bytes"]
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 PARTS_PER_THREAD = 4  # the rows are cut into this many parts per thread (load balance; see _formatted_parts)
+PART_ROWS = 1 << 12  # write_rows_made makes, formats and writes this many rows at a time per thread
 
 
 @nb.njit(cache=True)
@@ -379,14 +381,20 @@ def write_rows(fh, lab, row_label, t, values, digits, t_digits: int = 15) -> Non
         fh.write(part)
 
 
+def _checked_digits(digits, m: int, t_digits: int) -> np.ndarray:
+    """``digits`` as an int64 array of one entry per value column, each checked to be in 1..17."""
+    d = np.broadcast_to(np.asarray(digits, dtype=np.int64), (m,)).copy()
+    if np.any(d < 1) or np.any(d > 17) or not 1 <= t_digits <= 17:
+        raise ValueError("digits: must be between 1 and 17")
+    return d
+
+
 def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
     """The CSV text of the rows as uint8 arrays, one per thread's contiguous part of the rows, in order."""
     values = np.ascontiguousarray(values, dtype=float)
     if values.ndim != 2:
         raise ValueError("values: expected a 2-D array")
-    d = np.broadcast_to(np.asarray(digits, dtype=np.int64), (values.shape[1],)).copy()
-    if np.any(d < 1) or np.any(d > 17) or not 1 <= t_digits <= 17:
-        raise ValueError("digits: must be between 1 and 17")
+    d = _checked_digits(digits, values.shape[1], t_digits)
     row_label = np.ascontiguousarray(row_label, dtype=np.int64)
     t = np.ascontiguousarray(t, dtype=float)
     n = values.shape[0]
@@ -401,6 +409,76 @@ def _formatted_parts(lab, row_label, t, values, digits, t_digits) -> list:
     with ThreadPoolExecutor(threads) as pool:
         return list(pool.map(lambda i: _format_rows(lab[0], lab[1], row_label[cut[i]:cut[i + 1]], t[cut[i]:cut[i + 1]],
                                                     int(t_digits), values[cut[i]:cut[i + 1]], d), range(parts)))
+
+
+def write_rows_made(fh, lab, row_label, t, values_of, n: int, digits, t_digits: int = 15) -> None:
+    """Write the CSV lines of rows 0..n-1 (``format_rows``'s bytes) whose values are made part by part.
+
+    ``values_of(lo, hi)`` returns the (hi - lo, m) values of rows lo..hi-1. Parts of ``PART_ROWS`` rows are
+    made here, formatted in threads (one per CPU; the formatter releases the GIL, making the values does not,
+    so it stays in this thread) and written in order as each is ready: making the next part's values,
+    formatting and the file writes overlap, and at most 2 · threads + 1 parts are held.
+
+    Parameters
+    ----------
+    fh : file-like
+        Has ``write`` taking a bytes-like object.
+    lab, row_label, t
+        As for ``format_rows``, for the n rows.
+    values_of : callable
+        ``values_of(lo, hi)`` -> array_like of shape (hi - lo, m), m the same for every part.
+    n : int
+        The number of rows.
+    digits, t_digits
+        As for ``format_rows``.
+
+    Raises
+    ------
+    ValueError
+        Digits outside 1..17, row_label or t not of n rows, a part of the wrong shape or with another m than the
+        first; an error of ``values_of``, of the formatter or of ``fh.write`` is raised as it is. Parts written
+        before the error stay written (whole lines); the parts after it are not made.
+    """
+    row_label = np.ascontiguousarray(row_label, dtype=np.int64)
+    t = np.ascontiguousarray(t, dtype=float)
+    if row_label.shape != (n,) or t.shape != (n,):
+        raise ValueError(f"row_label, t: expected {n} rows, got {row_label.shape} and {t.shape}")
+    _checked_digits(digits, np.size(digits), t_digits)  # the range now, also when there are no rows
+    checked = []  # (m, digits per column) of the first part
+
+    def values(lo, hi):
+        v = np.ascontiguousarray(values_of(lo, hi), dtype=float)
+        if v.ndim != 2 or v.shape[0] != hi - lo:
+            raise ValueError(f"values_of({lo}, {hi}): expected {hi - lo} rows of values, got shape {v.shape}")
+        if not checked:
+            checked.append((v.shape[1], _checked_digits(digits, v.shape[1], t_digits)))
+        m, d = checked[0]
+        if v.shape[1] != m:
+            raise ValueError(f"values_of({lo}, {hi}): {v.shape[1]} columns, the first part had {m}")
+        return v, d
+
+    def text(lo, hi, v, d):
+        return _format_rows(lab[0], lab[1], row_label[lo:hi], t[lo:hi], int(t_digits), v, d)
+
+    threads = min(_cpus(), -(-n // PART_ROWS))
+    if threads < 2:
+        for lo in range(0, n, PART_ROWS):
+            hi = min(lo + PART_ROWS, n)
+            fh.write(text(lo, hi, *values(lo, hi)))
+        return
+    ahead = deque()
+    with ThreadPoolExecutor(threads) as pool:
+        try:
+            for lo in range(0, n, PART_ROWS):
+                hi = min(lo + PART_ROWS, n)
+                ahead.append(pool.submit(text, lo, hi, *values(lo, hi)))  # the values here, the text in a thread
+                while len(ahead) > 2 * threads or (ahead and ahead[0].done()):
+                    fh.write(ahead.popleft().result())
+            while ahead:
+                fh.write(ahead.popleft().result())
+        finally:
+            for f in ahead:  # after an error: the parts not started are dropped
+                f.cancel()
 
 
 def format_g(values, digits: int) -> list:
