@@ -332,8 +332,8 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     # speed limit: from `reach` rows on they are the tests of a scan from the segment's first row, and the rows
     # before were tested already)
     reach = max(int(cfg.window), int(cfg.short))
-    kernels = get_model(model).kernels
-    ni = kernels.state_from_physical(np.zeros(x.shape[1])).size  # the length of the filter's internal state
+    spec = get_model(model)
+    kernels, ni = spec.kernels, len(spec.internal_names)  # ni: the length of the filter's internal state
     scan_end = seg_end.copy()
     scan_from = seg_first.copy()
     seg_s = seg_p = None  # each rerun segment's internal state and covariance at its row scan_end - 1

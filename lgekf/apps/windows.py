@@ -77,8 +77,7 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
     limits = np.array([limit], dtype=float)
     x0 = np.asarray(x0, dtype=float)
     p0 = np.asarray(p0, dtype=float)
-    ni = kern.state_from_physical(x0).size
-    carry_s = np.empty((1, ni))  # the filter's internal state and covariance after the last row filtered
+    carry_s = np.empty((1, len(spec.internal_names)))  # the filter's internal state and covariance after the last row filtered
     kern.state_from_physical_into(x0, carry_s[0])
     carry_p = p0[None, :].copy()
     memory = MonitorMemory.fresh(1)  # `last` in the object's rows

@@ -368,7 +368,8 @@ def format_rows(lab, row_label, t, values, digits, t_digits: int = 15) -> bytes:
 
 
 def write_rows(fh, lab, row_label, t, values, digits, t_digits: int = 15) -> None:
-    """Write ``format_rows``'s bytes to ``fh`` part by part (no joined copy of the text).
+    """Write ``format_rows``'s bytes to ``fh`` part by part (``write_rows_made`` on slices of ``values``: no
+    joined copy of the text, at most a few parts' text held).
 
     Parameters
     ----------
@@ -377,8 +378,10 @@ def write_rows(fh, lab, row_label, t, values, digits, t_digits: int = 15) -> Non
     lab, row_label, t, values, digits, t_digits
         As for ``format_rows``.
     """
-    for part in _formatted_parts(lab, row_label, t, values, digits, t_digits):
-        fh.write(part)
+    values = np.asarray(values)
+    if values.ndim != 2:
+        raise ValueError("values: expected a 2-D array")
+    write_rows_made(fh, lab, row_label, t, lambda lo, hi: values[lo:hi], values.shape[0], digits, t_digits)
 
 
 def _checked_digits(digits, m: int, t_digits: int) -> np.ndarray:
