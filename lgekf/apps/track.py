@@ -56,18 +56,17 @@ from ..core.covariance import pack, packed_diagonal
 from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, two_point  # noqa: F401
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
-from .divergence import MonitorConfig, recover, speed_limits
+from .divergence import MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows_made
 from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
-from .reinit_rows import reinit_first_rows
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "reinit_estimates", "track_windows",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -197,16 +196,15 @@ class Tracked:
     alarms: list
 
 
-def reinit_estimates(model, t, z, cfg: TrackConfig, heading, rows, scale, obj_first):
-    """The re-initialisation at each of ``rows`` (``divergence.recover``'s ``reinit``): the two-point estimate from
-    the measurement of the row and the latest earlier one at least ``REINIT_BASELINE`` s back (else the object's
-    first row, ``obj_first``), with the measurement std times ``scale``. Returns (x0 (R, n), packed P0)."""
-    # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
-    first = reinit_first_rows(t, rows, obj_first, REINIT_BASELINE)
-    c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
-                       cfg.heading_cap, first)
-    x0, P0 = initial_estimates(model, c, var)
-    return x0, pack(P0)
+def restart_inputs(measurement, t, z, heading, zm, q, r, cfg: TrackConfig, obj_first, lo: int = 0, hi: int | None = None) -> Restart:
+    """The re-initialisation of ``lgekf track``'s divergence recovery (``divergence.recover``) and the filter it runs
+    again: the two-point estimate (``two_point``) at an alarm row from its measurement (t, z, heading) and the latest
+    earlier one at least ``REINIT_BASELINE`` s back (else the object's first row, ``obj_first`` (B,)), the
+    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r. The
+    monitored outputs are rows ``lo`` .. ``hi`` - 1 of t, z (default all)."""
+    hi = len(t) if hi is None else hi
+    return Restart(measurement, zm[lo:hi], t[lo:hi], q, r, t, z, heading, lo, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std,
+                   cfg.heading_cap, REINIT_BASELINE)
 
 
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
@@ -232,22 +230,10 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     if monitor is None:
         return Tracked(x, p, nis, flag, [])
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
-    q = cfg.q(model)
-
-    def reinit(rows, scale):
-        rows = np.asarray(rows, dtype=np.int64)
-        return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
-
-    rerun_kernel = getattr(spec.kernels, f"run_segments_noise_from_{measurement}")
-
-    def rerun(first, lengths, s0, p0, scale):  # every segment with its object's noise inflation, in one call; s0, p0 in place
-        scale = np.asarray(scale, dtype=float)[:, None]
-        rerun_kernel(zm, t, np.asarray(first, dtype=np.int64), np.asarray(lengths, dtype=np.int64), s0, p0,
-                     q[None, :] * scale, r[None, :] * scale, x, p, nis)
-
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
-    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
+    restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, starts[:-1])
+    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, restart)
     return Tracked(x, p, nis, flag, alarms)
 
 
@@ -269,11 +255,8 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     limit = 0.0 if monitor is None else float(speed_limits(t, z, starts, cfg.meas_std, monitor)[0])
 
-    def reinit(rows_, scale):
-        return reinit_estimates(model, t, z, cfg, heading, rows_, scale, np.zeros(len(rows_), np.int64))
-
-    for a, x, p, nis, flag, alarms in filter_windows(model, measurement, t, zm, cfg.q(model), r, x0[0], pack(P0)[0], reinit, monitor,
-                                                     limit, rows):
+    restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, np.zeros(1, np.int64))
+    for a, x, p, nis, flag, alarms in filter_windows(model, t, zm, x0[0], pack(P0)[0], restart, monitor, limit, rows):
         yield a, Tracked(x, p, nis, flag, alarms)
 
 

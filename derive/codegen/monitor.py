@@ -1,0 +1,458 @@
+"""The divergence monitor of ``lgekf track``, compiled (``lgekf.apps.divergence``): templates of the emitter.
+
+``MONITOR_HELPERS`` is the body of ``generated/monitor.py``: the model-independent parts (the two-point estimate and
+the initial covariance of ``lgekf.core.initiation``, the earlier row of a re-initialisation, the finite check, the
+NIS-window scan, the speed's std). ``MODEL_TEMPLATE`` (once per model) and ``RECOVER_TEMPLATE`` (once per model and
+measurement) call the model's own kernels: the re-initialisation of one row, the speed's std, the first alarm of a
+range of rows, and the whole monitor-and-recover loop of
+``lgekf.apps.divergence.recover``, segment after segment, so that an alarm costs no round of Python (the noise
+search's low-noise candidates on one long object raise an alarm every few hundred rows: 0.15 ms of Python each).
+"""
+
+MONITOR_HELPERS = '''import math
+
+import numba as nb
+import numpy as np
+
+__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+
+
+@nb.njit(cache=True, nogil=True)
+def nan_max(a, b):
+    """np.maximum(a, b) of two floats: nan if either is nan."""
+    if a != a or b != b:
+        return a + b
+    return a if a >= b else b
+
+
+@nb.njit(cache=True, nogil=True)
+def nan_min(a, b):
+    """np.minimum(a, b) of two floats: nan if either is nan."""
+    if a != a or b != b:
+        return a + b
+    return a if a <= b else b
+
+
+@nb.njit(cache=True, nogil=True)
+def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
+    """The two-point estimate at row i1 from the measurements i0 and i1 (``lgekf.core.initiation.two_point``, one row):
+    common coordinates c (6,) = (x, y, θ, v_x, v_y, ω) and their variances var (6,). ``heading`` (N,) or empty (no
+    heading column)."""
+    dt = t[i1] - t[i0]
+    v0 = (z[i1, 0] - z[i0, 0]) / dt
+    v1 = (z[i1, 1] - z[i0, 1]) / dt
+    speed = math.hypot(v0, v1)
+    r2 = meas_std ** 2
+    var_v = 2.0 * r2 / dt ** 2
+    floor_vy = (sideslip ** 2) * var_v
+    for k in range(6):
+        c[k] = 0.0
+    c[0] = z[i1, 0]
+    c[1] = z[i1, 1]
+    var[0] = r2
+    var[1] = r2
+    var[3] = var_v
+    var[5] = omega_std ** 2
+    if heading.shape[0] == 0:
+        c[2] = math.atan2(v1, v0) if speed > 0 else 0.0
+        c[3] = speed
+        var_th = var_v / speed ** 2 if speed > 0 else np.inf
+        cap = heading_cap ** 2
+        var[2] = var_th if var_th <= cap or var_th != var_th else cap  # np.minimum: nan stays nan
+        var[4] = nan_max(var_v - speed ** 2 * var[2], floor_vy)
+    else:
+        h = heading[i1]
+        c[2] = math.atan2(math.sin(h), math.cos(h))
+        c[3] = v0 * math.cos(h) + v1 * math.sin(h)
+        var[2] = heading_std ** 2
+        var[4] = floor_vy
+
+
+@nb.njit(cache=True, nogil=True)
+def two_points(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
+    """``two_point_into`` of every row: rows i1 (R,) from i0 (R,), measurement std per row (R,); c, var (R, 6)."""
+    for k in range(i1.shape[0]):
+        two_point_into(t, z, heading, i0[k], i1[k], meas_std[k], omega_std, heading_std, heading_cap, sideslip, c[k], var[k])
+
+
+@nb.njit(cache=True, nogil=True)
+def jacobian_point(c, var, out):
+    """The common coordinates at which the initial covariance's Jacobian is taken: c with its speed c[3] moved
+    just off zero (at least 1e-9 of its std, keeping its sign) where a heading-of-motion coordinate is singular."""
+    for k in range(6):
+        out[k] = c[k]
+    tiny = 1e-9 * math.sqrt(var[3])
+    if abs(c[3]) < tiny:
+        out[3] = -tiny if c[3] < 0 else tiny
+
+
+@nb.njit(cache=True, nogil=True)
+def initial_covariance_into(J, var, angles, P):
+    """P = J diag(var) Jᵀ, symmetrised, each angle's variance capped at π² (its row and column scaled):
+    the initial covariance in filter coordinates from the common-coordinate variances (J (n, 6))."""
+    n = J.shape[0]
+    for i in range(n):
+        for k in range(n):
+            acc = 0.0
+            for j in range(J.shape[1]):
+                acc = acc + (J[i, j] * var[j]) * J[k, j]
+            P[i, k] = acc
+    for i in range(n):
+        for k in range(i + 1, n):
+            v = 0.5 * (P[i, k] + P[k, i])
+            P[i, k] = v
+            P[k, i] = v
+    s = np.empty(n)
+    for a in angles:
+        if P[a, a] > math.pi ** 2:
+            for i in range(n):
+                s[i] = 1.0
+            s[a] = math.pi / math.sqrt(P[a, a])
+            for i in range(n):
+                for k in range(n):
+                    P[i, k] *= s[i] * s[k]
+
+
+@nb.njit(cache=True, nogil=True)
+def pack_into(P, out):
+    """The upper triangle of P (n, n), row-major, into out (n(n+1)/2,)."""
+    idx = 0
+    for i in range(P.shape[0]):
+        for k in range(i, P.shape[0]):
+            out[idx] = P[i, k]
+            idx += 1
+
+
+@nb.njit(cache=True, nogil=True)
+def first_row(t, g, a, baseline):
+    """The earlier row of a re-initialisation at row g of an object starting at row a: the latest j in [a, g) with
+    t[j] <= t[g] - baseline (by bisection, t increasing), a if none, at most g - 1."""
+    target = t[g] - baseline
+    lo, hi = a, g
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if t[mid] <= target:
+            lo = mid + 1
+        else:
+            hi = mid
+    return min(max(a, lo - 1), g - 1)
+
+
+@nb.njit(cache=True, nogil=True)
+def finite_row(x, p, r):
+    """Every entry of x[r] and p[r] is finite."""
+    for j in range(x.shape[1]):
+        if not np.isfinite(x[r, j]):
+            return False
+    for j in range(p.shape[1]):
+        if not np.isfinite(p[r, j]):
+            return False
+    return True
+
+
+@nb.njit(cache=True, nogil=True)
+def speed_std_from(grad, p, n):
+    """|grad| √λ_max(P restricted to the coordinates the speed depends on) (``divergence.speed_std``), from the
+    speed's gradient (n,) and the packed covariance p."""
+    top = 1.0
+    for i in range(n):
+        top = max(top, abs(grad[i]))
+    sel = np.empty(n, np.int64)
+    k = 0
+    for i in range(n):
+        if abs(grad[i]) > 1e-9 * top:
+            sel[k] = i
+            k += 1
+    if k == 0:
+        return 0.0
+    P = np.empty((n, n))
+    idx = 0
+    for i in range(n):
+        for j in range(i, n):
+            P[i, j] = p[idx]
+            P[j, i] = p[idx]
+            idx += 1
+    S = np.empty((k, k))
+    g = np.empty(k)
+    for a in range(k):
+        g[a] = grad[sel[a]]
+        for b in range(k):
+            S[a, b] = P[sel[a], sel[b]]
+    lam = np.linalg.eigvalsh(S)[-1]
+    return math.sqrt(max(lam, 0.0)) * math.sqrt(np.dot(g, g))
+
+
+@nb.njit(cache=True, nogil=True)
+def scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_short):
+    """The first alarm of rows [a, e): (row or -1, kind, value, first flagged row) (``divergence._scan``)."""
+    count = 0
+    run = 0
+    for k in range(a, e):
+        if bad[k]:
+            return k, 3, np.nan, k
+        run = run + 1 if over[k] else 0
+        if absurd[k]:
+            return k, 2, 0.0, k - min(run, window) + 1
+        count += 1
+        total_s = 0.0
+        if count >= short:
+            for j in range(k - short + 1, k + 1):
+                total_s += min(nis[j], clip)
+        total = 0.0
+        if count >= window:
+            for j in range(k - window + 1, k + 1):
+                total += min(nis[j], clip)
+        if count >= short and total_s > thr_short:
+            return k, 1, total_s / short, k - short + 1
+        if count >= window and total > thr:
+            return k, 1, total / window, k - window + 1
+    return -1, 0, 0.0, 0
+
+
+@nb.njit(cache=True, nogil=True)
+def initial_covariances(J, var, angles, out):
+    """``initial_covariance_into`` of every row: J (B, n, 6), var (B, 6) into out (B, n, n)."""
+    for b in range(J.shape[0]):
+        initial_covariance_into(J[b], var[b], angles, out[b])
+
+
+@nb.njit(cache=True, nogil=True)
+def jacobian_points(c, var, out):
+    """``jacobian_point`` of every row of c, var (B, 6) into out (B, 6)."""
+    for b in range(c.shape[0]):
+        jacobian_point(c[b], var[b], out[b])
+
+
+@nb.njit(cache=True, nogil=True)
+def first_rows(t, rows, obj_first, baseline, out):
+    """``first_row`` of every re-initialisation row: rows (R,), obj_first (R,) into out (R,)."""
+    for i in range(rows.shape[0]):
+        out[i] = first_row(t, rows[i], obj_first[i], baseline)
+
+
+@nb.njit(cache=True, nogil=True)
+def finite_rows(x, p, rows, out):
+    """out[i] = ``finite_row`` of row rows[i]."""
+    for i in range(rows.shape[0]):
+        out[i] = finite_row(x, p, rows[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def scan_segments(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
+                  out_from):
+    """``scan_segment`` of every segment [seg_first[s], seg_end[s])."""
+    for s in range(seg_first.shape[0]):
+        out_row[s], out_kind[s], out_val[s], out_from[s] = scan_segment(nis, absurd, over, bad, seg_first[s], seg_end[s], window,
+                                                                        short, clip, thr, thr_short)
+'''
+
+MONITOR_NAMES = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+
+MODEL_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)
+def reinit_into(t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline,
+                      angles, x_out, p_out):
+    """The re-initialisation at (global) row g of an object starting at row a: the two-point estimate from g and the
+    latest row at least ``baseline`` s earlier, the measurement std times ``scale``; physical x_out (n,), packed p_out."""
+    c = np.empty((1, 6))
+    var = np.empty(6)
+    two_point_into(t_all, z_all, heading_all, first_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
+                   heading_cap, sideslip, c[0], var)
+    cj = np.empty((1, 6))
+    jacobian_point(c[0], var, cj[0])
+    x1 = np.empty((1, x_out.shape[0]))
+    common_to_states(c, x1)
+    J = np.empty((1, x_out.shape[0], 6))
+    common_jacobians(cj, J)
+    P = np.empty((x_out.shape[0], x_out.shape[0]))
+    initial_covariance_into(J[0], var, angles, P)
+    x_out[:] = x1[0]
+    pack_into(P, p_out)
+
+
+@nb.njit(cache=True, nogil=True)
+def speed_std_at(x, p, k, xh, grad):
+    """The std of the speed |world_velocity| of row k of physical states x (N, n) with packed covariances p: its
+    gradient by central differences (steps 1e-6 max(1, |x_i|)) through ``speed_std_from``; xh (1, n), grad (n,) scratch."""
+    n = x.shape[1]
+    one = np.zeros(1, np.int64)
+    spd = np.empty(1)
+    for i in range(n):
+        h = 1e-6 * max(1.0, abs(x[k, i]))
+        for j in range(n):
+            xh[0, j] = x[k, j]
+        xh[0, i] = x[k, i] + h
+        row_speeds(xh, one, spd)
+        up = spd[0]
+        xh[0, i] = x[k, i] - h
+        row_speeds(xh, one, spd)
+        grad[i] = (up - spd[0]) / (2 * h)
+    return speed_std_from(grad, p[k], n)
+
+
+@nb.njit(cache=True, nogil=True)
+def speed_stds(x, p, out):
+    """``speed_std_at`` of every row of x (N, n), p (N, n(n+1)/2) into out (N,)."""
+    xh = np.empty((1, x.shape[1]))
+    grad = np.empty(x.shape[1])
+    for k in range(x.shape[0]):
+        out[k] = speed_std_at(x, p, k, xh, grad)
+
+
+@nb.njit(cache=True, nogil=True)
+def first_alarm(x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_sigma, over, absurd, bad, sp, rows, xh, grad):
+    """The first alarm of rows [a, e) of one object: (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the
+    window's mean NIS, the speed), first flagged row, limit (of the mean NIS, of the speed)); ``limit`` the object's
+    speed limit. over, absurd, bad (N,) bool, sp (N,), rows (N,) int64, xh (1, n), grad (n,): scratch."""
+    R = e - a
+    for k in range(R):
+        rows[k] = a + k
+    row_speeds(x, rows[:R], sp[:R])
+    for k in range(a, e):
+        fin = finite_row(x, p, k)
+        bad[k] = not fin
+        ov = fin and sp[k - a] > limit
+        over[k] = ov
+        absurd[k] = ov and sp[k - a] - n_sigma * speed_std_at(x, p, k, xh, grad) > limit
+    g, kind, val, start = scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_short)
+    if kind == 2:
+        val = sp[g - a]
+    if kind == 1:
+        lim = thr_short / short if g - start + 1 == short else thr / window
+    else:
+        lim = limit
+    return g, kind, val, start, lim
+
+'''
+
+RECOVER_TEMPLATE = '''
+@nb.njit(cache=True, nogil=True)
+def rerun_{meas}(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
+    """Filter rows a .. b - 1 from the internal state s1 (1, ni) and packed covariance p1 (1, n(n+1)/2) of row a - 1, every
+    noise std times ``scale`` (q1, r1 (1, nq), (1, nr) scratch), into x, p, nis; s1, p1 are left at row b - 1."""
+    for j in range(q.shape[0]):
+        q1[0, j] = q[j] * scale
+    for j in range(r.shape[0]):
+        r1[0, j] = r[j] * scale
+    run_segments_noise_from_{meas}(zm, t, np.full(1, a, np.int64), np.full(1, b - a, np.int64), s1, p1, q1, r1, x, p, nis)
+
+
+@nb.njit(cache=True, nogil=True)
+def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, limits, m, window, short, clip, thr, thr_short, n_sigma,
+                   max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all, heading_all,
+                   offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s, carry_p,
+                   carry_scale, carry_set):
+    """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
+
+    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i] (already filtered into x, p, nis). Each
+    round scans rows for the first alarm (``first_alarm``); at an alarm the row is re-initialised (``reinit_into``, the
+    measurements of global row + ``offset`` of t_all, z_all, heading_all; obj_first (B,) global) and the filter is
+    run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
+    going on from the previous one's last state and scanned from max(window, short) rows before it. count, scale,
+    last (B,): the objects' memory, updated in place; flag (N,) int8 set on the alarms' rows. carry_s, carry_p,
+    carry_scale, carry_set (B,): the filter's state, covariance and noise inflation after the segment's last row
+    where a re-initialisation or a rerun reached it (carry_set True). Returns the alarms' arrays (obj, row, kind,
+    value, limit, updates, reinitialised, scale), object after object, each object's in order."""
+    N = x.shape[0]
+    n = x.shape[1]
+    over = np.zeros(N, np.bool_)
+    absurd = np.zeros(N, np.bool_)
+    bad = np.zeros(N, np.bool_)
+    sp = np.empty(N)
+    rows = np.empty(N, np.int64)
+    xh = np.empty((1, n))
+    grad = np.empty(n)
+    reach = max(window, short)
+    cap = 16
+    a_obj = np.empty(cap, np.int64)
+    a_row = np.empty(cap, np.int64)
+    a_kind = np.empty(cap, np.int64)
+    a_val = np.empty(cap)
+    a_lim = np.empty(cap)
+    a_upd = np.empty(cap, np.int64)
+    a_ok = np.empty(cap, np.bool_)
+    a_scale = np.empty(cap)
+    na = 0
+    s1 = np.empty((1, carry_s.shape[1]))
+    p1 = np.empty((1, p.shape[1]))
+    q1 = np.empty((1, q.shape[0]))
+    r1 = np.empty((1, r.shape[0]))
+    x0 = np.empty((1, n))
+    p0 = np.empty(p.shape[1])
+    for si in range(seg_obj.shape[0]):
+        o = seg_obj[si]
+        first = seg_first[si]
+        end = seg_end[si]
+        scan_from = first
+        scan_end = end
+        run_scale = scale[o]  # the noise inflation of the run being scanned
+        reached = False  # a rerun or a re-initialisation reached the segment's last row
+        while True:
+            g, kind, val, start, lim = first_alarm(x, p, nis, scan_from, scan_end, limits[o], window, short, clip, thr, thr_short,
+                                                   n_sigma, over, absurd, bad, sp, rows, xh, grad)
+            if g < 0:
+                if scan_end >= end:
+                    break
+                # no alarm in this window: the next, twice as wide, goes on from where the run stopped
+                new_end = min(end, first + 2 * (scan_end - first))
+                rerun_{meas}(zm, t, scan_end, new_end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+                scan_from = max(first, scan_end - reach)
+                scan_end = new_end
+                reached = scan_end == end
+                continue
+            count[o] += 1
+            if kind == 1 and g - last[o] <= repeat * window:  # soon after the last re-initialisation: the noise is too small
+                scale[o] *= nan_min(math.sqrt(nan_max(val / m, 1.0)), max_inflation)
+            ok = count[o] <= max_reinit
+            if na == cap:
+                cap *= 2
+                a_obj = np.concatenate((a_obj, np.empty(cap - na, np.int64)))
+                a_row = np.concatenate((a_row, np.empty(cap - na, np.int64)))
+                a_kind = np.concatenate((a_kind, np.empty(cap - na, np.int64)))
+                a_val = np.concatenate((a_val, np.empty(cap - na)))
+                a_lim = np.concatenate((a_lim, np.empty(cap - na)))
+                a_upd = np.concatenate((a_upd, np.empty(cap - na, np.int64)))
+                a_ok = np.concatenate((a_ok, np.empty(cap - na, np.bool_)))
+                a_scale = np.concatenate((a_scale, np.empty(cap - na)))
+            a_obj[na] = o
+            a_row[na] = g
+            a_kind[na] = kind
+            a_val[na] = val
+            a_lim[na] = lim
+            a_upd[na] = g - start + 1 if kind == 1 else 0
+            a_ok[na] = ok
+            a_scale[na] = scale[o]
+            na += 1
+            # the NIS of an update tests the estimate before it: flag from the row before the alarm's first update (not
+            # before the segment's first row) through the alarm row
+            for k in range(max(max(start, first) - 1, 0), g + 1):
+                flag[k] = 1
+            if not ok:  # max_reinit used up: no more monitoring; the run goes on to the segment's end
+                if scan_end < end:
+                    rerun_{meas}(zm, t, scan_end, end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+                    reached = True
+                break
+            last[o] = g
+            reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
+                        sideslip, baseline, angles, x0[0], p0)
+            x[g] = x0[0]
+            p[g] = p0
+            nis[g] = np.nan
+            states_from_physical(x0, s1)
+            p1[0] = p0
+            run_scale = scale[o]
+            if g + 1 >= end:  # the re-initialised row is the segment's last
+                reached = True
+                break
+            first = g + 1
+            scan_from = first
+            scan_end = min(end, first + rerun_rows)
+            rerun_{meas}(zm, t, first, scan_end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+            reached = scan_end == end
+        if reached:
+            carry_s[o] = s1[0]
+            carry_p[o] = p1[0]
+            carry_scale[o] = run_scale
+            carry_set[o] = True
+    return a_obj[:na], a_row[:na], a_kind[:na], a_val[:na], a_lim[:na], a_upd[:na], a_ok[:na], a_scale[:na]
+'''

@@ -1,0 +1,241 @@
+"""The divergence monitor's model-independent kernels (two-point start, scan, speed std).
+
+GENERATED FILE: DO NOT EDIT.
+Source: derive/codegen/monitor.py
+Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
+"""
+import math
+
+import numba as nb
+import numpy as np
+
+__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+
+
+@nb.njit(cache=True, nogil=True)
+def nan_max(a, b):
+    """np.maximum(a, b) of two floats: nan if either is nan."""
+    if a != a or b != b:
+        return a + b
+    return a if a >= b else b
+
+
+@nb.njit(cache=True, nogil=True)
+def nan_min(a, b):
+    """np.minimum(a, b) of two floats: nan if either is nan."""
+    if a != a or b != b:
+        return a + b
+    return a if a <= b else b
+
+
+@nb.njit(cache=True, nogil=True)
+def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
+    """The two-point estimate at row i1 from the measurements i0 and i1 (``lgekf.core.initiation.two_point``, one row):
+    common coordinates c (6,) = (x, y, θ, v_x, v_y, ω) and their variances var (6,). ``heading`` (N,) or empty (no
+    heading column)."""
+    dt = t[i1] - t[i0]
+    v0 = (z[i1, 0] - z[i0, 0]) / dt
+    v1 = (z[i1, 1] - z[i0, 1]) / dt
+    speed = math.hypot(v0, v1)
+    r2 = meas_std ** 2
+    var_v = 2.0 * r2 / dt ** 2
+    floor_vy = (sideslip ** 2) * var_v
+    for k in range(6):
+        c[k] = 0.0
+    c[0] = z[i1, 0]
+    c[1] = z[i1, 1]
+    var[0] = r2
+    var[1] = r2
+    var[3] = var_v
+    var[5] = omega_std ** 2
+    if heading.shape[0] == 0:
+        c[2] = math.atan2(v1, v0) if speed > 0 else 0.0
+        c[3] = speed
+        var_th = var_v / speed ** 2 if speed > 0 else np.inf
+        cap = heading_cap ** 2
+        var[2] = var_th if var_th <= cap or var_th != var_th else cap  # np.minimum: nan stays nan
+        var[4] = nan_max(var_v - speed ** 2 * var[2], floor_vy)
+    else:
+        h = heading[i1]
+        c[2] = math.atan2(math.sin(h), math.cos(h))
+        c[3] = v0 * math.cos(h) + v1 * math.sin(h)
+        var[2] = heading_std ** 2
+        var[4] = floor_vy
+
+
+@nb.njit(cache=True, nogil=True)
+def two_points(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
+    """``two_point_into`` of every row: rows i1 (R,) from i0 (R,), measurement std per row (R,); c, var (R, 6)."""
+    for k in range(i1.shape[0]):
+        two_point_into(t, z, heading, i0[k], i1[k], meas_std[k], omega_std, heading_std, heading_cap, sideslip, c[k], var[k])
+
+
+@nb.njit(cache=True, nogil=True)
+def jacobian_point(c, var, out):
+    """The common coordinates at which the initial covariance's Jacobian is taken: c with its speed c[3] moved
+    just off zero (at least 1e-9 of its std, keeping its sign) where a heading-of-motion coordinate is singular."""
+    for k in range(6):
+        out[k] = c[k]
+    tiny = 1e-9 * math.sqrt(var[3])
+    if abs(c[3]) < tiny:
+        out[3] = -tiny if c[3] < 0 else tiny
+
+
+@nb.njit(cache=True, nogil=True)
+def initial_covariance_into(J, var, angles, P):
+    """P = J diag(var) Jᵀ, symmetrised, each angle's variance capped at π² (its row and column scaled):
+    the initial covariance in filter coordinates from the common-coordinate variances (J (n, 6))."""
+    n = J.shape[0]
+    for i in range(n):
+        for k in range(n):
+            acc = 0.0
+            for j in range(J.shape[1]):
+                acc = acc + (J[i, j] * var[j]) * J[k, j]
+            P[i, k] = acc
+    for i in range(n):
+        for k in range(i + 1, n):
+            v = 0.5 * (P[i, k] + P[k, i])
+            P[i, k] = v
+            P[k, i] = v
+    s = np.empty(n)
+    for a in angles:
+        if P[a, a] > math.pi ** 2:
+            for i in range(n):
+                s[i] = 1.0
+            s[a] = math.pi / math.sqrt(P[a, a])
+            for i in range(n):
+                for k in range(n):
+                    P[i, k] *= s[i] * s[k]
+
+
+@nb.njit(cache=True, nogil=True)
+def pack_into(P, out):
+    """The upper triangle of P (n, n), row-major, into out (n(n+1)/2,)."""
+    idx = 0
+    for i in range(P.shape[0]):
+        for k in range(i, P.shape[0]):
+            out[idx] = P[i, k]
+            idx += 1
+
+
+@nb.njit(cache=True, nogil=True)
+def first_row(t, g, a, baseline):
+    """The earlier row of a re-initialisation at row g of an object starting at row a: the latest j in [a, g) with
+    t[j] <= t[g] - baseline (by bisection, t increasing), a if none, at most g - 1."""
+    target = t[g] - baseline
+    lo, hi = a, g
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if t[mid] <= target:
+            lo = mid + 1
+        else:
+            hi = mid
+    return min(max(a, lo - 1), g - 1)
+
+
+@nb.njit(cache=True, nogil=True)
+def finite_row(x, p, r):
+    """Every entry of x[r] and p[r] is finite."""
+    for j in range(x.shape[1]):
+        if not np.isfinite(x[r, j]):
+            return False
+    for j in range(p.shape[1]):
+        if not np.isfinite(p[r, j]):
+            return False
+    return True
+
+
+@nb.njit(cache=True, nogil=True)
+def speed_std_from(grad, p, n):
+    """|grad| √λ_max(P restricted to the coordinates the speed depends on) (``divergence.speed_std``), from the
+    speed's gradient (n,) and the packed covariance p."""
+    top = 1.0
+    for i in range(n):
+        top = max(top, abs(grad[i]))
+    sel = np.empty(n, np.int64)
+    k = 0
+    for i in range(n):
+        if abs(grad[i]) > 1e-9 * top:
+            sel[k] = i
+            k += 1
+    if k == 0:
+        return 0.0
+    P = np.empty((n, n))
+    idx = 0
+    for i in range(n):
+        for j in range(i, n):
+            P[i, j] = p[idx]
+            P[j, i] = p[idx]
+            idx += 1
+    S = np.empty((k, k))
+    g = np.empty(k)
+    for a in range(k):
+        g[a] = grad[sel[a]]
+        for b in range(k):
+            S[a, b] = P[sel[a], sel[b]]
+    lam = np.linalg.eigvalsh(S)[-1]
+    return math.sqrt(max(lam, 0.0)) * math.sqrt(np.dot(g, g))
+
+
+@nb.njit(cache=True, nogil=True)
+def scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_short):
+    """The first alarm of rows [a, e): (row or -1, kind, value, first flagged row) (``divergence._scan``)."""
+    count = 0
+    run = 0
+    for k in range(a, e):
+        if bad[k]:
+            return k, 3, np.nan, k
+        run = run + 1 if over[k] else 0
+        if absurd[k]:
+            return k, 2, 0.0, k - min(run, window) + 1
+        count += 1
+        total_s = 0.0
+        if count >= short:
+            for j in range(k - short + 1, k + 1):
+                total_s += min(nis[j], clip)
+        total = 0.0
+        if count >= window:
+            for j in range(k - window + 1, k + 1):
+                total += min(nis[j], clip)
+        if count >= short and total_s > thr_short:
+            return k, 1, total_s / short, k - short + 1
+        if count >= window and total > thr:
+            return k, 1, total / window, k - window + 1
+    return -1, 0, 0.0, 0
+
+
+@nb.njit(cache=True, nogil=True)
+def initial_covariances(J, var, angles, out):
+    """``initial_covariance_into`` of every row: J (B, n, 6), var (B, 6) into out (B, n, n)."""
+    for b in range(J.shape[0]):
+        initial_covariance_into(J[b], var[b], angles, out[b])
+
+
+@nb.njit(cache=True, nogil=True)
+def jacobian_points(c, var, out):
+    """``jacobian_point`` of every row of c, var (B, 6) into out (B, 6)."""
+    for b in range(c.shape[0]):
+        jacobian_point(c[b], var[b], out[b])
+
+
+@nb.njit(cache=True, nogil=True)
+def first_rows(t, rows, obj_first, baseline, out):
+    """``first_row`` of every re-initialisation row: rows (R,), obj_first (R,) into out (R,)."""
+    for i in range(rows.shape[0]):
+        out[i] = first_row(t, rows[i], obj_first[i], baseline)
+
+
+@nb.njit(cache=True, nogil=True)
+def finite_rows(x, p, rows, out):
+    """out[i] = ``finite_row`` of row rows[i]."""
+    for i in range(rows.shape[0]):
+        out[i] = finite_row(x, p, rows[i])
+
+
+@nb.njit(cache=True, nogil=True)
+def scan_segments(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
+                  out_from):
+    """``scan_segment`` of every segment [seg_first[s], seg_end[s])."""
+    for s in range(seg_first.shape[0]):
+        out_row[s], out_kind[s], out_val[s], out_from[s] = scan_segment(nis, absurd, over, bad, seg_first[s], seg_end[s], window,
+                                                                        short, clip, thr, thr_short)
