@@ -10,7 +10,7 @@ import numba as nb
 import numpy as np
 from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
-from .monitor import nan_max, nan_min, two_point_into, two_points, jacobian_point, initial_covariance_into, pack_into, first_row, finite_row, speed_std_from, scan_segment, initial_covariances, jacobian_points, first_rows, finite_rows, scan_segments  # noqa: F401
+from .monitor import nan_max, nan_min, two_point_into, two_points, jacobian_point, initial_covariance_into, pack_into, first_row, finite_row, largest_eigenvalue, speed_std_from, scan_segment, initial_covariances, jacobian_points, first_rows, finite_rows, scan_segments  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
@@ -663,13 +663,16 @@ def rerun_position(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
 
 
 @nb.njit(cache=True, nogil=True)
-def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, limits, m, window, short, clip, thr, thr_short, n_sigma,
-                   max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all, heading_all,
-                   offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s, carry_p,
-                   carry_scale, carry_set):
+def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip,
+                   thr, thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
+                   heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
+                   carry_p, carry_scale, carry_set):
     """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
 
-    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i] (already filtered into x, p, nis). Each
+    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i]. Where run_first[i] >= 0 its rows run_first[i]
+    .. seg_end[i] - 1 are filtered first, from the internal state run_s[i] and covariance run_p[i] of the row before, the
+    noise stds times run_scale0[i] (the first pass of ``lgekf.apps.track.track_monitored``: one library with the
+    filter's step per model instead of two); else they are in x, p, nis already. Each
     round scans rows for the first alarm (``first_alarm``); at an alarm the row is re-initialised (``reinit_into``, the
     measurements of global row + ``offset`` of t_all, z_all, heading_all; obj_first (B,) global) and the filter is
     run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
@@ -711,7 +714,13 @@ def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, limits, m, wi
         scan_from = first
         scan_end = end
         run_scale = scale[o]  # the noise inflation of the run being scanned
-        reached = False  # a rerun or a re-initialisation reached the segment's last row
+        reached = False  # a run or a re-initialisation reached the segment's last row
+        if run_first[si] >= 0:  # the first pass
+            s1[0] = run_s[si]
+            p1[0] = run_p[si]
+            run_scale = run_scale0[si]
+            rerun_position(zm, t, run_first[si], end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+            reached = True
         while True:
             g, kind, val, start, lim = first_alarm(x, p, nis, scan_from, scan_end, limits[o], window, short, clip, thr, thr_short,
                                                    n_sigma, over, absurd, bad, sp, rows, xh, grad)
@@ -1300,6 +1309,8 @@ def first_alarm(x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_s
     """The first alarm of rows [a, e) of one object: (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the
     window's mean NIS, the speed), first flagged row, limit (of the mean NIS, of the speed)); ``limit`` the object's
     speed limit. over, absurd, bad (N,) bool, sp (N,), rows (N,) int64, xh (1, n), grad (n,): scratch."""
+    if e <= a:  # no row
+        return -1, 0, 0.0, 0, limit
     R = e - a
     for k in range(R):
         rows[k] = a + k

@@ -9,7 +9,7 @@ import math
 import numba as nb
 import numpy as np
 
-__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
 
 
 @nb.njit(cache=True, nogil=True)
@@ -146,6 +146,49 @@ def finite_row(x, p, r):
 
 
 @nb.njit(cache=True, nogil=True)
+def largest_eigenvalue(S, k):
+    """The largest eigenvalue of the symmetric S[:k, :k] (overwritten) by cyclic Jacobi rotations: quadratic
+    convergence, to the rounding of S's entries (k is at most the state dimension here; no LAPACK, whose numba
+    wrappers would triple the monitor's compiled code and start a second OpenBLAS)."""
+    for sweep in range(64):
+        off = 0.0
+        diag = 0.0
+        for a in range(k):
+            diag += S[a, a] * S[a, a]
+            for b in range(a + 1, k):
+                off += S[a, b] * S[a, b]
+        if off <= 1e-34 * diag or off == 0.0:
+            break
+        for a in range(k):
+            for b in range(a + 1, k):
+                if S[a, b] == 0.0:
+                    continue
+                theta = (S[b, b] - S[a, a]) / (2.0 * S[a, b])
+                if abs(theta) > 1e150:
+                    t = 0.5 / theta
+                else:
+                    t = 1.0 / (abs(theta) + math.sqrt(theta * theta + 1.0))
+                    if theta < 0.0:
+                        t = -t
+                c = 1.0 / math.sqrt(t * t + 1.0)
+                sn = t * c
+                for r in range(k):  # S <- S G, then G^T S (G the rotation in the plane (a, b))
+                    sa = S[r, a]
+                    sb = S[r, b]
+                    S[r, a] = c * sa - sn * sb
+                    S[r, b] = sn * sa + c * sb
+                for r in range(k):
+                    sa = S[a, r]
+                    sb = S[b, r]
+                    S[a, r] = c * sa - sn * sb
+                    S[b, r] = sn * sa + c * sb
+    top = S[0, 0]
+    for a in range(1, k):
+        top = max(top, S[a, a])
+    return top
+
+
+@nb.njit(cache=True, nogil=True)
 def speed_std_from(grad, p, n):
     """|grad| √λ_max(P restricted to the coordinates the speed depends on) (``divergence.speed_std``), from the
     speed's gradient (n,) and the packed covariance p."""
@@ -168,13 +211,13 @@ def speed_std_from(grad, p, n):
             P[j, i] = p[idx]
             idx += 1
     S = np.empty((k, k))
-    g = np.empty(k)
+    g2 = 0.0
     for a in range(k):
-        g[a] = grad[sel[a]]
+        g2 += grad[sel[a]] * grad[sel[a]]
         for b in range(k):
             S[a, b] = P[sel[a], sel[b]]
-    lam = np.linalg.eigvalsh(S)[-1]
-    return math.sqrt(max(lam, 0.0)) * math.sqrt(np.dot(g, g))
+    lam = largest_eigenvalue(S, k)
+    return math.sqrt(max(lam, 0.0)) * math.sqrt(g2)
 
 
 @nb.njit(cache=True, nogil=True)

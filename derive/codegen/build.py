@@ -152,7 +152,8 @@ IMPORTS.append("from .monitor import " + ", ".join(MONITOR_NAMES) + "  # noqa: F
 def render_monitor() -> str:
     """``generated/monitor.py``: the divergence monitor's model-independent kernels (``derive/codegen/monitor.py``)."""
     return HEADER.format(title="The divergence monitor's model-independent kernels (two-point start, scan, speed std).",
-                         source="derive/codegen/monitor.py") + MONITOR_HELPERS
+                         source="derive/codegen/monitor.py") + MONITOR_HELPERS.replace(
+        "import numpy as np\n", f"import numpy as np\n\n__all__ = {MONITOR_NAMES!r}\n", 1)
 
 
 def _fitting(model, measurements):

@@ -9,12 +9,12 @@ range of rows, and the whole monitor-and-recover loop of
 search's low-noise candidates on one long object raise an alarm every few hundred rows: 0.15 ms of Python each).
 """
 
+import re
+
 MONITOR_HELPERS = '''import math
 
 import numba as nb
 import numpy as np
-
-__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
 
 
 @nb.njit(cache=True, nogil=True)
@@ -151,6 +151,49 @@ def finite_row(x, p, r):
 
 
 @nb.njit(cache=True, nogil=True)
+def largest_eigenvalue(S, k):
+    """The largest eigenvalue of the symmetric S[:k, :k] (overwritten) by cyclic Jacobi rotations: quadratic
+    convergence, to the rounding of S's entries (k is at most the state dimension here; no LAPACK, whose numba
+    wrappers would triple the monitor's compiled code and start a second OpenBLAS)."""
+    for sweep in range(64):
+        off = 0.0
+        diag = 0.0
+        for a in range(k):
+            diag += S[a, a] * S[a, a]
+            for b in range(a + 1, k):
+                off += S[a, b] * S[a, b]
+        if off <= 1e-34 * diag or off == 0.0:
+            break
+        for a in range(k):
+            for b in range(a + 1, k):
+                if S[a, b] == 0.0:
+                    continue
+                theta = (S[b, b] - S[a, a]) / (2.0 * S[a, b])
+                if abs(theta) > 1e150:
+                    t = 0.5 / theta
+                else:
+                    t = 1.0 / (abs(theta) + math.sqrt(theta * theta + 1.0))
+                    if theta < 0.0:
+                        t = -t
+                c = 1.0 / math.sqrt(t * t + 1.0)
+                sn = t * c
+                for r in range(k):  # S <- S G, then G^T S (G the rotation in the plane (a, b))
+                    sa = S[r, a]
+                    sb = S[r, b]
+                    S[r, a] = c * sa - sn * sb
+                    S[r, b] = sn * sa + c * sb
+                for r in range(k):
+                    sa = S[a, r]
+                    sb = S[b, r]
+                    S[a, r] = c * sa - sn * sb
+                    S[b, r] = sn * sa + c * sb
+    top = S[0, 0]
+    for a in range(1, k):
+        top = max(top, S[a, a])
+    return top
+
+
+@nb.njit(cache=True, nogil=True)
 def speed_std_from(grad, p, n):
     """|grad| √λ_max(P restricted to the coordinates the speed depends on) (``divergence.speed_std``), from the
     speed's gradient (n,) and the packed covariance p."""
@@ -173,13 +216,13 @@ def speed_std_from(grad, p, n):
             P[j, i] = p[idx]
             idx += 1
     S = np.empty((k, k))
-    g = np.empty(k)
+    g2 = 0.0
     for a in range(k):
-        g[a] = grad[sel[a]]
+        g2 += grad[sel[a]] * grad[sel[a]]
         for b in range(k):
             S[a, b] = P[sel[a], sel[b]]
-    lam = np.linalg.eigvalsh(S)[-1]
-    return math.sqrt(max(lam, 0.0)) * math.sqrt(np.dot(g, g))
+    lam = largest_eigenvalue(S, k)
+    return math.sqrt(max(lam, 0.0)) * math.sqrt(g2)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -246,7 +289,7 @@ def scan_segments(nis, absurd, over, bad, seg_first, seg_end, window, short, cli
                                                                         short, clip, thr, thr_short)
 '''
 
-MONITOR_NAMES = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+MONITOR_NAMES = re.findall(r"^def (\w+)\(", MONITOR_HELPERS, flags=re.M)  # what generated/monitor.py exports
 
 MODEL_TEMPLATE = '''
 @nb.njit(cache=True, nogil=True)
@@ -304,6 +347,8 @@ def first_alarm(x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_s
     """The first alarm of rows [a, e) of one object: (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the
     window's mean NIS, the speed), first flagged row, limit (of the mean NIS, of the speed)); ``limit`` the object's
     speed limit. over, absurd, bad (N,) bool, sp (N,), rows (N,) int64, xh (1, n), grad (n,): scratch."""
+    if e <= a:  # no row
+        return -1, 0, 0.0, 0, limit
     R = e - a
     for k in range(R):
         rows[k] = a + k
@@ -338,13 +383,16 @@ def rerun_{meas}(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
 
 
 @nb.njit(cache=True, nogil=True)
-def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, limits, m, window, short, clip, thr, thr_short, n_sigma,
-                   max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all, heading_all,
-                   offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s, carry_p,
-                   carry_scale, carry_set):
+def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip,
+                   thr, thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
+                   heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
+                   carry_p, carry_scale, carry_set):
     """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
 
-    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i] (already filtered into x, p, nis). Each
+    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i]. Where run_first[i] >= 0 its rows run_first[i]
+    .. seg_end[i] - 1 are filtered first, from the internal state run_s[i] and covariance run_p[i] of the row before, the
+    noise stds times run_scale0[i] (the first pass of ``lgekf.apps.track.track_monitored``: one library with the
+    filter's step per model instead of two); else they are in x, p, nis already. Each
     round scans rows for the first alarm (``first_alarm``); at an alarm the row is re-initialised (``reinit_into``, the
     measurements of global row + ``offset`` of t_all, z_all, heading_all; obj_first (B,) global) and the filter is
     run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
@@ -386,7 +434,13 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, limits, m, wind
         scan_from = first
         scan_end = end
         run_scale = scale[o]  # the noise inflation of the run being scanned
-        reached = False  # a rerun or a re-initialisation reached the segment's last row
+        reached = False  # a run or a re-initialisation reached the segment's last row
+        if run_first[si] >= 0:  # the first pass
+            s1[0] = run_s[si]
+            p1[0] = run_p[si]
+            run_scale = run_scale0[si]
+            rerun_{meas}(zm, t, run_first[si], end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+            reached = True
         while True:
             g, kind, val, start, lim = first_alarm(x, p, nis, scan_from, scan_end, limits[o], window, short, clip, thr, thr_short,
                                                    n_sigma, over, absurd, bad, sp, rows, xh, grad)

@@ -46,17 +46,17 @@ from ..core.initiation import SIDESLIP_FRACTION
 from ..core.registry import get_model
 from .noise import CHORD_S, chi2_quantile, chord_speeds
 
-__all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "Restart", "Carry", "recover", "speed_limits", "speeds", "speed_std", "first_alarms",
+__all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "Restart", "Carry", "FirstPass", "recover", "speed_limits", "speeds", "speed_std", "first_alarms",
            "KIND_NAMES"]
 
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
-# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm). The rows of
-# a window past the next alarm are filtered in vain, a window costs a round of Python (~0.15 ms, the filtering of
-# ~2000 rows); the noise search's low-noise candidates on one long object raise an alarm every few hundred rows:
-# there 2⁸ rows cost least (the five searches, serial, on one object of 10⁶ rows: 2⁸ 1.36 CPU-s, 2¹⁰ 1.53, 2¹²
-# 2.57, 2¹⁴ 6.6; 2⁶ and 2⁷ with windows growing 4x 1.50 and 1.38; the same plans); no change on 10⁴ objects
-RERUN_ROWS = 1 << 8
+# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm): the rows of a
+# window past the next alarm are filtered in vain, and a window costs a kernel call and a scan. The noise search's
+# low-noise candidates on one long object raise an alarm every few hundred rows: the five searches, serial, on one object
+# of 10⁶ rows, CPU-s (2026-11-24, compiled monitor): 2⁴ 0.874, 2⁵ 0.868, 2⁶ 0.856, 2⁷ 0.886, 2⁸ 0.921, 2¹⁰ 1.135; on 10⁴
+# objects of 100 rows within 0.03 s whatever the size; the same plans
+RERUN_ROWS = 1 << 6
 
 
 @dataclass(frozen=True)
@@ -236,8 +236,20 @@ class Carry:
                    np.zeros(objects, np.bool_))
 
 
+@dataclass
+class FirstPass:
+    """The filter's first pass over each object, made by ``recover`` before it monitors (one compiled library with the
+    filter's step per model, not two): rows ``first`` (B,) on, from the internal state ``s`` (B, ni) and packed
+    covariance ``p`` (B, n(n+1)/2) of the row before, every noise std times ``scale`` (B,)."""
+
+    first: np.ndarray
+    s: np.ndarray
+    p: np.ndarray
+    scale: np.ndarray
+
+
 def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, restart: Restart, first=None,
-            memory: MonitorMemory | None = None, carry: Carry | None = None):
+            memory: MonitorMemory | None = None, carry: Carry | None = None, first_pass: FirstPass | None = None):
     """Monitor every object's rows 2, 3, ... and re-initialise it at each alarm (in place): one call of the
     generated ``recover_<meas>`` (``derive/codegen/monitor.py``), object after object, no Python per alarm.
 
@@ -269,7 +281,9 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         The objects' re-initialisations so far, read and updated in place (default: none yet). With ``first``,
         monitoring continues over a later window of the same objects' rows as over one array.
     carry : Carry, optional
-        Filled where a re-initialisation or a rerun reached an object's last row.
+        Filled where a run or a re-initialisation reached an object's last row.
+    first_pass : FirstPass, optional
+        Filter the objects' rows from ``first_pass.first`` on before monitoring them (default: x, p, nis hold them).
 
     Returns
     -------
@@ -283,14 +297,25 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     starts = np.asarray(starts, dtype=np.int64)
     flag = np.zeros(x.shape[0], np.int8)
     first = starts[:-1] + 2 if first is None else np.asarray(first, dtype=np.int64)
-    seg_obj = np.flatnonzero(first < starts[1:])
+    todo = first < starts[1:]
+    if first_pass is not None:
+        todo |= np.asarray(first_pass.first) < starts[1:]
+    seg_obj = np.flatnonzero(todo)
     memory = MonitorMemory.fresh(B) if memory is None else memory
     carry = Carry.empty(model, B) if carry is None else carry
     clip, thr, thr_short = cfg.nis_thresholds(m)
     rs = restart
     heading = np.empty(0) if rs.heading_all is None else np.ascontiguousarray(rs.heading_all, dtype=float)
     kernel = getattr(spec.kernels, f"recover_{rs.measurement}")
-    found = kernel(x, p, nis, flag, seg_obj, first[seg_obj], starts[seg_obj + 1], np.ascontiguousarray(limits, dtype=float), int(m),
+    if first_pass is None:
+        run_first, run_s, run_p, run_scale = np.full(seg_obj.size, -1, np.int64), carry.s[:0], carry.p[:0], carry.scale[:0]
+    else:
+        fp = first_pass
+        run_first = np.asarray(fp.first, dtype=np.int64)[seg_obj]
+        run_s, run_p = np.ascontiguousarray(fp.s[seg_obj], dtype=float), np.ascontiguousarray(fp.p[seg_obj], dtype=float)
+        run_scale = np.ascontiguousarray(np.asarray(fp.scale, dtype=float)[seg_obj])
+    found = kernel(x, p, nis, flag, seg_obj, first[seg_obj], starts[seg_obj + 1], run_first, run_s, run_p, run_scale,
+                   np.ascontiguousarray(limits, dtype=float), int(m),
                    int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short), float(cfg.n_sigma), int(cfg.max_reinit),
                    int(cfg.repeat), float(cfg.max_inflation), int(RERUN_ROWS), memory.count, memory.scale, memory.last,
                    np.ascontiguousarray(rs.zm, dtype=float), np.ascontiguousarray(rs.t, dtype=float), np.asarray(rs.q, dtype=float),

@@ -56,7 +56,7 @@ from ..core.covariance import pack, packed_diagonal
 from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, two_point  # noqa: F401
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
-from .divergence import MonitorConfig, Restart, recover, speed_limits
+from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows_made
@@ -151,19 +151,26 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     No divergence monitoring: that is ``track_monitored``.
     """
     spec = get_model(model)
-    n, npk = spec.n, spec.n_packed
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    x0, p0, out_x, out_p, out_nis = _started(model, t, z, starts, cfg, heading, x0, P0)
+    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, cfg.q(model), r, out_x, out_p, out_nis)
+    return out_x, out_p, out_nis
+
+
+def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
+    """(x0 (B, n), packed p0, out_x, out_p, out_nis): every object's two-point start (given or made) on its rows 0
+    and 1 of the outputs (row 0 with its measured position), the other rows to be filtered (NIS nan)."""
+    spec = get_model(model)
     if x0 is None or P0 is None:
         c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
         x0, P0 = initial_estimates(model, c, var)
     p0 = pack(P0)
-    q = cfg.q(model)
-    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     N = t.size
-    out_x = np.empty((N, n))
-    out_p = np.empty((N, npk))
+    out_x = np.empty((N, spec.n))
+    out_p = np.empty((N, spec.n_packed))
     out_nis = np.full(N, np.nan)
     i0 = starts[:-1]
     out_x[i0] = x0
@@ -171,8 +178,7 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     out_x[i0 + 1] = x0
     out_p[i0] = p0
     out_p[i0 + 1] = p0
-    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, q, r, out_x, out_p, out_nis)
-    return out_x, out_p, out_nis
+    return x0, p0, out_x, out_p, out_nis
 
 
 def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
@@ -225,15 +231,19 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
     x0, P0 = (None, None) if start is None else start
-    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
-    flag = np.zeros(t.size, np.int8)
     if monitor is None:
-        return Tracked(x, p, nis, flag, [])
+        x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
+        return Tracked(x, p, nis, np.zeros(t.size, np.int8), [])
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    x0, p0, x, p, nis = _started(model, t, z, starts, cfg, heading, x0, P0)
+    s0 = np.empty((len(starts) - 1, len(spec.internal_names)))
+    spec.kernels.states_from_physical(np.ascontiguousarray(x0, dtype=float), s0)
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
     restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, starts[:-1])
-    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, restart)
+    # the first pass (the rows track_arrays filters) is made by the monitor's compiled loop too
+    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, restart,
+                           first_pass=FirstPass(starts[:-1] + 2, s0, p0, np.ones(len(starts) - 1)))
     return Tracked(x, p, nis, flag, alarms)
 
 

@@ -29,7 +29,7 @@ from typing import Iterator
 import numpy as np
 
 from ..core.registry import get_model
-from .divergence import NEVER, Carry, MonitorConfig, MonitorMemory, Restart, recover
+from .divergence import NEVER, Carry, FirstPass, MonitorConfig, MonitorMemory, Restart, recover
 
 __all__ = ["filter_windows", "WINDOW_ROWS"]
 
@@ -103,24 +103,27 @@ def filter_windows(model: str, t, zm, x0, p0, restart: Restart, monitor: Monitor
             p[0] = p[1] = p0
         else:
             x[:A - L], p[:A - L], nis[:A - L], flag[:A - L] = tail
-        run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
-            x, p, nis)
         alarms = []
         if monitor is not None and memory.count[0] <= monitor.max_reinit:
             last_global = int(memory.last[0])
             scan_from = max(A - reach, 2, last_global + 1 if last_global != NEVER else 2)
             if last_global != NEVER:
                 memory.last[0] = last_global - L
-            carry = Carry(carry_s, carry_p, np.array([run_scale]), np.zeros(1, np.bool_))  # where a rerun reaches the last row
+            # the window's rows filtered from where the previous window's run ended, then monitored, in one compiled call;
+            # carry: where the run that filtered the window's last row left the filter
+            carry = Carry(carry_s, carry_p, np.array([run_scale]), np.zeros(1, np.bool_))
             f, alarms = recover(model, x, p, nis, np.array([0, B - L], np.int64), limits, zm.shape[1], monitor,
                                 replace(restart, zm=zm[L:B], t=t[L:B], offset=L), first=np.array([scan_from - L], np.int64), memory=memory,
-                                carry=carry)
-            run_scale = float(carry.scale[0])  # the next window goes on from the run that filtered the last row
+                                carry=carry, first_pass=FirstPass(np.array([A - L]), carry_s.copy(), carry_p.copy(), np.array([run_scale])))
+            run_scale = float(carry.scale[0])
             if memory.last[0] != NEVER:
                 memory.last[0] += L
             flag |= f
             for al in alarms:
                 al.row += L
+        else:  # no monitor (or none left after max_reinit): the filter alone
+            run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
+                x, p, nis)
         done = B == N
         keep = 0 if done else min(hold, B - L)
         cut = B - L - keep
