@@ -130,8 +130,8 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
 
     One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment or
     step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the process-noise
-    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (The divergence
-    monitor's reruns, with noise per segment and from internal states: ``run_segments_noise_from_<meas>``.)
+    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (With the divergence
+    monitor on, the first pass is made by the monitor's compiled ``recover_<meas>`` instead: ``track_monitored``.)
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
