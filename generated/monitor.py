@@ -9,7 +9,7 @@ import math
 import numba as nb
 import numpy as np
 
-__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'pack_into', 'first_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'copy_row', 'pack_into', 'first_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
 
 
 @nb.njit(cache=True, nogil=True)
@@ -106,6 +106,13 @@ def initial_covariance_into(J, var, angles, P):
             for i in range(n):
                 for k in range(n):
                     P[i, k] *= s[i] * s[k]
+
+
+@nb.njit(cache=True, nogil=True)
+def copy_row(src, i, dst, j):
+    """dst[j, :] = src[i, :] (a loop: a slice assignment would compile numba's shape-mismatch error message)."""
+    for k in range(src.shape[1]):
+        dst[j, k] = src[i, k]
 
 
 @nb.njit(cache=True, nogil=True)

@@ -114,6 +114,13 @@ def initial_covariance_into(J, var, angles, P):
 
 
 @nb.njit(cache=True, nogil=True)
+def copy_row(src, i, dst, j):
+    """dst[j, :] = src[i, :] (a loop: a slice assignment would compile numba's shape-mismatch error message)."""
+    for k in range(src.shape[1]):
+        dst[j, k] = src[i, k]
+
+
+@nb.njit(cache=True, nogil=True)
 def pack_into(P, out):
     """The upper triangle of P (n, n), row-major, into out (n(n+1)/2,)."""
     idx = 0
@@ -293,23 +300,17 @@ MONITOR_NAMES = re.findall(r"^def (\w+)\(", MONITOR_HELPERS, flags=re.M)  # what
 
 MODEL_TEMPLATE = '''
 @nb.njit(cache=True, nogil=True)
-def reinit_into(t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline,
-                      angles, x_out, p_out):
+def reinit_into(t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles,
+                c, var, cj, J, P, x_out, p_out):
     """The re-initialisation at (global) row g of an object starting at row a: the two-point estimate from g and the
-    latest row at least ``baseline`` s earlier, the measurement std times ``scale``; physical x_out (n,), packed p_out."""
-    c = np.empty((1, 6))
-    var = np.empty(6)
+    latest row at least ``baseline`` s earlier, the measurement std times ``scale``: physical x_out (1, n) and packed
+    p_out (n(n+1)/2,); c, cj (1, 6), var (6,), J (1, n, 6), P (n, n) scratch."""
     two_point_into(t_all, z_all, heading_all, first_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
                    heading_cap, sideslip, c[0], var)
-    cj = np.empty((1, 6))
     jacobian_point(c[0], var, cj[0])
-    x1 = np.empty((1, x_out.shape[0]))
-    common_to_states(c, x1)
-    J = np.empty((1, x_out.shape[0], 6))
+    common_to_states(c, x_out)
     common_jacobians(cj, J)
-    P = np.empty((x_out.shape[0], x_out.shape[0]))
     initial_covariance_into(J[0], var, angles, P)
-    x_out[:] = x1[0]
     pack_into(P, p_out)
 
 
@@ -399,8 +400,8 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
     going on from the previous one's last state and scanned from max(window, short) rows before it. count, scale,
     last (B,): the objects' memory, updated in place; flag (N,) int8 set on the alarms' rows. carry_s, carry_p,
     carry_scale, carry_set (B,): the filter's state, covariance and noise inflation after the segment's last row
-    where a re-initialisation or a rerun reached it (carry_set True). Returns the alarms' arrays (obj, row, kind,
-    value, limit, updates, reinitialised, scale), object after object, each object's in order."""
+    where a re-initialisation or a rerun reached it (carry_set True). Returns the alarms (A, 8): obj, row, kind,
+    value, limit, updates, reinitialised (1.0 / 0.0), scale, object after object, each object's in order."""
     N = x.shape[0]
     n = x.shape[1]
     over = np.zeros(N, np.bool_)
@@ -411,15 +412,7 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
     xh = np.empty((1, n))
     grad = np.empty(n)
     reach = max(window, short)
-    cap = 16
-    a_obj = np.empty(cap, np.int64)
-    a_row = np.empty(cap, np.int64)
-    a_kind = np.empty(cap, np.int64)
-    a_val = np.empty(cap)
-    a_lim = np.empty(cap)
-    a_upd = np.empty(cap, np.int64)
-    a_ok = np.empty(cap, np.bool_)
-    a_scale = np.empty(cap)
+    found = np.empty((16, 8))  # the alarms: obj, row, kind, value, limit, updates, reinitialised, scale (rows grow)
     na = 0
     s1 = np.empty((1, carry_s.shape[1]))
     p1 = np.empty((1, p.shape[1]))
@@ -427,6 +420,11 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
     r1 = np.empty((1, r.shape[0]))
     x0 = np.empty((1, n))
     p0 = np.empty(p.shape[1])
+    c6 = np.empty((1, 6))
+    var6 = np.empty(6)
+    cj6 = np.empty((1, 6))
+    J6 = np.empty((1, n, 6))
+    P6 = np.empty((n, n))
     for si in range(seg_obj.shape[0]):
         o = seg_obj[si]
         first = seg_first[si]
@@ -436,8 +434,8 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
         run_scale = scale[o]  # the noise inflation of the run being scanned
         reached = False  # a run or a re-initialisation reached the segment's last row
         if run_first[si] >= 0:  # the first pass
-            s1[0] = run_s[si]
-            p1[0] = run_p[si]
+            copy_row(run_s, si, s1, 0)
+            copy_row(run_p, si, p1, 0)
             run_scale = run_scale0[si]
             rerun_{meas}(zm, t, run_first[si], end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
             reached = True
@@ -458,24 +456,20 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
             if kind == 1 and g - last[o] <= repeat * window:  # soon after the last re-initialisation: the noise is too small
                 scale[o] *= nan_min(math.sqrt(nan_max(val / m, 1.0)), max_inflation)
             ok = count[o] <= max_reinit
-            if na == cap:
-                cap *= 2
-                a_obj = np.concatenate((a_obj, np.empty(cap - na, np.int64)))
-                a_row = np.concatenate((a_row, np.empty(cap - na, np.int64)))
-                a_kind = np.concatenate((a_kind, np.empty(cap - na, np.int64)))
-                a_val = np.concatenate((a_val, np.empty(cap - na)))
-                a_lim = np.concatenate((a_lim, np.empty(cap - na)))
-                a_upd = np.concatenate((a_upd, np.empty(cap - na, np.int64)))
-                a_ok = np.concatenate((a_ok, np.empty(cap - na, np.bool_)))
-                a_scale = np.concatenate((a_scale, np.empty(cap - na)))
-            a_obj[na] = o
-            a_row[na] = g
-            a_kind[na] = kind
-            a_val[na] = val
-            a_lim[na] = lim
-            a_upd[na] = g - start + 1 if kind == 1 else 0
-            a_ok[na] = ok
-            a_scale[na] = scale[o]
+            if na == found.shape[0]:
+                more = np.empty((2 * na, 8))
+                for i in range(na):
+                    for j in range(8):
+                        more[i, j] = found[i, j]
+                found = more
+            found[na, 0] = o
+            found[na, 1] = g
+            found[na, 2] = kind
+            found[na, 3] = val
+            found[na, 4] = lim
+            found[na, 5] = g - start + 1 if kind == 1 else 0
+            found[na, 6] = 1.0 if ok else 0.0
+            found[na, 7] = scale[o]
             na += 1
             # the NIS of an update tests the estimate before it: flag from the row before the alarm's first update (not
             # before the segment's first row) through the alarm row
@@ -488,12 +482,14 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
                 break
             last[o] = g
             reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
-                        sideslip, baseline, angles, x0[0], p0)
-            x[g] = x0[0]
-            p[g] = p0
+                        sideslip, baseline, angles, c6, var6, cj6, J6, P6, x0, p0)
+            copy_row(x0, 0, x, g)
+            for j in range(p0.shape[0]):
+                p[g, j] = p0[j]
             nis[g] = np.nan
             states_from_physical(x0, s1)
-            p1[0] = p0
+            for j in range(p0.shape[0]):
+                p1[0, j] = p0[j]
             run_scale = scale[o]
             if g + 1 >= end:  # the re-initialised row is the segment's last
                 reached = True
@@ -504,9 +500,9 @@ def recover_{meas}(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_
             rerun_{meas}(zm, t, first, scan_end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
             reached = scan_end == end
         if reached:
-            carry_s[o] = s1[0]
-            carry_p[o] = p1[0]
+            copy_row(s1, 0, carry_s, o)
+            copy_row(p1, 0, carry_p, o)
             carry_scale[o] = run_scale
             carry_set[o] = True
-    return a_obj[:na], a_row[:na], a_kind[:na], a_val[:na], a_lim[:na], a_upd[:na], a_ok[:na], a_scale[:na]
+    return found[:na]
 '''

@@ -323,5 +323,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
                    heading, int(rs.offset), np.ascontiguousarray(rs.obj_first, dtype=np.int64), float(rs.meas_std), float(rs.omega_std),
                    float(rs.heading_std), float(rs.heading_cap), SIDESLIP_FRACTION, float(rs.baseline),
                    np.array(spec.angles, dtype=np.int64), carry.s, carry.p, carry.scale, carry.set)
-    alarms = list(map(Alarm, *(column.tolist() for column in found)))
+    ints = found[:, [0, 1, 2, 5]].astype(np.int64).T.tolist()
+    alarms = list(map(Alarm, ints[0], ints[1], ints[2], found[:, 3].tolist(), found[:, 4].tolist(), ints[3], (found[:, 6] != 0).tolist(),
+                      found[:, 7].tolist()))
     return flag, alarms
