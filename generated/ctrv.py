@@ -10,7 +10,7 @@ import numba as nb
 import numpy as np
 from .special import sinc, cosc, sinc2, cosc2, dsinc, halfcot, halfcot1, sinc_family, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401
 from .special import sin_v, cos_v, atan2_v, wrap_v, wrap_sum_v, gain_damping_v, sinc_v, cosc_v, sinc2_v, cosc2_v, dsinc_v, halfcot_v, halfcot1_v  # noqa: F401
-from .monitor import nan_max, nan_min, two_point_into, two_points, jacobian_point, initial_covariance_into, copy_row, pack_into, first_row, finite_row, largest_eigenvalue, speed_std_from, scan_segment, initial_covariances, jacobian_points, first_rows, finite_rows, scan_segments  # noqa: F401
+from .monitor import maximum, minimum, two_point_into, jacobian_point, initial_covariance_into, copy_row, pack_into, reinit_earlier_row, finite_row, speed_std_from, scan_segment  # noqa: F401
 
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
@@ -992,7 +992,7 @@ def run_segments_noise_from_pose(z, t, first, lengths, s0, p0, q, r, out_x, out_
         run_one_from_pose(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def rerun_pose(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
     """Filter rows a .. b - 1 from the internal state s1 (1, ni) and packed covariance p1 (1, n(n+1)/2) of row a - 1, every
     noise std times ``scale`` (q1, r1 (1, nq), (1, nr) scratch), into x, p, nis; s1, p1 are left at row b - 1."""
@@ -1003,11 +1003,12 @@ def rerun_pose(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
     run_segments_noise_from_pose(zm, t, np.full(1, a, np.int64), np.full(1, b - a, np.int64), s1, p1, q1, r1, x, p, nis)
 
 
-@nb.njit(cache=True, nogil=True)
-def recover_pose(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip,
-                   thr, thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
-                   heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
-                   carry_p, carry_scale, carry_set):
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def recover_pose(
+        x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip, thr,
+        thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
+        heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
+        carry_p, carry_scale, carry_reached):
     """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
 
     Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i]. Where run_first[i] >= 0 its rows run_first[i]
@@ -1019,8 +1020,8 @@ def recover_pose(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s,
     run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
     going on from the previous one's last state and scanned from max(window, short) rows before it. count, scale,
     last (B,): the objects' memory, updated in place; flag (N,) int8 set on the alarms' rows. carry_s, carry_p,
-    carry_scale, carry_set (B,): the filter's state, covariance and noise inflation after the segment's last row
-    where a re-initialisation or a rerun reached it (carry_set True). Returns the alarms (A, 8): obj, row, kind,
+    carry_scale, carry_reached (B,): the filter's state, covariance and noise inflation after the segment's last row
+    where a re-initialisation or a rerun reached it (carry_reached True). Returns the alarms (A, 8): obj, row, kind,
     value, limit, updates, reinitialised (1.0 / 0.0), scale, object after object, each object's in order."""
     N = x.shape[0]
     n = x.shape[1]
@@ -1074,7 +1075,7 @@ def recover_pose(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s,
                 continue
             count[o] += 1
             if kind == 1 and g - last[o] <= repeat * window:  # soon after the last re-initialisation: the noise is too small
-                scale[o] *= nan_min(math.sqrt(nan_max(val / m, 1.0)), max_inflation)
+                scale[o] *= minimum(math.sqrt(maximum(val / m, 1.0)), max_inflation)
             ok = count[o] <= max_reinit
             if na == found.shape[0]:
                 more = np.empty((2 * na, 8))
@@ -1123,7 +1124,7 @@ def recover_pose(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s,
             copy_row(s1, 0, carry_s, o)
             copy_row(p1, 0, carry_p, o)
             carry_scale[o] = run_scale
-            carry_set[o] = True
+            carry_reached[o] = True
     return found[:na]
 
 
@@ -1922,7 +1923,7 @@ def run_segments_noise_from_position(z, t, first, lengths, s0, p0, q, r, out_x, 
         run_one_from_position(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def rerun_position(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
     """Filter rows a .. b - 1 from the internal state s1 (1, ni) and packed covariance p1 (1, n(n+1)/2) of row a - 1, every
     noise std times ``scale`` (q1, r1 (1, nq), (1, nr) scratch), into x, p, nis; s1, p1 are left at row b - 1."""
@@ -1933,11 +1934,12 @@ def rerun_position(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
     run_segments_noise_from_position(zm, t, np.full(1, a, np.int64), np.full(1, b - a, np.int64), s1, p1, q1, r1, x, p, nis)
 
 
-@nb.njit(cache=True, nogil=True)
-def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip,
-                   thr, thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
-                   heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
-                   carry_p, carry_scale, carry_set):
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def recover_position(
+        x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip, thr,
+        thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
+        heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
+        carry_p, carry_scale, carry_reached):
     """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
 
     Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i]. Where run_first[i] >= 0 its rows run_first[i]
@@ -1949,8 +1951,8 @@ def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, ru
     run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
     going on from the previous one's last state and scanned from max(window, short) rows before it. count, scale,
     last (B,): the objects' memory, updated in place; flag (N,) int8 set on the alarms' rows. carry_s, carry_p,
-    carry_scale, carry_set (B,): the filter's state, covariance and noise inflation after the segment's last row
-    where a re-initialisation or a rerun reached it (carry_set True). Returns the alarms (A, 8): obj, row, kind,
+    carry_scale, carry_reached (B,): the filter's state, covariance and noise inflation after the segment's last row
+    where a re-initialisation or a rerun reached it (carry_reached True). Returns the alarms (A, 8): obj, row, kind,
     value, limit, updates, reinitialised (1.0 / 0.0), scale, object after object, each object's in order."""
     N = x.shape[0]
     n = x.shape[1]
@@ -2004,7 +2006,7 @@ def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, ru
                 continue
             count[o] += 1
             if kind == 1 and g - last[o] <= repeat * window:  # soon after the last re-initialisation: the noise is too small
-                scale[o] *= nan_min(math.sqrt(nan_max(val / m, 1.0)), max_inflation)
+                scale[o] *= minimum(math.sqrt(maximum(val / m, 1.0)), max_inflation)
             ok = count[o] <= max_reinit
             if na == found.shape[0]:
                 more = np.empty((2 * na, 8))
@@ -2053,7 +2055,7 @@ def recover_position(x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, ru
             copy_row(s1, 0, carry_s, o)
             copy_row(p1, 0, carry_p, o)
             carry_scale[o] = run_scale
-            carry_set[o] = True
+            carry_reached[o] = True
     return found[:na]
 
 
@@ -2628,13 +2630,14 @@ def common_jacobians(c, out):
                 out[b, i, j] = J[i, j]
 
 
-@nb.njit(cache=True, nogil=True)
-def reinit_into(t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles,
-                c, var, cj, J, P, x_out, p_out):
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def reinit_into(
+        t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, c, var,
+        cj, J, P, x_out, p_out):
     """The re-initialisation at (global) row g of an object starting at row a: the two-point estimate from g and the
     latest row at least ``baseline`` s earlier, the measurement std times ``scale``: physical x_out (1, n) and packed
     p_out (n(n+1)/2,); c, cj (1, 6), var (6,), J (1, n, 6), P (n, n) scratch."""
-    two_point_into(t_all, z_all, heading_all, first_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
+    two_point_into(t_all, z_all, heading_all, reinit_earlier_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
                    heading_cap, sideslip, c[0], var)
     jacobian_point(c[0], var, cj[0])
     common_to_states(c, x_out)
@@ -2643,7 +2646,7 @@ def reinit_into(t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, hea
     pack_into(P, p_out)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def speed_std_at(x, p, k, xh, grad):
     """The std of the speed |world_velocity| of row k of physical states x (N, n) with packed covariances p: its
     gradient by central differences (steps 1e-6 max(1, |x_i|)) through ``speed_std_from``; xh (1, n), grad (n,) scratch."""
@@ -2663,7 +2666,7 @@ def speed_std_at(x, p, k, xh, grad):
     return speed_std_from(grad, p[k], n)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def speed_stds(x, p, out):
     """``speed_std_at`` of every row of x (N, n), p (N, n(n+1)/2) into out (N,)."""
     xh = np.empty((1, x.shape[1]))
@@ -2672,8 +2675,9 @@ def speed_stds(x, p, out):
         out[k] = speed_std_at(x, p, k, xh, grad)
 
 
-@nb.njit(cache=True, nogil=True)
-def first_alarm(x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_sigma, over, absurd, bad, sp, rows, xh, grad):
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def first_alarm(
+        x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_sigma, over, absurd, bad, sp, rows, xh, grad):
     """The first alarm of rows [a, e) of one object: (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the
     window's mean NIS, the speed), first flagged row, limit (of the mean NIS, of the speed)); ``limit`` the object's
     speed limit. over, absurd, bad (N,) bool, sp (N,), rows (N,) int64, xh (1, n), grad (n,): scratch."""

@@ -9,26 +9,26 @@ import math
 import numba as nb
 import numpy as np
 
-__all__ = ['nan_max', 'nan_min', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'copy_row', 'pack_into', 'first_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'first_rows', 'finite_rows', 'scan_segments']
+__all__ = ['maximum', 'minimum', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'copy_row', 'pack_into', 'reinit_earlier_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'reinit_earlier_rows']
 
 
-@nb.njit(cache=True, nogil=True)
-def nan_max(a, b):
-    """np.maximum(a, b) of two floats: nan if either is nan."""
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def maximum(a, b):
+    """``np.maximum`` of two floats: nan if either is nan (unlike Python's ``max``)."""
     if a != a or b != b:
         return a + b
     return a if a >= b else b
 
 
-@nb.njit(cache=True, nogil=True)
-def nan_min(a, b):
-    """np.minimum(a, b) of two floats: nan if either is nan."""
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def minimum(a, b):
+    """``np.minimum`` of two floats: nan if either is nan (unlike Python's ``min``)."""
     if a != a or b != b:
         return a + b
     return a if a <= b else b
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
     """The two-point estimate at row i1 from the measurements i0 and i1 (``lgekf.core.initiation.two_point``, one row):
     common coordinates c (6,) = (x, y, θ, v_x, v_y, ω) and their variances var (6,). ``heading`` (N,) or empty (no
@@ -54,7 +54,7 @@ def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, head
         var_th = var_v / speed ** 2 if speed > 0 else np.inf
         cap = heading_cap ** 2
         var[2] = var_th if var_th <= cap or var_th != var_th else cap  # np.minimum: nan stays nan
-        var[4] = nan_max(var_v - speed ** 2 * var[2], floor_vy)
+        var[4] = maximum(var_v - speed ** 2 * var[2], floor_vy)
     else:
         h = heading[i1]
         c[2] = math.atan2(math.sin(h), math.cos(h))
@@ -63,14 +63,14 @@ def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, head
         var[4] = floor_vy
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def two_points(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
     """``two_point_into`` of every row: rows i1 (R,) from i0 (R,), measurement std per row (R,); c, var (R, 6)."""
     for k in range(i1.shape[0]):
         two_point_into(t, z, heading, i0[k], i1[k], meas_std[k], omega_std, heading_std, heading_cap, sideslip, c[k], var[k])
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def jacobian_point(c, var, out):
     """The common coordinates at which the initial covariance's Jacobian is taken: c with its speed c[3] moved
     just off zero (at least 1e-9 of its std, keeping its sign) where a heading-of-motion coordinate is singular."""
@@ -81,7 +81,7 @@ def jacobian_point(c, var, out):
         out[3] = -tiny if c[3] < 0 else tiny
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def initial_covariance_into(J, var, angles, P):
     """P = J diag(var) Jᵀ, symmetrised, each angle's variance capped at π² (its row and column scaled):
     the initial covariance in filter coordinates from the common-coordinate variances (J (n, 6))."""
@@ -108,14 +108,14 @@ def initial_covariance_into(J, var, angles, P):
                     P[i, k] *= s[i] * s[k]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def copy_row(src, i, dst, j):
     """dst[j, :] = src[i, :] (a loop: a slice assignment would compile numba's shape-mismatch error message)."""
     for k in range(src.shape[1]):
         dst[j, k] = src[i, k]
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def pack_into(P, out):
     """The upper triangle of P (n, n), row-major, into out (n(n+1)/2,)."""
     idx = 0
@@ -125,8 +125,8 @@ def pack_into(P, out):
             idx += 1
 
 
-@nb.njit(cache=True, nogil=True)
-def first_row(t, g, a, baseline):
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def reinit_earlier_row(t, g, a, baseline):
     """The earlier row of a re-initialisation at row g of an object starting at row a: the latest j in [a, g) with
     t[j] <= t[g] - baseline (by bisection, t increasing), a if none, at most g - 1."""
     target = t[g] - baseline
@@ -140,7 +140,7 @@ def first_row(t, g, a, baseline):
     return min(max(a, lo - 1), g - 1)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def finite_row(x, p, r):
     """Every entry of x[r] and p[r] is finite."""
     for j in range(x.shape[1]):
@@ -152,11 +152,21 @@ def finite_row(x, p, r):
     return True
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def largest_eigenvalue(S, k):
-    """The largest eigenvalue of the symmetric S[:k, :k] (overwritten) by cyclic Jacobi rotations: quadratic
-    convergence, to the rounding of S's entries (k is at most the state dimension here; no LAPACK, whose numba
+    """The largest eigenvalue of the symmetric S[:k, :k] (overwritten; nan if an entry is not finite) by cyclic
+    Jacobi rotations on S scaled by a power of two: quadratic convergence, to the rounding of S's entries (k is at most the state dimension here; no LAPACK, whose numba
     wrappers would triple the monitor's compiled code and start a second OpenBLAS)."""
+    top = 0.0
+    for a in range(k):
+        for b in range(k):
+            top = max(top, abs(S[a, b]))
+    if top == 0.0 or not math.isfinite(top):
+        return top if top == 0.0 else np.nan
+    e = math.frexp(top)[1]  # S scaled by 2^-e (exactly) so that the sums of squares below neither overflow nor underflow
+    for a in range(k):
+        for b in range(k):
+            S[a, b] = math.ldexp(S[a, b], -e)
     for sweep in range(64):
         off = 0.0
         diag = 0.0
@@ -189,13 +199,13 @@ def largest_eigenvalue(S, k):
                     sb = S[b, r]
                     S[a, r] = c * sa - sn * sb
                     S[b, r] = sn * sa + c * sb
-    top = S[0, 0]
+    lam = S[0, 0]
     for a in range(1, k):
-        top = max(top, S[a, a])
-    return top
+        lam = max(lam, S[a, a])
+    return math.ldexp(lam, e)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def speed_std_from(grad, p, n):
     """|grad| √λ_max(P restricted to the coordinates the speed depends on) (``divergence.speed_std``), from the
     speed's gradient (n,) and the packed covariance p."""
@@ -227,9 +237,16 @@ def speed_std_from(grad, p, n):
     return math.sqrt(max(lam, 0.0)) * math.sqrt(g2)
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_short):
-    """The first alarm of rows [a, e): (row or -1, kind, value, first flagged row) (``divergence._scan``)."""
+    """The first alarm of rows [a, e) from their NIS and the per-row tests ``bad`` (non-finite), ``over`` (speed over
+    the limit) and ``absurd`` (confidently so): (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the window's
+    mean clipped NIS; 0 for speed, nan for non-finite), first flagged row (the NIS window's first update; for speed
+    the first of the run of rows over the limit, at most ``window`` back)). NIS tests need ``short`` / ``window``
+    updates since row a. Every row carries a NIS (no missed detections in ``lgekf track``). Each window's sum is
+    added up afresh from its own rows (not a running sum), so that it does not depend on where the scan began: a
+    scan from any row gives the same sums from there on (``lgekf.apps.windows``, the reruns' windows). A NaN NIS
+    (possible through the library, not ``lgekf track``) silences only the windows that hold it."""
     count = 0
     run = 0
     for k in range(a, e):
@@ -254,38 +271,22 @@ def scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_sho
     return -1, 0, 0.0, 0
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def initial_covariances(J, var, angles, out):
     """``initial_covariance_into`` of every row: J (B, n, 6), var (B, 6) into out (B, n, n)."""
     for b in range(J.shape[0]):
         initial_covariance_into(J[b], var[b], angles, out[b])
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def jacobian_points(c, var, out):
     """``jacobian_point`` of every row of c, var (B, 6) into out (B, 6)."""
     for b in range(c.shape[0]):
         jacobian_point(c[b], var[b], out[b])
 
 
-@nb.njit(cache=True, nogil=True)
-def first_rows(t, rows, obj_first, baseline, out):
-    """``first_row`` of every re-initialisation row: rows (R,), obj_first (R,) into out (R,)."""
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def reinit_earlier_rows(t, rows, obj_first, baseline, out):
+    """``reinit_earlier_row`` of every re-initialisation row: rows (R,), obj_first (R,) into out (R,)."""
     for i in range(rows.shape[0]):
-        out[i] = first_row(t, rows[i], obj_first[i], baseline)
-
-
-@nb.njit(cache=True, nogil=True)
-def finite_rows(x, p, rows, out):
-    """out[i] = ``finite_row`` of row rows[i]."""
-    for i in range(rows.shape[0]):
-        out[i] = finite_row(x, p, rows[i])
-
-
-@nb.njit(cache=True, nogil=True)
-def scan_segments(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
-                  out_from):
-    """``scan_segment`` of every segment [seg_first[s], seg_end[s])."""
-    for s in range(seg_first.shape[0]):
-        out_row[s], out_kind[s], out_val[s], out_from[s] = scan_segment(nis, absurd, over, bad, seg_first[s], seg_end[s], window,
-                                                                        short, clip, thr, thr_short)
+        out[i] = reinit_earlier_row(t, rows[i], obj_first[i], baseline)

@@ -2,7 +2,8 @@
 algorithm it replaced: rounds of Python over all objects at once (``_recover_in_rounds`` below, the recovery of
 lgekf 0.x up to commit de5a4c2), which re-initialise through ``two_point`` / ``initial_estimates`` and rerun
 through ``run_segments_noise_from_<meas>`` from Python. The two must agree bit for bit: states, covariances, NIS,
-flags, and every alarm (value, limit, window, noise inflation), for every model and measurement, several objects,
+flags, and every alarm (value, limit, window, noise inflation), for every model and measurement, several objects
+(objects of 2 and 3 rows among them),
 monitors that are quiet, busy (noise inflation), exhausted (``max_reinit``), raising speed alarms, and first
 rerun windows of several sizes; with the heading column used for the re-initialisations too.
 """
@@ -102,7 +103,7 @@ def _reference(model, t, z, starts, cfg, monitor, heading, measurement, rerun_ro
     return x, p, nis, flag, alarms
 
 
-def _objects(sizes=(400, 300, 500), seed=21):
+def _objects(sizes=(400, 2, 300, 3, 500), seed=21):
     """Cars at about 8 m/s whose turn rate jumps now and then, 0.1 m noise and runs of outliers; a heading column
     (the true heading plus 0.05 rad noise)."""
     rng = np.random.default_rng(seed)
@@ -114,7 +115,7 @@ def _objects(sizes=(400, 300, 500), seed=21):
         th = np.cumsum(w * dt)
         v = 8.0 + np.cumsum(0.05 * rng.standard_normal(n))
         z = np.column_stack([np.cumsum(v * np.cos(th) * dt), np.cumsum(v * np.sin(th) * dt)]) + 0.1 * rng.standard_normal((n, 2))
-        for k in rng.choice(np.arange(30, n - 10), 3, replace=False):
+        for k in (rng.choice(np.arange(30, n - 10), 3, replace=False) if n > 40 else []):  # runs of outliers
             z[k:k + 4] += rng.normal(0.0, 3.0, 2)
         ts.append(t), zs.append(z), hs.append(th + 0.05 * rng.standard_normal(n))
     starts = np.concatenate([[0], np.cumsum(sizes)])
@@ -153,6 +154,7 @@ def test_compiled_recovery_is_the_rounds_bit_for_bit(model, monkeypatch):
                 assert np.array_equal(got.nis, nis, equal_nan=True), what
                 assert np.array_equal(got.flag, flag), what
                 assert _key(got.alarms) == _key(alarms), what
+                assert [a.obj for a in got.alarms] == sorted(a.obj for a in got.alarms), what  # object after object
                 kinds |= {a.kind for a in alarms}
     assert {1, 2} <= kinds  # NIS and speed alarms both went through the comparison
 
@@ -245,3 +247,65 @@ def test_largest_eigenvalue_is_lapacks():
             assert largest_eigenvalue(S.copy(), k) == pytest.approx(ref, rel=1e-14, abs=0.0), (k, trial)
     D = np.diag([3.0, 1.0, 2.0])  # diagonal already: no rotation
     assert largest_eigenvalue(D.copy(), 3) == 3.0
+
+
+def _speed_std_numpy(model, x, p):
+    """The speed std as NumPy computed it before the monitor was compiled (de5a4c2): central differences of the
+    speed over whole columns, LAPACK's ``eigvalsh`` on the block of the coordinates the speed depends on."""
+    from lgekf.apps.divergence import speeds
+    from lgekf.core.covariance import unpack
+
+    n = get_model(model).n
+    grad = np.empty((x.shape[0], n))
+    for i in range(n):
+        h = 1e-6 * np.maximum(1.0, np.abs(x[:, i]))
+        xp, xm = x.copy(), x.copy()
+        xp[:, i] += h
+        xm[:, i] -= h
+        grad[:, i] = (speeds(model, xp) - speeds(model, xm)) / (2 * h)
+    P = unpack(p, n)
+    out = np.zeros(x.shape[0])
+    for r in range(x.shape[0]):
+        s = np.flatnonzero(np.abs(grad[r]) > 1e-9 * max(1.0, np.abs(grad[r]).max()))
+        if s.size:
+            out[r] = np.sqrt(max(np.linalg.eigvalsh(P[r][np.ix_(s, s)])[-1], 0.0)) * np.linalg.norm(grad[r, s])
+    return out
+
+
+@pytest.mark.parametrize("model", list(MODELS))
+def test_compiled_speed_std_is_the_numpy_one(model):
+    """``speed_std`` (the generated ``speed_stds`` / ``speed_std_at``, which the compiled monitor calls) against the
+    NumPy computation it replaced, on random states and full random covariances (correlated, so that the packing
+    order and the choice of the coordinates the speed depends on matter), standing still included."""
+    from lgekf.apps.divergence import speed_std
+
+    spec = get_model(model)
+    rng = np.random.default_rng(3)
+    c = np.column_stack([rng.normal(0, 50, 200), rng.normal(0, 50, 200), rng.uniform(-3, 3, 200), rng.uniform(-2, 20, 200),
+                         rng.normal(0, 0.5, 200), rng.normal(0, 0.5, 200)])
+    c[:5, 3:5] = 0.0  # standing still
+    x = np.array([spec.kernels.common_to_state(row) for row in c])
+    A = rng.standard_normal((200, spec.n, spec.n)) * rng.uniform(0.01, 3.0, (200, 1, 1))
+    p = pack(A @ np.swapaxes(A, 1, 2))
+    got = speed_std(model, x, p)
+    ref = _speed_std_numpy(model, x, p)
+    np.testing.assert_allclose(got, ref, rtol=1e-13, atol=1e-300)
+    assert np.all(got[5:] > 0)
+
+
+@pytest.mark.parametrize("model", [m for m in MODELS if "pose" in MODELS[m].measurements])
+def test_windows_with_heading_are_one_run(model):
+    """``track_windows`` of one object whose re-initialisations read the heading column (position with heading,
+    and pose): the rows, flags and alarms of ``track_monitored`` over the object, with windows of 97 rows."""
+    from lgekf.apps.track import track_windows
+
+    t, z, heading, _ = _objects((700,), seed=9)
+    cfg = TrackConfig(dict(track.DEFAULT_ACCEL_STD), meas_std=0.1, heading_cap=track.TRACK_HEADING_CAP)
+    for measurement in ("position", "pose"):
+        ref = track_monitored(model, t, z, np.array([0, t.size]), cfg, heading=heading, measurement=measurement, monitor=MONITORS["busy"])
+        assert len(ref.alarms) >= 3
+        pieces = list(track_windows(model, t, z, cfg, heading, measurement, MONITORS["busy"], rows=97))
+        x = np.concatenate([r.x for _, r in pieces])
+        assert np.array_equal(x, ref.x) and np.array_equal(np.concatenate([r.p for _, r in pieces]), ref.p), measurement
+        assert np.array_equal(np.concatenate([r.flag for _, r in pieces]), ref.flag), measurement
+        assert _key([a for _, r in pieces for a in r.alarms]) == _key(ref.alarms), measurement

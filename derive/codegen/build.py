@@ -14,7 +14,7 @@ from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
-from .monitor import MONITOR_HELPERS, MONITOR_NAMES
+from .monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
 from .printer import HEADER, SINC_FAMILY, render_module
 from .soa import VECTOR_NAMES, vector_helpers_source
 
@@ -146,7 +146,7 @@ def render_special() -> str:
 
 IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + f", {SINC_FAMILY}, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401"]
 IMPORTS.append("from .special import " + ", ".join(VECTOR_NAMES) + "  # noqa: F401")  # SIMD kernels (codegen/soa.py)
-IMPORTS.append("from .monitor import " + ", ".join(MONITOR_NAMES) + "  # noqa: F401")  # the divergence monitor (codegen/monitor.py)
+IMPORTS.append("from .monitor import " + ", ".join(TEMPLATE_HELPERS) + "  # noqa: F401")  # the divergence monitor (codegen/monitor.py)
 
 
 def render_monitor() -> str:

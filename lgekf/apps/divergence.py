@@ -14,7 +14,8 @@ Monitor (per object, over the rows the filter produced since its last (re-)initi
   the data's finite differences show. The speed std is √λ_max of P on the state coordinates the speed
   depends on, times the gradient norm (exact for the models on Rⁿ and the R² / R³ velocity parts, an
   upper bound for the others' anisotropic blocks); the speed and its gradient come from the generated
-  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place: no copy, no per-row allocation).
+  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place, no copy; the gradient by central
+  differences of it, only on the rows over the limit).
 * **Non-finite**: a NaN or infinite state or covariance entry.
 
 Recovery: at the alarm row g the object is re-initialised by the two-point rule of its start
@@ -32,6 +33,10 @@ Flags (the output's ``flag`` column): 1 on the rows of the alarm — the rows of
 rows since the speed first exceeded the limit, at most W, or the non-finite row) and the row before them
 (the NIS of an update tests the previous estimate carried forward) — through the re-initialisation row
 g; 0 elsewhere.
+
+Implementation: ``recover`` is one call of the generated ``recover_<meas>`` of the model (templates in
+``derive/codegen/monitor.py``), which goes through the objects one after the other — scan, re-initialisation,
+reruns — with no Python per alarm; ``first_alarms`` and ``speed_std`` run its scan and its speed std from Python.
 """
 
 from __future__ import annotations
@@ -144,8 +149,8 @@ def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 
 def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, cfg: MonitorConfig):
-    """Scan the segments [seg_first[i], seg_end[i]) of the output arrays for their first alarm (the generated
-    ``first_alarm`` of each, the scan of the compiled monitor ``recover``).
+    """Scan the segments [seg_first[i], seg_end[i]) of the output arrays for their first alarm: the generated
+    ``first_alarm`` (the scan ``recover``'s compiled loop makes) called per segment from Python, to inspect a run.
 
     Returns (row (S,), kind (S,), value (S,), first flagged row (S,), limit (S,)); row -1 = no alarm.
     ``limit_seg`` (S,) is each segment's speed limit. The speed is computed only on the segments' rows, its std
@@ -220,14 +225,14 @@ class Restart:
 
 @dataclass
 class Carry:
-    """Where ``recover`` left each object's filter when a re-initialisation or a rerun reached its last row
-    (``set`` True): the internal state (the layout of the generated ``state_from_physical``), the packed covariance
+    """Where ``recover`` left each object's filter when a run or a re-initialisation reached its last row
+    (``reached`` True): the internal state (the layout of the generated ``state_from_physical``), the packed covariance
     and the noise inflation of that run (``lgekf.apps.windows`` goes on from there)."""
 
     s: np.ndarray
     p: np.ndarray
     scale: np.ndarray
-    set: np.ndarray
+    reached: np.ndarray
 
     @classmethod
     def empty(cls, model: str, objects: int) -> "Carry":
@@ -239,10 +244,10 @@ class Carry:
 @dataclass
 class FirstPass:
     """The filter's first pass over each object, made by ``recover`` before it monitors (one compiled library with the
-    filter's step per model, not two): rows ``first`` (B,) on, from the internal state ``s`` (B, ni) and packed
+    filter's step per model, not two): rows ``start`` (B,) on, from the internal state ``s`` (B, ni) and packed
     covariance ``p`` (B, n(n+1)/2) of the row before, every noise std times ``scale`` (B,)."""
 
-    first: np.ndarray
+    start: np.ndarray
     s: np.ndarray
     p: np.ndarray
     scale: np.ndarray
@@ -283,7 +288,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     carry : Carry, optional
         Filled where a run or a re-initialisation reached an object's last row.
     first_pass : FirstPass, optional
-        Filter the objects' rows from ``first_pass.first`` on before monitoring them (default: x, p, nis hold them).
+        Filter the objects' rows from ``first_pass.start`` on before monitoring them (default: x, p, nis hold them).
 
     Returns
     -------
@@ -299,7 +304,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     first = starts[:-1] + 2 if first is None else np.asarray(first, dtype=np.int64)
     todo = first < starts[1:]
     if first_pass is not None:
-        todo |= np.asarray(first_pass.first) < starts[1:]
+        todo |= np.asarray(first_pass.start) < starts[1:]
     seg_obj = np.flatnonzero(todo)
     memory = MonitorMemory.fresh(B) if memory is None else memory
     carry = Carry.empty(model, B) if carry is None else carry
@@ -311,18 +316,18 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
         run_first, run_s, run_p, run_scale = np.full(seg_obj.size, -1, np.int64), carry.s[:0], carry.p[:0], carry.scale[:0]
     else:
         fp = first_pass
-        run_first = np.asarray(fp.first, dtype=np.int64)[seg_obj]
+        run_first = np.asarray(fp.start, dtype=np.int64)[seg_obj]
         run_s, run_p = np.ascontiguousarray(fp.s[seg_obj], dtype=float), np.ascontiguousarray(fp.p[seg_obj], dtype=float)
         run_scale = np.ascontiguousarray(np.asarray(fp.scale, dtype=float)[seg_obj])
     found = kernel(x, p, nis, flag, seg_obj, first[seg_obj], starts[seg_obj + 1], run_first, run_s, run_p, run_scale,
                    np.ascontiguousarray(limits, dtype=float), int(m),
                    int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short), float(cfg.n_sigma), int(cfg.max_reinit),
                    int(cfg.repeat), float(cfg.max_inflation), int(RERUN_ROWS), memory.count, memory.scale, memory.last,
-                   np.ascontiguousarray(rs.zm, dtype=float), np.ascontiguousarray(rs.t, dtype=float), np.asarray(rs.q, dtype=float),
-                   np.asarray(rs.r, dtype=float), np.ascontiguousarray(rs.t_all, dtype=float), np.ascontiguousarray(rs.z_all, dtype=float),
+                   np.ascontiguousarray(rs.zm, dtype=float), np.ascontiguousarray(rs.t, dtype=float), np.ascontiguousarray(rs.q, dtype=float),
+                   np.ascontiguousarray(rs.r, dtype=float), np.ascontiguousarray(rs.t_all, dtype=float), np.ascontiguousarray(rs.z_all, dtype=float),
                    heading, int(rs.offset), np.ascontiguousarray(rs.obj_first, dtype=np.int64), float(rs.meas_std), float(rs.omega_std),
                    float(rs.heading_std), float(rs.heading_cap), SIDESLIP_FRACTION, float(rs.baseline),
-                   np.array(spec.angles, dtype=np.int64), carry.s, carry.p, carry.scale, carry.set)
+                   np.array(spec.angles, dtype=np.int64), carry.s, carry.p, carry.scale, carry.reached)
     ints = found[:, [0, 1, 2, 5]].astype(np.int64).T.tolist()
     alarms = list(map(Alarm, ints[0], ints[1], ints[2], found[:, 3].tolist(), found[:, 4].tolist(), ints[3], (found[:, 6] != 0).tolist(),
                       found[:, 7].tolist()))

@@ -4,14 +4,15 @@ the measurement of g and the latest earlier one j ∈ [a, g) with t_j ≤ t_g �
 = 0.5 s in ``lgekf.apps.track``), the object's first row a if there is none, and at most g − 1.
 
 One compiled loop over the alarm rows (a binary search each, t increasing within an object): the generated
-``first_rows``, whose ``first_row`` the compiled monitor (``recover_<meas>``) calls at each re-initialisation.
+``reinit_earlier_rows``, whose ``reinit_earlier_row`` the compiled monitor (``recover_<meas>``) calls at each
+re-initialisation.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..generated.monitor import first_rows
+from ..generated.monitor import reinit_earlier_rows
 
 __all__ = ["reinit_first_rows"]
 
@@ -38,5 +39,5 @@ def reinit_first_rows(t: np.ndarray, rows: np.ndarray, obj_first: np.ndarray, ba
     """
     rows = np.ascontiguousarray(rows, dtype=np.int64)
     out = np.empty(rows.shape[0], np.int64)
-    first_rows(np.ascontiguousarray(t, dtype=float), rows, np.ascontiguousarray(obj_first, dtype=np.int64), float(baseline), out)
+    reinit_earlier_rows(np.ascontiguousarray(t, dtype=float), rows, np.ascontiguousarray(obj_first, dtype=np.int64), float(baseline), out)
     return out

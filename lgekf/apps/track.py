@@ -202,15 +202,14 @@ class Tracked:
     alarms: list
 
 
-def restart_inputs(measurement, t, z, heading, zm, q, r, cfg: TrackConfig, obj_first, lo: int = 0, hi: int | None = None) -> Restart:
+def restart_inputs(measurement, t, z, heading, zm, q, r, cfg: TrackConfig, obj_first) -> Restart:
     """The re-initialisation of ``lgekf track``'s divergence recovery (``divergence.recover``) and the filter it runs
     again: the two-point estimate (``two_point``) at an alarm row from its measurement (t, z, heading) and the latest
     earlier one at least ``REINIT_BASELINE`` s back (else the object's first row, ``obj_first`` (B,)), the
-    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r. The
-    monitored outputs are rows ``lo`` .. ``hi`` - 1 of t, z (default all)."""
-    hi = len(t) if hi is None else hi
-    return Restart(measurement, zm[lo:hi], t[lo:hi], q, r, t, z, heading, lo, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std,
-                   cfg.heading_cap, REINIT_BASELINE)
+    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r, rows as
+    t's (``lgekf.apps.windows`` gives each window its rows with ``dataclasses.replace``)."""
+    return Restart(measurement, zm, t, q, r, t, z, heading, 0, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std, cfg.heading_cap,
+                   REINIT_BASELINE)
 
 
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
@@ -266,7 +265,7 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     limit = 0.0 if monitor is None else float(speed_limits(t, z, starts, cfg.meas_std, monitor)[0])
 
     restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, np.zeros(1, np.int64))
-    for a, x, p, nis, flag, alarms in filter_windows(model, t, zm, x0[0], pack(P0)[0], restart, monitor, limit, rows):
+    for a, x, p, nis, flag, alarms in filter_windows(model, x0[0], pack(P0)[0], restart, monitor, limit, rows):
         yield a, Tracked(x, p, nis, flag, alarms)
 
 

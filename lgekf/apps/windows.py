@@ -5,8 +5,9 @@ filter from a re-initialisation anywhere in the object): for one object of 10⁶
 covariance entries a row), that is 230 MB, ten times its CSV. ``filter_windows`` gives the same rows, bit for bit,
 a window at a time:
 
-* the filter continues from the internal state and covariance of the previous window's last row (the generated
-  ``run_segments_from_<meas>``), so a window's numbers are those of one run over the object;
+* the filter continues from the internal state and covariance of the previous window's last row (the first pass of
+  the compiled monitor ``recover_<meas>``, or the generated ``run_segments_from_<meas>`` when nothing is monitored),
+  so a window's numbers are those of one run over the object;
 * the monitor (``divergence.recover``) scans a window's rows from W = max(``window``, ``short``) rows before it (the
   furthest its NIS tests reach back), or from the object's last re-initialisation if later: every test it makes from the window's first row on sums the same
   NIS values, over the same updates since the (re-)initialisation, as one scan over the object; the rows
@@ -36,7 +37,7 @@ __all__ = ["filter_windows", "WINDOW_ROWS"]
 WINDOW_ROWS = 1 << 15  # rows filtered and monitored at a time
 
 
-def filter_windows(model: str, t, zm, x0, p0, restart: Restart, monitor: MonitorConfig | None, limit: float,
+def filter_windows(model: str, x0, p0, restart: Restart, monitor: MonitorConfig | None, limit: float,
                    rows: int = WINDOW_ROWS) -> Iterator[tuple]:
     """Filter and monitor ONE object (every row of ``t``, ``zm``) as ``track_monitored`` does, a window of rows at a
     time (``lgekf.apps.track.track_windows`` prepares the inputs from a ``TrackConfig``).
@@ -45,15 +46,14 @@ def filter_windows(model: str, t, zm, x0, p0, restart: Restart, monitor: Monitor
     ----------
     model : str
         Registry model.
-    t, zm : ndarray, shape (N,), (N, m)
-        The object's times (increasing) and measurements, N >= 2.
     x0 : ndarray, shape (n,)
         The two-point start (physical) at row 1; row 0 carries it with the first measured position.
     p0 : ndarray, shape (n(n+1)/2,)
         Its packed covariance.
     restart : divergence.Restart
-        The measurement, the noise stds q, r and the re-initialisation's inputs, for the whole object (offset 0,
-        ``obj_first`` [0]); each window gets its rows of it.
+        The object: its times ``t`` (N,) (increasing, N >= 2) and measurements ``zm`` (N, m), the measurement, the
+        noise stds q, r and the re-initialisation's inputs (offset 0, ``obj_first`` [0]); each window gets its rows
+        of it.
     monitor : MonitorConfig or None
         None: no monitoring (all flags 0).
     limit : float
@@ -73,7 +73,7 @@ def filter_windows(model: str, t, zm, x0, p0, restart: Restart, monitor: Monitor
     spec = get_model(model)
     kern = spec.kernels
     run = getattr(kern, f"run_segments_from_{restart.measurement}")
-    q, r = restart.q, restart.r
+    t, zm, q, r = restart.t, restart.zm, restart.q, restart.r
     N = t.size
     limits = np.array([limit], dtype=float)
     x0 = np.asarray(x0, dtype=float)
