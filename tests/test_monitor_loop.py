@@ -309,3 +309,15 @@ def test_windows_with_heading_are_one_run(model):
         assert np.array_equal(x, ref.x) and np.array_equal(np.concatenate([r.p for _, r in pieces]), ref.p), measurement
         assert np.array_equal(np.concatenate([r.flag for _, r in pieces]), ref.flag), measurement
         assert _key([a for _, r in pieces for a in r.alarms]) == _key(ref.alarms), measurement
+
+
+def test_two_point_with_no_time_between_gives_inf_not_an_exception():
+    """The compiled two-point rule divides as NumPy does (``error_model="numpy"``): two measurements at the same
+    time (possible through the library, never through ``lgekf track``, which requires increasing times) give an
+    infinite velocity variance instead of raising ZeroDivisionError."""
+    from lgekf.core.initiation import two_point
+
+    t = np.array([0.0, 1.0, 1.0])
+    z = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.5]])
+    c, var = two_point(t, z, np.array([2]), 0.2, first=np.array([1]))
+    assert np.isinf(var[0, 3]) and np.isinf(c[0, 3])
