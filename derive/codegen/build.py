@@ -14,6 +14,7 @@ from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
+from .monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
 from .printer import HEADER, SINC_FAMILY, render_module
 from .soa import VECTOR_NAMES, vector_helpers_source
 
@@ -145,6 +146,14 @@ def render_special() -> str:
 
 IMPORTS = ["from .special import " + ", ".join(f.__name__ for f in ANGLE_FUNCTIONS) + f", {SINC_FAMILY}, gain_damping, wrap_angle, wrap_angle_sum  # noqa: F401"]
 IMPORTS.append("from .special import " + ", ".join(VECTOR_NAMES) + "  # noqa: F401")  # SIMD kernels (codegen/soa.py)
+IMPORTS.append("from .monitor import " + ", ".join(TEMPLATE_HELPERS) + "  # noqa: F401")  # the divergence monitor (codegen/monitor.py)
+
+
+def render_monitor() -> str:
+    """``generated/monitor.py``: the divergence monitor's model-independent kernels (``derive/codegen/monitor.py``)."""
+    return HEADER.format(title="The divergence monitor's model-independent kernels (two-point start, scan, speed std).",
+                         source="derive/codegen/monitor.py") + MONITOR_HELPERS.replace(
+        "import numpy as np\n", f"import numpy as np\n\n__all__ = {MONITOR_NAMES!r}\n", 1)
 
 
 def _fitting(model, measurements):
@@ -233,7 +242,7 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     """
     models = load_models(models_dir)
     measurements = load_measurements(meas_dir)
-    files = {"special.py": render_special()}
+    files = {"special.py": render_special(), "monitor.py": render_monitor()}
     files["se2.py"] = render_module(
         "SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.",
         "derive/lie/groups.py through derive/codegen/emitter.py", se2_kernels(), IMPORTS, PREAMBLE)

@@ -39,6 +39,7 @@ from ..algebra import LEGEND, _changed, lg_predict, lg_update, packed_index, sym
 from ..lie.groups import SE2
 from ..models.base import COMMON
 from .bank import bank_measurement_kernels, bank_model_kernels
+from .monitor import measurement_monitor_kernels, model_monitor_kernels
 from .estimators import estimator_kernels
 from .printer import Kernel
 
@@ -455,6 +456,7 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
     kernels.append((f"run_segments_noise_from_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
         meas=meas.name, nq=len(model.noise_names), nr=len(meas.noise_names))))
+    kernels.extend(measurement_monitor_kernels(meas.name))  # the divergence monitor: rerun_<meas>, recover_<meas> (codegen/monitor.py)
     if predict_parts is not None:  # the fused step the loops call (derive/codegen/fused.py)
         from .fused import fused_step_kernel, step_wrapper
 
@@ -553,6 +555,7 @@ def model_kernels(model, measurements: dict) -> list:
     ks.append(matrix_kernel("common_jacobian", "J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).",
                             ["c"], cin, model.common_jacobian.subs(csub, simultaneous=True)))
     ks.append(("common_to_states", COMMON_BATCH_TEMPLATE))
+    ks.extend(model_monitor_kernels())  # the divergence monitor: re-initialisation, speed std, first alarm (codegen/monitor.py)
     # ---- estimation error in the filter's tangent coordinates (NEES)
     G = model.group
     true_mean = model.mean_of_common.subs(csub, simultaneous=True)

@@ -14,7 +14,8 @@ Monitor (per object, over the rows the filter produced since its last (re-)initi
   the data's finite differences show. The speed std is √λ_max of P on the state coordinates the speed
   depends on, times the gradient norm (exact for the models on Rⁿ and the R² / R³ velocity parts, an
   upper bound for the others' anisotropic blocks); the speed and its gradient come from the generated
-  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place: no copy, no per-row allocation).
+  ``row_speeds`` (|``world_velocity``| of the monitored rows, read in place, no copy; the gradient by central
+  differences of it, only on the rows over the limit).
 * **Non-finite**: a NaN or infinite state or covariance entry.
 
 Recovery: at the alarm row g the object is re-initialised by the two-point rule of its start
@@ -32,6 +33,10 @@ Flags (the output's ``flag`` column): 1 on the rows of the alarm — the rows of
 rows since the speed first exceeded the limit, at most W, or the non-finite row) and the row before them
 (the NIS of an update tests the previous estimate carried forward) — through the re-initialisation row
 g; 0 elsewhere.
+
+Implementation: ``recover`` is one call of the generated ``recover_<meas>`` of the model (templates in
+``derive/codegen/monitor.py``), which goes through the objects one after the other — scan, re-initialisation,
+reruns — with no Python per alarm; ``first_alarms`` and ``speed_std`` run its scan and its speed std from Python.
 """
 
 from __future__ import annotations
@@ -42,20 +47,21 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..core.covariance import unpack
+from ..core.initiation import SIDESLIP_FRACTION
 from ..core.registry import get_model
 from .noise import CHORD_S, chi2_quantile, chord_speeds
 
-__all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "speed_limits", "speeds", "speed_std", "first_alarms", "KIND_NAMES"]
+__all__ = ["MonitorConfig", "MonitorMemory", "Alarm", "Restart", "Carry", "FirstPass", "recover", "speed_limits", "speeds", "speed_std", "first_alarms",
+           "KIND_NAMES"]
 
 
 KIND_NAMES = {1: "NIS", 2: "speed", 3: "non-finite"}
-# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm). The rows of
-# a window past the next alarm are filtered in vain, a window costs a round of Python (~0.15 ms, the filtering of
-# ~2000 rows); the noise search's low-noise candidates on one long object raise an alarm every few hundred rows:
-# there 2⁸ rows cost least (the five searches, serial, on one object of 10⁶ rows: 2⁸ 1.36 CPU-s, 2¹⁰ 1.53, 2¹²
-# 2.57, 2¹⁴ 6.6; 2⁶ and 2⁷ with windows growing 4x 1.50 and 1.38; the same plans); no change on 10⁴ objects
-RERUN_ROWS = 1 << 8
+# the first window of rows filtered again after a re-initialisation (then doubled until the next alarm): the rows of a
+# window past the next alarm are filtered in vain, and a window costs a kernel call and a scan. The noise search's
+# low-noise candidates on one long object raise an alarm every few hundred rows: the five searches, serial, on one object
+# of 10⁶ rows, CPU-s (2026-11-24, compiled monitor): 2⁴ 0.874, 2⁵ 0.868, 2⁶ 0.856, 2⁷ 0.886, 2⁸ 0.921, 2¹⁰ 1.135; on 10⁴
+# objects of 100 rows within 0.03 s whatever the size; the same plans
+RERUN_ROWS = 1 << 6
 
 
 @dataclass(frozen=True)
@@ -134,129 +140,38 @@ def speeds(model: str, x: np.ndarray, rows: np.ndarray | None = None) -> np.ndar
 
 def speed_std(model: str, x: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Std (N,) of the speed of states x (N, n) with packed covariances p (N, n(n+1)/2): |∇speed| ·
-    √λ_max(P restricted to the coordinates the speed depends on)."""
-    spec = get_model(model)
-    n = spec.n
-    N = x.shape[0]
-    if N == 0:
-        return np.empty(0)
-    grad = np.empty((N, n))
-    for i in range(n):
-        h = 1e-6 * np.maximum(1.0, np.abs(x[:, i]))
-        xp = x.copy()
-        xm = x.copy()
-        xp[:, i] += h
-        xm[:, i] -= h
-        grad[:, i] = (speeds(model, xp) - speeds(model, xm)) / (2 * h)
-    P = unpack(p, n)
-    out = np.empty(N)
-    for r in range(N):
-        s = np.flatnonzero(np.abs(grad[r]) > 1e-9 * max(1.0, np.abs(grad[r]).max()))
-        if s.size == 0:
-            out[r] = 0.0
-            continue
-        lam = np.linalg.eigvalsh(P[r][np.ix_(s, s)])[-1]
-        out[r] = math.sqrt(max(lam, 0.0)) * float(np.linalg.norm(grad[r, s]))
+    √λ_max(P restricted to the coordinates the speed depends on), the gradient by central differences (the
+    generated ``speed_stds``, whose ``speed_std_at`` the compiled monitor calls)."""
+    x = np.ascontiguousarray(x, dtype=float)
+    out = np.empty(x.shape[0])
+    get_model(model).kernels.speed_stds(x, np.ascontiguousarray(p, dtype=float), out)
     return out
 
 
-@nb.njit(cache=True, nogil=True)
-def _finite_rows(x, p, rows, out):
-    """out[i] = every entry of x[rows[i]] and p[rows[i]] is finite."""
-    for i in range(rows.shape[0]):
-        r = rows[i]
-        ok = True
-        for j in range(x.shape[1]):
-            if not np.isfinite(x[r, j]):
-                ok = False
-        for j in range(p.shape[1]):
-            if not np.isfinite(p[r, j]):
-                ok = False
-        out[i] = ok
-
-
-@nb.njit(cache=True, nogil=True)
-def _scan(nis, absurd, over, bad, seg_first, seg_end, window, short, clip, thr, thr_short, out_row, out_kind, out_val,
-          out_from):
-    """First alarm per segment (row or -1), its kind, value (window mean NIS) and the first flagged row.
-    Every row of a segment carries a NIS (no missed detections in ``lgekf track``). Each window's sum is added
-    up afresh from its own rows (not a running sum), so that it does not depend on where the scan began: a
-    scan from any row of the segment gives the same sums from there on (``lgekf.apps.windows``). A NaN NIS
-    (possible through the library, not ``lgekf track``) silences only the windows that hold it; a running sum
-    stayed NaN for the rest of the segment."""
-    for s in range(seg_first.shape[0]):
-        a, e = seg_first[s], seg_end[s]
-        out_row[s] = -1
-        count = 0
-        run = 0
-        for k in range(a, e):
-            if bad[k]:
-                out_row[s], out_kind[s], out_val[s], out_from[s] = k, 3, np.nan, k
-                break
-            run = run + 1 if over[k] else 0
-            if absurd[k]:
-                out_row[s], out_kind[s], out_val[s], out_from[s] = k, 2, 0.0, k - min(run, window) + 1
-                break
-            count += 1
-            total_s = 0.0
-            if count >= short:
-                for j in range(k - short + 1, k + 1):
-                    total_s += min(nis[j], clip)
-            total = 0.0
-            if count >= window:
-                for j in range(k - window + 1, k + 1):
-                    total += min(nis[j], clip)
-            if count >= short and total_s > thr_short:
-                out_row[s], out_kind[s], out_val[s], out_from[s] = k, 1, total_s / short, k - short + 1
-                break
-            if count >= window and total > thr:
-                out_row[s], out_kind[s], out_val[s], out_from[s] = k, 1, total / window, k - window + 1
-                break
-
-
 def first_alarms(model: str, x, p, nis, seg_first, seg_end, limit_seg, m: int, cfg: MonitorConfig):
-    """Scan the segments [seg_first[i], seg_end[i]) of the output arrays for their first alarm.
+    """Scan the segments [seg_first[i], seg_end[i]) of the output arrays for their first alarm: the generated
+    ``first_alarm`` (the scan ``recover``'s compiled loop makes) called per segment from Python, to inspect a run.
 
     Returns (row (S,), kind (S,), value (S,), first flagged row (S,), limit (S,)); row -1 = no alarm.
-    ``limit_seg`` (S,) is each segment's speed limit. The speed and its std are computed only on the
-    segments' rows (the std only where the speed exceeds the limit).
+    ``limit_seg`` (S,) is each segment's speed limit. The speed is computed only on the segments' rows, its std
+    only where the speed exceeds the limit.
     """
+    kernel = get_model(model).kernels.first_alarm
+    x = np.ascontiguousarray(x, dtype=float)
+    p = np.ascontiguousarray(p, dtype=float)
+    nis = np.ascontiguousarray(nis, dtype=float)
+    N, n = x.shape
     S = len(seg_first)
-    N = x.shape[0]
-    seg_first = np.asarray(seg_first, np.int64)
-    seg_end = np.asarray(seg_end, np.int64)
-    lens = seg_end - seg_first
-    rows = np.repeat(seg_end - np.cumsum(lens), lens) + np.arange(int(lens.sum()))  # the segments' rows, in order
-    lim_row = np.repeat(np.asarray(limit_seg, float), lens)
-    over = np.zeros(N, np.bool_)
-    absurd = np.zeros(N, np.bool_)
-    bad = np.zeros(N, np.bool_)
-    if rows.size:
-        finite = np.empty(rows.size, np.bool_)
-        _finite_rows(x, p, rows, finite)
-        bad[rows] = ~finite
-        sp = speeds(model, x, rows)  # a non-finite row's speed (nan) is not used: that row is an alarm of its own
-        o = finite & (sp > lim_row)
-        over[rows] = o
-        if o.any():
-            idx = np.flatnonzero(o)
-            std = speed_std(model, x[rows[idx]], p[rows[idx]])
-            absurd[rows[idx]] = sp[idx] - cfg.n_sigma * std > lim_row[idx]
+    over, absurd, bad = (np.zeros(N, np.bool_) for _ in range(3))
+    sp, rows, xh, grad = np.empty(N), np.empty(N, np.int64), np.empty((1, n)), np.empty(n)
     clip, thr, thr_short = cfg.nis_thresholds(m)
-    out_row = np.empty(S, np.int64)
-    out_kind = np.zeros(S, np.int64)
-    out_val = np.zeros(S)
-    out_from = np.zeros(S, np.int64)
-    _scan(np.ascontiguousarray(nis, dtype=float), absurd, over, bad, seg_first, seg_end, int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short),
-          out_row, out_kind, out_val, out_from)
-    hit = out_row >= 0
-    sp_hit = out_kind == 2
-    if np.any(hit & sp_hit):
-        j = np.flatnonzero(hit & sp_hit)
-        out_val[j] = speeds(model, x, out_row[j])
-    short = (out_kind == 1) & (out_row - out_from + 1 == cfg.short)
-    limit = np.where(out_kind == 1, np.where(short, thr_short / cfg.short, thr / cfg.window), np.asarray(limit_seg, float))
-    return out_row, out_kind, out_val, out_from, limit
+    out = (np.empty(S, np.int64), np.zeros(S, np.int64), np.zeros(S), np.zeros(S, np.int64), np.zeros(S))
+    for i in range(S):
+        found = kernel(x, p, nis, int(seg_first[i]), int(seg_end[i]), float(limit_seg[i]), int(cfg.window), int(cfg.short), float(clip),
+                       float(thr), float(thr_short), float(cfg.n_sigma), over, absurd, bad, sp, rows, xh, grad)
+        for column, value in zip(out, found):
+            column[i] = value
+    return out
 
 
 @dataclass
@@ -278,9 +193,77 @@ class MonitorMemory:
 NEVER = -(10**18)  # the row of the last re-initialisation of an object that has had none
 
 
-def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, reinit, rerun, first=None,
-            memory: MonitorMemory | None = None):
-    """Monitor every object's rows 2, 3, ... and re-initialise it at each alarm (in place).
+@dataclass(frozen=True)
+class Restart:
+    """What ``recover`` needs to re-initialise an object and filter it again: the inputs of the generated
+    ``recover_<meas>`` besides the outputs and the monitor's settings.
+
+    ``zm`` (N, m), ``t`` (N,), ``q``, ``r``: the filter's measurements, times and noise stds, rows as the outputs';
+    ``t_all``, ``z_all`` (positions), ``heading_all`` (or None): the measurements of the two-point re-initialisation
+    (``lgekf.core.initiation.two_point``), an output row k being their row k + ``offset``; ``obj_first`` (B,): each
+    object's first row there (the earliest row a re-initialisation may use); ``meas_std``, ``omega_std``,
+    ``heading_std``, ``heading_cap``: the two-point start's parameters; ``baseline``: the least time between its two
+    measurements (s, ``lgekf.apps.reinit_rows``).
+    """
+
+    measurement: str
+    zm: np.ndarray
+    t: np.ndarray
+    q: np.ndarray
+    r: np.ndarray
+    t_all: np.ndarray
+    z_all: np.ndarray
+    heading_all: np.ndarray | None
+    offset: int
+    obj_first: np.ndarray
+    meas_std: float
+    omega_std: float
+    heading_std: float
+    heading_cap: float
+    baseline: float
+
+
+@dataclass
+class Carry:
+    """Where ``recover`` left each object's filter when a run or a re-initialisation reached its last row
+    (``reached`` True): the internal state (the layout of the generated ``state_from_physical``), the packed covariance
+    and the noise inflation of that run (``lgekf.apps.windows`` goes on from there)."""
+
+    s: np.ndarray
+    p: np.ndarray
+    scale: np.ndarray
+    reached: np.ndarray
+
+    @classmethod
+    def empty(cls, model: str, objects: int) -> "Carry":
+        spec = get_model(model)
+        return cls(np.zeros((objects, len(spec.internal_names))), np.zeros((objects, spec.n_packed)), np.ones(objects),
+                   np.zeros(objects, np.bool_))
+
+
+@dataclass
+class FirstPass:
+    """The filter's first pass over each object, made by ``recover`` before it monitors (one compiled library with the
+    filter's step per model, not two): rows ``start`` (B,) on, from the internal state ``s`` (B, ni) and packed
+    covariance ``p`` (B, n(n+1)/2) of the row before, every noise std times ``scale`` (B,)."""
+
+    start: np.ndarray
+    s: np.ndarray
+    p: np.ndarray
+    scale: np.ndarray
+
+
+def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, restart: Restart, first=None,
+            memory: MonitorMemory | None = None, carry: Carry | None = None, first_pass: FirstPass | None = None):
+    """Monitor every object's rows 2, 3, ... and re-initialise it at each alarm (in place): one call of the
+    generated ``recover_<meas>`` (``derive/codegen/monitor.py``), object after object, no Python per alarm.
+
+    Each object is scanned for its first alarm (``first_alarm``); at an alarm row g it is re-initialised there
+    (``restart``), and the filter runs again from g + 1 over a window of ``RERUN_ROWS`` rows that doubles until
+    the next alarm or the object's end; each window goes on from the filter's internal state at the end of the
+    previous one and is scanned from max(window, short) rows before it (a test at a row looks back fewer rows than
+    that; the rows before were tested already), so that the numbers and alarms are those of one rerun to the end
+    scanned at once.
 
     Parameters
     ----------
@@ -294,101 +277,58 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     m : int
         Measurement dimension.
     cfg : MonitorConfig
-    reinit : callable
-        ``reinit(rows (R,), scale (R,)) -> (x0 (R, n), P0 packed (R, n(n+1)/2))``: the two-point estimate
-        at each row, with the measurement std multiplied by ``scale``.
-    rerun : callable
-        ``rerun(first (R,), lengths (R,), s0 (R, ni), p0 (R, n(n+1)/2), scale (R,))``: filter rows first ..
-        first + length - 1 of each segment from the filter's internal state s0 (the layout of the generated
-        ``state_from_physical``) and packed covariance p0 at row first - 1, every noise std multiplied by
-        ``scale``, writing into x, p, nis; s0 and p0 are left (in place) at the posterior of each segment's last
-        row, from which a later call continues exactly.
+    restart : Restart
+        The re-initialisation's measurements and the filter's inputs.
     first : ndarray, (B,), optional
         The first monitored row of each object (default ``starts[:-1] + 2``: rows 0 and 1 of an object are its
         two-point start). An object with no row from there on is not monitored.
     memory : MonitorMemory, optional
         The objects' re-initialisations so far, read and updated in place (default: none yet). With ``first``,
         monitoring continues over a later window of the same objects' rows as over one array.
+    carry : Carry, optional
+        Filled where a run or a re-initialisation reached an object's last row.
+    first_pass : FirstPass, optional
+        Filter the objects' rows from ``first_pass.start`` on before monitoring them (default: x, p, nis hold them).
 
     Returns
     -------
     flag : ndarray, (N,) int8
         1 on the rows of each alarm through its re-initialisation row.
     alarms : list of Alarm
-        In order of detection (rounds), at most ``max_reinit`` + 1 per object.
+        Object after object, each object's in order of detection; at most ``max_reinit`` + 1 per object.
     """
-    B = len(starts) - 1
-    flag = np.zeros(x.shape[0], np.int8)
-    alarms: list = []
-    first = starts[:-1] + 2 if first is None else np.asarray(first, dtype=np.int64)
-    seg_obj = np.flatnonzero(first < starts[1:])
-    seg_first = first[seg_obj]
-    seg_end = starts[seg_obj + 1]
-    # after a re-initialisation the filter is rerun over a window of rows that doubles until the next alarm (or the
-    # object's end); each window goes on from the filter's internal state at the end of the previous one (no window
-    # refilters its predecessor's rows; the rows of a window past the next alarm are still filtered in vain) and is
-    # scanned from `reach` rows before it, so that the numbers and alarms are those of one rerun to the end scanned
-    # at once (a scan's tests at a row look back fewer than `reach` rows — NIS windows, the run of rows over the
-    # speed limit: from `reach` rows on they are the tests of a scan from the segment's first row, and the rows
-    # before were tested already)
-    reach = max(int(cfg.window), int(cfg.short))
     spec = get_model(model)
-    kernels, ni = spec.kernels, len(spec.internal_names)  # ni: the length of the filter's internal state
-    scan_end = seg_end.copy()
-    scan_from = seg_first.copy()
-    seg_s = seg_p = None  # each rerun segment's internal state and covariance at its row scan_end - 1
+    B = len(starts) - 1
+    starts = np.asarray(starts, dtype=np.int64)
+    flag = np.zeros(x.shape[0], np.int8)
+    first = starts[:-1] + 2 if first is None else np.asarray(first, dtype=np.int64)
+    todo = first < starts[1:]
+    if first_pass is not None:
+        todo |= np.asarray(first_pass.start) < starts[1:]
+    seg_obj = np.flatnonzero(todo)
     memory = MonitorMemory.fresh(B) if memory is None else memory
-    count, scale, last = memory.count, memory.scale, memory.last  # updated in place: the caller's memory
-    seg_scale = scale[seg_obj].copy()  # the noise inflation of each segment's run
-    while seg_obj.size:
-        row, kind, val, start, lim = first_alarms(model, x, p, nis, scan_from, scan_end, limits[seg_obj], m, cfg)
-        hit = np.flatnonzero(row >= 0)
-        grow = np.flatnonzero((row < 0) & (scan_end < seg_end))
-        if hit.size == 0 and grow.size == 0:
-            break
-        # every alarm of the round at once: the segments of a round are of distinct objects (one each)
-        o, g, k, v = seg_obj[hit], row[hit], kind[hit], val[hit]
-        count[o] += 1
-        again = (k == 1) & (g - last[o] <= cfg.repeat * cfg.window)
-        if again.any():  # the same object again soon after its re-initialisation: its noise is too small
-            scale[o[again]] *= np.minimum(np.sqrt(np.maximum(v[again] / m, 1.0)), cfg.max_inflation)
-        ok = count[o] <= cfg.max_reinit
-        alarms.extend(map(Alarm, o.tolist(), g.tolist(), k.tolist(), v.tolist(), lim[hit].tolist(),
-                          np.where(k == 1, g - start[hit] + 1, 0).tolist(), ok.tolist(), scale[o].tolist()))
-        # the NIS of update k tests the estimate of row k - 1 carried forward: flag from the row before the
-        # alarm's first update (at most back to the segment's initialisation row) through the alarm row
-        lo = np.maximum(np.maximum(start[hit], seg_first[hit]) - 1, 0)
-        n = np.maximum(g + 1 - lo, 0)
-        flag[np.repeat(lo - np.cumsum(n) + n, n) + np.arange(int(n.sum()))] = 1
-        keep = hit[ok]
-        last[o[ok]] = g[ok]
-        finish = hit[~ok & (scan_end[hit] < seg_end[hit])]  # monitoring stops at this alarm: the run must still reach the end
-        if finish.size:
-            rerun(scan_end[finish], seg_end[finish] - scan_end[finish], seg_s[finish], seg_p[finish], seg_scale[finish])
-        g = row[keep]
-        obj = seg_obj[keep]
-        if keep.size:
-            x0, p0 = reinit(g, scale[obj])
-            x[g] = x0
-            p[g] = p0
-            nis[g] = np.nan
-        else:
-            x0, p0 = x[:0], p[:0]
-        end = seg_end[keep]
-        more = g + 1 < end
-        new_first = g[more] + 1
-        s0 = np.empty((int(more.sum()), ni))
-        kernels.states_from_physical(np.ascontiguousarray(x0[more], dtype=float), s0)
-        # (object, first row, end, scan from, scan end, run from, state, covariance, noise inflation) of the next round
-        nxt = [(obj[more], new_first, end[more], new_first, np.minimum(end[more], new_first + RERUN_ROWS), new_first, s0,
-                np.array(p0[more], dtype=float), scale[obj[more]])]
-        if grow.size:
-            width = scan_end[grow] - seg_first[grow]
-            nxt.append((seg_obj[grow], seg_first[grow], seg_end[grow], np.maximum(seg_first[grow], scan_end[grow] - reach),
-                        np.minimum(seg_end[grow], seg_first[grow] + 2 * width), scan_end[grow], seg_s[grow], seg_p[grow],
-                        seg_scale[grow]))
-        seg_obj, seg_first, seg_end, scan_from, scan_end, run_from, seg_s, seg_p, seg_scale = (np.concatenate(parts)
-                                                                                               for parts in zip(*nxt))
-        if seg_obj.size:
-            rerun(run_from, scan_end - run_from, seg_s, seg_p, seg_scale)  # leaves seg_s, seg_p at row scan_end - 1
+    carry = Carry.empty(model, B) if carry is None else carry
+    clip, thr, thr_short = cfg.nis_thresholds(m)
+    rs = restart
+    heading = np.empty(0) if rs.heading_all is None else np.ascontiguousarray(rs.heading_all, dtype=float)
+    kernel = getattr(spec.kernels, f"recover_{rs.measurement}")
+    if first_pass is None:
+        run_first, run_s, run_p, run_scale = np.full(seg_obj.size, -1, np.int64), carry.s[:0], carry.p[:0], carry.scale[:0]
+    else:
+        fp = first_pass
+        run_first = np.asarray(fp.start, dtype=np.int64)[seg_obj]
+        run_s, run_p = np.ascontiguousarray(fp.s[seg_obj], dtype=float), np.ascontiguousarray(fp.p[seg_obj], dtype=float)
+        run_scale = np.ascontiguousarray(np.asarray(fp.scale, dtype=float)[seg_obj])
+    found = kernel(x, p, nis, flag, seg_obj, first[seg_obj], starts[seg_obj + 1], run_first, run_s, run_p, run_scale,
+                   np.ascontiguousarray(limits, dtype=float), int(m),
+                   int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short), float(cfg.n_sigma), int(cfg.max_reinit),
+                   int(cfg.repeat), float(cfg.max_inflation), int(RERUN_ROWS), memory.count, memory.scale, memory.last,
+                   np.ascontiguousarray(rs.zm, dtype=float), np.ascontiguousarray(rs.t, dtype=float), np.ascontiguousarray(rs.q, dtype=float),
+                   np.ascontiguousarray(rs.r, dtype=float), np.ascontiguousarray(rs.t_all, dtype=float), np.ascontiguousarray(rs.z_all, dtype=float),
+                   heading, int(rs.offset), np.ascontiguousarray(rs.obj_first, dtype=np.int64), float(rs.meas_std), float(rs.omega_std),
+                   float(rs.heading_std), float(rs.heading_cap), SIDESLIP_FRACTION, float(rs.baseline),
+                   np.array(spec.angles, dtype=np.int64), carry.s, carry.p, carry.scale, carry.reached)
+    ints = found[:, [0, 1, 2, 5]].astype(np.int64).T.tolist()
+    alarms = list(map(Alarm, ints[0], ints[1], ints[2], found[:, 3].tolist(), found[:, 4].tolist(), ints[3], (found[:, 6] != 0).tolist(),
+                      found[:, 7].tolist()))
     return flag, alarms

@@ -3,34 +3,18 @@
 the measurement of g and the latest earlier one j ∈ [a, g) with t_j ≤ t_g − baseline (``REINIT_BASELINE``
 = 0.5 s in ``lgekf.apps.track``), the object's first row a if there is none, and at most g − 1.
 
-One compiled loop over the alarm rows (a binary search each, t increasing within an object) instead of a
-Python ``searchsorted`` per row.
+One compiled loop over the alarm rows (a binary search each, t increasing within an object): the generated
+``reinit_earlier_rows``, whose ``reinit_earlier_row`` the compiled monitor (``recover_<meas>``) calls at each
+re-initialisation.
 """
 
 from __future__ import annotations
 
-import numba as nb
 import numpy as np
 
+from ..generated.monitor import reinit_earlier_rows
+
 __all__ = ["reinit_first_rows"]
-
-
-@nb.njit(cache=True, nogil=True)
-def _first_rows(t, rows, obj_first, baseline, out):
-    """out[i] = min(max(a, (number of j in [a, g) with t[j] <= t[g] - baseline) + a - 1), g - 1),
-    g = rows[i], a = obj_first[i]: ``np.searchsorted(t[a:g], t[g] - baseline, side="right")`` by bisection."""
-    for i in range(rows.shape[0]):
-        g = rows[i]
-        a = obj_first[i]
-        target = t[g] - baseline
-        lo, hi = a, g  # the first j in [a, g) with t[j] > target
-        while lo < hi:
-            mid = (lo + hi) // 2
-            if t[mid] <= target:
-                lo = mid + 1
-            else:
-                hi = mid
-        out[i] = min(max(a, lo - 1), g - 1)
 
 
 def reinit_first_rows(t: np.ndarray, rows: np.ndarray, obj_first: np.ndarray, baseline: float) -> np.ndarray:
@@ -55,5 +39,5 @@ def reinit_first_rows(t: np.ndarray, rows: np.ndarray, obj_first: np.ndarray, ba
     """
     rows = np.ascontiguousarray(rows, dtype=np.int64)
     out = np.empty(rows.shape[0], np.int64)
-    _first_rows(np.ascontiguousarray(t, dtype=float), rows, np.ascontiguousarray(obj_first, dtype=np.int64), float(baseline), out)
+    reinit_earlier_rows(np.ascontiguousarray(t, dtype=float), rows, np.ascontiguousarray(obj_first, dtype=np.int64), float(baseline), out)
     return out

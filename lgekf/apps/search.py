@@ -2,11 +2,11 @@
 
 A search is a few stages of independent candidate runs (about 22 in all per model); the candidates of a
 stage — of every model at once under ``--model all`` — run in a pool of threads, one per usable CPU
-(``usable_cpus``). The filter's kernels release the GIL (``nogil=True``: the generated ``run_one_<meas>`` and ``run_segments_<meas>``,
-``propagate_positions``, ``row_speeds``, ``run_segments_noise_from_<meas>``, the divergence monitor's ``_finite_rows`` / ``_scan``), so the
-threads overlap; none of the kernels a search run calls is a numba ``parallel=True`` one (the filter runs
-through the serial ``run_segments_<meas>``; ``tests/test_search.py`` replaces every parallel kernel by one that
-raises), so no two threads enter numba's threading layer at once.
+(``usable_cpus``). The kernels of a run release the GIL (``nogil=True``: the generated ``recover_<meas>`` — the
+filter's first pass, the divergence monitor and its re-initialisations and reruns in one call —, the two-point
+start's ``two_points`` / ``initial_covariances``, ``propagate_positions``), so the threads overlap; none of them is a
+numba ``parallel=True`` one (``tests/test_search.py`` replaces every parallel kernel by one that raises), so no two
+threads enter numba's threading layer at once.
 
 The result is that of the serial search, exactly: every run is deterministic, each stage's choice is made
 only after all its candidates are scored, and it is the first candidate of least mse in list order

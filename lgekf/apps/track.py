@@ -56,18 +56,17 @@ from ..core.covariance import pack, packed_diagonal
 from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, two_point  # noqa: F401
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
-from .divergence import MonitorConfig, recover, speed_limits
+from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows_made
 from ..io.grouping import row_objects
 from ..io.parquet import ParquetRows
-from .reinit_rows import reinit_first_rows
 
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "reinit_estimates", "track_windows",
+    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -131,8 +130,8 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
 
     One call of the generated ``run_segments_<meas>``: ``run_one`` segment after segment, no Python per segment or
     step. It is serial and releases the GIL, so that the writer thread (``write_model``) and the process-noise
-    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (The divergence
-    monitor's reruns, with noise per segment and from internal states: ``run_segments_noise_from_<meas>``.)
+    search's threads (``lgekf.apps.search``) run beside it; no numba parallel kernel is used. (With the divergence
+    monitor on, the first pass is made by the monitor's compiled ``recover_<meas>`` instead: ``track_monitored``.)
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
@@ -152,19 +151,26 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     No divergence monitoring: that is ``track_monitored``.
     """
     spec = get_model(model)
-    n, npk = spec.n, spec.n_packed
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
+    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
+    x0, p0, out_x, out_p, out_nis = _started(model, t, z, starts, cfg, heading, x0, P0)
+    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, cfg.q(model), r, out_x, out_p, out_nis)
+    return out_x, out_p, out_nis
+
+
+def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
+    """(x0 (B, n), packed p0, out_x, out_p, out_nis): every object's two-point start (given or made) on its rows 0
+    and 1 of the outputs (row 0 with its measured position), the other rows to be filtered (NIS nan)."""
+    spec = get_model(model)
     if x0 is None or P0 is None:
         c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
         x0, P0 = initial_estimates(model, c, var)
     p0 = pack(P0)
-    q = cfg.q(model)
-    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     N = t.size
-    out_x = np.empty((N, n))
-    out_p = np.empty((N, npk))
+    out_x = np.empty((N, spec.n))
+    out_p = np.empty((N, spec.n_packed))
     out_nis = np.full(N, np.nan)
     i0 = starts[:-1]
     out_x[i0] = x0
@@ -172,8 +178,7 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     out_x[i0 + 1] = x0
     out_p[i0] = p0
     out_p[i0 + 1] = p0
-    _run_segments(model, measurement, t, zm, starts[:-1] + 2, np.diff(starts) - 2, x0, p0, q, r, out_x, out_p, out_nis)
-    return out_x, out_p, out_nis
+    return x0, p0, out_x, out_p, out_nis
 
 
 def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
@@ -197,16 +202,14 @@ class Tracked:
     alarms: list
 
 
-def reinit_estimates(model, t, z, cfg: TrackConfig, heading, rows, scale, obj_first):
-    """The re-initialisation at each of ``rows`` (``divergence.recover``'s ``reinit``): the two-point estimate from
-    the measurement of the row and the latest earlier one at least ``REINIT_BASELINE`` s back (else the object's
-    first row, ``obj_first``), with the measurement std times ``scale``. Returns (x0 (R, n), packed P0)."""
-    # the latest earlier measurement at least REINIT_BASELINE s back (else the object's first)
-    first = reinit_first_rows(t, rows, obj_first, REINIT_BASELINE)
-    c, var = two_point(t, z, rows, cfg.meas_std * np.asarray(scale, dtype=float), cfg.omega_std, heading, cfg.heading_std,
-                       cfg.heading_cap, first)
-    x0, P0 = initial_estimates(model, c, var)
-    return x0, pack(P0)
+def restart_inputs(measurement, t, z, heading, zm, q, r, cfg: TrackConfig, obj_first) -> Restart:
+    """The re-initialisation of ``lgekf track``'s divergence recovery (``divergence.recover``) and the filter it runs
+    again: the two-point estimate (``two_point``) at an alarm row from its measurement (t, z, heading) and the latest
+    earlier one at least ``REINIT_BASELINE`` s back (else the object's first row, ``obj_first`` (B,)), the
+    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r, rows as
+    t's (``lgekf.apps.windows`` gives each window its rows with ``dataclasses.replace``)."""
+    return Restart(measurement, zm, t, q, r, t, z, heading, 0, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std, cfg.heading_cap,
+                   REINIT_BASELINE)
 
 
 def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position",
@@ -227,27 +230,19 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
     x0, P0 = (None, None) if start is None else start
-    x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
-    flag = np.zeros(t.size, np.int8)
     if monitor is None:
-        return Tracked(x, p, nis, flag, [])
+        x, p, nis = track_arrays(model, t, z, starts, cfg, heading=heading, x0=x0, P0=P0, measurement=measurement)
+        return Tracked(x, p, nis, np.zeros(t.size, np.int8), [])
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
-    q = cfg.q(model)
-
-    def reinit(rows, scale):
-        rows = np.asarray(rows, dtype=np.int64)
-        return reinit_estimates(model, t, z, cfg, heading, rows, scale, starts[np.searchsorted(starts, rows, side="right") - 1])
-
-    rerun_kernel = getattr(spec.kernels, f"run_segments_noise_from_{measurement}")
-
-    def rerun(first, lengths, s0, p0, scale):  # every segment with its object's noise inflation, in one call; s0, p0 in place
-        scale = np.asarray(scale, dtype=float)[:, None]
-        rerun_kernel(zm, t, np.asarray(first, dtype=np.int64), np.asarray(lengths, dtype=np.int64), s0, p0,
-                     q[None, :] * scale, r[None, :] * scale, x, p, nis)
-
+    x0, p0, x, p, nis = _started(model, t, z, starts, cfg, heading, x0, P0)
+    s0 = np.empty((len(starts) - 1, len(spec.internal_names)))
+    spec.kernels.states_from_physical(np.ascontiguousarray(x0, dtype=float), s0)
     if limits is None:
         limits = speed_limits(t, z, starts, cfg.meas_std, monitor)
-    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, reinit, rerun)
+    restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, starts[:-1])
+    # the first pass (the rows track_arrays filters) is made by the monitor's compiled loop too
+    flag, alarms = recover(model, x, p, nis, starts, limits, zm.shape[1], monitor, restart,
+                           first_pass=FirstPass(starts[:-1] + 2, s0, p0, np.ones(len(starts) - 1)))
     return Tracked(x, p, nis, flag, alarms)
 
 
@@ -269,11 +264,8 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     limit = 0.0 if monitor is None else float(speed_limits(t, z, starts, cfg.meas_std, monitor)[0])
 
-    def reinit(rows_, scale):
-        return reinit_estimates(model, t, z, cfg, heading, rows_, scale, np.zeros(len(rows_), np.int64))
-
-    for a, x, p, nis, flag, alarms in filter_windows(model, measurement, t, zm, cfg.q(model), r, x0[0], pack(P0)[0], reinit, monitor,
-                                                     limit, rows):
+    restart = restart_inputs(measurement, t, z, heading, zm, cfg.q(model), r, cfg, np.zeros(1, np.int64))
+    for a, x, p, nis, flag, alarms in filter_windows(model, x0[0], pack(P0)[0], restart, monitor, limit, rows):
         yield a, Tracked(x, p, nis, flag, alarms)
 
 

@@ -5,8 +5,9 @@ filter from a re-initialisation anywhere in the object): for one object of 10⁶
 covariance entries a row), that is 230 MB, ten times its CSV. ``filter_windows`` gives the same rows, bit for bit,
 a window at a time:
 
-* the filter continues from the internal state and covariance of the previous window's last row (the generated
-  ``run_segments_from_<meas>``), so a window's numbers are those of one run over the object;
+* the filter continues from the internal state and covariance of the previous window's last row (the first pass of
+  the compiled monitor ``recover_<meas>``, or the generated ``run_segments_from_<meas>`` when nothing is monitored),
+  so a window's numbers are those of one run over the object;
 * the monitor (``divergence.recover``) scans a window's rows from W = max(``window``, ``short``) rows before it (the
   furthest its NIS tests reach back), or from the object's last re-initialisation if later: every test it makes from the window's first row on sums the same
   NIS values, over the same updates since the (re-)initialisation, as one scan over the object; the rows
@@ -23,37 +24,36 @@ states physical, covariances packed in the filter's tangent coordinates (X = μ�
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Iterator
 
 import numpy as np
 
 from ..core.registry import get_model
-from .divergence import NEVER, MonitorConfig, MonitorMemory, recover
+from .divergence import NEVER, Carry, FirstPass, MonitorConfig, MonitorMemory, Restart, recover
 
 __all__ = ["filter_windows", "WINDOW_ROWS"]
 
 WINDOW_ROWS = 1 << 15  # rows filtered and monitored at a time
 
 
-def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, monitor: MonitorConfig | None, limit: float,
+def filter_windows(model: str, x0, p0, restart: Restart, monitor: MonitorConfig | None, limit: float,
                    rows: int = WINDOW_ROWS) -> Iterator[tuple]:
     """Filter and monitor ONE object (every row of ``t``, ``zm``) as ``track_monitored`` does, a window of rows at a
     time (``lgekf.apps.track.track_windows`` prepares the inputs from a ``TrackConfig``).
 
     Parameters
     ----------
-    model, measurement : str
-        Registry model and its measurement.
-    t, zm : ndarray, shape (N,), (N, m)
-        The object's times (increasing) and measurements, N >= 2.
-    q, r : ndarray
-        Process and measurement noise stds.
+    model : str
+        Registry model.
     x0 : ndarray, shape (n,)
         The two-point start (physical) at row 1; row 0 carries it with the first measured position.
     p0 : ndarray, shape (n(n+1)/2,)
         Its packed covariance.
-    reinit : callable
-        ``reinit(rows (R,), scale (R,)) -> (x0 (R, n), packed P0)``, rows of the object (``divergence.recover``).
+    restart : divergence.Restart
+        The object: its times ``t`` (N,) (increasing, N >= 2) and measurements ``zm`` (N, m), the measurement, the
+        noise stds q, r and the re-initialisation's inputs (offset 0, ``obj_first`` [0]); each window gets its rows
+        of it.
     monitor : MonitorConfig or None
         None: no monitoring (all flags 0).
     limit : float
@@ -72,7 +72,8 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
         raise ValueError(f"rows: must be at least 1, got {rows}")
     spec = get_model(model)
     kern = spec.kernels
-    run = getattr(kern, f"run_segments_from_{measurement}")
+    run = getattr(kern, f"run_segments_from_{restart.measurement}")
+    t, zm, q, r = restart.t, restart.zm, restart.q, restart.r
     N = t.size
     limits = np.array([limit], dtype=float)
     x0 = np.asarray(x0, dtype=float)
@@ -102,43 +103,27 @@ def filter_windows(model: str, measurement: str, t, zm, q, r, x0, p0, reinit, mo
             p[0] = p[1] = p0
         else:
             x[:A - L], p[:A - L], nis[:A - L], flag[:A - L] = tail
-        run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
-            x, p, nis)
         alarms = []
         if monitor is not None and memory.count[0] <= monitor.max_reinit:
-            end = B - L
-
-            def reinit_at(g, sc):
-                nonlocal run_scale
-                x0g, p0g = reinit(np.asarray(g, dtype=np.int64) + L, sc)
-                last = np.flatnonzero(np.asarray(g) == end - 1)  # the window's last row: the next window starts from it
-                if last.size:
-                    kern.state_from_physical_into(x0g[last[-1]], carry_s[0])
-                    carry_p[0] = p0g[last[-1]]
-                    run_scale = float(np.asarray(sc, dtype=float)[last[-1]])
-                return x0g, p0g
-
-            def rerun(first, lengths, ss, ps, sc):  # as track_monitored's rerun (ss, ps internal, left at the last row)
-                nonlocal run_scale
-                for i in range(len(first)):  # one object: a round reruns at most one segment
-                    run(zm[L:B], t[L:B], np.asarray(first[i:i + 1], np.int64), np.asarray(lengths[i:i + 1], np.int64), ss[i:i + 1],
-                        ps[i:i + 1], q * sc[i], r * sc[i], x, p, nis)
-                    if first[i] + lengths[i] == end:  # it reached the window's last row: the next window goes on from it
-                        carry_s[0] = ss[i]
-                        carry_p[0] = ps[i]
-                        run_scale = float(sc[i])
-
             last_global = int(memory.last[0])
             scan_from = max(A - reach, 2, last_global + 1 if last_global != NEVER else 2)
             if last_global != NEVER:
                 memory.last[0] = last_global - L
-            f, alarms = recover(model, x, p, nis, np.array([0, end], np.int64), limits, zm.shape[1], monitor, reinit_at, rerun,
-                                first=np.array([scan_from - L], np.int64), memory=memory)
+            # the window's rows filtered from where the previous window's run ended, then monitored, in one compiled call;
+            # carry: where the run that filtered the window's last row left the filter
+            carry = Carry(carry_s, carry_p, np.array([run_scale]), np.zeros(1, np.bool_))
+            f, alarms = recover(model, x, p, nis, np.array([0, B - L], np.int64), limits, zm.shape[1], monitor,
+                                replace(restart, zm=zm[L:B], t=t[L:B], offset=L), first=np.array([scan_from - L], np.int64), memory=memory,
+                                carry=carry, first_pass=FirstPass(np.array([A - L]), carry_s.copy(), carry_p.copy(), np.array([run_scale])))
+            run_scale = float(carry.scale[0])
             if memory.last[0] != NEVER:
                 memory.last[0] += L
             flag |= f
             for al in alarms:
                 al.row += L
+        else:  # no monitor (or none left after max_reinit): the filter alone
+            run(zm[L:B], t[L:B], np.array([A - L], np.int64), np.array([B - A], np.int64), carry_s, carry_p, q * run_scale, r * run_scale,
+                x, p, nis)
         done = B == N
         keep = 0 if done else min(hold, B - L)
         cut = B - L - keep
