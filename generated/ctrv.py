@@ -978,8 +978,8 @@ def calH_bank_pose(s, live, out):
 def run_segments_noise_from_pose(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
     """``run_segments_from_pose`` with noise stds of each segment's own: q (S, 2), r (S, 3) (the divergence
     recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
-    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_pose`` called
-    per segment i with q[i], r[i]."""
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_from_pose``
+    called per segment i with q[i], r[i]."""
     longest = 0
     for i in range(first.shape[0]):
         longest = max(longest, lengths[i])
@@ -1909,8 +1909,8 @@ def calH_bank_position(s, live, out):
 def run_segments_noise_from_position(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
     """``run_segments_from_position`` with noise stds of each segment's own: q (S, 2), r (S, 1) (the divergence
     recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
-    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_position`` called
-    per segment i with q[i], r[i]."""
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_from_position``
+    called per segment i with q[i], r[i]."""
     longest = 0
     for i in range(first.shape[0]):
         longest = max(longest, lengths[i])

@@ -298,8 +298,8 @@ SEGMENT_NOISE_TEMPLATE = '''
 def run_segments_noise_from_{meas}(z, t, first, lengths, s0, p0, q, r, out_x, out_p, out_nis):
     """``run_segments_from_{meas}`` with noise stds of each segment's own: q (S, {nq}), r (S, {nr}) (the divergence
     recovery's reruns, each object's noise inflated by its own factor). On return s0[i], p0[i] hold the posterior
-    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_{meas}`` called
-    per segment i with q[i], r[i]."""
+    of segment i's last row, from which a later call continues exactly. The numbers of ``run_one_from_{meas}``
+    called per segment i with q[i], r[i]."""
 {segments_noise}'''
 
 BATCH_TEMPLATE = (BATCH_TEMPLATE

@@ -198,29 +198,28 @@ class Restart:
     """What ``recover`` needs to re-initialise an object and filter it again: the inputs of the generated
     ``recover_<meas>`` besides the outputs and the monitor's settings.
 
-    ``zm`` (N, m), ``t`` (N,), ``q``, ``r``: the filter's measurements, times and noise stds, rows as the outputs';
-    ``t_all``, ``z_all`` (positions), ``heading_all`` (or None): the measurements of the two-point re-initialisation
-    (``lgekf.core.initiation.two_point``), an output row k being their row k + ``offset``; ``obj_first`` (B,): each
-    object's first row there (the earliest row a re-initialisation may use); ``meas_std``, ``omega_std``,
-    ``heading_std``, ``heading_cap``: the two-point start's parameters; ``baseline``: the least time between its two
-    measurements (s, ``lgekf.apps.reinit_rows``).
+    ``t`` (T,), ``z`` (T, 2) positions, ``heading`` (T,) or None, ``zm`` (T, m): the times and measurements (those of
+    the two-point re-initialisation, ``lgekf.core.initiation.two_point``, and the filter's), an output row k being
+    their row k + ``offset``; ``q``, ``r``: the filter's noise stds; ``obj_first`` (B,): each object's first row of
+    t (the earliest a re-initialisation may use); ``meas_std``, ``omega_std``, ``heading_std``, ``heading_cap``: the
+    two-point start's parameters; ``baseline``: the least time between its two measurements (s,
+    ``lgekf.apps.reinit_rows``).
     """
 
     measurement: str
-    zm: np.ndarray
     t: np.ndarray
+    z: np.ndarray
+    heading: np.ndarray | None
+    zm: np.ndarray
     q: np.ndarray
     r: np.ndarray
-    t_all: np.ndarray
-    z_all: np.ndarray
-    heading_all: np.ndarray | None
-    offset: int
     obj_first: np.ndarray
     meas_std: float
     omega_std: float
     heading_std: float
     heading_cap: float
     baseline: float
+    offset: int = 0
 
 
 @dataclass
@@ -310,7 +309,9 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     carry = Carry.empty(model, B) if carry is None else carry
     clip, thr, thr_short = cfg.nis_thresholds(m)
     rs = restart
-    heading = np.empty(0) if rs.heading_all is None else np.ascontiguousarray(rs.heading_all, dtype=float)
+    heading = np.empty(0) if rs.heading is None else np.ascontiguousarray(rs.heading, dtype=float)
+    t_all = np.ascontiguousarray(rs.t, dtype=float)
+    rows = slice(int(rs.offset), int(rs.offset) + x.shape[0])  # the outputs' rows of t, zm
     kernel = getattr(spec.kernels, f"recover_{rs.measurement}")
     if first_pass is None:
         run_first, run_s, run_p, run_scale = np.full(seg_obj.size, -1, np.int64), carry.s[:0], carry.p[:0], carry.scale[:0]
@@ -323,8 +324,8 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
                    np.ascontiguousarray(limits, dtype=float), int(m),
                    int(cfg.window), int(cfg.short), float(clip), float(thr), float(thr_short), float(cfg.n_sigma), int(cfg.max_reinit),
                    int(cfg.repeat), float(cfg.max_inflation), int(RERUN_ROWS), memory.count, memory.scale, memory.last,
-                   np.ascontiguousarray(rs.zm, dtype=float), np.ascontiguousarray(rs.t, dtype=float), np.ascontiguousarray(rs.q, dtype=float),
-                   np.ascontiguousarray(rs.r, dtype=float), np.ascontiguousarray(rs.t_all, dtype=float), np.ascontiguousarray(rs.z_all, dtype=float),
+                   np.ascontiguousarray(rs.zm[rows], dtype=float), t_all[rows], np.ascontiguousarray(rs.q, dtype=float),
+                   np.ascontiguousarray(rs.r, dtype=float), t_all, np.ascontiguousarray(rs.z, dtype=float),
                    heading, int(rs.offset), np.ascontiguousarray(rs.obj_first, dtype=np.int64), float(rs.meas_std), float(rs.omega_std),
                    float(rs.heading_std), float(rs.heading_cap), SIDESLIP_FRACTION, float(rs.baseline),
                    np.array(spec.angles, dtype=np.int64), carry.s, carry.p, carry.scale, carry.reached)

@@ -206,9 +206,9 @@ def restart_inputs(measurement, t, z, heading, zm, q, r, cfg: TrackConfig, obj_f
     """The re-initialisation of ``lgekf track``'s divergence recovery (``divergence.recover``) and the filter it runs
     again: the two-point estimate (``two_point``) at an alarm row from its measurement (t, z, heading) and the latest
     earlier one at least ``REINIT_BASELINE`` s back (else the object's first row, ``obj_first`` (B,)), the
-    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r, rows as
-    t's (``lgekf.apps.windows`` gives each window its rows with ``dataclasses.replace``)."""
-    return Restart(measurement, zm, t, q, r, t, z, heading, 0, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std, cfg.heading_cap,
+    measurement std times the object's noise inflation; the filter's measurements zm and noise stds q, r (outputs
+    row for row; ``lgekf.apps.windows`` sets the ``offset`` of each window's rows)."""
+    return Restart(measurement, t, z, heading, zm, q, r, obj_first, cfg.meas_std, cfg.omega_std, cfg.heading_std, cfg.heading_cap,
                    REINIT_BASELINE)
 
 

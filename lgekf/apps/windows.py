@@ -52,8 +52,7 @@ def filter_windows(model: str, x0, p0, restart: Restart, monitor: MonitorConfig 
         Its packed covariance.
     restart : divergence.Restart
         The object: its times ``t`` (N,) (increasing, N >= 2) and measurements ``zm`` (N, m), the measurement, the
-        noise stds q, r and the re-initialisation's inputs (offset 0, ``obj_first`` [0]); each window gets its rows
-        of it.
+        noise stds q, r and the re-initialisation's inputs (``obj_first`` [0]); each window is its ``offset``.
     monitor : MonitorConfig or None
         None: no monitoring (all flags 0).
     limit : float
@@ -113,7 +112,7 @@ def filter_windows(model: str, x0, p0, restart: Restart, monitor: MonitorConfig 
             # carry: where the run that filtered the window's last row left the filter
             carry = Carry(carry_s, carry_p, np.array([run_scale]), np.zeros(1, np.bool_))
             f, alarms = recover(model, x, p, nis, np.array([0, B - L], np.int64), limits, zm.shape[1], monitor,
-                                replace(restart, zm=zm[L:B], t=t[L:B], offset=L), first=np.array([scan_from - L], np.int64), memory=memory,
+                                replace(restart, offset=L), first=np.array([scan_from - L], np.int64), memory=memory,
                                 carry=carry, first_pass=FirstPass(np.array([A - L]), carry_s.copy(), carry_p.copy(), np.array([run_scale])))
             run_scale = float(carry.scale[0])
             if memory.last[0] != NEVER:
