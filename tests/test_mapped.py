@@ -118,3 +118,17 @@ def test_positions_moved_within_the_buffer(k, ix, iy):
     z = readers._positions_in_place(vals, ix, iy, block=7)
     assert np.shares_memory(z, vals) and z.flags.c_contiguous
     assert np.array_equal(z, want)
+
+
+@pytest.mark.parametrize("k, ix, iy", [(2, 1, 0), (3, 1, 2), (5, 4, 1)])
+def test_positions_buffer_shrunk_to_them(k, ix, iy):
+    """The parser's rows are a prefix view of a larger buffer (blank lines leave room): x, y end up in that buffer
+    shrunk to exactly the N x 2 positions (its other columns' memory returned), with the same numbers."""
+    buf = np.random.default_rng(k).standard_normal((1200, k))
+    vals = buf[:1001]
+    want = vals[:, [ix, iy]].copy()
+    del buf
+    z = readers._positions_in_place(vals, ix, iy, block=7)
+    del vals
+    assert z.base is None and z.flags.owndata and z.shape == (1001, 2) and z.nbytes == 1001 * 2 * 8
+    assert np.array_equal(z, want)
