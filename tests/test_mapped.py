@@ -132,3 +132,20 @@ def test_positions_buffer_shrunk_to_them(k, ix, iy):
     del vals
     assert z.base is None and z.flags.owndata and z.shape == (1001, 2) and z.nbytes == 1001 * 2 * 8
     assert np.array_equal(z, want)
+
+
+@pytest.mark.parametrize("rows", [1, 2, 5])
+@pytest.mark.parametrize("whole", [True, False])
+def test_parsed_columns_do_not_share_the_shrunk_buffer(tmp_path, monkeypatch, rows, whole):
+    """After the parsed buffer is shrunk to the positions, t, heading and the extra columns are copies of their
+    own (a view into the returned third would read freed memory), in both the whole-file and the mapped path."""
+    if not whole:
+        monkeypatch.setattr(readers, "MAP_MIN_BYTES", 0)
+    p = tmp_path / "m.csv"
+    p.write_text("id,t,x,y,heading,speed\n" + "".join(f"a,{i}.5,{i}.25,-{i}.75,0.{i},{i}.125\n" for i in range(rows)))
+    m = readers.read_csv(p, use_heading=True, extra=("speed",))
+    assert m.z.tolist() == [[i + 0.25, -(i + 0.75)] for i in range(rows)]
+    assert m.t.tolist() == [i + 0.5 for i in range(rows)] and m.extra["speed"].tolist() == [i + 0.125 for i in range(rows)]
+    assert m.heading.tolist() == [float(f"0.{i}") for i in range(rows)]
+    for v in (m.t, m.heading, m.extra["speed"]):
+        assert not np.shares_memory(v, m.z)

@@ -212,12 +212,22 @@ def test_median_abs_residual_is_numpys_median(monkeypatch, cap):
         assert got[0] == ref[0] or (np.isnan(got[0]) and np.isnan(ref[0])), (got, ref)
 
 
-def test_measurement_std_of_nan_residuals_is_no_estimate():
-    """Times about 1e-120 s apart make a residual NaN (1/0 in the weights): no estimate (windows 0, the default
-    applies), not an exception."""
+def test_measurement_std_of_nonfinite_residuals_is_no_estimate():
+    """Times about 1e-120 s apart make a residual NaN (1/0 in the weights), positions of 1e306 m overflow: no
+    estimate (not usable, said why; the default applies), not an exception."""
+    from lgekf.apps.defaults import plan_noise
+
     t = np.array([0.0, 1e-120, 2e-120, 3e-120, 1.0])
     est = measurement_std(t, np.zeros((5, 2)), np.array([0, 5]))
-    assert est.windows == 0 and np.isnan(est.meas_std)
+    assert est.windows == 2 and est.nonfinite and not est.usable and np.isnan(est.meas_std)
+    assert "not finite" in est.describe()
+    t = 0.1 * np.arange(8)
+    z = np.tile([[1e306, -1e306], [-1e306, 1e306]], (4, 1))
+    est = measurement_std(t, z, np.array([0, 8]))
+    assert est.nonfinite and not est.usable
+    plan = plan_noise(t, z, np.array([0, 8]), ["cv"], accel_std={"cv": (0.5,)}, omega_std=0.5, heading_std=0.1)
+    assert plan.meas_source == "default" and np.isfinite(plan.meas_std)
+    assert measurement_std(0.1 * np.arange(3), np.zeros((3, 2)), np.array([0, 3])).describe() == "no object has 4 measurements"
 
 
 def test_typical_speed_is_the_median_of_the_finite_chords():

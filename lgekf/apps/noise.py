@@ -70,10 +70,19 @@ class NoiseEstimate:
     meas_std: float
     windows: int  # number of 4-point windows pooled
     floored: bool = False
+    nonfinite: bool = False  # the residuals' median is not finite (meas_std nan): times too close, positions too large
+
+    @property
+    def usable(self) -> bool:
+        """Whether ``meas_std`` is an estimate (windows to pool, a finite median)."""
+        return self.windows > 0 and not self.nonfinite
 
     def describe(self) -> str:
         if self.windows == 0:
             return "no object has 4 measurements"
+        if self.nonfinite:
+            return (f"the quadratic residuals of {self.windows} windows of 4 points are not finite (times too close "
+                    "together or positions too large)")
         extra = f", floor {MIN_MEAS_STD:g} m" if self.floored else ""
         return f"quadratic residuals of {self.windows} windows of 4 points{extra}"
 
@@ -101,7 +110,8 @@ def _window_residual(t, z, i, w):
 @nb.njit(cache=True, nogil=True, error_model="numpy")  # times too close for the products: inf and NaN, not an exception
 def _dd3(t, z, starts, out):
     """Normalised third divided differences of every 4-point window inside an object into out; returns
-    how many were written."""
+    how many were written (``_third_divided_differences``: the residuals themselves, for tests and inspection;
+    ``measurement_std`` takes their median without holding them, ``_median_abs_residual``)."""
     n = 0
     w = np.empty(4)
     for b in range(starts.shape[0] - 1):
@@ -129,7 +139,7 @@ def _residual_pass(t, z, starts, mode, prefix, shift, hist, cand):
     """One pass over |e_x|, |e_y| of every window (the numbers of ``np.abs(_third_divided_differences(...))``),
     each keyed by its bits read as an unsigned integer (for numbers >= 0, and NaN after +inf, in their order).
 
-    mode 0: count the windows (returned); 1: ``hist[(key >> shift) & 0xFFFF] += 1`` over the values whose
+    mode 1: ``hist[(key >> shift) & 0xFFFF] += 1`` over the values whose
     ``key >> (shift + 16)`` is ``prefix`` (every value when shift = 48); 2: the values whose ``key >> shift`` is
     ``prefix`` into ``cand`` (how many returned); 3: the smallest key above ``prefix`` (2^64 - 1 for none)."""
     w = np.empty(4)
@@ -144,9 +154,6 @@ def _residual_pass(t, z, starts, mode, prefix, shift, hist, cand):
     for b in range(starts.shape[0] - 1):
         for i in range(starts[b], starts[b + 1] - 3):
             ex, ey = _window_residual(t, z, i, w)
-            if mode == 0:
-                n += 1
-                continue
             one[0] = abs(ex)
             one[1] = abs(ey)
             for c in range(2):
@@ -178,7 +185,7 @@ def _median_abs_residual(t, z, starts) -> tuple:
     the group (one more pass); the two are averaged as ``np.median`` does. A NaN among the values gives NaN, as in
     ``np.median``.
     """
-    windows = int(_residual_pass(t, z, starts, 0, np.uint64(0), 0, np.zeros(0, np.int64), np.zeros(0)))
+    windows = int(np.maximum(np.diff(starts) - 3, 0).sum())  # 4-point windows inside the objects
     total = 2 * windows
     if total == 0:
         return float("nan"), 0
@@ -230,13 +237,17 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     -------
     NoiseEstimate
         ``meas_std`` = MAD of the normalised third divided differences, pooled over both axes, at least
-        ``MIN_MEAS_STD``; ``windows`` = 0 (and ``meas_std`` nan) when no object has four measurements (or
-        when times are so close, about 1e-77 s apart, that a residual is NaN).
+        ``MIN_MEAS_STD``; ``windows`` = 0 (and ``meas_std`` nan) when no object has four measurements;
+        ``nonfinite`` (and ``meas_std`` nan) when the residuals' median is not finite: times so close (about
+        1e-103 s apart) that a window's weights overflow, or positions so large that the residuals do. Use
+        ``usable`` before ``meas_std``.
     """
     med, windows = _median_abs_residual(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
                                         np.asarray(starts, np.int64))
-    if windows == 0 or not math.isfinite(med):  # no window, or times so close that a residual is NaN: no estimate
+    if windows == 0:
         return NoiseEstimate(float("nan"), 0)
+    if not math.isfinite(med):  # times so close (about 1e-103 s) or positions so large that residuals overflow: no estimate
+        return NoiseEstimate(float("nan"), windows, nonfinite=True)
     s = med / MAD_SCALE
     if s < MIN_MEAS_STD:
         return NoiseEstimate(MIN_MEAS_STD, windows, floored=True)

@@ -626,10 +626,10 @@ def times_increase(t, obj, n_obj):
         What ``np.diff(t[order]) <= 0`` outside the steps between objects says for the rows grouped by object,
         found without grouping them.
     """
-    last = np.full(n_obj, -np.inf)
+    last = np.full(n_obj, np.nan)  # t - nan is nan, not <= 0: an object's first row passes
     for i in range(t.shape[0]):
         o = obj[i]
-        if t[i] <= last[o]:
+        if t[i] - last[o] <= 0:  # np.diff's rule exactly, also for inf and nan (inf - inf is nan: passes)
             return False
         last[o] = t[i]
     return True

@@ -80,7 +80,7 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
 
 def _own(a: np.ndarray) -> np.ndarray:
     """``a`` itself, or a copy when it is a view holding a larger buffer alive (a column of a parsed table; the
-    fast path's positions own a buffer of their own size)."""
+    fast path's positions own a buffer of their own size, unless ``_positions_in_place`` could not shrink it)."""
     return a.copy() if a.base is not None and a.base.nbytes > a.nbytes else a
 
 

@@ -599,8 +599,9 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
 
 def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
     """Columns ix, iy of the C-contiguous rows ``vals`` (N, k >= 2) as an (N, 2) array in the first 2N numbers of
-    ``vals``'s own buffer, which is then shrunk to them (``ndarray.resize``: ``realloc``, the rest of the buffer
-    returned). Take the other columns out first, as copies, and use no view of ``vals`` afterwards.
+    ``vals``'s own buffer, which is then shrunk to them when NumPy owns it and ``vals`` starts it
+    (``ndarray.resize``: ``realloc``, the rest of the buffer returned; otherwise, or for N = 0, a view of the first
+    2N numbers). Take the other columns out first, as copies, and use no view of ``vals`` afterwards.
 
     Row r's pair goes to numbers 2r, 2r + 1, never after row r's own place (k r), so copying a block of rows at a
     time, in order (each block taken out before it is written), never overwrites a row not yet moved.
