@@ -74,7 +74,7 @@ DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
-ROWS_PER_CHUNK = 1 << 14  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
+ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
 FORMAT_ROWS = 1 << 15  # rows of a Parquet row group made at a time (CSV text: lgekf.io.formatting.PART_ROWS)
 
 
