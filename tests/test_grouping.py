@@ -79,3 +79,33 @@ def test_grouped_consuming_raises_the_errors_of_grouped():
         msg = _error(lambda: grouped_consuming(_copy(m)))
         assert msg == _error(lambda: m.grouped(min_length=2))
         assert "not increasing" in msg and f"line {int(m.line[rows[2]])}" in msg
+
+
+def test_times_increase_is_the_grouped_check():
+    """fastcsv.times_increase (file order, before grouping) says what np.diff(t[order]) <= 0 within objects says."""
+    from lgekf.io.fastcsv import group_order, times_increase
+
+    rng = np.random.default_rng(7)
+    for trial in range(300):
+        obj = np.unique(rng.integers(0, 4, int(rng.integers(1, 12))), return_inverse=True)[1]  # every object has rows
+        n_obj = int(obj.max()) + 1
+        t = rng.integers(0, 6, obj.size).astype(float)  # ties and decreases are common
+        t[rng.random(obj.size) < 0.15] = rng.choice([np.inf, -np.inf, np.nan])  # np.diff's rule for them too
+        order, counts = group_order(obj, n_obj)
+        starts = np.concatenate([[0], np.cumsum(counts)])
+        with np.errstate(invalid="ignore"):  # inf - inf
+            bad = np.diff(t[order]) <= 0
+        inner = np.ones(bad.size, bool)
+        inner[starts[1:-1] - 1] = False
+        assert times_increase(t, obj, n_obj) == (not (bad & inner).any()), (obj, t)
+
+
+@pytest.mark.parametrize("t", [[-np.inf, 1.0, 2.0], [1.0, np.inf, np.inf], [1.0, np.nan, 0.5]])
+def test_grouped_consuming_takes_what_grouped_takes(t):
+    """Non-finite times (the API's; the readers refuse them) pass or fail as in Measurements.grouped."""
+    m = _measurements(np.zeros(3, np.int64), 1)
+    m.t[:] = t
+    with np.errstate(invalid="ignore"):  # inf - inf in grouped's np.diff
+        want = _copy(m).grouped(min_length=2)[0]
+    got, _ = grouped_consuming(_copy(m))
+    assert np.array_equal(got.t, want.t, equal_nan=True)

@@ -118,3 +118,34 @@ def test_positions_moved_within_the_buffer(k, ix, iy):
     z = readers._positions_in_place(vals, ix, iy, block=7)
     assert np.shares_memory(z, vals) and z.flags.c_contiguous
     assert np.array_equal(z, want)
+
+
+@pytest.mark.parametrize("k, ix, iy", [(2, 1, 0), (3, 1, 2), (5, 4, 1)])
+def test_positions_buffer_shrunk_to_them(k, ix, iy):
+    """The parser's rows are a prefix view of a larger buffer (blank lines leave room): x, y end up in that buffer
+    shrunk to exactly the N x 2 positions (its other columns' memory returned), with the same numbers."""
+    buf = np.random.default_rng(k).standard_normal((1200, k))
+    vals = buf[:1001]
+    want = vals[:, [ix, iy]].copy()
+    del buf
+    z = readers._positions_in_place(vals, ix, iy, block=7)
+    del vals
+    assert z.base is None and z.flags.owndata and z.shape == (1001, 2) and z.nbytes == 1001 * 2 * 8
+    assert np.array_equal(z, want)
+
+
+@pytest.mark.parametrize("rows", [1, 2, 5])
+@pytest.mark.parametrize("whole", [True, False])
+def test_parsed_columns_do_not_share_the_shrunk_buffer(tmp_path, monkeypatch, rows, whole):
+    """After the parsed buffer is shrunk to the positions, t, heading and the extra columns are copies of their
+    own (a view into the returned third would read freed memory), in both the whole-file and the mapped path."""
+    if not whole:
+        monkeypatch.setattr(readers, "MAP_MIN_BYTES", 0)
+    p = tmp_path / "m.csv"
+    p.write_text("id,t,x,y,heading,speed\n" + "".join(f"a,{i}.5,{i}.25,-{i}.75,0.{i},{i}.125\n" for i in range(rows)))
+    m = readers.read_csv(p, use_heading=True, extra=("speed",))
+    assert m.z.tolist() == [[i + 0.25, -(i + 0.75)] for i in range(rows)]
+    assert m.t.tolist() == [i + 0.5 for i in range(rows)] and m.extra["speed"].tolist() == [i + 0.125 for i in range(rows)]
+    assert m.heading.tolist() == [float(f"0.{i}") for i in range(rows)]
+    for v in (m.t, m.heading, m.extra["speed"]):
+        assert not np.shares_memory(v, m.z)

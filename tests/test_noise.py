@@ -179,3 +179,63 @@ def test_objects_too_short_to_learn_from_keep_the_defaults():
     assert plan.meas_source == "default" and plan.meas_std == 0.3
     assert plan.accel_source["ctrv"] == "default" and plan.accel_std["ctrv"] == MODELS["ctrv"].default_accel_std
     assert "default: no object has" in plan.describe() and "no object has 4 measurements" in plan.describe()
+
+
+def _median_reference(t, z, starts):
+    """What measurement_std took before its counting selection: the median of all |residuals|, held at once."""
+    e = _third_divided_differences(t, z, starts)
+    return (float(np.median(np.abs(e))) if e.size else float("nan")), e.shape[0]
+
+
+@pytest.mark.parametrize("cap", [3, 1 << 17])
+def test_median_abs_residual_is_numpys_median(monkeypatch, cap):
+    """The counting (radix) selection gives np.median's number bit for bit: odd and even counts, ties across
+    the candidate cap, all residuals equal (zero), few distinct values, several objects, no window, NaN."""
+    import lgekf.apps.noise as noise
+
+    monkeypatch.setattr(noise, "SELECT_CANDIDATES", cap)
+    monkeypatch.setattr(noise, "SELECT_SHIFT", 62 if cap < 100 else noise.SELECT_SHIFT)  # a small cap at every size
+    rng = np.random.default_rng(1)
+    cases = []
+    for n in (3, 4, 5, 6, 7, 9, 50, 333):
+        t = np.cumsum(rng.uniform(0.05, 0.2, n))
+        z = rng.normal(0, 1, (n, 2))
+        cases += [(t, z, np.array([0, n])), (t, z, np.array([0, n // 2, n])), (t, z.round(0), np.array([0, n]))]
+    n = 4000
+    t = np.arange(n) * 0.1
+    cases += [(t, np.zeros((n, 2)), np.array([0, n])),  # every residual 0: the group of one key
+              (t, np.repeat(rng.normal(size=(n // 4, 2)).round(0), 4, axis=0), np.array([0, n])),
+              (t, rng.normal(size=(n, 2)).round(1), np.array([0, 1000, 2500, n])),
+              (np.array([0.0, 1e-120, 2e-120, 3e-120, 1.0]), rng.normal(size=(5, 2)), np.array([0, 5]))]  # NaN
+    for t, z, starts in cases:
+        got, ref = noise._median_abs_residual(t, z, starts), _median_reference(t, z, starts)
+        assert got[1] == ref[1]
+        assert got[0] == ref[0] or (np.isnan(got[0]) and np.isnan(ref[0])), (got, ref)
+
+
+def test_measurement_std_of_nonfinite_residuals_is_no_estimate():
+    """Times about 1e-120 s apart make a residual NaN (1/0 in the weights), positions of 1e306 m overflow: no
+    estimate (not usable, said why; the default applies), not an exception."""
+    from lgekf.apps.defaults import plan_noise
+
+    t = np.array([0.0, 1e-120, 2e-120, 3e-120, 1.0])
+    est = measurement_std(t, np.zeros((5, 2)), np.array([0, 5]))
+    assert est.windows == 2 and est.nonfinite and not est.usable and np.isnan(est.meas_std)
+    assert "not finite" in est.describe()
+    t = 0.1 * np.arange(8)
+    z = np.tile([[1e306, -1e306], [-1e306, 1e306]], (4, 1))
+    est = measurement_std(t, z, np.array([0, 8]))
+    assert est.nonfinite and not est.usable
+    plan = plan_noise(t, z, np.array([0, 8]), ["cv"], accel_std={"cv": (0.5,)}, omega_std=0.5, heading_std=0.1)
+    assert plan.meas_source == "default" and np.isfinite(plan.meas_std)
+    assert measurement_std(0.1 * np.arange(3), np.zeros((3, 2)), np.array([0, 3])).describe() == "no object has 4 measurements"
+
+
+def test_typical_speed_is_the_median_of_the_finite_chords():
+    """typical_speed compacts the finite chord speeds in place: np.median of the finite ones, across blocks."""
+    rng = np.random.default_rng(5)
+    starts = np.array([0, 70_000, 70_001, 140_000])
+    t = np.concatenate([np.cumsum(rng.uniform(0.05, 0.2, b - a)) for a, b in zip(starts[:-1], starts[1:])])
+    z = np.cumsum(rng.normal(size=(t.size, 2)), axis=0)
+    c = chord_speeds(t, z, starts)
+    assert typical_speed(t, z, starts) == float(np.median(c[np.isfinite(c)]))

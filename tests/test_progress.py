@@ -81,7 +81,7 @@ def test_progress_bar_on_and_off():
 def test_track_bar_only_on_a_terminal_and_not_quiet(tmp_path, monkeypatch, terminal, quiet, expect_bar):
     import lgekf.cli.track as track
 
-    monkeypatch.setattr(track, "ROWS_PER_CHUNK", 8)  # "a large file": more rows than one chunk
+    monkeypatch.setattr(track, "BAR_MIN_ROWS", 8)  # "a large file": more rows than that
     t = 0.1 * np.arange(40)
     inp = tmp_path / "in.csv"
     inp.write_text("t,x,y\n" + "".join(f"{a!r},{a!r},0\n" for a in t.tolist()))

@@ -58,3 +58,26 @@ def test_pedestrian_format_gets_frame_dt_advice():
     assert "--frame-dt" in w and "--time-unit" not in w
     deg = np.column_stack([11.5 + 1.3e-5 * t, 48.1 + 0 * t])
     assert unit_warnings(t, deg, starts, fmt="pedestrian") == []  # no columns to rename there
+
+
+@pytest.mark.parametrize("block", [1, 3, 7, 1 << 16])
+def test_step_values_blockwise_equal_whole_array(monkeypatch, block):
+    """The block-wise steps and speeds are the whole-array np.diff expressions, bit for bit, with object boundaries
+    on and across block edges (and objects of one row)."""
+    import lgekf.io.units as units
+
+    monkeypatch.setattr(units, "STEP_BLOCK", block)
+    rng = np.random.default_rng(3)
+    starts = np.array([0, 1, 4, 7, 8, 15, 21, 22])
+    n = starts[-1]
+    t = np.concatenate([np.cumsum(rng.uniform(0.05, 0.2, b - a)) for a, b in zip(starts[:-1], starts[1:])])
+    z = rng.normal(0, 50, (n, 2))
+    keep = np.ones(n - 1, dtype=bool)
+    keep[starts[1:-1] - 1] = False
+    dt = np.diff(t)[keep]
+    speed = (np.hypot(*np.diff(z, axis=0).T))[keep] / dt
+    out = np.full(n - 1, np.nan)
+    k = units._step_values(t, z, starts, "dt", out)
+    assert k == dt.size and np.array_equal(out[:k], dt)
+    k = units._step_values(t, z, starts, "speed", out)
+    assert k == speed.size and np.array_equal(out[:k], speed)

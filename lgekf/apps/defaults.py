@@ -102,7 +102,7 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         speed = in_thread(typical_speed, t, z, starts)
     if meas_std is None:
         est = measurement_std(t, z, starts)
-        if est.windows:
+        if est.usable:
             plan = NoisePlan(est.meas_std, "data", est)
         else:
             plan = NoisePlan(DEFAULT_MEAS_STD, "default", est)

@@ -70,38 +70,53 @@ class NoiseEstimate:
     meas_std: float
     windows: int  # number of 4-point windows pooled
     floored: bool = False
+    nonfinite: bool = False  # the residuals' median is not finite (meas_std nan): times too close, positions too large
+
+    @property
+    def usable(self) -> bool:
+        """Whether ``meas_std`` is an estimate (windows to pool, a finite median)."""
+        return self.windows > 0 and not self.nonfinite
 
     def describe(self) -> str:
         if self.windows == 0:
             return "no object has 4 measurements"
+        if self.nonfinite:
+            return (f"the quadratic residuals of {self.windows} windows of 4 points are not finite (times too close "
+                    "together or positions too large)")
         extra = f", floor {MIN_MEAS_STD:g} m" if self.floored else ""
         return f"quadratic residuals of {self.windows} windows of 4 points{extra}"
 
 
-@nb.njit(cache=True, nogil=True)
+@nb.njit(cache=True, nogil=True, inline="always")
+def _window_residual(t, z, i, w):
+    """The normalised third divided difference (e_x, e_y) / ‖w‖ of the window of rows i .. i + 3 (``w``: scratch (4,))."""
+    s2 = 0.0
+    for j in range(4):
+        d = 1.0
+        for k in range(4):
+            if k != j:
+                d *= t[i + j] - t[i + k]
+        w[j] = 1.0 / d
+        s2 += w[j] * w[j]
+    norm = math.sqrt(s2)
+    ex = 0.0
+    ey = 0.0
+    for j in range(4):
+        ex += w[j] * z[i + j, 0]
+        ey += w[j] * z[i + j, 1]
+    return ex / norm, ey / norm
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")  # times too close for the products: inf and NaN, not an exception
 def _dd3(t, z, starts, out):
     """Normalised third divided differences of every 4-point window inside an object into out; returns
-    how many were written."""
+    how many were written (``_third_divided_differences``: the residuals themselves, for tests and inspection;
+    ``measurement_std`` takes their median without holding them, ``_median_abs_residual``)."""
     n = 0
     w = np.empty(4)
     for b in range(starts.shape[0] - 1):
         for i in range(starts[b], starts[b + 1] - 3):
-            s2 = 0.0
-            for j in range(4):
-                d = 1.0
-                for k in range(4):
-                    if k != j:
-                        d *= t[i + j] - t[i + k]
-                w[j] = 1.0 / d
-                s2 += w[j] * w[j]
-            norm = math.sqrt(s2)
-            ex = 0.0
-            ey = 0.0
-            for j in range(4):
-                ex += w[j] * z[i + j, 0]
-                ey += w[j] * z[i + j, 1]
-            out[n, 0] = ex / norm
-            out[n, 1] = ey / norm
+            out[n, 0], out[n, 1] = _window_residual(t, z, i, w)
             n += 1
     return n
 
@@ -112,6 +127,100 @@ def _third_divided_differences(t, z, starts):
     n = _dd3(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(z[:, :2], dtype=float),
              np.asarray(starts, dtype=np.int64), out)
     return out[:n]
+
+
+SELECT_CANDIDATES = 1 << 17  # ``_median_abs_residual`` collects up to this many values (1 MB) for the exact selection,
+SELECT_SHIFT = 5  # or up to 1/32 of them (0.25 bytes per value) when that is more: two passes on typical residuals
+_DIGIT = 16  # bits of a value's key fixed per counting pass
+_MASK = (1 << _DIGIT) - 1
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _residual_pass(t, z, starts, mode, prefix, shift, hist, cand):
+    """One pass over |e_x|, |e_y| of every window (the numbers of ``np.abs(_third_divided_differences(...))``),
+    each keyed by its bits read as an unsigned integer (for numbers >= 0, and NaN after +inf, in their order).
+
+    mode 1: ``hist[(key >> shift) & 0xFFFF] += 1`` over the values whose
+    ``key >> (shift + 16)`` is ``prefix`` (every value when shift = 48); 2: the values whose ``key >> shift`` is
+    ``prefix`` into ``cand`` (how many returned); 3: the smallest key above ``prefix`` (2^64 - 1 for none)."""
+    w = np.empty(4)
+    n = 0
+    best = np.uint64(0xFFFFFFFFFFFFFFFF)
+    mask = np.uint64(_MASK)
+    sh = np.uint64(shift)
+    top = np.uint64(min(shift + _DIGIT, 63))
+    every = shift + _DIGIT >= 64
+    one = np.empty(2)
+    bits = one.view(np.uint64)
+    for b in range(starts.shape[0] - 1):
+        for i in range(starts[b], starts[b + 1] - 3):
+            ex, ey = _window_residual(t, z, i, w)
+            one[0] = abs(ex)
+            one[1] = abs(ey)
+            for c in range(2):
+                key = bits[c]
+                if mode == 1:
+                    if every or (key >> top) == prefix:
+                        hist[(key >> sh) & mask] += 1
+                elif mode == 2:
+                    if (key >> sh) == prefix:
+                        cand[n] = one[c]
+                        n += 1
+                elif key > prefix and key < best:
+                    best = key
+    return best if mode == 3 else np.uint64(n)
+
+
+def _as_float(key) -> float:
+    return float(np.array([key], dtype=np.uint64).view(np.float64)[0])
+
+
+def _median_abs_residual(t, z, starts) -> tuple:
+    """(``np.median(np.abs(_third_divided_differences(t, z, starts)))``, number of windows): the same number,
+    without holding the 2W values (16 MB at 10⁶ rows).
+
+    The bits of numbers >= 0 read as unsigned integers sort as the numbers do. Counting passes over the windows
+    (each computes every residual again) fix the median's leading 16 bits at a time until the values sharing
+    them are at most ``SELECT_CANDIDATES`` or 1/32 of all (with 4 mantissa bits fixed, about 3 % of Gaussian
+    residuals share the median's: one counting pass); those are collected and partitioned (NumPy's ``partition``, as in
+    ``np.median``). An even count needs the next value too: in the same group, or else the smallest value above
+    the group (one more pass); the two are averaged as ``np.median`` does. A NaN among the values gives NaN, as in
+    ``np.median``.
+    """
+    windows = int(np.maximum(np.diff(starts) - 3, 0).sum())  # 4-point windows inside the objects
+    total = 2 * windows
+    if total == 0:
+        return float("nan"), 0
+    hist = np.zeros(1 << _DIGIT, np.int64)
+    rank = (total - 1) // 2  # the (lower) middle value's rank from 0; with an even count the upper one is rank + 1
+    prefix, shift, below = 0, 64, 0
+    while True:
+        shift -= _DIGIT
+        hist[:] = 0
+        _residual_pass(t, z, starts, 1, np.uint64(prefix), shift, hist, np.zeros(0))
+        if shift == 64 - _DIGIT and hist[0x7FF0 + 1:].sum():  # keys above +inf's leading bits: a NaN, np.median's NaN
+            return float("nan"), windows
+        cum = np.cumsum(hist)
+        d = int(np.searchsorted(cum, rank - below, side="right"))  # the next 16 bits of the value of that rank
+        below += int(cum[d - 1]) if d else 0
+        prefix = (prefix << _DIGIT) | d
+        if int(hist[d]) <= max(SELECT_CANDIDATES, total >> SELECT_SHIFT) or shift == 0:
+            break
+    k, size = rank - below, int(hist[d])  # the middle value's rank in its group, the group's size
+    if shift == 0:  # the group shares all 64 bits: one number
+        lo = hi = _as_float(prefix)
+    else:
+        cand = np.empty(size)
+        _residual_pass(t, z, starts, 2, np.uint64(prefix), shift, hist, cand)
+        cand.partition([k, k + 1] if k + 1 < size else [k])
+        lo = float(cand[k])
+        hi = float(cand[k + 1]) if k + 1 < size else lo
+    if total % 2:
+        return lo, windows
+    if k + 1 >= size:  # the upper middle value: the smallest above this group's keys
+        last = (((prefix + 1) << shift) - 1) if shift else prefix
+        hi = _as_float(_residual_pass(t, z, starts, 3, np.uint64(last), 0, hist, np.zeros(0)))
+    return float(np.mean(np.array([lo, hi]))), windows
 
 
 def measurement_std(t, z, starts) -> NoiseEstimate:
@@ -130,15 +239,21 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     -------
     NoiseEstimate
         ``meas_std`` = MAD of the normalised third divided differences, pooled over both axes, at least
-        ``MIN_MEAS_STD``; ``windows`` = 0 (and ``meas_std`` nan) when no object has four measurements.
+        ``MIN_MEAS_STD``; ``windows`` = 0 (and ``meas_std`` nan) when no object has four measurements;
+        ``nonfinite`` (and ``meas_std`` nan) when the residuals' median is not finite: times so close (about
+        1e-103 s apart) that a window's weights overflow, or positions so large that the residuals do. Use
+        ``usable`` before ``meas_std``.
     """
-    e = _third_divided_differences(np.asarray(t, float), np.asarray(z, float)[:, :2], np.asarray(starts, np.int64))
-    if e.shape[0] == 0:
+    med, windows = _median_abs_residual(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
+                                        np.asarray(starts, np.int64))
+    if windows == 0:
         return NoiseEstimate(float("nan"), 0)
-    s = float(np.median(np.abs(e, out=e), overwrite_input=True)) / MAD_SCALE  # in place: no copies of 2 x N values
+    if not math.isfinite(med):  # times so close (about 1e-103 s) or positions so large that residuals overflow: no estimate
+        return NoiseEstimate(float("nan"), windows, nonfinite=True)
+    s = med / MAD_SCALE
     if s < MIN_MEAS_STD:
-        return NoiseEstimate(MIN_MEAS_STD, e.shape[0], floored=True)
-    return NoiseEstimate(s, e.shape[0])
+        return NoiseEstimate(MIN_MEAS_STD, windows, floored=True)
+    return NoiseEstimate(s, windows)
 
 
 @nb.njit(cache=True, nogil=True)
@@ -170,8 +285,13 @@ def chord_speeds(t, z, starts, lag: float = CHORD_S) -> np.ndarray:
 def typical_speed(t, z, starts) -> float:
     """Median chord speed over all rows (m/s); 0 for no data."""
     c = chord_speeds(t, z, starts)
-    c = c[np.isfinite(c)]
-    return float(np.median(c)) if c.size else 0.0
+    n = 0
+    for a in range(0, c.size, 1 << 16):  # the finite values moved to the front block by block: no copy of all of them
+        blk = c[a:a + (1 << 16)]
+        blk = blk[np.isfinite(blk)]
+        c[n:n + blk.size] = blk
+        n += blk.size
+    return float(np.median(c[:n], overwrite_input=True)) if n else 0.0
 
 
 def accel_std_family(model: str, k: float, v_typ: float) -> tuple:

@@ -302,6 +302,6 @@ def imm_meas_std(meas, starts, given: float | None) -> tuple[float, str]:
     if given is not None:
         return float(given), "given"
     est = measurement_std(meas.t, meas.z, starts)
-    if est.windows:
+    if est.usable:
         return float(est.meas_std), f"data: {est.describe()}"
-    return float(DEFAULT_MEAS_STD), "default: too few measurements to estimate it"
+    return float(DEFAULT_MEAS_STD), "default: " + (est.describe() if est.windows else "too few measurements to estimate it")

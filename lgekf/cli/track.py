@@ -12,7 +12,7 @@ from ..apps.defaults import plan_noise
 from ..apps.divergence import MonitorConfig
 from ..apps.noise import measurement_std
 from ..apps.track import (
-    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, ROWS_PER_CHUNK, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
 )
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
@@ -32,6 +32,7 @@ __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES
 
 MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
 MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
+BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
 
 def parse_accel_std(items, models):
@@ -238,7 +239,7 @@ def cmd_track(argv) -> int:
     monitor = None if a.no_monitor else MonitorConfig()
     heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
     total = meas.t.size * len(models)
-    show_bar = not a.quiet and stderr_is_terminal() and total > ROWS_PER_CHUNK
+    show_bar = not a.quiet and stderr_is_terminal() and total > BAR_MIN_ROWS
     flagged = {}
     jobs = track_jobs(models, measure, a.full_cov)
     estimate = compile_estimate([j.cost for j in jobs], workers=None if len(models) > 1 else 1)
@@ -254,7 +255,7 @@ def cmd_track(argv) -> int:
             say(plan.describe(heading_std if pose else None, heading_given=a.heading_std is not None))
         if a.meas_std is not None:
             est = measurement_std(meas.t, meas.z, starts)
-            if est.windows and not est.floored and max(a.meas_std / est.meas_std, est.meas_std / a.meas_std) >= MEAS_STD_WARN_FACTOR:
+            if est.usable and not est.floored and max(a.meas_std / est.meas_std, est.meas_std / a.meas_std) >= MEAS_STD_WARN_FACTOR:
                 print(f"lgekf track: warning: --meas-std {a.meas_std:g} m is {a.meas_std / est.meas_std:.2g}x the std "
                       f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
         cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()

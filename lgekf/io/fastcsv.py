@@ -36,7 +36,7 @@ from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
 
 from .formatting import _two_prod  # a*b = p + e exactly (Dekker), shared with the formatter
 
-__all__ = ["parse", "parse_rows", "hard_values", "group_order", "compiled", "compile_in_background", "warm", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES",
+__all__ = ["parse", "parse_rows", "hard_values", "group_order", "times_increase", "compiled", "compile_in_background", "warm", "FAST_DELIMITERS", "OK", "PARALLEL_BYTES",
            "COMPILE_MIN_BYTES"]
 
 # separators of the fast path (None: runs of spaces/tabs); others go to the general reader
@@ -569,6 +569,7 @@ def warm() -> None:
             PARALLEL_BYTES = saved
     hard_values(text, out[5])
     group_order(out[3], len(out[4]))
+    times_increase(out[1][:, 0].copy(), out[3], len(out[4]))
 
 
 @nb.njit(cache=True)
@@ -604,3 +605,31 @@ def group_order(obj, n_obj):
         order[nxt[o]] = i
         nxt[o] += 1
     return order, counts
+
+
+@nb.njit(cache=True)
+def times_increase(t, obj, n_obj):
+    """Whether every object's times increase strictly in file order (no row's t at or below its object's previous t).
+
+    Parameters
+    ----------
+    t : ndarray of float64
+        Time per row, in file order.
+    obj : ndarray of int64
+        Object index per row, in [0, n_obj).
+    n_obj : int
+        Number of objects.
+
+    Returns
+    -------
+    bool
+        What ``np.diff(t[order]) <= 0`` outside the steps between objects says for the rows grouped by object,
+        found without grouping them.
+    """
+    last = np.full(n_obj, np.nan)  # t - nan is nan, not <= 0: an object's first row passes
+    for i in range(t.shape[0]):
+        o = obj[i]
+        if t[i] - last[o] <= 0:  # np.diff's rule exactly, also for inf and nan (inf - inf is nan: passes)
+            return False
+        last[o] = t[i]
+    return True

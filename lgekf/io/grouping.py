@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .fastcsv import group_order
+from .fastcsv import group_order, times_increase
 from .readers import Measurements
 
 __all__ = ["grouped_consuming", "row_objects"]
@@ -45,27 +45,22 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
         As ``Measurements.grouped`` (an object with too few measurements, times not increasing).
     """
     obj = np.ascontiguousarray(meas.obj, dtype=np.int64)
+    t = meas.t
+    counts = np.bincount(obj, minlength=meas.n_objects).astype(np.int64, copy=False)
+    # the checks on the rows in file order, before anything is sorted: an error names lines (meas.line), which are
+    # then released before the sorted copies are made
+    if np.any(counts < min_length) or not times_increase(np.ascontiguousarray(t, dtype=float), obj, meas.n_objects):
+        meas.grouped(min_length)  # raises its error naming the object and lines
+        raise AssertionError("grouped_consuming: a check failed that Measurements.grouped passed")  # not reached
+    meas.line = None
     in_order = obj.size < 2 or bool(np.all(obj[1:] >= obj[:-1]))  # the counting sort's order is then the identity
-    if in_order:
-        order, counts = None, np.bincount(obj, minlength=meas.n_objects).astype(np.int64, copy=False)
-    else:
-        order, counts = group_order(obj, meas.n_objects)
-    if np.any(counts < min_length):
-        meas.grouped(min_length)  # raises its error naming the object and line
+    order = None if in_order else group_order(obj, meas.n_objects)[0]
     starts = np.zeros(meas.n_objects + 1, dtype=np.int64)
     np.cumsum(counts, out=starts[1:])
-    meas.obj = None  # not needed any more but for an error below, which rebuilds it from order and starts
+    meas.obj = None
     del obj
-    t = _own(meas.t) if in_order else meas.t[order]
-    if t.size > 1:
-        bad = t[1:] <= t[:-1]  # np.diff(t) <= 0 for finite times, without a float copy
-        bad[starts[1:-1] - 1] = False  # steps between objects do not count
-        if bad.any():
-            meas.obj = row_objects(starts, 0, len(starts) - 1)
-            if order is not None:
-                meas.obj[order] = meas.obj.copy()
-            meas.grouped(min_length)  # raises its error naming the lines
-        del bad
+    meas.t = None
+    t = _own(t) if in_order else t[order]
     labels = list(meas.labels)
     meas.obj = meas.line = meas.t = None
     cols = {}
@@ -84,8 +79,8 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
 
 
 def _own(a: np.ndarray) -> np.ndarray:
-    """``a`` itself, or a copy when it is a view holding a larger buffer alive (``read_csv``'s positions live in
-    the first two thirds of its parsed numbers' buffer)."""
+    """``a`` itself, or a copy when it is a view holding a larger buffer alive (a column of a parsed table; the
+    fast path's positions own a buffer of their own size, unless ``_positions_in_place`` could not shrink it)."""
     return a.copy() if a.base is not None and a.base.nbytes > a.nbytes else a
 
 

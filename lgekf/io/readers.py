@@ -586,7 +586,7 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
     names = [n for n, _ in num]
     z = None
     if "x" in names and "y" in names and vals.flags.c_contiguous:
-        other = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names) if n not in ("x", "y")}
+        other = {n: vals[:, i].copy() for i, n in enumerate(names) if n not in ("x", "y")}  # copies: vals's buffer is resized
         z = _positions_in_place(vals, names.index("x"), names.index("y"))  # vals's buffer reused: no second copy
         cols = {n: z[:, 0] if n == "x" else z[:, 1] if n == "y" else other[n] for n in names}  # in the header's order
         del other
@@ -599,7 +599,9 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
 
 def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
     """Columns ix, iy of the C-contiguous rows ``vals`` (N, k >= 2) as an (N, 2) array in the first 2N numbers of
-    ``vals``'s own buffer (the rest of the buffer is overwritten: take the other columns out first).
+    ``vals``'s own buffer, which is then shrunk to them when NumPy owns it and ``vals`` starts it
+    (``ndarray.resize``: ``realloc``, the rest of the buffer returned; otherwise, or for N = 0, a view of the first
+    2N numbers). Take the other columns out first, as copies, and use no view of ``vals`` afterwards.
 
     Row r's pair goes to numbers 2r, 2r + 1, never after row r's own place (k r), so copying a block of rows at a
     time, in order (each block taken out before it is written), never overwrites a row not yet moved.
@@ -609,6 +611,11 @@ def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
     for r0 in range(0, n, block):
         r1 = min(r0 + block, n)
         flat[2 * r0:2 * r1] = vals[r0:r1][:, [ix, iy]].reshape(-1)
+    owner = vals if vals.base is None else vals.base
+    if n and owner.base is None and owner.flags.owndata and owner.flags.c_contiguous and owner.ctypes.data == vals.ctypes.data:
+        del flat
+        owner.resize((n, 2), refcheck=False)  # the first 2N numbers kept, the other columns' third returned
+        return owner
     return flat[:2 * n].reshape(n, 2)
 
 

@@ -45,13 +45,34 @@ def to_seconds(t: np.ndarray, unit: str) -> np.ndarray:
     return t if unit == "s" else t * TIME_UNITS[unit]
 
 
-def _steps(t, z, starts):
-    """dt and distance of every consecutive pair of rows of the same object (rows sorted by object)."""
-    dt = np.diff(t)
-    dist = np.hypot(*np.diff(z, axis=0).T)
-    keep = np.ones(dt.size, dtype=bool)
-    keep[np.asarray(starts[1:-1], dtype=np.int64) - 1] = False  # pairs across two objects
-    return dt[keep], dist[keep]
+STEP_BLOCK = 1 << 16  # pairs computed at a time by ``_step_values``
+
+
+def _step_values(t, z, starts, what: str, out: np.ndarray) -> int:
+    """The time step (``what="dt"``) or the speed (``"speed"``: distance / dt) of every consecutive pair of rows of
+    the same object (rows sorted by object), in row order, written to ``out[:n]``; returns n.
+
+    Computed ``STEP_BLOCK`` pairs at a time, so that ``out`` is the only array of the rows' size (a whole-array
+    ``np.diff`` of z and its hypot held five: 40 MB at 10⁶ rows). The values are those of the whole-array
+    expressions ``np.diff(t)`` and ``np.hypot(*np.diff(z, axis=0).T) / np.diff(t)``, element by element.
+    """
+    n_rows = t.shape[0]
+    cut = np.asarray(starts[1:-1], dtype=np.int64) - 1  # pairs across two objects (sorted)
+    n = 0
+    for a in range(0, n_rows - 1, STEP_BLOCK):
+        b = min(a + STEP_BLOCK, n_rows - 1)
+        v = t[a + 1:b + 1] - t[a:b]
+        if what == "speed":
+            dz = z[a + 1:b + 1] - z[a:b]
+            v = np.hypot(dz[:, 0], dz[:, 1]) / v
+        lo, hi = np.searchsorted(cut, [a, b])
+        if hi > lo:
+            keep = np.ones(b - a, dtype=bool)
+            keep[cut[lo:hi] - a] = False
+            v = v[keep]
+        out[n:n + v.size] = v
+        n += v.size
+    return n
 
 
 def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, fmt: str = "csv") -> list[str]:
@@ -78,11 +99,13 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
     list of str
         At most one line about the time step and one about the speed.
     """
-    dt, dist = _steps(np.asarray(t, float), np.asarray(z, float), starts)
-    if dt.size == 0:
+    t, z = np.asarray(t, float), np.asarray(z, float)
+    buf = np.empty(max(t.shape[0] - 1, 0))  # the one array of the rows' size: the steps, then the speeds
+    n = _step_values(t, z, starts, "dt", buf)
+    if n == 0:
         return []
     out = []
-    med_dt = float(np.median(dt))
+    med_dt = float(np.median(buf[:n], overwrite_input=True))  # the median of a multiset: the order does not matter
     dt_flagged = med_dt >= MAX_PLAUSIBLE_DT
     if dt_flagged:
         scale = TIME_UNITS[time_unit]
@@ -93,13 +116,13 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
             advice = (f"if t is in {UNIT_NAMES[fits[0]]}, add --time-unit {fits[0]}" if fits
                       else "check the unit of t (--time-unit s|ms|us|ns)")
         out.append(f"the median time step is {med_dt:.4g} s: {advice} (ignore this if the sampling really is that slow)")
-    speed = dist / dt
-    med_v = float(np.median(speed))
+    _step_values(t, z, starts, "speed", buf)
+    med_v = float(np.median(buf[:n], overwrite_input=True))
     if med_v > MAX_PLAUSIBLE_SPEED:
         hint = "see --frame-dt" if fmt == "pedestrian" else "degrees go in lat, lon columns; see --time-unit for t"
         out.append(f"the median speed is {med_v:.3g} m/s: x, y should be metres and t seconds ({hint})")
     elif (0.0 < med_v < MIN_DEGREE_LIKE_SPEED and fmt == "csv" and not projected and not dt_flagged
-          and np.abs(np.asarray(z)).max() <= 180.0):
+          and max(-float(z.min()), float(z.max())) <= 180.0):  # max |z| without an |z| copy
         out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
                    "name the columns lon, lat instead (they are then projected to metres)")
     return out
