@@ -62,7 +62,6 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     meas.t = None
     t = _own(t) if in_order else t[order]
     labels = list(meas.labels)
-    meas.obj = meas.line = meas.t = None
     cols = {}
     for name in ("z", "heading"):
         v = getattr(meas, name)
