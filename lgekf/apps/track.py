@@ -66,7 +66,7 @@ from ..io.parquet import ParquetRows
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
+    "output_path", "write_model", "Written", "SMOOTH_FAILED", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -74,6 +74,9 @@ DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
+#: the ``flag`` column's bit set on every row of an object whose smoothed values were not all finite (its smooth_*
+#: columns then repeat the filter's); bit 0 (1) marks the rows of a detected divergence
+SMOOTH_FAILED = 2
 ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
 FORMAT_ROWS = 1 << 15  # rows of a Parquet row group made at a time (CSV text: lgekf.io.formatting.PART_ROWS)
 
@@ -181,14 +184,11 @@ def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
     return x0, p0, out_x, out_p, out_nis
 
 
-def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
-    """(zm, starts, x0, P0, q, r): what ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the filter's
-    output, from the same two-point start and noise as ``track_arrays``."""
-    spec = get_model(model)
-    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
-    x0, P0 = initial_estimates(model, c, var)
-    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
-    return zm, starts, x0, P0, cfg.q(model), r
+def smoothing_inputs(model, z, cfg: TrackConfig, heading=None, measurement="position"):
+    """(zm, q, r): the measurements and noise stds that ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the
+    filter's output (``Tracked``), as ``track_arrays`` / ``track_monitored`` used them."""
+    zm, r = _measurement_inputs(get_model(model), z, heading, cfg, measurement)
+    return zm, cfg.q(model), r
 
 
 @dataclass
@@ -315,7 +315,8 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     text) are held. The
     chunks are written in order: the file's bytes are those of doing one after the other.
 
-    Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
+    Returns a ``Written`` (rows, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows, objects whose
+    smoother failed).
     """
     spec = get_model(model)
     origin = meas.origin is not None
@@ -345,6 +346,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     B = len(starts) - 1
     o = 0
     alarms = []
+    smooth_failed = []
     flagged = 0
     with ThreadPoolExecutor(1) as writer:  # on an error here, leaving the block waits for the chunk being written
         pending = None
@@ -358,7 +360,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 al.obj += o
                 al.row += a if alarm_row0 is None else alarm_row0
             alarms.extend(r.alarms)
-            flagged += int(r.flag.sum())
+            flagged += int((r.flag & 1).sum())
             parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
             if origin:
                 parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
@@ -384,15 +386,30 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 if smooth:
                     from .smooth_track import smoothed_columns
 
-                    extra.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
-                                                                                                     cfg, h, measurement), r.x, r.p))
+                    zm, q, rr = smoothing_inputs(model, meas.z[a:b], cfg, h, measurement)
+                    cols, failed = smoothed_columns(model, measurement, meas.t[a:b], zm, sub_starts, r, q, rr)
+                    for f in failed:  # its smoothed columns repeat the filter's (smoothed_columns)
+                        r.flag[sub_starts[f]:sub_starts[f + 1]] |= SMOOTH_FAILED
+                        smooth_failed.append(o + f)
+                    extra.append(cols)
                 submit(r, o, o2, a, extra)
                 del r, extra
             o = o2
         _written(pending, bar)
     if sink is not None:
         sink.close()
-    return starts[-1], alarms, flagged
+    return Written(int(starts[-1]), alarms, flagged, smooth_failed)
+
+
+@dataclass
+class Written:
+    """What ``write_model`` wrote: rows, the monitor's alarms (object indices of ``meas``), the rows flagged by them,
+    and the objects whose smoother failed (flag + ``SMOOTH_FAILED``; their smoothed columns repeat the filter's)."""
+
+    rows: int
+    alarms: list
+    flagged: int
+    smooth_failed: list
 
 
 def _written(pending, bar) -> None:

@@ -22,6 +22,7 @@ from ..io.grouping import grouped_consuming
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
+from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
@@ -30,7 +31,6 @@ from .warmup import compile_estimate, track_jobs, warm_up
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
-MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
 MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
@@ -151,35 +151,6 @@ def _frame_note(meas) -> str:
             f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
 
-def _divergence_warnings(model, meas, alarms, flagged) -> list:
-    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
-    first, count, scale = {}, {}, {}
-    for al in alarms:
-        first.setdefault(al.obj, al)
-        count[al.obj] = count.get(al.obj, 0) + 1
-        scale[al.obj] = al.scale
-    lines = []
-    for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
-        if al.kind_name == "NIS":
-            why = f"mean NIS {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
-        elif al.kind_name == "speed":
-            why = f"speed {al.value:.3g} m/s > {al.limit:.3g} m/s, far above the data's"
-        else:
-            why = "non-finite state or covariance"
-        n = count[obj]
-        cap = MonitorConfig().max_reinit
-        stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
-        inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
-        lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
-                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
-                     f"rows flagged 1 in the flag column")
-    rest = len(first) - MAX_DIVERGENCE_LINES
-    if rest > 0:
-        lines.append(f"{model}: {rest} more object{'s' if rest > 1 else ''} diverged and were re-initialised "
-                     f"({flagged} rows flagged in all)")
-    return lines
-
-
 def cmd_track(argv) -> int:
     if "--multi" in argv:  # many objects from unlabelled detections: lgekf.cli.track_multi
         from .track_multi import cmd_track_multi
@@ -272,9 +243,10 @@ def cmd_track(argv) -> int:
                                       r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             for fh, m in zip(handles, models):
-                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfgs[m], a.full_cov, a.precision, bar, measure[m], monitor,
-                                                    smooth=a.smooth, parquet=is_parquet(outs[models.index(m)]))
-                for line in _divergence_warnings(m, meas, alarms, flagged[m]):
+                w = write_model(fh, m, meas, starts, cfgs[m], a.full_cov, a.precision, bar, measure[m], monitor,
+                                smooth=a.smooth, parquet=is_parquet(outs[models.index(m)]))
+                flagged[m] = w.flagged
+                for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed):
                     print(f"lgekf track: warning: {line}", file=sys.stderr)
         files.commit()
     if not a.quiet:

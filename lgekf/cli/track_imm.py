@@ -5,10 +5,12 @@ from __future__ import annotations
 import sys
 import time
 
-from ..apps.track_imm import ImmTrackOptions, imm_meas_std, tune_imm, write_imm
+from ..apps.divergence import MonitorConfig
+from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm, write_imm
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import to_seconds, unit_warnings
+from .alarms import divergence_warnings, smooth_failure_warnings
 from .progress import compile_notice
 
 __all__ = ["cmd_track_imm", "check_imm_options"]
@@ -40,20 +42,29 @@ def cmd_track_imm(a) -> int:
     meas.t = to_seconds(meas.t, a.time_unit)
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
+    monitor = None if a.no_monitor else MonitorConfig()
     if getattr(a, "tune", False):
         r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std, say=say,
                                     method=getattr(a, "tune_method", "lbfgs"))
         say(summary)
         source = "tuned"
     else:
-        r, source = imm_meas_std(meas, starts, a.meas_std)
+        r, plan = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)
+        if plan.estimated:
+            say(plan.describe())
+        source = "given" if a.meas_std is not None else plan.meas_source
     modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
     say(f"imm: modes {modes}; switch {opts.switch:g} per step; meas-std {r:.3g} m ({source})"
         + ("; smoothed columns after flag" if getattr(a, "smooth", False) else ""))
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
-        write_imm(fh, meas, starts, opts, r, a.omega_std, a.precision, smooth=getattr(a, "smooth", False))
+        res = write_imm(fh, meas, starts, opts, r, a.omega_std, a.precision, smooth=getattr(a, "smooth", False), monitor=monitor)
         files.commit()
+    flagged = int((res.flag & 1).sum())
+    for line in divergence_warnings("imm", meas, res.alarms, flagged):
+        print(f"lgekf track: warning: {line}", file=sys.stderr)
+    for line in smooth_failure_warnings("imm", meas, res.smooth_failed):
+        print(f"lgekf track: warning: {line}", file=sys.stderr)
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout
         name = "<stdout>" if is_stdio(a.output) else a.output
