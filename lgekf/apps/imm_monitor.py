@@ -86,7 +86,8 @@ def _window_sums(d: np.ndarray, w: int) -> np.ndarray:
 
 def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
     """The first alarm of a segment's rows (z (K, 2), c (K, 6), P (K, 6, 6)), as (k, kind, value, threshold,
-    updates, first flagged k) with k counted from the segment's first row, or None (module docstring)."""
+    updates, first flagged k) with k counted from the segment's first row, or None (module docstring). The flagged
+    rows are the alarm's window and the row before it (-1: the segment's start row), as for the single models."""
     K = c.shape[0]
     if K == 0:
         return None
@@ -112,10 +113,10 @@ def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
     if kind == 3:
         return k, 3, math.nan, math.nan, 0, k
     if kind == 2:
-        return k, 2, float(np.hypot(c[k, 3], c[k, 4])), float(limit), 0, max(k - 1, 0)
+        return k, 2, float(np.hypot(c[k, 3], c[k, 4])), float(limit), 0, k - 1
     if sw[k] > thr_w:
-        return k, 1, float(sw[k] / cfg.window), thr_w / cfg.window, cfg.window, max(k - cfg.window, 0)
-    return k, 1, float(ss[k] / cfg.short), thr_s / cfg.short, cfg.short, max(k - cfg.short, 0)
+        return k, 1, float(sw[k] / cfg.window), thr_w / cfg.window, cfg.window, k - cfg.window
+    return k, 1, float(ss[k] / cfg.short), thr_s / cfg.short, cfg.short, k - cfg.short
 
 
 def imm_monitored(t, z, modes, switch: float, meas_std: float, omega_std: float, c0, var0, limit: float,
@@ -143,7 +144,7 @@ def imm_monitored(t, z, modes, switch: float, meas_std: float, omega_std: float,
             break
         k, kind, value, thr, updates, k_flag = hit
         g = first + k
-        flag[max(first + k_flag - 1, 0):g + 1] = 1
+        flag[first + k_flag:g + 1] = 1  # k_flag >= -1: at most the row of the segment's start
         if n_reinit >= cfg.max_reinit:
             alarms.append(Alarm(0, g, kind, value, thr, updates, reinitialised=False, scale=scale))
             break
