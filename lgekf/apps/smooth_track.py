@@ -22,7 +22,7 @@ from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
 
-__all__ = ["smoothed_columns", "smooth_segments_of", "tune_models", "learn_on_dataset", "noisy_tracks"]
+__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "learn_on_dataset", "noisy_tracks"]
 
 
 def smooth_segments_of(starts, alarms) -> tuple:
@@ -48,6 +48,21 @@ def smooth_segments_of(starts, alarms) -> tuple:
             scale.append(sc)
     return (np.array(first, dtype=np.int64), np.array(length, dtype=np.int64), np.array(start, dtype=np.int64),
             np.array(scale, dtype=float))
+
+
+SMOOTH_GATE = 20.0  # a smoothed position this many (filter position std + measurement std) from the filter's: failed
+
+
+def implausible_rows(x_f, sd_f, x_s, sd_s, meas_std) -> np.ndarray:
+    """Rows (N,) where a smoother failed: a non-finite smoothed value (x_s, sd_s), or a smoothed position (columns 0, 1)
+    further from the filter's than ``SMOOTH_GATE`` × (the filter's position std + ``meas_std``), or a smoothed position
+    std above that bound (a smoothed estimate is at least as certain as the filtered one; a numerically broken backward
+    pass is not)."""
+    bound = SMOOTH_GATE * (np.hypot(sd_f[:, 0], sd_f[:, 1]) + meas_std)
+    with np.errstate(invalid="ignore", over="ignore"):
+        far = np.hypot(x_s[:, 0] - x_f[:, 0], x_s[:, 1] - x_f[:, 1]) > bound
+        wide = np.hypot(sd_s[:, 0], sd_s[:, 1]) > bound
+    return ~np.isfinite(x_s).all(axis=1) | ~np.isfinite(sd_s).all(axis=1) | far | wide
 
 
 def smoothed_columns(model, measurement, t, zm, starts, tracked, q, r):
@@ -80,13 +95,13 @@ def smoothed_columns(model, measurement, t, zm, starts, tracked, q, r):
     diag = np.flatnonzero(i == j)
     out = np.hstack([xs, np.sqrt(np.maximum(ps[:, diag], 0.0))])
     failed = []
-    finite = np.isfinite(out).all(axis=1)
-    if not finite.all():
-        filt = np.hstack([tracked.x, np.sqrt(np.maximum(tracked.p[:, diag], 0.0))])
-        for b in np.unique(np.searchsorted(starts, np.flatnonzero(~finite), side="right") - 1):
-            a, e = starts[b], starts[b + 1]
-            out[a:e] = filt[a:e]
-            failed.append(int(b))
+    filt = np.hstack([tracked.x, np.sqrt(np.maximum(tracked.p[:, diag], 0.0))])
+    n = spec.n
+    bad = implausible_rows(filt[:, :n], filt[:, n:], out[:, :n], out[:, n:], float(np.asarray(r).reshape(-1)[0]))
+    for b in np.unique(np.searchsorted(starts, np.flatnonzero(bad), side="right") - 1):
+        a, e = starts[b], starts[b + 1]
+        out[a:e] = filt[a:e]
+        failed.append(int(b))
     return out, failed
 
 

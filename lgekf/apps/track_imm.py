@@ -26,7 +26,7 @@ the one of lowest AIC is kept.
 ``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
 ``smooth_mu_<mode>``, over each monitored segment (split at re-initialisations; the rows of a start or
 re-initialisation repeat the filter columns, as for ``lgekf track --smooth``); the filter columns are the same
-with and without ``--smooth``. An object whose smoother yields a non-finite value keeps the filter's values in its
+with and without ``--smooth``. An object whose smoother yields a non-finite or implausible value (far off the filter's) keeps the filter's values in its
 smoothed columns and has ``SMOOTH_FAILED`` (2) added to its ``flag``.
 """
 
@@ -43,7 +43,7 @@ from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
 from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
-__all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "fit_imm", "imm_columns", "write_imm",
+__all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
            "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
@@ -182,8 +182,8 @@ def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmT
 
 def _smooth_object(t, z, run, opts: ImmTrackOptions, meas_std: float, filt, out) -> bool:
     """The smoothed columns of one object (``out`` = (c, sd, mu) views of its rows), segment by segment; rows outside
-    the segments (the starts and re-initialisations) repeat the filter's. False when a smoothed value is not finite:
-    then every row keeps the filter's values."""
+    the segments (the starts and re-initialisations) repeat the filter's. False when a smoothed row is implausible
+    (``smooth_track.implausible_rows``: non-finite, or far off the filter's): then every row keeps the filter's values."""
     from ..estimators.imm_smoother import imm_smooth_batch
 
     for dst, src in zip(out, filt):
@@ -196,7 +196,9 @@ def _smooth_object(t, z, run, opts: ImmTrackOptions, meas_std: float, filt, out)
         out[0][seg.first:seg.end] = r["c_smooth"][0]
         out[1][seg.first:seg.end] = np.sqrt(np.maximum(np.diagonal(r["P_smooth"][0], axis1=1, axis2=2), 0.0))
         out[2][seg.first:seg.end] = r["mu_smooth"][0]
-    if all(np.isfinite(v).all() for v in out):
+    from .smooth_track import implausible_rows
+
+    if not implausible_rows(filt[0], filt[1], out[0], out[1], meas_std).any() and np.isfinite(out[2]).all():
         return True
     for dst, src in zip(out, filt):
         dst[:] = src
@@ -308,18 +310,61 @@ def common_world_velocity(c: np.ndarray) -> np.ndarray:
     return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
 
 
-def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_std: float, digits: int, bar=None,
+@dataclass
+class ImmClasses:
+    """The IMM's noise per class of objects (``lgekf.apps.defaults.noise_classes``): object b runs with
+    ``noise[of_object[b]]`` = (``ImmTrackOptions`` with the class's mode noise, measurement std)."""
+
+    of_object: np.ndarray
+    noise: list
+
+    @classmethod
+    def of_all(cls, opts: ImmTrackOptions, meas_std: float, objects: int) -> "ImmClasses":
+        return cls(np.zeros(objects, dtype=np.int64), [(opts, float(meas_std))])
+
+
+def imm_track_classes(t, z, starts, classes: ImmClasses, omega_std: float, smooth: bool = False,
+                      monitor: MonitorConfig | None = MonitorConfig()) -> ImmTracked:
+    """``imm_track_common(..., full=True)`` with each class of objects' own noise: the rows of a class gathered, tracked
+    and put back in place (alarms and failures in objects and rows of t, z)."""
+    from .defaults import objects_subset
+
+    if len(classes.noise) == 1:
+        opts, r = classes.noise[0]
+        return imm_track_common(t, z, starts, r, omega_std, opts, smooth, monitor=monitor, full=True)
+    N, M = len(t), len(classes.noise[0][0].modes)
+    out = ImmTracked(np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M)), np.zeros(N, np.int8), [], [],
+                     *((np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M))) if smooth else ()))
+    for c, (opts, r) in enumerate(classes.noise):
+        objs = np.flatnonzero(classes.of_object == c)
+        if objs.size == 0:
+            continue
+        rows, sub = objects_subset(starts, objs)
+        res = imm_track_common(np.asarray(t)[rows], np.asarray(z)[rows], sub, r, omega_std, opts, smooth, monitor=monitor, full=True)
+        for name in ("c", "sd", "mu", "flag") + (("c_smooth", "sd_smooth", "mu_smooth") if smooth else ()):
+            getattr(out, name)[rows] = getattr(res, name)
+        for al in res.alarms:
+            al.obj, al.row = int(objs[al.obj]), int(rows[al.row])
+        out.alarms.extend(res.alarms)
+        out.smooth_failed.extend(int(objs[b]) for b in res.smooth_failed)
+    out.alarms.sort(key=lambda al: (al.obj, al.row))
+    out.smooth_failed.sort()
+    return out
+
+
+def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: int, bar=None,
               smooth: bool = False, monitor: MonitorConfig | None = MonitorConfig()) -> ImmTracked:
-    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) and write the CSV to ``fh``
-    (with ``smooth``: the smoothed columns after ``flag``, module docstring). ``flag``: 1 on the rows of a detected
-    divergence (``lgekf.apps.imm_monitor``), + ``SMOOTH_FAILED`` on every row of an object whose smoother gave a
-    non-finite value (its smoothed columns then repeat the filter's). Returns the ``ImmTracked`` (alarms, failures)."""
+    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) with the noise of its class and write
+    the CSV to ``fh`` (with ``smooth``: the smoothed columns after ``flag``, module docstring). ``flag``: 1 on the rows
+    of a detected divergence (``lgekf.apps.imm_monitor``), + ``SMOOTH_FAILED`` on every row of an object whose smoother
+    gave a non-finite value (its smoothed columns then repeat the filter's). Returns the ``ImmTracked``."""
+    opts = classes.noise[0][0]
     origin = meas.origin is not None
     fh.write((",".join(imm_columns(opts, origin, smooth)) + "\n").encode())
     lab = label_bytes(meas.labels)
     M = len(opts.modes)
     t = np.ascontiguousarray(meas.t, float)
-    res = imm_track_common(t, meas.z, starts, meas_std, omega_std, opts, smooth, monitor=monitor, full=True)
+    res = imm_track_classes(t, meas.z, starts, classes, omega_std, smooth, monitor)
     for b in res.smooth_failed:
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
     ncol = 12 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
@@ -339,15 +384,19 @@ def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_st
 
 def imm_noise(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float,
               monitor: MonitorConfig | None = MonitorConfig()):
-    """The noise the IMM runs with, from the data as for the single models (``lgekf.apps.defaults.plan_noise``): the
-    measurement std (``meas_std`` when given), and for every model of a mode whose noise is a named level or the
-    default, that model's process noise estimated from the data; ``opts``' modes take it × their level factor
-    (``ImmTrackOptions.with_learned_noise``: calm × 0.2, manoeuvre × 4 of the data's estimate instead of the model's
-    fixed default). Returns (meas_std, the ``NoisePlan``)."""
-    from .defaults import plan_noise
+    """The noise the IMM runs with, from the data as for the single models (``lgekf.apps.defaults.plan_noise_by_class``):
+    per class of objects the measurement std (``meas_std`` when given) and, for every model of a mode whose noise is a
+    named level or the default, that model's process noise estimated from the data; the class's modes take it × their
+    level factor (``ImmTrackOptions.with_learned_noise``: calm × 0.2, manoeuvre × 4 of the data's estimate instead of
+    the model's fixed default). Returns (``ImmClasses``, the ``NoiseClasses``)."""
+    from .defaults import plan_noise_by_class
     from .track import DEFAULT_HEADING_STD
 
-    plan = plan_noise(meas.t, meas.z, starts, opts.tunable_models(), meas_std=meas_std, omega_std=omega_std,
-                      heading_std=DEFAULT_HEADING_STD, heading_cap=TRACK_HEADING_CAP, monitor=monitor)
-    opts.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
-    return float(plan.meas_std), plan
+    found = plan_noise_by_class(meas.t, meas.z, starts, opts.tunable_models(), meas_std=meas_std, omega_std=omega_std,
+                                heading_std=DEFAULT_HEADING_STD, heading_cap=TRACK_HEADING_CAP, monitor=monitor)
+    noise = []
+    for plan in found.plans:
+        o = ImmTrackOptions(opts.modes_text if opts.modes_given else None, opts.switch if opts.switch_given else None)
+        o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
+        noise.append((o, float(plan.meas_std)))
+    return ImmClasses(found.of_object, noise), found

@@ -39,12 +39,12 @@ def divergence_warnings(model, meas, alarms, flagged) -> list:
 
 
 def smooth_failure_warnings(model, meas, failed) -> list:
-    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother gave non-finite values."""
+    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``)."""
     if not failed:
         return []
     from ..apps.track import SMOOTH_FAILED
 
     names = ", ".join(str(meas.labels[b]) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
     n = len(failed)
-    return [f"{model}: the smoother gave non-finite values on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
+    return [f"{model}: the smoother failed (non-finite or far off the filter) on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
             f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]

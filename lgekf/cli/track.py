@@ -8,11 +8,13 @@ import sys
 import time
 from pathlib import Path
 
-from ..apps.defaults import plan_noise
+import numpy as np
+
+from ..apps.defaults import plan_noise_by_class
 from ..apps.divergence import MonitorConfig
 from ..apps.noise import measurement_std
 from ..apps.track import (
-    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
@@ -218,19 +220,26 @@ def cmd_track(argv) -> int:
         handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
         if len(models) > 1:
             warm_up(jobs)  # a cold cache: the models' kernels compile in parallel processes; warm: milliseconds
-        plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
-                          heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure,
-                          monitor=monitor)
-        if plan.estimated:
-            pose = any(v == "pose" for v in measure.values())
-            say(plan.describe(heading_std if pose else None, heading_given=a.heading_std is not None))
+        classes = plan_noise_by_class(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
+                                      heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading,
+                                      measurement=measure, monitor=monitor)
+        pose = any(v == "pose" for v in measure.values())
+        if len(classes.plans) > 1:
+            say(classes.describe(meas.labels))
+            for c, p in enumerate(classes.plans):
+                say(f"  class {c + 1}: {p.describe(heading_std if pose else None, heading_given=a.heading_std is not None)}")
+        elif classes.plans[0].estimated:
+            say(classes.plans[0].describe(heading_std if pose else None, heading_given=a.heading_std is not None))
+        main_class = int(np.argmax(np.bincount(classes.of_object, weights=np.diff(starts))))  # the class of most rows: --tune's
         if a.meas_std is not None:
             est = measurement_std(meas.t, meas.z, starts)
             if est.usable and not est.floored and max(a.meas_std / est.meas_std, est.meas_std / a.meas_std) >= MEAS_STD_WARN_FACTOR:
                 print(f"lgekf track: warning: --meas-std {a.meas_std:g} m is {a.meas_std / est.meas_std:.2g}x the std "
                       f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
-        cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
-        cfgs = {m: cfg for m in models}
+        configs = [TrackConfig(dict(p.accel_std), p.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
+                   for p in classes.plans]
+        cfg = configs[main_class]
+        cfgs = {m: ClassConfigs(classes.of_object, configs) for m in models}
         if a.tune:
             from ..apps.smooth_track import tune_models
 

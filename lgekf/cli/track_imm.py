@@ -6,7 +6,7 @@ import sys
 import time
 
 from ..apps.divergence import MonitorConfig
-from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm, write_imm
+from ..apps.track_imm import ImmClasses, ImmTrackOptions, imm_noise, tune_imm, write_imm
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import to_seconds, unit_warnings
@@ -20,6 +20,10 @@ def check_imm_options(a) -> None:
     """--imm-modes / --imm-switch only with --model imm (one line otherwise)."""
     if a.model != "imm" and (a.imm_modes is not None or a.imm_switch is not None):
         raise ValueError("--imm-modes/--imm-switch: only with --model imm")
+
+
+def _modes(opts) -> str:
+    return ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
 
 
 def cmd_track_imm(a) -> int:
@@ -47,18 +51,23 @@ def cmd_track_imm(a) -> int:
         r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std, say=say,
                                     method=getattr(a, "tune_method", "lbfgs"))
         say(summary)
-        source = "tuned"
+        classes = ImmClasses.of_all(opts, r, meas.n_objects)
+        say(f"imm: modes {_modes(opts)}; switch {opts.switch:g} per step; meas-std {r:.3g} m (tuned)")
     else:
-        r, plan = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)
-        if plan.estimated:
-            say(plan.describe())
-        source = "given" if a.meas_std is not None else plan.meas_source
-    modes = ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
-    say(f"imm: modes {modes}; switch {opts.switch:g} per step; meas-std {r:.3g} m ({source})"
-        + ("; smoothed columns after flag" if getattr(a, "smooth", False) else ""))
+        classes, found = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)
+        if len(found.plans) > 1:
+            say(found.describe(meas.labels))
+        for c, ((o, r), plan) in enumerate(zip(classes.noise, found.plans)):
+            head = f"class {c + 1}: " if len(found.plans) > 1 else ""
+            if plan.estimated:
+                say(head + plan.describe())
+            say(f"{head}imm: modes {_modes(o)}; switch {o.switch:g} per step; meas-std {r:.3g} m "
+                f"({'given' if a.meas_std is not None else plan.meas_source})")
+    if getattr(a, "smooth", False):
+        say("imm: smoothed columns after flag")
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
-        res = write_imm(fh, meas, starts, opts, r, a.omega_std, a.precision, smooth=getattr(a, "smooth", False), monitor=monitor)
+        res = write_imm(fh, meas, starts, classes, a.omega_std, a.precision, smooth=getattr(a, "smooth", False), monitor=monitor)
         files.commit()
     flagged = int((res.flag & 1).sum())
     for line in divergence_warnings("imm", meas, res.alarms, flagged):
