@@ -138,7 +138,7 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
-    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
+    run = get_model(model).kernel("run_segments", measurement)
     run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 

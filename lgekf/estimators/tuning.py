@@ -166,7 +166,7 @@ def _loglik_tracks(spec, measurement, batch, q, r, x0, p0):
     B = batch.z.shape[0]
     ll = np.empty(B)
     cnt = np.empty(B, dtype=np.int64)
-    getattr(spec.kernels, f"loglik_batch_{measurement}")(batch.z, batch.dts, x0, p0, q, r, batch.lengths, ll, cnt)
+    spec.kernel("loglik_batch", measurement)(batch.z, batch.dts, x0, p0, q, r, batch.lengths, ll, cnt)
     return ll, cnt
 
 
