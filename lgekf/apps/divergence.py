@@ -203,7 +203,7 @@ class Restart:
     their row k + ``offset``; ``q``, ``r``: the filter's noise stds; ``obj_first`` (B,): each object's first row of
     t (the earliest a re-initialisation may use); ``meas_std``, ``omega_std``, ``heading_std``, ``heading_cap``: the
     two-point start's parameters; ``baseline``: the least time between its two measurements (s,
-    ``lgekf.apps.reinit_rows``).
+    the generated ``reinit_earlier_row``).
     """
 
     measurement: str
