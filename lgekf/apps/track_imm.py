@@ -32,16 +32,16 @@ smoothed columns and has ``SMOOTH_FAILED`` (2) added to its ``flag``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes
+from ..io.grouping import row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
-from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
+from .track import ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
 __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
            "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
@@ -376,7 +376,7 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     parts.append(res.flag[:, None])
     if smooth:
         parts.extend([res.c_smooth, res.sd_smooth, res.mu_smooth])
-    fh.write(format_rows(lab, meas.obj, t, np.hstack(parts), col_digits))
+    fh.write(format_rows(lab, row_objects(starts, 0, len(starts) - 1), t, np.hstack(parts), col_digits))
     if bar is not None:
         bar.update(t.size)
     return res

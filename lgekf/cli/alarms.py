@@ -1,12 +1,17 @@
-"""The divergence monitor's warning lines of ``lgekf track`` (every estimator: the single models, the IMM)."""
+"""The warning lines of ``lgekf track`` shared by every estimator (the single models, the IMM): divergence, failed
+smoothing, a given measurement std that misfits the data."""
 
 from __future__ import annotations
 
-from ..apps.divergence import MonitorConfig
+import sys
 
-__all__ = ["divergence_warnings", "smooth_failure_warnings", "MAX_DIVERGENCE_LINES"]
+from ..apps.divergence import MonitorConfig
+from ..apps.noise import measurement_std
+
+__all__ = ["divergence_warnings", "smooth_failure_warnings", "warn_misfit", "MAX_DIVERGENCE_LINES", "MEAS_STD_WARN_FACTOR"]
 
 MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
+MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
 
 
 def divergence_warnings(model, meas, alarms, flagged) -> list:
@@ -48,3 +53,13 @@ def smooth_failure_warnings(model, meas, failed) -> list:
     n = len(failed)
     return [f"{model}: the smoother failed (non-finite or far off the filter) on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
             f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]
+
+
+def warn_misfit(meas_std, meas, starts) -> None:
+    """One warning line when a given ``--meas-std`` is ``MEAS_STD_WARN_FACTOR`` or more off the data's estimate."""
+    if meas_std is None:
+        return
+    est = measurement_std(meas.t, meas.z, starts)
+    if est.usable and not est.floored and max(meas_std / est.meas_std, est.meas_std / meas_std) >= MEAS_STD_WARN_FACTOR:
+        print(f"lgekf track: warning: --meas-std {meas_std:g} m is {meas_std / est.meas_std:.2g}x the std "
+              f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
