@@ -31,7 +31,11 @@ mode j's estimate, and a calm mode (gain ≈ F⁻¹) carries that jump back rigi
 smoothed position RMSE was WORSE than the filter's (0.125 vs 0.110 m). Using the IMM's own prediction of mode j,
 whose covariance contains the mixing spread, gave 0.055 m there and 0.16–0.18 m instead of 0.40–0.47 m on
 calm→turn→calm tracks (a dense NumPy reference of both forms, 2026-11-24). This variant is our choice, tested
-empirically, not a published algorithm.
+empirically, not a published algorithm. Its one guard (``_prediction_floor``, 2026-11-29): the stored prediction's
+covariance is raised to at least Kim's re-prediction F Pⁱ Fᵀ + Q_j (the positive part of the difference added), so
+that the gain stays a contraction; without it, a mode whose posterior is much wider than mode j's mixed prediction
+got gains that grew backwards step after step (smoothed stds of 1e41 m on boats with 8 m noise under the default
+modes). Where the stored prediction is already the larger, nothing changes.
 
 Limits (what is approximate): the collapse of each pair mixture to one Gaussian (as in every IMM), Kim's
 probabilities using the forward predicted probabilities, the first-order group transports of the single-model
@@ -146,6 +150,41 @@ def _posterior_in_every_mode(models, S_k, P_k, i, same_group, S_out, P_out, ws):
         _mix(models, S_out, P_out, one, np.ones((M, M)), same_group, np.empty(M), ws)
 
 
+@nb.njit(cache=True)
+def _prediction_floor(model, S_i, P_i, P_pred, dt, Q, npk, n, out):
+    """Mode j's stored prediction covariance (packed, the first npk entries of P_pred) raised to at least mode i's
+    posterior (S_i, P_i) predicted with mode j's dynamics (F Pⁱ Fᵀ + Q_j, ``D.predict``): the positive part of their
+    difference added; written into out (npk,). The pairwise RTS gain Pⁱ Fᵀ (P_{k+1|k})⁻¹ then stays a contraction;
+    with the stored prediction alone, a mode whose posterior is much wider than the mixed prediction of mode j got gains
+    that grew step after step backwards (smoothed stds of 1e41 m on boats with 8 m noise)."""
+    s_tmp = S_i.copy()
+    p_tmp = P_i.copy()
+    D.predict(model, s_tmp, p_tmp, dt, Q)
+    diff = np.empty((n, n))
+    idx = 0
+    for r in range(n):
+        for c in range(r, n):
+            diff[r, c] = p_tmp[idx] - P_pred[idx]
+            diff[c, r] = diff[r, c]
+            idx += 1
+    for i in range(npk):
+        out[i] = P_pred[i]
+    if not np.isfinite(diff).all():
+        return
+    w, V = np.linalg.eigh(diff)
+    if w[n - 1] <= 0.0:
+        return
+    idx = 0
+    for r in range(n):
+        for c in range(r, n):
+            acc = 0.0
+            for e in range(n):
+                if w[e] > 0.0:
+                    acc += V[r, e] * w[e] * V[c, e]
+            out[idx] += acc
+            idx += 1
+
+
 def _smooth_stored(s: _Setup, f: ImmForward, dts):
     """Per-mode smoothed internal states (K, M, L) / packed covariances (K, M, NP) and μˢ (K, M) (Kim 1994)."""
     K, M = f.mu_filt.shape
@@ -167,6 +206,7 @@ def _smooth_stored(s: _Setup, f: ImmForward, dts):
     out_s = [np.empty((2, ni)) for _, ni, _ in sizes]
     out_p = [np.empty((2, npk)) for _, _, npk in sizes]
     S_i, P_i = np.empty((M, s.L)), np.empty((M, s.NP))
+    nj = [sp.n for sp in specs]
     Y_S, Y_P = np.zeros((M, s.L)), np.zeros((M, s.NP))
     for k in range(K - 2, -1, -1):
         pred = f.mu_filt[k] @ s.PI
@@ -185,7 +225,7 @@ def _smooth_stored(s: _Setup, f: ImmForward, dts):
                 two_p[j][0] = P_i[j, :npk]
                 two_p[j][1] = P_sm[k + 1, j, :npk]
                 pr_s[j][1] = f.S_pred[k + 1, j, :ni]
-                pr_p[j][1] = f.P_pred[k + 1, j, :npk]
+                _prediction_floor(s.models[j], S_i[j], P_i[j], f.P_pred[k + 1, j], dts[k + 1], s.Q[j], npk, nj[j], pr_p[j][1])
                 kern.smooth_one(dts[k:k + 2], pr_s[j], pr_p[j], two_s[j], two_p[j], 2, out_s[j], out_p[j])
                 Y_S[j, :ni] = out_s[j][0]
                 Y_P[j, :npk] = out_p[j][0]
