@@ -261,10 +261,10 @@ def cmd_track(argv) -> int:
         cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
         cfgs = {m: cfg for m in models}
         if a.tune:
-            from ..apps.smooth_track import tune_models
+            from ..apps.smooth_track import plan_starts, tune_models
 
             fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, given_q, meas.heading, a.omega_std,
-                               a.tune_method)
+                               a.tune_method, start_noise=plan_starts(plan, measure, heading_std))
             for m, fit in fits.items():
                 print(f"lgekf track: {fit.report()}", file=sys.stderr)
                 r = fit.meas_std

@@ -467,4 +467,4 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     if not converged:
         problems.insert(0, f"EM did not converge in {max_iter} iterations")
     return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(ll), n_upd, int(B), fixed,
-                    records, problems, "em", hessian=hessian)
+                    records, problems, "em", f"the optimum from the {run.label} start", hessian)

@@ -124,8 +124,8 @@ class NoiseFit:
     method : str
         "lbfgs" (the likelihood optimiser) or "em" (``lgekf.estimators.em``).
     kept : str
-        Where ``values`` come from: "optimum" (an optimiser's end, maybe polished), or "start <label>" / "best
-        point" when no valid optimiser end improved on the best start (see ``problems``).
+        Where ``values`` come from: "the optimum from the <label> start" (the optimiser's end, maybe polished),
+        or "start <label>" / "best point" when no valid optimiser end reached the best start (see ``problems``).
     hessian : bool
         Whether the intervals were computed (``learn_noise(hessian=False)``: no interval, not a problem).
     """
@@ -399,9 +399,9 @@ def _intervals(names, values, log_se, free, n_obs: int):
         if not np.isfinite(se) or se < se_min:
             ci_low[i] = ci_high[i] = np.nan
             if np.isfinite(se):
-                problems.append(f"{names[i]}: its 95 % interval ×/÷{math.exp(1.96 * se):.6g} is narrower than {n_obs} "
-                                f"measured values can give (×/÷{math.exp(1.96 * se_min * NARROW_FACTOR):.4g} at best): "
-                                f"the curvature of log L there is numerical, not information")
+                problems.append(f"{names[i]}: its 95 % interval ×/÷(1 + {math.expm1(1.96 * se):.2g}) is narrower than "
+                                f"{n_obs} measured values can give (×/÷(1 + {math.expm1(1.96 * se_min * NARROW_FACTOR):.2g}) "
+                                f"at best): the curvature of log L there is numerical, not information")
             continue
         with np.errstate(over="ignore"):
             ci_low[i] = values[i] * math.exp(-1.96 * se)
@@ -530,7 +530,8 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
                 problems.append("several optima with the same likelihood (starts ended at different values)")
                 break
     return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(ll), n_upd,
-                    int(batch.z.shape[0]), fixed, records, problems, hessian=hessian)
+                    int(batch.z.shape[0]), fixed, records, problems, kept=f"the optimum from the {best.label} start",
+                    hessian=hessian)
 
 
 #: what the fits report when the observed information is not positive definite
