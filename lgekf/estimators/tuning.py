@@ -87,7 +87,7 @@ class StartRecord:
     end_lost: str | None = None
 
     def describe(self) -> str:
-        """"label log L [(why not valid)] [→ log L at the end [(why)]]"."""
+        """One phrase: the label, log L at the start (why it is not valid), → log L at the end (why)."""
         def point(ll, lost):
             return f"{ll:.6g}" + (f" ({lost})" if lost else "")
         text = f"{self.label} {point(self.start_loglik, self.start_lost)}"
