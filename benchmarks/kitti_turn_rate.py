@@ -15,7 +15,7 @@ import numpy as np
 
 from lgekf.apps.evaluate import FILTERS, _seed_rng, tune_split, world_velocity
 from lgekf.apps.smooth_track import learn_on_dataset, smoothed_columns
-from lgekf.apps.track import DEFAULT_ACCEL_STD, TrackConfig, smoothing_inputs, track_arrays
+from lgekf.apps.track import DEFAULT_ACCEL_STD, TrackConfig, Tracked, smoothing_inputs, track_arrays
 from lgekf.core.registry import get_model
 from lgekf.io.datasets import load_dataset
 
@@ -40,8 +40,9 @@ def main(root=None, seeds=5, meas_std=0.3):
         errs = {"filter": ([], []), "smoother": ([], [])}
         for seed in range(seeds):
             z = dev.p + meas_std * _seed_rng(seed, 0, dev.name).standard_normal(dev.p.shape)
-            x, p, _ = track_arrays(m, dev.t, z, dev.starts, cfg)
-            xs = smoothed_columns(m, "position", dev.t, *smoothing_inputs(m, dev.t, z, dev.starts, cfg), x, p)[:, :spec.n]
+            x, p, nis = track_arrays(m, dev.t, z, dev.starts, cfg)
+            zm, q, r = smoothing_inputs(m, z, cfg)
+            xs = smoothed_columns(m, "position", dev.t, zm, dev.starts, Tracked(x, p, nis, None, []), q, r)[0][:, :spec.n]
             for role, st in (("filter", x), ("smoother", xs)):
                 if iw is not None:
                     errs[role][0].append(st[moving, iw] - dev.w[moving])

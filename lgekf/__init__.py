@@ -5,7 +5,8 @@ Every model shares one interface (``predict()``, ``update(z)``, ``x``, ``P``): `
 ``CTRVFilter`` and ``CVFilter`` (baselines), one class per model definition in ``derive/models``.
 ``filter_batch`` runs any of them over many trajectories in numba; ``state_from_common`` and
 ``covariance_from_common`` build a model's initial state and P0 from common coordinates.
-The runtime never imports SymPy; the symbolic source of truth is ``lgekf.derive``.
+``track`` is the main job from Python: ``lgekf track`` on a file, a DataFrame or a dict of columns, its output as a
+DataFrame. The runtime never imports SymPy; the symbolic source of truth is ``lgekf.derive``.
 
 The public names are imported on first use, so ``import lgekf`` is fast and ``lgekf derive`` works
 even when the generated kernels are stale.
@@ -25,6 +26,7 @@ _PUBLIC = {
     "covariance_from_common": "lgekf.core.common",
     "MODELS": "lgekf.core.registry",
     "get_model": "lgekf.core.registry",
+    "track": "lgekf.cli.api",
 }
 
 

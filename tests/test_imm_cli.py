@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import csv
+import re
 
 import numpy as np
 import pytest
@@ -30,7 +31,14 @@ def test_track_imm_writes_mode_probabilities(tmp_path, capsys):
     assert main(["track", str(src), "--model", "imm", "--imm-modes", "cv,se2r3:calm,se2r3:manoeuvre", "--imm-switch", "0.02",
                  "-o", str(out)]) == 0
     err = capsys.readouterr().err
-    assert "imm: modes cv (0.5), se2r3:calm (0.1,0.1,0.2), se2r3:manoeuvre (2,2,4); switch 0.02" in err
+    # the modes' noise: the data's estimate of each model (printed first) times the level (calm 0.2, manoeuvre 4)
+    cv = float(re.search(r"accel-std cv ([0-9.e+-]+) ", err).group(1))
+    se = [float(v) for v in re.search(r"; se2r3 ([0-9.e+-]+,[0-9.e+-]+,[0-9.e+-]+) ", err).group(1).split(",")]
+    modes = re.search(r"imm: modes cv \(([^)]*)\), se2r3:calm \(([^)]*)\), se2r3:manoeuvre \(([^)]*)\); switch 0.02", err)
+    assert modes, err
+    np.testing.assert_allclose(float(modes.group(1)), cv, rtol=2e-3)
+    np.testing.assert_allclose([float(v) for v in modes.group(2).split(",")], [0.2 * v for v in se], rtol=2e-2)
+    np.testing.assert_allclose([float(v) for v in modes.group(3).split(",")], [4 * v for v in se], rtol=2e-2)
     rows = list(csv.DictReader(out.open()))
     assert len(rows) == 180
     assert list(rows[0])[-4:] == ["mu_cv", "mu_se2r3_calm", "mu_se2r3_manoeuvre", "flag"]

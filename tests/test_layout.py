@@ -90,18 +90,20 @@ def test_every_runtime_module_is_in_a_layer():
     assert not loose, f"modules outside the layers: {loose}"
 
 
-def test_no_import_cycles_in_the_runtime():
-    mods = _runtime_graph()
+def _find_cycle(mods: dict) -> None:
+    """AssertionError naming the first import cycle among ``mods`` ({name: (path, is_pkg)}), top-level imports and
+    imports inside functions alike (a lazy import is still a dependency)."""
     graph = {}
     for name, (path, is_pkg) in mods.items():
         graph[name] = {i for i in _imports(name, path, is_pkg) if i in mods and i != name and not name.startswith(i + ".")}
     state, stack = {}, []
+    roots = {n for n in mods if "." not in n or n.count(".") == 1 and n.endswith(".derive")}
 
     def visit(n):
         state[n] = 1
         stack.append(n)
         for m in sorted(graph[n]):
-            if m == "lgekf" or n == "lgekf":
+            if m in roots or n in roots:
                 continue
             if state.get(m) == 1:
                 raise AssertionError("import cycle: " + " -> ".join(stack[stack.index(m):] + [m]))
@@ -113,6 +115,23 @@ def test_no_import_cycles_in_the_runtime():
     for n in sorted(graph):
         if not state.get(n):
             visit(n)
+
+
+def test_no_import_cycles_in_the_runtime():
+    _find_cycle(_runtime_graph())
+
+
+def test_no_import_cycles_in_derive():
+    _find_cycle({name: (path, is_pkg) for name, path, is_pkg in _modules(ROOT / "derive", "lgekf.derive")})
+
+
+def test_kernel_names_are_formed_in_one_place():
+    """Only ``ModelSpec.kernel`` (lgekf/core/registry.py) turns a family and a measurement into a kernel's name: no
+    ``getattr(..., f"..._{measurement}")`` anywhere else in the runtime."""
+    pat = re.compile(r"getattr\([^)]*f[\"']")
+    hits = [f"{p.relative_to(ROOT)}:{i}: {line.strip()}" for p in sorted((ROOT / "lgekf").rglob("*.py"))
+            if p.name != "registry.py" for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pat.search(line)]
+    assert not hits, "\n".join(hits)
 
 
 def test_derive_imports_go_one_way():

@@ -16,7 +16,7 @@ import pytest
 import lgekf.apps.divergence as divergence
 import lgekf.apps.track as track
 from lgekf.apps.divergence import Alarm, MonitorConfig, MonitorMemory, first_alarms, speed_limits
-from lgekf.apps.reinit_rows import reinit_first_rows
+from _reinit_rows import reinit_first_rows
 from lgekf.apps.track import TrackConfig, track_arrays, track_monitored
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model

@@ -15,7 +15,7 @@ from lgekf.apps import defaults
 from lgekf.apps.defaults import plan_noise
 from lgekf.apps.divergence import MonitorConfig, speed_limits, speeds
 from lgekf.apps.noise import CHORD_S, chord_speeds
-from lgekf.apps.reinit_rows import reinit_first_rows
+from _reinit_rows import reinit_first_rows
 from lgekf.apps.track import TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, track_monitored
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model

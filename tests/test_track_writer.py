@@ -81,7 +81,7 @@ def test_the_bar_counts_written_rows(tmp_path, monkeypatch):
 
     meas, starts = _grouped(inp)
     with open(tmp_path / "o.csv", "wb") as fh:
-        rows, _, _ = track.write_model(fh, "cv", meas, starts, track.TrackConfig(meas_std=0.05), False, 10, Bar())
+        rows = track.write_model(fh, "cv", meas, starts, track.TrackConfig(meas_std=0.05), False, 10, Bar()).rows
     assert updates == [30] * 12 and rows == 360
 
 

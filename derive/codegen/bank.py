@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .blocks import arg_list
 from .printer import Kernel
 
 __all__ = ["bank_measurement_kernels", "bank_model_kernels"]
@@ -75,10 +76,6 @@ def right_jacobian_bank(live, eps, out):
 '''
 
 
-def _args(prefix, k):
-    return ", ".join(f"{prefix}[{i}]" for i in range(k))
-
-
 def bank_measurement_kernels(model, meas, sin_) -> list:
     """``innovation_into_<meas>`` and the bank loops of one model × measurement."""
     sub = model.to_internal
@@ -94,11 +91,11 @@ def bank_measurement_kernels(model, meas, sin_) -> list:
         outputs=[(f"out[{i}]", sp.sympify(e)) for i, e in enumerate(innov)],
     )
     loops = (f"innovation_bank_{meas.name}", MEAS_BANK_TEMPLATE.format(
-        meas=meas.name, m=meas.m, n=model.n, zargs=_args("z[j]", meas.m).replace("z[j][", "z[j, ")))
+        meas=meas.name, m=meas.m, n=model.n, zargs=arg_list("z[j]", meas.m).replace("z[j][", "z[j, ")))
     return [inn, loops]
 
 
 def bank_model_kernels(model) -> list:
     """``predict_bank``, ``retract_bank``, ``right_jacobian_bank`` of one model."""
     nq = len(model.noise_names)
-    return [("predict_bank", MODEL_BANK_TEMPLATE.format(n=model.n, nq=nq, qargs=_args("q", nq)))]
+    return [("predict_bank", MODEL_BANK_TEMPLATE.format(n=model.n, nq=nq, qargs=arg_list("q", nq)))]

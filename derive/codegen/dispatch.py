@@ -21,7 +21,7 @@ its caller (``inline="always"``), so selecting the kernel costs a branch, not a 
 from __future__ import annotations
 
 
-from .emitter import matrix_kernel, vec_inputs, vector_kernel
+from .blocks import matrix_kernel, vec_inputs, vector_kernel
 from dataclasses import replace
 
 from .printer import HEADER, Kernel

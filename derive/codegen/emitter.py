@@ -41,48 +41,10 @@ from ..models.base import COMMON
 from .bank import bank_measurement_kernels, bank_model_kernels
 from .monitor import measurement_monitor_kernels, model_monitor_kernels
 from .estimators import estimator_kernels
+from .blocks import arg_list, cov_outputs, mat_inputs, matrix_kernel, vec_inputs, vector_kernel
 from .printer import Kernel
 
 __all__ = ["se2_kernels", "model_kernels", "registry_entry", "PD_TOL"]
-
-
-# --------------------------------------------------------------------------- small helpers
-def vec_inputs(name, syms):
-    return [(s, f"{name}[{i}]") for i, s in enumerate(syms)]
-
-
-def mat_inputs(name, rows, cols, prefix):
-    syms = sp.Matrix(rows, cols, lambda i, j: sp.Symbol(f"{prefix}{i}{j}", real=True))
-    return syms, [(syms[i, j], f"{name}[{i}, {j}]") for i in range(rows) for j in range(cols)]
-
-
-def matrix_kernel(name, doc, params, inputs, Mx, subs=None):
-    return Kernel(
-        name=name, doc=doc, params=params, inputs=inputs,
-        outputs=[(f"out[{i}, {j}]", Mx[i, j]) for i in range(Mx.shape[0]) for j in range(Mx.shape[1])],
-        prologue=[f"out = np.zeros(({Mx.shape[0]}, {Mx.shape[1]}))"], ret="out",
-        substitutions=subs or {}, skip_zero_outputs=True,
-    )
-
-
-def vector_kernel(name, doc, params, inputs, v, subs=None):
-    v = list(v)
-    return Kernel(
-        name=name, doc=doc, params=params, inputs=inputs,
-        outputs=[(f"out[{i}]", e) for i, e in enumerate(v)],
-        prologue=[f"out = np.zeros({len(v)})"], ret="out",
-        substitutions=subs or {}, skip_zero_outputs=True,
-    )
-
-
-def cov_outputs(Pn: sp.Matrix):
-    n = Pn.shape[0]
-    idx = packed_index(n)
-    return [(f"p[{idx[(i, j)]}]", Pn[i, j]) for i in range(n) for j in range(i, n)]
-
-
-def _args(prefix, k):
-    return ", ".join(f"{prefix}[{i}]" for i in range(k))
 
 
 # --------------------------------------------------------------------------- SE(2) building blocks
@@ -449,10 +411,10 @@ def _measurement_kernels(model, meas, P, pin, sin_, predict_parts=None):
     )
     nan_test = " or ".join(f"np.isnan(z[k, {i}])" for i in range(m))
     fmt = dict(meas=meas.name, m=m, n=model.n, npk=model.n * (model.n + 1) // 2, ni=len(model.internal), nq=len(model.noise_names),
-               nr=len(meas.noise_names), qargs=_args("q", len(model.noise_names)), zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
-               rargs=_args("r", len(meas.noise_names)), nan_test=nan_test)
+               nr=len(meas.noise_names), qargs=arg_list("q", len(model.noise_names)), zargs=arg_list("z[k]", m).replace("z[k][", "z[k, "),
+               rargs=arg_list("r", len(meas.noise_names)), nan_test=nan_test)
     batch = (f"run_one_{meas.name}", BATCH_TEMPLATE.format(loop=FILTER_LOOP.format(**fmt), **fmt))
-    meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=_args("noise[i]", m).replace("noise[i][", "noise[i, ")))
+    meas_loop = (f"measure_batch_{meas.name}", MEASURE_TEMPLATE.format(meas=meas.name, n=model.n, m=m, margs=arg_list("noise[i]", m).replace("noise[i][", "noise[i, ")))
     kernels = [calH, upd, measure, batch, meas_loop, *bank_measurement_kernels(model, meas, sin_)]
     kernels.append((f"run_segments_noise_from_{meas.name}", SEGMENT_NOISE_TEMPLATE.format(
         meas=meas.name, nq=len(model.noise_names), nr=len(meas.noise_names))))
@@ -538,7 +500,7 @@ def model_kernels(model, measurements: dict) -> list:
     ))
     ks.append(Kernel(name="position_into", doc="The position (the first two physical coordinates) of the internal state into ``out`` (2,).",
                      params=["s", "out"], inputs=sin_, outputs=[(f"out[{i}]", e) for i, e in enumerate(model.physical_from_internal()[:2])]))
-    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=_args("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
+    ks.append(("simulate_batch", SIMULATE_TEMPLATE.format(n=n, nq=len(nn), nargs=arg_list("noise[b, k]", len(nn)).replace("noise[b, k][", "noise[b, k, "),
                                                     zeros=", ".join(["0.0"] * len(nn)), ni=len(model.internal))))
     # ---- common coordinates
     cs = sp.symbols(f"c0:{len(COMMON)}", real=True)

@@ -23,6 +23,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ..algebra import symbolize
+from .blocks import arg_list
 from .printer import Kernel
 from .smooth_step import smooth_soa_kernels, smooth_step_kernel, store_soa_kernels, store_step_kernel
 
@@ -141,10 +142,6 @@ def _logdet_kernel(model, meas, P, pin, sin_):
     )
 
 
-def _args(prefix, k):
-    return ", ".join(f"{prefix}[{i}]" for i in range(k))
-
-
 def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> list:
     """The estimator kernels of one model (module docstring), for the measurements that fit it; ``kernels``: the
     model's kernels so far (the fused ``step_<meas>`` of each measurement, which the storing loop extends)."""
@@ -161,9 +158,9 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> li
         ks.append(store)
         ks.extend(store_soa_kernels(model, meas, store))  # run_batch_store_soa_<meas>: the forward pass in SIMD lanes
         ks.append((f"run_one_store_{meas.name}", STORE_TEMPLATE.format(
-            meas=meas.name, m=m, n=n, ni=ni, npk=npk, qargs=_args("q", nq), rargs=_args("r", nr),
-            zargs=_args("z[k]", m).replace("z[k][", "z[k, "),
-            zargs_b=_args("z[b, k]", m).replace("z[b, k][", "z[b, k, "),
+            meas=meas.name, m=m, n=n, ni=ni, npk=npk, qargs=arg_list("q", nq), rargs=arg_list("r", nr),
+            zargs=arg_list("z[k]", m).replace("z[k][", "z[k, "),
+            zargs_b=arg_list("z[b, k]", m).replace("z[b, k][", "z[b, k, "),
             nan_test=" or ".join(f"np.isnan(z[k, {i}])" for i in range(m)),
             nan_test_b=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
         )))

@@ -127,7 +127,7 @@ def _one(defs: list, name: str, e):
 
 def smooth_step_kernel(model) -> Kernel:
     """The fused RTS backward step of ``model`` (module docstring)."""
-    from .emitter import vec_inputs
+    from .blocks import vec_inputs
 
     n = model.n
     G = model.group

@@ -16,14 +16,20 @@ import numpy as np
 from ..core.registry import get_model
 from .divergence import MonitorConfig, speed_limits
 from .noise import (
-    SEARCH_ROWS, NoiseEstimate, measurement_std, one_step_errors, subsample_objects, typical_speed,
+    SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
 )
 from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
 from .track import DEFAULT_MEAS_STD, TrackConfig, initial_common, initial_estimates, track_monitored
 
-__all__ = ["NoisePlan", "plan_noise", "BURN_IN"]
+__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class", "objects_subset"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
+# Classes of objects by measurement std: an object's own estimate from n ≈ 300 windows is within about ±20 % (2.5 σ),
+# so a class of one sensor spans a factor of about 1.5
+CLASS_GAP = 1.5  # objects whose (shrunk) measurement stds are separated by a gap of more than this factor: classes of their own
+CLASS_SPAN = 2.0  # a class whose stds span more than this factor is cut into bins CLASS_GAP wide
+MAX_CLASSES = 6  # more would be cut into this many bins of equal width (log scale) over the whole range
+SHRINK_WINDOWS = 10  # an object's own std weighs n / (n + SHRINK_WINDOWS) against the pooled one (n its windows, log scale)
 
 
 @dataclass
@@ -152,3 +158,86 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         plan.median_nis[m] = res.median_nis
         plan.search[m] = res
     return plan
+
+
+def objects_subset(starts, objs) -> tuple:
+    """(rows, starts of the subset): the rows of objects ``objs`` (sorted) of a table with ``starts``, in order."""
+    starts = np.asarray(starts, dtype=np.int64)
+    objs = np.asarray(objs, dtype=np.int64)
+    lens = starts[objs + 1] - starts[objs]
+    sub = np.zeros(objs.size + 1, dtype=np.int64)
+    np.cumsum(lens, out=sub[1:])
+    rows = np.concatenate([np.arange(starts[b], starts[b + 1]) for b in objs]) if objs.size else np.zeros(0, np.int64)
+    return rows, sub
+
+
+def noise_classes(t, z, starts, pooled: float) -> tuple:
+    """Classes of objects by their own measurement std: (class of each object (B,), its shrunk std (B,)).
+
+    Each object's std (``noise.object_measurement_stds``, n windows) is shrunk toward the ``pooled`` one on the log
+    scale with weight n / (n + ``SHRINK_WINDOWS``) (an object of 3 rows or less: the pooled one); sorted, a gap of
+    more than ``CLASS_GAP`` starts a new class, and a class spanning more than ``CLASS_SPAN`` is cut into bins
+    ``CLASS_GAP`` wide; more than ``MAX_CLASSES`` classes become ``MAX_CLASSES`` bins of equal width. Classes are
+    numbered by increasing std; one class when the objects agree."""
+    r, n = object_measurement_stds(t, z, starts)
+    w = n / (n + SHRINK_WINDOWS)
+    lp = math.log(pooled)
+    lr = np.where(np.isfinite(r), w * np.log(np.where(np.isfinite(r), r, 1.0)) + (1 - w) * lp, lp)
+    order = np.argsort(lr, kind="stable")
+    cut = np.flatnonzero(np.diff(lr[order]) > math.log(CLASS_GAP)) + 1
+    label = np.empty(lr.size, dtype=np.int64)
+    k = 0
+    for grp in np.split(order, cut):
+        lo = lr[grp].min()
+        if lr[grp].max() - lo > math.log(CLASS_SPAN):
+            bins = np.floor((lr[grp] - lo) / math.log(CLASS_GAP)).astype(np.int64)
+            _, sub = np.unique(bins, return_inverse=True)
+            label[grp] = k + sub
+            k += int(sub.max()) + 1
+        else:
+            label[grp] = k
+            k += 1
+    if k > MAX_CLASSES:  # a continuum of stds rather than a few sensors: MAX_CLASSES bins of equal width
+        width = (lr.max() - lr.min()) / MAX_CLASSES
+        _, label = np.unique(np.minimum(np.floor((lr - lr.min()) / width), MAX_CLASSES - 1), return_inverse=True)
+    return label.astype(np.int64), np.exp(lr)
+
+
+@dataclass
+class NoiseClasses:
+    """The noise of every class of objects: ``plans[of_object[b]]`` is object b's ``NoisePlan``."""
+
+    of_object: np.ndarray
+    plans: list
+    object_std: np.ndarray  # each object's shrunk measurement std (m)
+
+    def describe(self, labels) -> str:
+        """One line: that the objects differ, and the classes (objects, a few ids, the std range)."""
+        parts = []
+        for c, plan in enumerate(self.plans):
+            objs = np.flatnonzero(self.of_object == c)
+            ids = ", ".join(str(labels[b]) for b in objs[:3]) + (", ..." if objs.size > 3 else "")
+            parts.append(f"{objs.size} object{'s' if objs.size > 1 else ''} ({ids}) at {plan.meas_std:.3g} m")
+        lo, hi = self.object_std.min(), self.object_std.max()
+        return (f"objects differ (their measurement stds {lo:.3g} to {hi:.3g} m): noise estimated per class of objects, "
+                f"{len(self.plans)} classes: " + "; ".join(parts))
+
+
+def plan_noise_by_class(t, z, starts, models, *, meas_std=None, accel_std=None, heading=None, **kw) -> NoiseClasses:
+    """``plan_noise`` for each class of objects (``noise_classes``; its own measurement std and process noise, the
+    given values kept); one class, the plan of ``plan_noise`` itself, when the objects agree or ``meas_std`` is given."""
+    B = len(starts) - 1
+    pooled = None if meas_std is not None else measurement_std(t, z, starts)
+    if pooled is None or not pooled.usable:
+        plan = plan_noise(t, z, starts, models, meas_std=meas_std, accel_std=accel_std, heading=heading, **kw)
+        return NoiseClasses(np.zeros(B, dtype=np.int64), [plan], np.full(B, plan.meas_std))
+    label, std = noise_classes(t, z, starts, pooled.meas_std)
+    if label.max() == 0:
+        plan = plan_noise(t, z, starts, models, meas_std=meas_std, accel_std=accel_std, heading=heading, **kw)
+        return NoiseClasses(label, [plan], std)
+    plans = []
+    for c in range(int(label.max()) + 1):
+        rows, sub = objects_subset(starts, np.flatnonzero(label == c))
+        plans.append(plan_noise(t[rows], z[rows], sub, models, accel_std=accel_std,
+                                heading=None if heading is None else heading[rows], **kw))
+    return NoiseClasses(label, plans, std)

@@ -203,7 +203,7 @@ class Restart:
     their row k + ``offset``; ``q``, ``r``: the filter's noise stds; ``obj_first`` (B,): each object's first row of
     t (the earliest a re-initialisation may use); ``meas_std``, ``omega_std``, ``heading_std``, ``heading_cap``: the
     two-point start's parameters; ``baseline``: the least time between its two measurements (s,
-    ``lgekf.apps.reinit_rows``).
+    the generated ``reinit_earlier_row``).
     """
 
     measurement: str
@@ -312,7 +312,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     heading = np.empty(0) if rs.heading is None else np.ascontiguousarray(rs.heading, dtype=float)
     t_all = np.ascontiguousarray(rs.t, dtype=float)
     rows = slice(int(rs.offset), int(rs.offset) + x.shape[0])  # the outputs' rows of t, zm
-    kernel = getattr(spec.kernels, f"recover_{rs.measurement}")
+    kernel = spec.kernel("recover", rs.measurement)
     if first_pass is None:
         run_first, run_s, run_p, run_scale = np.full(seg_obj.size, -1, np.int64), carry.s[:0], carry.p[:0], carry.scale[:0]
     else:

@@ -51,7 +51,7 @@ from ..core.registry import MODELS, get_model
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
-from .track import DEFAULT_ACCEL_STD, TrackConfig, smoothing_inputs, track_arrays
+from .track import DEFAULT_ACCEL_STD, TrackConfig, Tracked, smoothing_inputs, track_arrays
 from .track_imm import IMM_FILTER, common_world_velocity, imm_track_common
 
 __all__ = [
@@ -107,11 +107,12 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None):
                 x, _, _ = imm_track_common(ds.t, z, ds.starts, cfg.meas_std, cfg.omega_std, imm)
                 vel = common_world_velocity(x) if ds.v is not None else None
             else:
-                x, p, _ = track_arrays(base, ds.t, z, ds.starts, cfg)
+                x, p, nis = track_arrays(base, ds.t, z, ds.starts, cfg)
                 if variant == "smoothed":
                     from .smooth_track import smoothed_columns
 
-                    x = smoothed_columns(base, "position", ds.t, *smoothing_inputs(base, ds.t, z, ds.starts, cfg), x, p)[:, :get_model(base).n]
+                    zm, q, r = smoothing_inputs(base, z, cfg)
+                    x = smoothed_columns(base, "position", ds.t, zm, ds.starts, Tracked(x, p, nis, None, []), q, r)[0][:, :get_model(base).n]
                 vel = world_velocity(base, x) if ds.v is not None else None
             out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
             if ds.v is not None:

@@ -54,6 +54,7 @@ __all__ = [
     "measurement_std", "NoiseEstimate", "chord_speeds", "typical_speed", "accel_std_family", "process_noise_search",
     "one_step_errors", "angular_grid", "with_angular", "SearchResult", "subsample_objects",
     "chi2_quantile", "SEARCH_ROWS", "CHORD_S", "MIN_MEAS_STD", "K_GRID", "search_stages", "candidate_key", "run_score",
+    "object_measurement_stds", "OBJECT_WINDOWS",
 ]
 
 MAD_SCALE = 0.6744897501960817  # Φ⁻¹(0.75): median |N(0, 1)|
@@ -254,6 +255,37 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     if s < MIN_MEAS_STD:
         return NoiseEstimate(MIN_MEAS_STD, windows, floored=True)
     return NoiseEstimate(s, windows)
+
+
+OBJECT_WINDOWS = 4096  # an object's own measurement std uses at most its first this many windows (≈ 2 % relative error)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _object_median_abs(t, z, starts, cap, med, count):
+    """med[b] = the median of |e_x|, |e_y| over the first ``cap`` 4-point windows of object b (nan without any),
+    count[b] = the windows used."""
+    w = np.empty(4)
+    buf = np.empty(2 * cap)
+    for b in range(starts.shape[0] - 1):
+        n = min(max(starts[b + 1] - starts[b] - 3, 0), cap)
+        for j in range(n):
+            ex, ey = _window_residual(t, z, starts[b] + j, w)
+            buf[2 * j] = abs(ex)
+            buf[2 * j + 1] = abs(ey)
+        count[b] = n
+        med[b] = np.median(buf[:2 * n]) if n > 0 else np.nan
+
+
+def object_measurement_stds(t, z, starts, cap: int = OBJECT_WINDOWS) -> tuple:
+    """Each object's own measurement std (B,) (``measurement_std``'s estimator on its first ``cap`` windows only; nan
+    for an object with fewer than 4 measurements or non-finite residuals) and the windows behind it (B,)."""
+    B = len(starts) - 1
+    med, count = np.empty(B), np.empty(B, dtype=np.int64)
+    _object_median_abs(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
+                       np.asarray(starts, np.int64), int(cap), med, count)
+    with np.errstate(invalid="ignore"):
+        r = np.where(np.isfinite(med), np.maximum(med / MAD_SCALE, MIN_MEAS_STD), np.nan)
+    return r, count
 
 
 @nb.njit(cache=True, nogil=True)

@@ -1,10 +1,11 @@
 """`lgekf track --smooth` and `--tune`: smoothed columns and noise learned from the file's own tracks.
 
 Smoothed columns (``smooth_<state>``, ``smooth_std_<state>``, after ``flag``): the RTS smoother on the group
-(``lgekf.estimators.smoother``) over each object's rows 2, 3, ... from the same two-point start as the
-filter columns, with the same noise. Rows 0 and 1 of an object (its two-point initialisation) repeat the
-filter columns. The smoother runs without the divergence monitor: for an object with an alarm (flag 1
-somewhere) the smoothed columns are those of the unmonitored filter from its first start.
+(``lgekf.estimators.smoother``) over each monitored segment of an object (its rows 2, 3, ... up to its first
+re-initialisation, then from each re-initialisation to the next), from the filter's estimate at the segment's
+start with the noise the filter used there. The rows of a start or re-initialisation (an object's rows 0 and 1, an
+alarm's row) repeat the filter columns; the filter columns are those of the run without ``--smooth``. An object
+whose smoothed values are not all finite keeps the filter's values in its smoothed columns (the caller flags it).
 
 ``--tune``: ``lgekf.estimators.tuning.learn_noise`` on all objects of the file (each object's first
 measurement and the first one at least 1 s later start it), per model; a given ``--meas-std`` is held fixed,
@@ -17,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.covariance import unpack
 from ..core.registry import get_model
 from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
@@ -25,36 +27,91 @@ from .defaults import plan_noise
 from .divergence import MonitorConfig
 from .track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP
 
-__all__ = ["smoothed_columns", "smooth_column_names", "tune_models", "plan_starts", "data_starts", "learn_on_dataset",
-           "noisy_tracks", "DATA_START"]
+__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "plan_starts",
+           "data_starts", "learn_on_dataset", "noisy_tracks", "DATA_START"]
 
 #: the label of the start taken from the data's noise estimate (``NoiseFit.starts``, the report)
 DATA_START = "data"
 
 
-def smooth_column_names(model: str) -> list:
-    """The header of the smoothed columns of ``model``."""
-    names = get_model(model).state_names
-    return [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
+def smooth_segments_of(starts, alarms) -> tuple:
+    """The monitored segments of every object: (first rows (S,), lengths (S,), start rows (S,), noise scales (S,)).
+
+    An object's first segment starts at its row 2 from its two-point start at row 1; each re-initialisation at a row g
+    (``alarms`` of ``track_monitored``, rows counted as in ``starts``) ends the segment before it and starts one at
+    g + 1 from the re-initialised estimate at g, with the alarm's noise inflation ``Alarm.scale``."""
+    starts = np.asarray(starts, dtype=np.int64)
+    cuts = {}
+    for al in alarms:
+        if al.reinitialised:
+            cuts.setdefault(al.obj, []).append((al.row, al.scale))
+    first, length, start, scale = [], [], [], []
+    for b in range(len(starts) - 1):
+        a, e = int(starts[b]), int(starts[b + 1])
+        bounds = [(a + 1, 1.0)] + sorted(cuts.get(b, []))
+        for i, (g, sc) in enumerate(bounds):
+            end = bounds[i + 1][0] if i + 1 < len(bounds) else e
+            first.append(g + 1)
+            length.append(max(end - g - 1, 0))
+            start.append(g)
+            scale.append(sc)
+    return (np.array(first, dtype=np.int64), np.array(length, dtype=np.int64), np.array(start, dtype=np.int64),
+            np.array(scale, dtype=float))
 
 
-def smoothed_columns(model, measurement, t, zm, starts, x0, P0, q, r, x_filt, p_filt):
-    """(N, 2n): smoothed states and stds of every row (module docstring).
+SMOOTH_GATE = 20.0  # a smoothed position this many (filter position std + measurement std) from the filter's: failed
 
-    zm (N, m) the measurements and r their noise stds, x0 (B, n) / P0 (B, n, n) each object's two-point start
-    at its row 1, q the process-noise stds (``lgekf.apps.track.smoothing_inputs`` gives them all);
-    x_filt, p_filt the filter's columns (kept for each object's first two rows).
+
+def implausible_rows(x_f, sd_f, x_s, sd_s, meas_std) -> np.ndarray:
+    """Rows (N,) where a smoother failed: a non-finite smoothed value (x_s, sd_s), or a smoothed position (columns 0, 1)
+    further from the filter's than ``SMOOTH_GATE`` × (the filter's position std + ``meas_std``), or a smoothed position
+    std above that bound (a smoothed estimate is at least as certain as the filtered one; a numerically broken backward
+    pass is not)."""
+    bound = SMOOTH_GATE * (np.hypot(sd_f[:, 0], sd_f[:, 1]) + meas_std)
+    with np.errstate(invalid="ignore", over="ignore"):
+        far = np.hypot(x_s[:, 0] - x_f[:, 0], x_s[:, 1] - x_f[:, 1]) > bound
+        wide = np.hypot(sd_s[:, 0], sd_s[:, 1]) > bound
+    return ~np.isfinite(x_s).all(axis=1) | ~np.isfinite(sd_s).all(axis=1) | far | wide
+
+
+def smoothed_columns(model, measurement, t, zm, starts, tracked, q, r):
+    """(values (N, 2n), failed objects): smoothed states and stds of every row (module docstring).
+
+    The RTS smoother on the group runs over each monitored segment of ``tracked`` (``track_monitored``'s output: its
+    states, packed covariances and alarms), from the filter's own estimate at the segment's start row (the two-point
+    start or a re-initialisation) with the noise the filter used there (q, r × the object's inflation), so that the
+    smoothed and the filtered columns describe the same run. Rows that start a segment repeat the filter's values. An
+    object with a non-finite smoothed value keeps the filter's values on all its rows and is listed in ``failed``.
+    zm (N, m) the measurements and r their noise stds, q the process-noise stds.
     """
     spec = get_model(model)
     starts = np.asarray(starts, dtype=np.int64)
-    xs, ps = smooth_segments(model, measurement, np.asarray(t, float), zm, starts[:-1] + 2, np.diff(starts) - 2, x0, P0, q, r)
-    i0 = starts[:-1]
-    for off in (0, 1):
-        xs[i0 + off] = x_filt[i0 + off]
-        ps[i0 + off] = p_filt[i0 + off]
+    t = np.asarray(t, float)
+    first, length, start, scale = smooth_segments_of(starts, tracked.alarms)
+    xs = tracked.x.copy()
+    ps = tracked.p.copy()
+    for sc in np.unique(scale):  # one smoother call per noise level (the kernels take one q, r)
+        sel = np.flatnonzero((scale == sc) & (length > 0))
+        if sel.size == 0:
+            continue
+        x0 = tracked.x[start[sel]]
+        P0 = unpack(tracked.p[start[sel]], spec.n)
+        xk, pk = smooth_segments(model, measurement, t, zm, first[sel], length[sel], x0, P0, np.asarray(q) * sc, np.asarray(r) * sc)
+        rows = np.concatenate([np.arange(f, f + n) for f, n in zip(first[sel], length[sel])])
+        xs[rows] = xk[rows]
+        ps[rows] = pk[rows]
     i, j = np.triu_indices(spec.n)
     diag = np.flatnonzero(i == j)
-    return np.hstack([xs, np.sqrt(np.maximum(ps[:, diag], 0.0))])
+    out = np.hstack([xs, np.sqrt(np.maximum(ps[:, diag], 0.0))])
+    failed = []
+    filt = np.hstack([tracked.x, np.sqrt(np.maximum(tracked.p[:, diag], 0.0))])
+    n = spec.n
+    bad = implausible_rows(filt[:, :n], filt[:, n:], out[:, :n], out[:, n:], float(np.asarray(r).reshape(-1)[0]))
+    for b in np.unique(np.searchsorted(starts, np.flatnonzero(bad), side="right") - 1):
+        a, e = starts[b], starts[b + 1]
+        out[a:e] = filt[a:e]
+        failed.append(int(b))
+    return out, failed
 
 
 def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5,

@@ -66,7 +66,7 @@ from ..io.parquet import ParquetRows
 __all__ = [
     "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
-    "output_path", "write_model", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
+    "output_path", "write_model", "Written", "SMOOTH_FAILED", "ClassConfigs", "track_chunk", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
@@ -74,6 +74,9 @@ DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
 
+#: the ``flag`` column's bit set on every row of an object whose smoothed values were not all finite (its smooth_*
+#: columns then repeat the filter's); bit 0 (1) marks the rows of a detected divergence
+SMOOTH_FAILED = 2
 ROWS_PER_CHUNK = 1 << 15  # rows (whole objects) tracked and written at a time: bounds the memory of the outputs (two chunks in flight)
 FORMAT_ROWS = 1 << 15  # rows of a Parquet row group made at a time (CSV text: lgekf.io.formatting.PART_ROWS)
 
@@ -135,7 +138,7 @@ def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x
     """
     lengths = np.asarray(lengths, dtype=np.int64)
     keep = np.flatnonzero(lengths > 0)
-    run = getattr(get_model(model).kernels, f"run_segments_{measurement}")
+    run = get_model(model).kernel("run_segments", measurement)
     run(zm, t, np.ascontiguousarray(np.asarray(first, dtype=np.int64)[keep]), np.ascontiguousarray(lengths[keep]),
         np.ascontiguousarray(x0[keep]), np.ascontiguousarray(p0[keep]), q, r, out_x, out_p, out_nis)
 
@@ -181,14 +184,11 @@ def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
     return x0, p0, out_x, out_p, out_nis
 
 
-def smoothing_inputs(model, t, z, starts, cfg: TrackConfig, heading=None, measurement="position"):
-    """(zm, starts, x0, P0, q, r): what ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the filter's
-    output, from the same two-point start and noise as ``track_arrays``."""
-    spec = get_model(model)
-    c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
-    x0, P0 = initial_estimates(model, c, var)
-    zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
-    return zm, starts, x0, P0, cfg.q(model), r
+def smoothing_inputs(model, z, cfg: TrackConfig, heading=None, measurement="position"):
+    """(zm, q, r): the measurements and noise stds that ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the
+    filter's output (``Tracked``), as ``track_arrays`` / ``track_monitored`` used them."""
+    zm, r = _measurement_inputs(get_model(model), z, heading, cfg, measurement)
+    return zm, cfg.q(model), r
 
 
 @dataclass
@@ -303,9 +303,81 @@ def output_path(out, model: str, all_models: bool):
     return out.with_name(f"{base.stem}_{model}{base.suffix}{'.gz' if gz else ''}")
 
 
+@dataclass
+class ClassConfigs:
+    """Noise per class of objects (``lgekf.apps.defaults.plan_noise_by_class``): object b runs with
+    ``configs[of_object[b]]``."""
+
+    of_object: np.ndarray
+    configs: list
+
+    @classmethod
+    def of_all(cls, cfg: TrackConfig, objects: int) -> "ClassConfigs":
+        return cls(np.zeros(objects, dtype=np.int64), [cfg])
+
+    def of(self, b: int) -> TrackConfig:
+        """The configuration of object b."""
+        return self.configs[int(self.of_object[b])]
+
+    def slice(self, o: int, o2: int) -> "ClassConfigs":
+        """The classes of objects o .. o2 - 1."""
+        return ClassConfigs(self.of_object[o:o2], self.configs)
+
+
+def _smoothed_chunk(model, t, z, h, sub_starts, cfg, measurement, r):
+    from .smooth_track import smoothed_columns
+
+    zm, q, rr = smoothing_inputs(model, z, cfg, h, measurement)
+    cols, failed = smoothed_columns(model, measurement, t, zm, sub_starts, r, q, rr)
+    for f in failed:  # its smoothed columns repeat the filter's (smoothed_columns)
+        r.flag[sub_starts[f]:sub_starts[f + 1]] |= SMOOTH_FAILED
+    return cols, failed
+
+
+def track_chunk(model, t, z, heading, starts, classes: ClassConfigs, measurement="position",
+                monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False):
+    """``track_monitored`` (and with ``smooth`` the smoothed columns) of the objects of t, z (``starts``), each class of
+    objects with its own noise: the rows of one class gathered, tracked together, and put back in place (alarms' objects
+    and rows counted in t, z; in order of object and row). Returns (Tracked, [smoothed columns] or [], objects whose
+    smoother failed)."""
+    present = np.unique(classes.of_object)
+
+    def run(cfg, t, z, h, st):
+        r = track_monitored(model, t, z, st, cfg, heading=h, measurement=measurement, monitor=monitor)
+        if not smooth:
+            return r, [], []
+        cols, failed = _smoothed_chunk(model, t, z, h, st, cfg, measurement, r)
+        return r, [cols], failed
+
+    if present.size == 1:
+        return run(classes.configs[int(present[0])], t, z, heading, starts)
+    spec = get_model(model)
+    N = t.size
+    out = Tracked(np.empty((N, spec.n)), np.empty((N, spec.n_packed)), np.empty(N), np.empty(N, np.int8), [])
+    extra = [np.empty((N, 2 * spec.n))] if smooth else []
+    failed = []
+    for c in present:
+        objs = np.flatnonzero(classes.of_object == c)
+        lens = starts[objs + 1] - starts[objs]
+        rows = np.concatenate([np.arange(starts[b], starts[b + 1]) for b in objs])
+        st = np.zeros(objs.size + 1, dtype=np.int64)
+        np.cumsum(lens, out=st[1:])
+        r, ex, fl = run(classes.configs[int(c)], t[rows], z[rows], None if heading is None else heading[rows], st)
+        out.x[rows], out.p[rows], out.nis[rows], out.flag[rows] = r.x, r.p, r.nis, r.flag
+        for dst, src in zip(extra, ex):
+            dst[rows] = src
+        for al in r.alarms:
+            al.obj, al.row = int(objs[al.obj]), int(rows[al.row])
+        out.alarms.extend(r.alarms)
+        failed.extend(int(objs[f]) for f in fl)
+    out.alarms.sort(key=lambda al: (al.obj, al.row))
+    return out, extra, sorted(failed)
+
+
 def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement="position",
                 monitor: MonitorConfig | None = MonitorConfig(), smooth: bool = False, parquet: bool = False):
-    """Track and write one model's file in chunks of objects (bounded memory); ``bar.update`` per chunk
+    """Track and write one model's file in chunks of objects (bounded memory; ``cfg`` a ``TrackConfig`` or the
+    ``ClassConfigs`` of objects with noise of their own); ``bar.update`` per chunk
     written (``bar`` None: no progress). ``smooth``: also the smoothed columns (``lgekf.apps.smooth_track``).
     ``parquet``: a Parquet file (``lgekf.io.parquet``, a row group per ``FORMAT_ROWS`` rows of a chunk) instead of
     CSV text; CSV text is made, formatted and written a few thousand rows at a time (``write_rows_made``).
@@ -315,9 +387,11 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     text) are held. The
     chunks are written in order: the file's bytes are those of doing one after the other.
 
-    Returns (rows written, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows).
+    Returns a ``Written`` (rows, alarms (``divergence.Alarm``, object indices of ``meas``), flagged rows, objects whose
+    smoother failed).
     """
     spec = get_model(model)
+    cfg = ClassConfigs.of_all(cfg, len(starts) - 1) if isinstance(cfg, TrackConfig) else cfg
     origin = meas.origin is not None
     columns = output_columns(model, full_cov, origin, smooth)
     sink = ParquetRows(fh, columns) if parquet else None
@@ -345,6 +419,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     B = len(starts) - 1
     o = 0
     alarms = []
+    smooth_failed = []
     flagged = 0
     with ThreadPoolExecutor(1) as writer:  # on an error here, leaving the block waits for the chunk being written
         pending = None
@@ -358,7 +433,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 al.obj += o
                 al.row += a if alarm_row0 is None else alarm_row0
             alarms.extend(r.alarms)
-            flagged += int(r.flag.sum())
+            flagged += int((r.flag & 1).sum())
             parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
             if origin:
                 parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
@@ -375,24 +450,31 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             sub_starts = starts[o:o2 + 1] - a
             h = None if meas.heading is None else meas.heading[a:b]
             if b - a > ROWS_PER_CHUNK and not smooth:  # one long object: a window of rows at a time (lgekf.apps.windows)
-                for a2, r in track_windows(model, meas.t[a:b], meas.z[a:b], cfg, h, measurement, monitor, ROWS_PER_CHUNK):
+                for a2, r in track_windows(model, meas.t[a:b], meas.z[a:b], cfg.of(o), h, measurement, monitor, ROWS_PER_CHUNK):
                     submit(r, o, o2, a + a2, alarm_row0=a)
                     del r
             else:
-                r = track_monitored(model, meas.t[a:b], meas.z[a:b], sub_starts, cfg, heading=h, measurement=measurement, monitor=monitor)
-                extra = []
-                if smooth:
-                    from .smooth_track import smoothed_columns
-
-                    extra.append(smoothed_columns(model, measurement, meas.t[a:b], *smoothing_inputs(model, meas.t[a:b], meas.z[a:b], sub_starts,
-                                                                                                     cfg, h, measurement), r.x, r.p))
+                r, extra, failed = track_chunk(model, meas.t[a:b], meas.z[a:b], h, sub_starts, cfg.slice(o, o2), measurement,
+                                               monitor, smooth)
+                smooth_failed.extend(o + f for f in failed)
                 submit(r, o, o2, a, extra)
                 del r, extra
             o = o2
         _written(pending, bar)
     if sink is not None:
         sink.close()
-    return starts[-1], alarms, flagged
+    return Written(int(starts[-1]), alarms, flagged, smooth_failed)
+
+
+@dataclass
+class Written:
+    """What ``write_model`` wrote: rows, the monitor's alarms (object indices of ``meas``), the rows flagged by them,
+    and the objects whose smoother failed (flag + ``SMOOTH_FAILED``; their smoothed columns repeat the filter's)."""
+
+    rows: int
+    alarms: list
+    flagged: int
+    smooth_failed: list
 
 
 def _written(pending, bar) -> None:

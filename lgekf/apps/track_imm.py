@@ -1,11 +1,13 @@
 """``lgekf track --model imm``: every object of a file through an IMM of registry models.
 
 Each object starts like every ``lgekf track`` filter (the two-point estimate of its first two measurements in
-the common coordinates, ``lgekf.apps.track.initial_common``; every mode converts it to its own coordinates)
-and runs :func:`lgekf.estimators.imm.imm_batch` from its third measurement on. The measurement std is
-``--meas-std`` or estimated from the data (``lgekf.apps.noise.measurement_std``, as for the filters); the modes'
-process noise is given in ``--imm-modes`` (named levels × the model's default noise, or the stds). No
-divergence monitor (the ``flag`` column is 0). Output columns: id, t, the combined estimate in the common
+the common coordinates, ``lgekf.apps.track.initial_common``, heading std capped at ``TRACK_HEADING_CAP``; every
+mode converts it to its own coordinates) and runs :func:`lgekf.estimators.imm.imm_batch` from its third measurement
+on. The noise comes from the data as for the filters (:func:`imm_noise`): the measurement std (unless
+``--meas-std``) and each mode model's process noise from ``lgekf.apps.defaults.plan_noise``, a named level
+(calm, manoeuvre) a factor on that estimate; modes given as numbers in ``--imm-modes`` keep them. The divergence
+monitor and recovery of ``lgekf.apps.imm_monitor`` watch the combined estimate (``--no-monitor``: off); ``flag``
+is 1 on the rows of an alarm. Output columns: id, t, the combined estimate in the common
 coordinates x, y, theta, vx, vy (body frame), omega, their stds, mu_<mode> (mode probabilities), and
 origin_lat, origin_lon for lat/lon input, flag.
 
@@ -22,20 +24,27 @@ the one of lowest AIC is kept.
 
 ``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm_smoother``) combined estimate
 ``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
-``smooth_mu_<mode>``; rows 0 and 1 of an object (its two-point start) repeat the filter columns, as for
-``lgekf track --smooth``.
+``smooth_mu_<mode>``, over each monitored segment (split at re-initialisations; the rows of a start or
+re-initialisation repeat the filter columns, as for ``lgekf track --smooth``); the filter columns are the same
+with and without ``--smooth``. An object whose smoother yields a non-finite or implausible value (far off the filter's) keeps the filter's values in its
+smoothed columns and has ``SMOOTH_FAILED`` (2) added to its ``flag``.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
-from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, imm_batch, parse_modes, transition_matrix
+from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes
-from .track import DEFAULT_MEAS_STD, ORIGIN_COLUMNS, initial_common
+from ..io.grouping import row_objects
+from .divergence import MonitorConfig, speed_limits
+from .imm_monitor import imm_monitored, scaled_modes
+from .track import ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
-__all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "fit_imm", "imm_columns", "write_imm", "imm_track_common", "tune_imm",
-           "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
+__all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
+           "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 
@@ -86,6 +95,23 @@ class ImmTrackOptions:
         self.modes = modes
 
 
+@dataclass
+class ImmTracked:
+    """``imm_track_common(..., full=True)``: the combined estimate c (N, 6), stds sd (N, 6), mode probabilities
+    mu (N, M), flags (N,), the monitor's alarms (object indices and rows of the input), the objects whose smoothing
+    failed (they keep the filter's values), and with smoothing the smoothed c, sd, mu (else None)."""
+
+    c: np.ndarray
+    sd: np.ndarray
+    mu: np.ndarray
+    flag: np.ndarray
+    alarms: list
+    smooth_failed: list
+    c_smooth: np.ndarray | None = None
+    sd_smooth: np.ndarray | None = None
+    mu_smooth: np.ndarray | None = None
+
+
 def _mode_columns(opts: ImmTrackOptions, prefix: str) -> list:
     mode_cols = []
     for m in opts.modes:
@@ -106,62 +132,77 @@ def imm_columns(opts: ImmTrackOptions, origin: bool = False, smooth: bool = Fals
             + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"] + smoothed)
 
 
-def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions, smooth: bool = False):
+def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions, smooth: bool = False,
+                     monitor: MonitorConfig | None = None, full: bool = False):
     """Every object's IMM estimate in the common coordinates: c (N, 6), their stds (N, 6), mode probabilities (N, M).
 
     Row 0 of an object is the two-point estimate at its first measurement's position, row 1 the two-point estimate
     (uniform mode probabilities), rows >= 2 the IMM's posteriors (as ``lgekf.apps.track.track_arrays``).
-    With ``smooth`` also the smoothed (c, stds, mode probabilities) (rows 0, 1: the filter's), a 6-tuple.
+    ``monitor``: the divergence monitor and recovery of ``lgekf.apps.imm_monitor`` (None: unmonitored).
+    With ``smooth`` also the smoothed (c, stds, mode probabilities), a 6-tuple: the IMM smoother
+    (``lgekf.estimators.imm_smoother``) over each monitored segment (split at re-initialisations) from the same start
+    and noise as the filter; the filter's rows are never changed by it. A row the smoother leaves non-finite gets the
+    filter's values (the object is named in ``failed``). ``full``: return ``ImmTracked`` (adds flags, alarms, the
+    objects whose smoothing failed).
     """
-    if smooth:
-        return _imm_track_smoothed(t, z, starts, meas_std, omega_std, opts)
     t = np.ascontiguousarray(t, float)
     z = np.ascontiguousarray(z, float)[:, :2]
+    starts = np.asarray(starts, dtype=np.int64)
     N, M = t.size, len(opts.modes)
     c = np.full((N, 6), np.nan)
     sd = np.full((N, 6), np.nan)
     mu = np.full((N, M), 1.0 / M)
-    c0, var0 = initial_common(t, z, starts, meas_std, omega_std)
+    flag = np.zeros(N, np.int8)
+    alarms, failed = [], []
+    c0, var0 = initial_common(t, z, starts, meas_std, omega_std, heading_cap=TRACK_HEADING_CAP)
+    limits = speed_limits(t, z, starts, meas_std, monitor) if monitor is not None else np.full(len(starts) - 1, np.inf)
+    smoothed = (np.full((N, 6), np.nan), np.full((N, 6), np.nan), np.full((N, M), 1.0 / M)) if smooth else None
     for b in range(len(starts) - 1):
         a, e = int(starts[b]), int(starts[b + 1])
         c[a] = c0[b]  # as the filters of lgekf track: the two-point estimate, at the first measurement's position
         c[a, :2] = z[a]
         c[a + 1] = c0[b]
         sd[a:a + 2] = np.sqrt(var0[b])
+        run = imm_monitored(t[a:e], z[a:e], opts.modes, opts.switch, meas_std, omega_std, c0[b], var0[b], float(limits[b]),
+                            monitor, REINIT_BASELINE, TRACK_HEADING_CAP)
         if e - a > 2:
-            est, m, P = imm_batch(z[None, a + 2:e], opts.modes, opts.switch, dt=np.diff(t[a + 1:e])[None], meas_std=meas_std,
-                                  x0=c0[b], P0=np.diag(var0[b]), return_cov=True)
-            c[a + 2:e] = est[0]
-            sd[a + 2:e] = np.sqrt(np.maximum(np.diagonal(P[0], axis1=1, axis2=2), 0.0))
-            mu[a + 2:e] = m[0]
-    return c, sd, mu
+            c[a + 2:e] = run.c[2:]
+            sd[a + 2:e] = np.sqrt(np.maximum(np.diagonal(run.P[2:], axis1=1, axis2=2), 0.0))
+            mu[a + 2:e] = run.mu[2:]
+        flag[a:e] = run.flag
+        for al in run.alarms:
+            al.obj, al.row = b, al.row + a
+        alarms.extend(run.alarms)
+        if smooth:
+            if not _smooth_object(t[a:e], z[a:e], run, opts, meas_std, (c[a:e], sd[a:e], mu[a:e]), [s[a:e] for s in smoothed]):
+                failed.append(b)
+    out = (c, sd, mu) + (smoothed if smooth else ())
+    return ImmTracked(*out[:3], flag, alarms, failed, *(smoothed or (None, None, None))) if full else out
 
 
-def _imm_track_smoothed(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions):
+def _smooth_object(t, z, run, opts: ImmTrackOptions, meas_std: float, filt, out) -> bool:
+    """The smoothed columns of one object (``out`` = (c, sd, mu) views of its rows), segment by segment; rows outside
+    the segments (the starts and re-initialisations) repeat the filter's. False when a smoothed row is implausible
+    (``smooth_track.implausible_rows``: non-finite, or far off the filter's): then every row keeps the filter's values."""
     from ..estimators.imm_smoother import imm_smooth_batch
 
-    t = np.ascontiguousarray(t, float)
-    z = np.ascontiguousarray(z, float)[:, :2]
-    N, M = t.size, len(opts.modes)
-    c, sd, mu = np.full((N, 6), np.nan), np.full((N, 6), np.nan), np.full((N, M), 1.0 / M)
-    c0, var0 = initial_common(t, z, starts, meas_std, omega_std)
-    for b in range(len(starts) - 1):
-        a, e = int(starts[b]), int(starts[b + 1])
-        c[a] = c0[b]
-        c[a, :2] = z[a]
-        c[a + 1] = c0[b]
-        sd[a:a + 2] = np.sqrt(var0[b])
-    cs, sds, mus = c.copy(), sd.copy(), mu.copy()
-    for b in range(len(starts) - 1):
-        a, e = int(starts[b]), int(starts[b + 1])
-        if e - a > 2:
-            out = imm_smooth_batch(z[None, a + 2:e], opts.modes, opts.switch, dt=np.diff(t[a + 1:e])[None],
-                                   meas_std=meas_std, x0=c0[b], P0=np.diag(var0[b]))
-            for dst, dsd, dmu, key in ((c, sd, mu, "filt"), (cs, sds, mus, "smooth")):
-                dst[a + 2:e] = out[f"c_{key}"][0]
-                dsd[a + 2:e] = np.sqrt(np.maximum(np.diagonal(out[f"P_{key}"][0], axis1=1, axis2=2), 0.0))
-                dmu[a + 2:e] = out[f"mu_{key}"][0]
-    return c, sd, mu, cs, sds, mus
+    for dst, src in zip(out, filt):
+        dst[:] = src
+    for seg in run.segments:
+        if seg.end - seg.first < 1:
+            continue
+        r = imm_smooth_batch(z[None, seg.first:seg.end], scaled_modes(opts.modes, seg.scale), opts.switch,
+                             dt=np.diff(t[seg.first - 1:seg.end])[None], meas_std=meas_std * seg.scale, x0=seg.c0, P0=seg.P0)
+        out[0][seg.first:seg.end] = r["c_smooth"][0]
+        out[1][seg.first:seg.end] = np.sqrt(np.maximum(np.diagonal(r["P_smooth"][0], axis1=1, axis2=2), 0.0))
+        out[2][seg.first:seg.end] = r["mu_smooth"][0]
+    from .smooth_track import implausible_rows
+
+    if not implausible_rows(filt[0], filt[1], out[0], out[1], meas_std).any() and np.isfinite(out[2]).all():
+        return True
+    for dst, src in zip(out, filt):
+        dst[:] = src
+    return False
 
 
 def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float, say=None, method: str = "lbfgs"):
@@ -270,39 +311,93 @@ def common_world_velocity(c: np.ndarray) -> np.ndarray:
     return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
 
 
-def write_imm(fh, meas, starts, opts: ImmTrackOptions, meas_std: float, omega_std: float, digits: int, bar=None,
-              smooth: bool = False) -> int:
-    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) and write the CSV to ``fh``
-    (with ``smooth``: the smoothed columns after ``flag``, module docstring)."""
+@dataclass
+class ImmClasses:
+    """The IMM's noise per class of objects (``lgekf.apps.defaults.noise_classes``): object b runs with
+    ``noise[of_object[b]]`` = (``ImmTrackOptions`` with the class's mode noise, measurement std)."""
+
+    of_object: np.ndarray
+    noise: list
+
+    @classmethod
+    def of_all(cls, opts: ImmTrackOptions, meas_std: float, objects: int) -> "ImmClasses":
+        return cls(np.zeros(objects, dtype=np.int64), [(opts, float(meas_std))])
+
+
+def imm_track_classes(t, z, starts, classes: ImmClasses, omega_std: float, smooth: bool = False,
+                      monitor: MonitorConfig | None = MonitorConfig()) -> ImmTracked:
+    """``imm_track_common(..., full=True)`` with each class of objects' own noise: the rows of a class gathered, tracked
+    and put back in place (alarms and failures in objects and rows of t, z)."""
+    from .defaults import objects_subset
+
+    if len(classes.noise) == 1:
+        opts, r = classes.noise[0]
+        return imm_track_common(t, z, starts, r, omega_std, opts, smooth, monitor=monitor, full=True)
+    N, M = len(t), len(classes.noise[0][0].modes)
+    out = ImmTracked(np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M)), np.zeros(N, np.int8), [], [],
+                     *((np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M))) if smooth else ()))
+    for c, (opts, r) in enumerate(classes.noise):
+        objs = np.flatnonzero(classes.of_object == c)
+        if objs.size == 0:
+            continue
+        rows, sub = objects_subset(starts, objs)
+        res = imm_track_common(np.asarray(t)[rows], np.asarray(z)[rows], sub, r, omega_std, opts, smooth, monitor=monitor, full=True)
+        for name in ("c", "sd", "mu", "flag") + (("c_smooth", "sd_smooth", "mu_smooth") if smooth else ()):
+            getattr(out, name)[rows] = getattr(res, name)
+        for al in res.alarms:
+            al.obj, al.row = int(objs[al.obj]), int(rows[al.row])
+        out.alarms.extend(res.alarms)
+        out.smooth_failed.extend(int(objs[b]) for b in res.smooth_failed)
+    out.alarms.sort(key=lambda al: (al.obj, al.row))
+    out.smooth_failed.sort()
+    return out
+
+
+def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: int, bar=None,
+              smooth: bool = False, monitor: MonitorConfig | None = MonitorConfig()) -> ImmTracked:
+    """Track every object of ``meas`` (sorted, ``starts`` offsets, >= 2 rows each) with the noise of its class and write
+    the CSV to ``fh`` (with ``smooth``: the smoothed columns after ``flag``, module docstring). ``flag``: 1 on the rows
+    of a detected divergence (``lgekf.apps.imm_monitor``), + ``SMOOTH_FAILED`` on every row of an object whose smoother
+    gave a non-finite value (its smoothed columns then repeat the filter's). Returns the ``ImmTracked``."""
+    opts = classes.noise[0][0]
     origin = meas.origin is not None
     fh.write((",".join(imm_columns(opts, origin, smooth)) + "\n").encode())
     lab = label_bytes(meas.labels)
     M = len(opts.modes)
     t = np.ascontiguousarray(meas.t, float)
-    res = imm_track_common(t, meas.z, starts, meas_std, omega_std, opts, smooth)
-    c, sd, mu = res[:3]
+    res = imm_track_classes(t, meas.z, starts, classes, omega_std, smooth, monitor)
+    for b in res.smooth_failed:
+        res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
     ncol = 12 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
-    parts = [c, sd, mu]
+    parts = [res.c, res.sd, res.mu]
     if origin:
         col_digits[12 + M:12 + M + 2] = 17
         parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
-    parts.append(np.zeros((t.size, 1)))
+    parts.append(res.flag[:, None])
     if smooth:
-        parts.extend(res[3:])
-    fh.write(format_rows(lab, meas.obj, t, np.hstack(parts), col_digits))
+        parts.extend([res.c_smooth, res.sd_smooth, res.mu_smooth])
+    fh.write(format_rows(lab, row_objects(starts, 0, len(starts) - 1), t, np.hstack(parts), col_digits))
     if bar is not None:
         bar.update(t.size)
-    return int(starts[-1])
+    return res
 
 
-def imm_meas_std(meas, starts, given: float | None) -> tuple[float, str]:
-    """The measurement std the IMM runs with and where it came from (given, data, default)."""
-    from .noise import measurement_std
+def imm_noise(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float,
+              monitor: MonitorConfig | None = MonitorConfig()):
+    """The noise the IMM runs with, from the data as for the single models (``lgekf.apps.defaults.plan_noise_by_class``):
+    per class of objects the measurement std (``meas_std`` when given) and, for every model of a mode whose noise is a
+    named level or the default, that model's process noise estimated from the data; the class's modes take it × their
+    level factor (``ImmTrackOptions.with_learned_noise``: calm × 0.2, manoeuvre × 4 of the data's estimate instead of
+    the model's fixed default). Returns (``ImmClasses``, the ``NoiseClasses``)."""
+    from .defaults import plan_noise_by_class
+    from .track import DEFAULT_HEADING_STD
 
-    if given is not None:
-        return float(given), "given"
-    est = measurement_std(meas.t, meas.z, starts)
-    if est.usable:
-        return float(est.meas_std), f"data: {est.describe()}"
-    return float(DEFAULT_MEAS_STD), "default: " + (est.describe() if est.windows else "too few measurements to estimate it")
+    found = plan_noise_by_class(meas.t, meas.z, starts, opts.tunable_models(), meas_std=meas_std, omega_std=omega_std,
+                                heading_std=DEFAULT_HEADING_STD, heading_cap=TRACK_HEADING_CAP, monitor=monitor)
+    noise = []
+    for plan in found.plans:
+        o = ImmTrackOptions(opts.modes_text if opts.modes_given else None, opts.switch if opts.switch_given else None)
+        o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
+        noise.append((o, float(plan.meas_std)))
+    return ImmClasses(found.of_object, noise), found

@@ -71,7 +71,7 @@ def filter_windows(model: str, x0, p0, restart: Restart, monitor: MonitorConfig 
         raise ValueError(f"rows: must be at least 1, got {rows}")
     spec = get_model(model)
     kern = spec.kernels
-    run = getattr(kern, f"run_segments_from_{restart.measurement}")
+    run = spec.kernel("run_segments_from", restart.measurement)
     t, zm, q, r = restart.t, restart.zm, restart.q, restart.r
     N = t.size
     limits = np.array([limit], dtype=float)

@@ -8,11 +8,12 @@ import sys
 import time
 from pathlib import Path
 
-from ..apps.defaults import plan_noise
+import numpy as np
+
+from ..apps.defaults import plan_noise_by_class
 from ..apps.divergence import MonitorConfig
-from ..apps.noise import measurement_std
 from ..apps.track import (
-    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import MODELS
@@ -22,6 +23,7 @@ from ..io.grouping import grouped_consuming
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
+from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
 from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
@@ -30,8 +32,6 @@ from .warmup import compile_estimate, track_jobs, warm_up
 
 __all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
-MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
-MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
 
@@ -151,64 +151,39 @@ def _frame_note(meas) -> str:
             f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
 
-def _divergence_warnings(model, meas, alarms, flagged) -> list:
-    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
-    first, count, scale = {}, {}, {}
-    for al in alarms:
-        first.setdefault(al.obj, al)
-        count[al.obj] = count.get(al.obj, 0) + 1
-        scale[al.obj] = al.scale
-    lines = []
-    for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
-        if al.kind_name == "NIS":
-            why = f"mean NIS {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
-        elif al.kind_name == "speed":
-            why = f"speed {al.value:.3g} m/s > {al.limit:.3g} m/s, far above the data's"
-        else:
-            why = "non-finite state or covariance"
-        n = count[obj]
-        cap = MonitorConfig().max_reinit
-        stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
-        inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
-        lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
-                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
-                     f"rows flagged 1 in the flag column")
-    rest = len(first) - MAX_DIVERGENCE_LINES
-    if rest > 0:
-        lines.append(f"{model}: {rest} more object{'s' if rest > 1 else ''} diverged and were re-initialised "
-                     f"({flagged} rows flagged in all)")
-    return lines
+class ModelsTrack:
+    """The estimator of ``lgekf track --model MODEL|all`` in the pipeline of ``cmd_track``: one registry model (or every
+    one) per output file, its noise from the data (per class of objects), ``--tune``, the divergence monitor, ``--smooth``."""
 
+    def __init__(self, a, say):
+        self.a, self.say = a, say
+        self.models = list(MODELS) if a.model == "all" else [a.model]
 
-def cmd_track(argv) -> int:
-    if "--multi" in argv:  # many objects from unlabelled detections: lgekf.cli.track_multi
-        from .track_multi import cmd_track_multi
+    def check(self) -> list:
+        """Every argument error before any reading (one line each); returns the output paths."""
+        a, models = self.a, self.models
+        self.given_q = parse_accel_std(a.accel_std, models)
+        # validate the given values before any reading (the estimated ones are valid by construction)
+        TrackConfig(self.given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
+                    DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
+        self.outs = _check_arguments(a, models)
+        measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
+        if a.model != "all" and measure[a.model] is None:
+            MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
+        for m in models:
+            if measure[m] is None:
+                measure[m] = "position"
+                self.say(f"{m} has no heading: it gets the positions only")
+        self.measure = measure
+        check_cluster_options(a)
+        return self.outs
 
-        return cmd_track_multi(argv)
-    a = track_parser().parse_args(argv)
-    if a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
-        from .track_imm import check_imm_options, cmd_track_imm
-
-        check_imm_options(a)
-        if a.model == "imm":
-            return cmd_track_imm(a)
-    models = list(MODELS) if a.model == "all" else [a.model]
-    given_q = parse_accel_std(a.accel_std, models)
-    # validate the given values before any reading (the estimated ones are valid by construction)
-    TrackConfig(given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
-                DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
-    outs = _check_arguments(a, models)
-    say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
-    t0 = time.perf_counter()
-    measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
-    if a.model != "all" and measure[a.model] is None:
-        MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
-    for m in models:
-        if measure[m] is None:
-            measure[m] = "position"
-            say(f"{m} has no heading: it gets the positions only")
-    check_cluster_options(a)
-    if cluster_requested(a):  # the same output, computed on Dask in partitions of whole objects
+    def run_on_cluster(self) -> int | None:
+        """``--workers/--scheduler``: the same output computed on Dask in partitions of whole objects (its exit status);
+        None without them."""
+        a, models, given_q = self.a, self.models, self.given_q
+        if not cluster_requested(a):
+            return None
         from ..apps.cluster import require_dask
         from .track_dask import cmd_track_dask
 
@@ -223,66 +198,115 @@ def cmd_track(argv) -> int:
                              "in one process: run `lgekf track` on a sample of the file first, it prints the noise it used")
         cfg = TrackConfig(dict(given_q), a.meas_std, a.omega_std, DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std,
                           TRACK_HEADING_CAP).validate()
-        return cmd_track_dask(a, models, cfg, outs, measure, say, None if a.no_monitor else MonitorConfig())
+        return cmd_track_dask(a, models, cfg, self.outs, self.measure, self.say, None if a.no_monitor else MonitorConfig())
+
+    def compile_seconds(self):
+        self.jobs = track_jobs(self.models, self.measure, self.a.full_cov)
+        return compile_estimate([j.cost for j in self.jobs], workers=None if len(self.models) > 1 else 1)
+
+    def warm_up(self) -> None:
+        if len(self.models) > 1:
+            warm_up(self.jobs)  # a cold cache: the models' kernels compile in parallel processes; warm: milliseconds
+
+    def plan(self, meas, starts, monitor) -> None:
+        """The noise of every model: from the data per class of objects (given values kept), ``--tune``'s fits."""
+        a, say, models, measure = self.a, self.say, self.models, self.measure
+        heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
+        classes = plan_noise_by_class(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=self.given_q,
+                                      omega_std=a.omega_std, heading_std=heading_std, heading_cap=TRACK_HEADING_CAP,
+                                      heading=meas.heading, measurement=measure, monitor=monitor)
+        pose = any(v == "pose" for v in measure.values())
+        if len(classes.plans) > 1:
+            say(classes.describe(meas.labels))
+            for c, p in enumerate(classes.plans):
+                say(f"  class {c + 1}: {p.describe(heading_std if pose else None, heading_given=a.heading_std is not None)}")
+        elif classes.plans[0].estimated:
+            say(classes.plans[0].describe(heading_std if pose else None, heading_given=a.heading_std is not None))
+        main_class = int(np.argmax(np.bincount(classes.of_object, weights=np.diff(starts))))  # the class of most rows: --tune's
+        warn_misfit(a.meas_std, meas, starts)
+        configs = [TrackConfig(dict(p.accel_std), p.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
+                   for p in classes.plans]
+        cfg = configs[main_class]
+        self.cfgs = {m: ClassConfigs(classes.of_object, configs) for m in models}
+        if a.tune:
+            from ..apps.smooth_track import plan_starts, tune_models
+
+            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, self.given_q, meas.heading, a.omega_std,
+                               a.tune_method, start_noise=plan_starts(classes.plans[main_class], measure, heading_std))
+            for m, fit in fits.items():
+                print(f"lgekf track: {fit.report()}", file=sys.stderr)
+                r = fit.meas_std
+                self.cfgs[m] = TrackConfig({**cfg.accel_std, m: fit.accel_std}, r[0], a.omega_std,
+                                           r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
+
+    def write(self, handles, meas, starts, monitor, bar) -> list:
+        """Track and write every model's file; returns (what, extra) per file for its report line."""
+        a, flagged = self.a, {}
+        for fh, m, out in zip(handles, self.models, self.outs):
+            w = write_model(fh, m, meas, starts, self.cfgs[m], a.full_cov, a.precision, bar, self.measure[m], monitor,
+                            smooth=a.smooth, parquet=is_parquet(out))
+            flagged[m] = w.flagged
+            for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed):
+                print(f"lgekf track: warning: {line}", file=sys.stderr)
+        return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
+
+
+def read_track_input(a):
+    """The measurements of ``lgekf track``'s input (CSV, pedestrian format or Parquet), grouped by object (objects of
+    at least 2 rows, t increasing: else one clear error), t in seconds. Returns (meas, starts)."""
     single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
+    heading = a.use_heading or a.measure == "pose"
     if is_parquet(a.input):
-        meas = read_parquet(a.input, a.use_heading or a.measure == "pose")
+        meas = read_parquet(a.input, heading)
     else:
-        meas = read_measurements(a.input, a.format, a.frame_dt, a.use_heading or a.measure == "pose", parse_delimiter(a.delimiter))
+        meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
+    return meas, starts
+
+
+def cmd_track(argv) -> int:
+    """``lgekf track``: one pipeline for every estimator: check → read → plan the noise → estimate (with the monitor,
+    and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model MODEL|all``) or ``ImmTrack``
+    (``--model imm``, ``lgekf.cli.track_imm``); ``--multi`` (``lgekf.cli.track_multi``) has its own reading of
+    unlabelled detections."""
+    if "--multi" in argv:  # many objects from unlabelled detections: lgekf.cli.track_multi
+        from .track_multi import cmd_track_multi
+
+        return cmd_track_multi(argv)
+    a = track_parser().parse_args(argv)
+    say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
+    if a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
+        from .track_imm import ImmTrack, check_imm_options
+
+        check_imm_options(a)
+    est = ImmTrack(a, say) if a.model == "imm" else ModelsTrack(a, say)
+    outs = est.check()
+    t0 = time.perf_counter()
+    status = est.run_on_cluster()
+    if status is not None:
+        return status
+    meas, starts = read_track_input(a)
     t_read = time.perf_counter() - t0
     if meas.origin is not None:
         say(_frame_note(meas))
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
     monitor = None if a.no_monitor else MonitorConfig()
-    heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
-    total = meas.t.size * len(models)
+    total = meas.t.size * len(outs)
     show_bar = not a.quiet and stderr_is_terminal() and total > BAR_MIN_ROWS
-    flagged = {}
-    jobs = track_jobs(models, measure, a.full_cov)
-    estimate = compile_estimate([j.cost for j in jobs], workers=None if len(models) > 1 else 1)
-    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet, seconds=estimate):
-        handles = [files.open(i) for i in range(len(models))]  # every output can be written before any work
-        if len(models) > 1:
-            warm_up(jobs)  # a cold cache: the models' kernels compile in parallel processes; warm: milliseconds
-        plan = plan_noise(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=given_q, omega_std=a.omega_std,
-                          heading_std=heading_std, heading_cap=TRACK_HEADING_CAP, heading=meas.heading, measurement=measure,
-                          monitor=monitor)
-        if plan.estimated:
-            pose = any(v == "pose" for v in measure.values())
-            say(plan.describe(heading_std if pose else None, heading_given=a.heading_std is not None))
-        if a.meas_std is not None:
-            est = measurement_std(meas.t, meas.z, starts)
-            if est.usable and not est.floored and max(a.meas_std / est.meas_std, est.meas_std / a.meas_std) >= MEAS_STD_WARN_FACTOR:
-                print(f"lgekf track: warning: --meas-std {a.meas_std:g} m is {a.meas_std / est.meas_std:.2g}x the std "
-                      f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
-        cfg = TrackConfig(dict(plan.accel_std), plan.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
-        cfgs = {m: cfg for m in models}
-        if a.tune:
-            from ..apps.smooth_track import plan_starts, tune_models
-
-            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, given_q, meas.heading, a.omega_std,
-                               a.tune_method, start_noise=plan_starts(plan, measure, heading_std))
-            for m, fit in fits.items():
-                print(f"lgekf track: {fit.report()}", file=sys.stderr)
-                r = fit.meas_std
-                cfgs[m] = TrackConfig({**cfg.accel_std, m: fit.accel_std}, r[0], a.omega_std,
-                                      r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
+    with AtomicFiles(outs) as files, compile_notice("lgekf track", enabled=not a.quiet, seconds=est.compile_seconds()):
+        handles = [files.open(i) for i in range(len(outs))]  # every output can be written before any work
+        est.warm_up()
+        est.plan(meas, starts, monitor)
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
-            for fh, m in zip(handles, models):
-                _, alarms, flagged[m] = write_model(fh, m, meas, starts, cfgs[m], a.full_cov, a.precision, bar, measure[m], monitor,
-                                                    smooth=a.smooth, parquet=is_parquet(outs[models.index(m)]))
-                for line in _divergence_warnings(m, meas, alarms, flagged[m]):
-                    print(f"lgekf track: warning: {line}", file=sys.stderr)
+            what = est.write(handles, meas, starts, monitor, bar)
         files.commit()
     if not a.quiet:
         wall = time.perf_counter() - t0
         report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
-        for m, o in zip(models, outs):
+        for o, (w, extra) in zip(outs, what):
             name = "<stdout>" if is_stdio(o) else o
-            extra = f", {flagged[m]} rows flagged" if flagged[m] else ""
-            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({m}){extra}", file=report)
+            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({w}){extra}", file=report)
         print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
     return 0

@@ -30,10 +30,10 @@ SOA_MIN_BATCH = 1000
 def batch_kernel(spec, measurement: str, B: int):
     """The loop filter_batch runs for ``B`` trajectories: ``run_batch_soa_<meas>`` where generated and
     B ≥ SOA_MIN_BATCH, else ``run_batch_<meas>``; both take the same arguments and agree to 1e-12."""
-    soa = getattr(spec.kernels, f"run_batch_soa_{measurement}", None)
+    soa = spec.kernel("run_batch_soa", measurement, default=False) or None
     if soa is not None and B >= SOA_MIN_BATCH:
         return soa
-    return getattr(spec.kernels, f"run_batch_{measurement}")
+    return spec.kernel("run_batch", measurement)
 
 
 def step_lengths(dt, B: int, K: int) -> np.ndarray:
@@ -122,7 +122,7 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
     out_p = np.empty((B, K if return_cov else 0, spec.n_packed))
     out_nis = np.empty((B, K))
     if B * K <= SERIAL_STEPS:  # small work: the serial kernel, no thread start-up, no parallel kernel to compile
-        one = getattr(spec.kernels, f"run_one_{measurement}")
+        one = spec.kernel("run_one", measurement)
         for b in range(B):
             one(z[b], dts[b], x0[b], p0[b], q, r, out_x[b], out_p[b], out_nis[b])
     else:

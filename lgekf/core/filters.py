@@ -85,7 +85,7 @@ class Filter:
         self.accel_std = accel_std
         self.meas_std = meas_std
         self._m = spec.measurement(measurement).dim
-        self._update = getattr(self._k, f"update_{measurement}")
+        self._update = spec.kernel("update", measurement)
         x0 = as_float_array("x0", x0, (spec.n,))
         spec.check_state("x0", x0)
         P0 = spd_matrix("P0", P0, spec.n)

@@ -57,6 +57,16 @@ class ModelSpec:
         """The generated numba module of this model (imported on first use)."""
         return importlib.import_module(f"lgekf.generated.{self.name}")
 
+    def kernel(self, family: str, measurement: str, default=None):
+        """The generated kernel of ``family`` for ``measurement`` (e.g. ``kernel("run_segments", "pose")``): the one
+        place of the runtime that forms a kernel's name (``<family>_<measurement>``, as the emitter names them,
+        ``derive.measurements.base.MeasurementModel.kernel_name``). ``default``: returned when the model has no such
+        kernel (a family that only some models emit); without it a missing kernel is an AttributeError."""
+        name = f"{family}_{measurement}"
+        if default is None:
+            return getattr(self.kernels, name)
+        return getattr(self.kernels, name, default)
+
     @property
     def n(self) -> int:
         return len(self.state_names)

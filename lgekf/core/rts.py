@@ -82,13 +82,13 @@ def forward_store(spec: ModelSpec, measurement: str, z, dts, x0, p0, q, r, simd:
         shape = ((B + LANES - 1) // LANES, K, ni + spec.n_packed, LANES)  # every lane written (past B: zeros)
         fp = ForwardPass(None, None, None, None, np.empty((B, K)), np.empty((B, K)), dts, np.full(B, K, dtype=np.int64),
                          np.empty((B, K, spec.n)), (np.empty(shape), np.empty(shape)))
-        getattr(spec.kernels, f"run_batch_store_soa_{measurement}")(z, dts, x0, p0, q, r, *fp.blocks, fp.nis, fp.logdet,
+        spec.kernel("run_batch_store_soa", measurement)(z, dts, x0, p0, q, r, *fp.blocks, fp.nis, fp.logdet,
                                                                     fp.x_filt)
         return fp
     fp = ForwardPass(np.empty((B, K, ni)), np.empty((B, K, spec.n_packed)), np.empty((B, K, ni)),
                      np.empty((B, K, spec.n_packed)), np.empty((B, K)), np.empty((B, K)), dts,
                      np.full(B, K, dtype=np.int64), np.empty((B, K, spec.n)))
-    getattr(spec.kernels, f"run_batch_store_{measurement}")(
+    spec.kernel("run_batch_store", measurement)(
         z, dts, x0, p0, q, r, fp.s_pred, fp.p_pred, fp.s_filt, fp.p_filt, fp.nis, fp.logdet, fp.x_filt)
     return fp
 

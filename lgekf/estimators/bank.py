@@ -86,8 +86,8 @@ class ModelBank:
         n, m = self.spec.n, self.meas.dim
         self.n, self.m = n, m
         self.periodic = np.asarray(self.spec.periodic_tangent, dtype=np.int64)
-        self._innov = getattr(self.kern, f"innovation_bank_{measurement}")
-        self._calH = getattr(self.kern, f"calH_bank_{measurement}")
+        self._innov = self.spec.kernel("innovation_bank", measurement)
+        self._calH = self.spec.kernel("calH_bank", measurement)
         self._diag = packed_diagonal(n)
         self._alloc(capacity)
         self._last = None

@@ -177,10 +177,10 @@ class _Linear:
                 q = np.zeros(nq)
                 q[i] = 1.0
                 self.Qs[u, i] = K.process_noise(s0, dt, *q)
-        self.H = np.asarray(getattr(K, f"calH_{measurement}")(s0), dtype=float)
+        self.H = np.asarray(spec.kernel("calH", measurement)(s0), dtype=float)
         m = self.H.shape[0]
         out = np.empty(m)
-        getattr(K, f"innovation_into_{measurement}")(s0, *np.zeros(m), out)
+        spec.kernel("innovation_into", measurement)(s0, *np.zeros(m), out)
         self.c = -out  # h(s_ref): z − h(s) = z − c − ℋ τ(s)
 
     def tau(self, s: np.ndarray) -> np.ndarray:

@@ -65,7 +65,7 @@ import numpy as np
 from ..generated import dispatch as D
 from .packed import pack_from, unpack_into
 
-__all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "imm_run_batch", "imm_run_batch_position",
+__all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "imm_run_batch_position",
            "imm_run_batch_pose", "mix_on_group", "combined_common", "workspace", "mix_common"]
 
 LOG_2PI = math.log(2.0 * math.pi)
@@ -783,18 +783,9 @@ def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, out_
 
 
 @nb.njit(cache=True, parallel=True)
-def imm_run_batch(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, meas_pose, out_c, out_P, out_mu):
-    """imm_run_one over B trajectories in parallel: S0 (B, M, L), P0 (B, M, N), z (B, K, m), dts (B, K)."""
-    for b in nb.prange(z.shape[0]):
-        S = S0[b].copy()
-        Pp = P0[b].copy()
-        mu = mu0.copy()
-        imm_run_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], same_group, meas_pose, out_c[b], out_P[b], out_mu[b])
-
-
-@nb.njit(cache=True, parallel=True)
 def imm_run_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
-    """imm_run_batch with position measurements (compiles no pose kernel)."""
+    """imm_run_one over B trajectories in parallel, position measurements (compiles no pose kernel): S0 (B, M, L),
+    P0 (B, M, N), z (B, K, m), dts (B, K)."""
     M = models.shape[0]
     for b in nb.prange(z.shape[0]):
         ws = workspace(M)
@@ -804,7 +795,7 @@ def imm_run_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, ou
 
 @nb.njit(cache=True, parallel=True)
 def imm_run_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
-    """imm_run_batch with pose measurements (compiles no position kernel)."""
+    """imm_run_batch_position with pose measurements (compiles no position kernel)."""
     M = models.shape[0]
     for b in nb.prange(z.shape[0]):
         ws = workspace(M)

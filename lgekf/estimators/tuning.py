@@ -223,7 +223,7 @@ def _loglik_tracks(spec, measurement, batch, q, r, x0, p0):
     B = batch.z.shape[0]
     ll = np.empty(B)
     cnt = np.empty(B, dtype=np.int64)
-    getattr(spec.kernels, f"loglik_batch_{measurement}")(batch.z, batch.dts, x0, p0, q, r, batch.lengths, ll, cnt)
+    spec.kernel("loglik_batch", measurement)(batch.z, batch.dts, x0, p0, q, r, batch.lengths, ll, cnt)
     return ll, cnt
 
 
@@ -324,8 +324,8 @@ def filter_lost(spec, measurement: str, batch: TrackBatch, x0: np.ndarray, p0: n
     B, K, m = batch.z.shape
     out_x = np.empty((B, K, spec.n))
     nis = np.empty((B, K))
-    getattr(spec.kernels, f"run_batch_{measurement}")(batch.z, batch.dts, x0, p0, np.asarray(q, dtype=float),
-                                                     np.asarray(r, dtype=float), out_x, np.empty((B, 0, spec.n_packed)), nis)
+    spec.kernel("run_batch", measurement)(batch.z, batch.dts, x0, p0, np.asarray(q, dtype=float), np.asarray(r, dtype=float),
+                                          out_x, np.empty((B, 0, spec.n_packed)), nis)
     inside = np.arange(K)[None, :] < batch.lengths[:, None]
     updated = inside & ~np.any(np.isnan(batch.z), axis=2)
     if not (np.all(np.isfinite(out_x[inside])) and np.all(np.isfinite(nis[updated]))):

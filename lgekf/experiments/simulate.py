@@ -79,7 +79,7 @@ def simulate(
     r = np.broadcast_to(np.asarray(meas_std, dtype=float), (meas.dim,))
     mn = np.ascontiguousarray((m[..., : meas.dim] * r).reshape(-1, meas.dim))
     z = np.empty((B * steps, meas.dim))
-    getattr(spec.kernels, f"measure_batch_{measurement}")(np.ascontiguousarray(out[:, 1:].reshape(-1, spec.n)), mn, z)
+    spec.kernel("measure_batch", measurement)(np.ascontiguousarray(out[:, 1:].reshape(-1, spec.n)), mn, z)
     wrapped = np.zeros(B, bool)
     for i, bound in spec.bounds.items():
         wrapped |= np.any(np.abs(np.diff(out[:, :, int(i)], axis=1)) > bound, axis=1)

@@ -1,4 +1,4 @@
-"""The earlier measurement of each re-initialisation of ``lgekf track``'s divergence recovery
+"""(Test helper.) The earlier measurement of each re-initialisation of ``lgekf track``'s divergence recovery
 (``lgekf.apps.divergence``): at an alarm row g of an object starting at row a, the two-point estimate uses
 the measurement of g and the latest earlier one j ∈ [a, g) with t_j ≤ t_g − baseline (``REINIT_BASELINE``
 = 0.5 s in ``lgekf.apps.track``), the object's first row a if there is none, and at most g − 1.
@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..generated.monitor import reinit_earlier_rows
+from lgekf.generated.monitor import reinit_earlier_rows
 
 __all__ = ["reinit_first_rows"]
 

@@ -1,0 +1,65 @@
+"""The warning lines of ``lgekf track`` shared by every estimator (the single models, the IMM): divergence, failed
+smoothing, a given measurement std that misfits the data."""
+
+from __future__ import annotations
+
+import sys
+
+from ..apps.divergence import MonitorConfig
+from ..apps.noise import measurement_std
+
+__all__ = ["divergence_warnings", "smooth_failure_warnings", "warn_misfit", "MAX_DIVERGENCE_LINES", "MEAS_STD_WARN_FACTOR"]
+
+MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
+MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
+
+
+def divergence_warnings(model, meas, alarms, flagged) -> list:
+    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
+    first, count, scale = {}, {}, {}
+    for al in alarms:
+        first.setdefault(al.obj, al)
+        count[al.obj] = count.get(al.obj, 0) + 1
+        scale[al.obj] = al.scale
+    lines = []
+    for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
+        if al.kind_name == "NIS":
+            why = f"mean NIS {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
+        elif al.kind_name == "speed":
+            why = f"speed {al.value:.3g} m/s > {al.limit:.3g} m/s, far above the data's"
+        else:
+            why = "non-finite state or covariance"
+        n = count[obj]
+        cap = MonitorConfig().max_reinit
+        stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
+        inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
+        lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
+                     f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
+                     f"rows flagged 1 in the flag column")
+    rest = len(first) - MAX_DIVERGENCE_LINES
+    if rest > 0:
+        lines.append(f"{model}: {rest} more object{'s' if rest > 1 else ''} diverged and were re-initialised "
+                     f"({flagged} rows flagged in all)")
+    return lines
+
+
+def smooth_failure_warnings(model, meas, failed) -> list:
+    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``)."""
+    if not failed:
+        return []
+    from ..apps.track import SMOOTH_FAILED
+
+    names = ", ".join(str(meas.labels[b]) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
+    n = len(failed)
+    return [f"{model}: the smoother failed (non-finite or far off the filter) on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
+            f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]
+
+
+def warn_misfit(meas_std, meas, starts) -> None:
+    """One warning line when a given ``--meas-std`` is ``MEAS_STD_WARN_FACTOR`` or more off the data's estimate."""
+    if meas_std is None:
+        return
+    est = measurement_std(meas.t, meas.z, starts)
+    if est.usable and not est.floored and max(meas_std / est.meas_std, est.meas_std / meas_std) >= MEAS_STD_WARN_FACTOR:
+        print(f"lgekf track: warning: --meas-std {meas_std:g} m is {meas_std / est.meas_std:.2g}x the std "
+              f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
