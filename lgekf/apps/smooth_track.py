@@ -10,8 +10,8 @@ whose smoothed values are not all finite keeps the filter's values in its smooth
 ``--tune``: ``lgekf.estimators.tuning.learn_noise`` on all objects of the file (each object's first
 measurement and the first one at least 1 s later start it), per model; a given ``--meas-std`` is held fixed,
 a given ``--accel-std`` is kept (that model is not tuned). The optimiser starts from the noise ``lgekf track``
-estimates from the data without ``--tune`` (``lgekf.apps.defaults.plan_noise``; ``plan_starts``) and from the
-model's defaults; the fit is never below the best valid start's log-likelihood (``learn_noise``).
+estimates from the data without ``--tune`` (``lgekf.apps.defaults.NoisePlan.tune_starts``, ``data_starts``) and
+from the model's defaults; the fit is never below the best valid start's log-likelihood (``learn_noise``).
 """
 
 from __future__ import annotations
@@ -23,12 +23,9 @@ from ..core.registry import get_model
 from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
-from .defaults import plan_noise
-from .divergence import MonitorConfig
-from .track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP
 
-__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "plan_starts",
-           "data_starts", "learn_on_dataset", "noisy_tracks", "DATA_START"]
+__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "learn_on_dataset",
+           "noisy_tracks", "DATA_START"]
 
 #: the label of the start taken from the data's noise estimate (``NoiseFit.starts``, the report)
 DATA_START = "data"
@@ -119,7 +116,7 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
     """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file); ``method`` "em":
     EM where it applies (``lgekf.estimators.em.em_or_lbfgs``), else the likelihood optimiser.
 
-    ``start_noise`` ({model: (accel_std, meas_std)}, e.g. ``plan_starts``): a further start of each model's fit,
+    ``start_noise`` ({model: (accel_std, meas_std)}, e.g. ``NoisePlan.tune_starts``): a further start of each model's fit,
     labelled ``DATA_START`` and tried before the model's defaults; the fit's log-likelihood is never below the best
     valid start's (``lgekf.estimators.tuning.learn_noise``)."""
     fits: dict[str, NoiseFit] = {}
@@ -138,27 +135,6 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
         first = {DATA_START: start_noise[m]} if start_noise and m in start_noise else None
         fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std, starts=first)
     return fits
-
-
-def plan_starts(plan, measurement: dict, heading_std: float = DEFAULT_HEADING_STD) -> dict:
-    """{model: (accel_std, meas_std)}: the noise a ``lgekf.apps.defaults.NoisePlan`` gives each of its models, as
-    the starts of ``tune_models``: the plan's measurement std, for pose measurements (``measurement[model]``) with
-    ``heading_std`` for the heading entry."""
-    out = {}
-    for m, q in plan.accel_std.items():
-        meas = get_model(m).measurement(measurement.get(m, "position"))
-        r = np.full(len(meas.noise_names), float(plan.meas_std))
-        r[list(meas.angles)] = heading_std
-        out[m] = (tuple(q), tuple(r))
-    return out
-
-
-def data_starts(t, z, starts, models, meas_std=None, omega_std: float = DEFAULT_OMEGA_STD) -> dict:
-    """``plan_starts`` of the noise ``lgekf track`` estimates from the data (position measurements, the divergence
-    monitor on, the heading prior of ``lgekf track``), for callers that have no plan yet (the IMM's ``--tune``)."""
-    plan = plan_noise(t, z, starts, list(models), meas_std=meas_std, omega_std=omega_std, heading_std=DEFAULT_HEADING_STD,
-                      heading_cap=TRACK_HEADING_CAP, monitor=MonitorConfig())
-    return plan_starts(plan, {})
 
 
 def noisy_tracks(ds, meas_std: float, seeds, seed_rng) -> list:

@@ -221,7 +221,8 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
     ``say`` (optional) gets a line before each of the IMM's fits (they take seconds to minutes); ``method``: of the
     single-model fits (``lgekf.apps.smooth_track.tune_models``).
     """
-    from .smooth_track import data_starts, tune_models
+    from .defaults import data_starts
+    from .smooth_track import tune_models
 
     models = []
     for text in opts.candidates():

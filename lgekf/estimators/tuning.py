@@ -462,8 +462,8 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
         of the steps that follow then asks for a much larger process noise than the motion has.
     starts : dict, optional
         Further starting points {label: (accel_std, meas_std)}, tried first, e.g. {"data": (q, r)} with the
-        noise estimated from the data (``lgekf.apps.smooth_track.data_starts``). The returned log-likelihood is
-        never below the best valid start's (module docstring).
+        noise estimated from the data (``lgekf.apps.defaults.NoisePlan.tune_starts``, ``data_starts``). The
+        returned log-likelihood is never below the best valid start's (module docstring).
 
     Returns
     -------
