@@ -19,9 +19,13 @@ from .noise import (
     SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
 )
 from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
-from .track import DEFAULT_MEAS_STD, TrackConfig, initial_common, initial_estimates, track_monitored
+from .track import (
+    DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates,
+    track_monitored,
+)
 
-__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class", "objects_subset"]
+__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class", "objects_subset",
+           "data_starts"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
 # Classes of objects by measurement std: an object's own estimate from n ≈ 300 windows is within about ±20 % (2.5 σ),
@@ -49,6 +53,18 @@ class NoisePlan:
     @property
     def estimated(self) -> bool:
         return self.meas_source != "given" or any(s != "given" for s in self.accel_source.values())
+
+    def tune_starts(self, measurement: dict | None = None, heading_std: float = DEFAULT_HEADING_STD) -> dict:
+        """{model: (accel_std, meas_std)}: this plan's noise as the starts of ``--tune``'s fits
+        (``lgekf.apps.smooth_track.tune_models``): the plan's measurement std, for a model with pose measurements
+        (``measurement[model]``, default position) ``heading_std`` for the heading entry."""
+        out = {}
+        for m, q in self.accel_std.items():
+            meas = get_model(m).measurement((measurement or {}).get(m, "position"))
+            r = np.full(len(meas.noise_names), float(self.meas_std))
+            r[list(meas.angles)] = heading_std
+            out[m] = (tuple(q), tuple(r))
+        return out
 
     def describe(self, heading_std: float | None = None, heading_given: bool = True) -> str:
         """One line for stderr: every noise value used and where it came from."""
@@ -241,3 +257,12 @@ def plan_noise_by_class(t, z, starts, models, *, meas_std=None, accel_std=None, 
         plans.append(plan_noise(t[rows], z[rows], sub, models, accel_std=accel_std,
                                 heading=None if heading is None else heading[rows], **kw))
     return NoiseClasses(label, plans, std)
+
+
+def data_starts(t, z, starts, models, meas_std=None, omega_std: float = DEFAULT_OMEGA_STD) -> dict:
+    """``NoisePlan.tune_starts`` of the noise ``lgekf track`` estimates from all objects (``plan_noise``: position
+    measurements, the divergence monitor on, the heading prior of ``lgekf track``), for a caller without a plan (the
+    IMM's ``--tune``)."""
+    plan = plan_noise(t, z, starts, list(models), meas_std=meas_std, omega_std=omega_std, heading_std=DEFAULT_HEADING_STD,
+                      heading_cap=TRACK_HEADING_CAP, monitor=MonitorConfig())
+    return plan.tune_starts()

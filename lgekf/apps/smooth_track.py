@@ -9,7 +9,9 @@ whose smoothed values are not all finite keeps the filter's values in its smooth
 
 ``--tune``: ``lgekf.estimators.tuning.learn_noise`` on all objects of the file (each object's first
 measurement and the first one at least 1 s later start it), per model; a given ``--meas-std`` is held fixed,
-a given ``--accel-std`` is kept (that model is not tuned).
+a given ``--accel-std`` is kept (that model is not tuned). The optimiser starts from the noise ``lgekf track``
+estimates from the data without ``--tune`` (``lgekf.apps.defaults.NoisePlan.tune_starts``, ``data_starts``) and
+from the model's defaults; the fit is never below the best valid start's log-likelihood (``learn_noise``).
 """
 
 from __future__ import annotations
@@ -22,7 +24,11 @@ from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
 
-__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "learn_on_dataset", "noisy_tracks"]
+__all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "learn_on_dataset",
+           "noisy_tracks", "DATA_START"]
+
+#: the label of the start taken from the data's noise estimate (``NoiseFit.starts``, the report)
+DATA_START = "data"
 
 
 def smooth_segments_of(starts, alarms) -> tuple:
@@ -106,9 +112,13 @@ def smoothed_columns(model, measurement, t, zm, starts, tracked, q, r):
 
 
 def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5,
-                method="lbfgs"):
+                method="lbfgs", start_noise: dict | None = None):
     """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file); ``method`` "em":
-    EM where it applies (``lgekf.estimators.em.em_or_lbfgs``), else the likelihood optimiser."""
+    EM where it applies (``lgekf.estimators.em.em_or_lbfgs``), else the likelihood optimiser.
+
+    ``start_noise`` ({model: (accel_std, meas_std)}, e.g. ``NoisePlan.tune_starts``): a further start of each model's fit,
+    labelled ``DATA_START`` and tried before the model's defaults; the fit's log-likelihood is never below the best
+    valid start's (``lgekf.estimators.tuning.learn_noise``)."""
     fits: dict[str, NoiseFit] = {}
     starts = np.asarray(starts, dtype=np.int64)
     for m in models:
@@ -122,7 +132,8 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
         if meas_std is not None:
             fixed = meas_std if meas == "position" else None
         learn = learn_noise_em if em_or_lbfgs(m, meas, method) == "em" else learn_noise
-        fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std)
+        first = {DATA_START: start_noise[m]} if start_noise and m in start_noise else None
+        fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std, starts=first)
     return fits
 
 

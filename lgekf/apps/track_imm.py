@@ -221,6 +221,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
     ``say`` (optional) gets a line before each of the IMM's fits (they take seconds to minutes); ``method``: of the
     single-model fits (``lgekf.apps.smooth_track.tune_models``).
     """
+    from .defaults import data_starts
     from .smooth_track import tune_models
 
     models = []
@@ -230,7 +231,8 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                 models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
-    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std, method)
+    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std, method,
+                       start_noise=data_starts(meas.t, meas.z, starts, models, meas_std, omega_std))
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
     learned = "; ".join(f"{m} accel-std {','.join(f'{v:.3g}' for v in f.accel_std)} (log-likelihood {f.loglik:.6g}"

@@ -232,7 +232,7 @@ class ModelsTrack:
             from ..apps.smooth_track import tune_models
 
             fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, self.given_q, meas.heading, a.omega_std,
-                               a.tune_method)
+                               a.tune_method, start_noise=classes.plans[main_class].tune_starts(measure, heading_std))
             for m, fit in fits.items():
                 print(f"lgekf track: {fit.report()}", file=sys.stderr)
                 r = fit.meas_std

@@ -84,9 +84,9 @@ from numpy.typing import ArrayLike
 from ..core.covariance import pack, unpack
 from ..core.registry import MODELS, get_model
 from ..core.rts import forward_store, smooth_stored
-from .tracks import TrackBatch, two_point_prior
-from .tuning import (BOUNDS, FLAT_LIKELIHOOD, WIDE_FACTOR, NoiseFit, _angle_index, _loglik_tracks, _meas_guess, _standard_errors,
-                     _noise_problem)
+from .tracks import TrackBatch
+from .tuning import (BOUNDS, NoiseFit, StartRecord, _fallback, _Likelihood, _noise_problem, _optimum_uncertainty,
+                     _start_points)
 
 __all__ = ["learn_noise_em", "EMTrace", "em_models", "em_or_lbfgs"]
 
@@ -272,7 +272,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
                    meas_std: float | ArrayLike | None = None, omega_std: float = 0.5, heading_cap: float = math.pi,
                    hessian: bool = True, baseline: float = 1.0, max_iter: int = 2000, tol: float = 1e-7,
                    init: ArrayLike | None = None, trace: EMTrace | None = None, accelerate: bool = True,
-                   _numeric_r: bool = False) -> NoiseFit:
+                   starts: dict | None = None, _numeric_r: bool = False) -> NoiseFit:
     r"""Maximum-likelihood noise of a linear Gaussian model by EM (E: RTS smoother, M: closed form).
 
     The same inputs and result as :func:`~lgekf.estimators.tuning.learn_noise`, the same likelihood (the
@@ -300,8 +300,13 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         Stop when the log-likelihood gains less than ``tol`` × (1 + |log L|) in an iteration and no std
         changes by more than 1e-5 relative.
     init : array_like, optional
-        Starting stds (process then measurement); default the model's ``default_accel_std`` and a
-        second-difference guess of r.
+        Starting stds (process then measurement), a start labelled "init".
+    starts : dict, optional
+        Further starts {label: (accel_std, meas_std)} (as for ``learn_noise``). Every start's log-likelihood
+        is evaluated and EM runs from the best valid one (``lgekf.estimators.tuning.filter_lost``); EM never
+        lowers the likelihood, and the returned fit is never below that start's (else the start is kept, said in
+        ``problems``). Without ``init`` and ``starts``: the model's ``default_accel_std`` and a second-difference
+        guess of r.
     trace : EMTrace, optional
         Filled with every iteration's stds and log-likelihood.
     accelerate : bool
@@ -314,7 +319,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     Returns
     -------
     NoiseFit
-        As from ``learn_noise`` (``starts`` holds the one start: (start, end, log L)).
+        As from ``learn_noise`` (``starts``: every start, the end only for the one EM ran from).
 
     Raises
     ------
@@ -332,7 +337,8 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     batch, nq, nr, names, fixed_r, d, n_upd = _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline)
     if meas.noise_inputs is None:
         raise ValueError(f"EM: the noise of the {measurement} measurement is not diagonal with one std per entry")
-    x0, prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)
+    lik = _Likelihood(spec, measurement, batch, fixed_r, omega_std, heading_cap)
+    x0, prior = lik.x0, lik.prior
     B, K, _ = batch.z.shape
     n = spec.n
     dts_u, inv = np.unique(batch.dts, return_inverse=True)
@@ -352,16 +358,16 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
                    and np.allclose(P0_of(np.full(nr, 2.0)), 4.0 * A1, rtol=1e-10, atol=1e-12))
     A1inv = np.linalg.inv(A1) if homogeneous else None
 
+    given = dict(starts or {})
     if init is not None:
         th = np.asarray(init, dtype=float).reshape(-1)
         if th.shape != (nq + nr,) or np.any(~np.isfinite(th)) or np.any(th <= 0):
             raise ValueError(f"init: expected {nq + nr} positive stds, got {np.asarray(init).tolist()}")
-        q, r = th[:nq].copy(), th[nq:].copy()
-    else:
-        q = np.asarray(spec.default_accel_std, dtype=float).copy()
-        r = np.full(nr, _meas_guess(batch, m))
-    if fixed_r is not None:
-        r = fixed_r.copy()
+        given = {"init": (th[:nq], th[nq:]), **given}
+    records = [StartRecord(label, v, *lik.assess(v)) for label, v in _start_points(spec, meas, batch, fixed_r, given, 0)]
+    # EM from the best valid start (the highest log L if none is valid): monotone, it cannot end below it
+    run = max(records, key=lambda rec: (rec.start_lost is None, np.nan_to_num(rec.start_loglik, nan=-np.inf)))
+    q, r = run.start[:nq].copy(), run.start[nq:].copy()
     threads = 1 if batch.z.shape[0] * batch.z.shape[1] < SINGLE_THREAD_CELLS else 1 << 30
 
     def em_map(q, r):
@@ -394,7 +400,6 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
     def done(ll, ll_prev, th, th_new):
         return ll - ll_prev < tol * (1 + abs(ll)) and np.all(np.abs(th_new / th - 1) < 1e-5)
 
-    start = np.concatenate([q, r])
     tr = trace if trace is not None else EMTrace()
     converged = False
     ll_prev = -math.inf
@@ -447,35 +452,19 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         tr.values.append(np.concatenate([q, r]))
         tr.loglik.append(ll)
     values = np.concatenate([q, r])
-    fixed = tuple([False] * nq + [fixed_r is not None] * nr)
-    problems = [] if converged else [f"EM did not converge in {max_iter} iterations"]
-    log_se = np.full(nq + nr, np.nan)
-    free = [i for i in range(nq + nr) if not fixed[i]]
-    th = np.log(values[free])
-
-    def nll(t):
-        v = values.copy()
-        v[free] = np.exp(t)
-        qq, rr = v[:nq], v[nq:]
-        tot = float(np.sum(_loglik_tracks(spec, measurement, batch, qq, rr, x0, pack(P0_of(rr)))[0]))
-        return -tot if math.isfinite(tot) else 1e15
-
-    if hessian:
-        with _numba_threads(threads):
-            se = _standard_errors(nll, th)
-        if se is not None:
-            log_se[free] = se
-        else:
-            problems.append(FLAT_LIKELIHOOD)
-    ci_low = values.copy()
-    ci_high = values.copy()
-    for i in free:
-        with np.errstate(over="ignore"):
-            ci_low[i] = values[i] * np.exp(-1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
-            ci_high[i] = values[i] * np.exp(1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
-        if np.isfinite(log_se[i]) and 1.96 * log_se[i] > math.log(WIDE_FACTOR):
-            problems.append(f"{names[i]}: the 95 % interval spans more than ×/÷{WIDE_FACTOR:g}")
-        if values[i] <= BOUNDS[0] * 1.05 or values[i] >= BOUNDS[1] / 1.05:
-            problems.append(f"{names[i]} at the search bound {values[i]:.3g}")
+    fixed = tuple(not f for f in lik.free)
+    run.end = values
+    run.end_loglik, run.end_lost = lik.assess(values)
+    ll = run.end_loglik
+    fallback = _fallback(records, ll if run.end_lost is None else -math.inf)
+    if fallback is not None:
+        values, ll, kept, why = fallback
+        nan = np.where(lik.free, np.nan, values)
+        return NoiseFit(model, measurement, names, values, nan, nan.copy(), np.full(nq + nr, np.nan), float(ll), n_upd,
+                        int(B), fixed, records, [why], "em", kept)
+    with _numba_threads(threads):
+        log_se, ci_low, ci_high, problems = _optimum_uncertainty(lik, names, values, hessian, n_upd * m)
+    if not converged:
+        problems.insert(0, f"EM did not converge in {max_iter} iterations")
     return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(ll), n_upd, int(B), fixed,
-                    [(start, values.copy(), float(ll))], problems, "em")
+                    records, problems, "em", f"the optimum from the {run.label} start", hessian)

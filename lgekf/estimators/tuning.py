@@ -12,16 +12,33 @@ on its first measurement and the first one at least ``baseline`` (1 s) later, wh
 of the model's process-noise stds (``accel_std``, its ``noise_names``) and of the measurement stds (one for
 position; (σ_x, σ_y, σ_θ) for pose), unless ``meas_std`` is given (then fixed). The generated
 ``loglik_batch_<measurement>`` evaluates log L over all tracks in numba (prange); ``scipy.optimize``
-maximises it: L-BFGS-B on log θ (bounded, several starts, finite-difference steps of 1e-3), then a
-Nelder–Mead polish of the best (on real data the likelihood has small kinks, e.g. from the angle-variance cap,
-and gradient steps alone can stall at a start).
+maximises it: L-BFGS-B on log θ (bounded, finite-difference steps of 1e-3) from every start, then a
+Nelder–Mead polish of the best end (on real data the likelihood has small kinks, e.g. from the angle-variance
+cap, and gradient steps alone can stall at a start).
+
+Starts: the caller's (``starts``, e.g. the noise ``lgekf track`` estimates from the data without ``--tune``,
+``lgekf.apps.defaults.plan_noise``), then the model's defaults (``default_accel_std`` ×1, ×4, ÷4 with a
+second-difference guess of the measurement std). From a start far from the data's noise (the defaults on fast
+objects: 0.5 m/s² and 1 rad/s² at 136 m/s) the filter loses its tracks, log L is dominated by a few huge
+innovations, and the optimiser can end anywhere. So every start and every optimiser end is evaluated and
+checked (``filter_lost``): a point is *valid* when log L is finite, every filtered state is finite, and the
+filter keeps every track (the median NIS of a track's updates at most the 99.9 % point of χ²_m, 13.8 for
+positions; a consistent filter's median is 1.39, and one outlying measurement does not move it, a lost track
+keeps it high). The fit is the best valid end, and never below the best valid start: when no valid end
+reaches that start's log L, the start itself is returned (without intervals: it is not an optimum) and
+``problems`` says so; with no valid point at all, the highest finite log L, said so as well.
 
 Uncertainty: the observed information, the Hessian H of −log L in log θ at the optimum by central
 differences; cov(log θ) ≈ H⁻¹, and the approximate 95 % interval of each std is exp(log θ̂ ± 1.96 se).
 The fit says when the data do not identify the noise (``NoiseFit.problems``): fewer than
 ``MIN_UPDATES_PER_PARAMETER`` updates per parameter is refused (ValueError); a Hessian that is not positive
 definite (flat likelihood), an interval wider than a factor ``WIDE_FACTOR`` either way, an optimum on a
-bound, or starts ending at different optima are reported.
+bound, or starts ending at different optima are reported. So is an interval narrower than the data can give:
+n scalar measurements hold at most 2n of information about a log std (for z ~ N(μ, σ²A + B), of any
+dimension n, the Fisher information of log σ is 2 tr((σ²A Σ⁻¹)²) ≤ 2n), so se(log σ̂) ≥ 1/√(2n); a standard
+error below 1/(``NARROW_FACTOR``·√(2n)) is curvature of a numerically rough likelihood (a filter near losing
+tracks), not precision, and that parameter gets no interval. The report prints "not identified" for every
+parameter without an interval.
 
 Measured (tests/test_tuning.py): with SE(2)×SE(2) truth (σ_v, σ_ω, r) = (0.5, 0.2, 0.2) the 95 % intervals
 cover the truth on 60 tracks of 20 s. From positions alone the lateral-velocity std of SE(2)×SE(2) and
@@ -42,12 +59,39 @@ from ..core.covariance import pack
 from ..core.registry import get_model
 from .tracks import TrackBatch, batch_tracks, two_point_prior
 
-__all__ = ["NoiseFit", "learn_noise", "log_likelihood", "MIN_UPDATES_PER_PARAMETER"]
+__all__ = ["NoiseFit", "StartRecord", "learn_noise", "log_likelihood", "filter_lost", "MIN_UPDATES_PER_PARAMETER"]
 
 MIN_UPDATES_PER_PARAMETER = 10
 WIDE_FACTOR = 10.0  # a 95 % interval beyond ×/÷ this counts as not identified
+NARROW_FACTOR = 4.0  # a log std's standard error below 1/(this·√(2n)), n scalar measurements, counts as not identified
+LOST_QUANTILE = 0.999  # a track whose median NIS is above this quantile of χ²_m is lost by its filter
+DEFAULT_FACTORS = (1.0, 4.0, 0.25, 16.0, 1 / 16)  # the default starts: default_accel_std times these
 BOUNDS = (1e-4, 1e3)  # every std is searched in this range
 PENALTY = 1e15  # −log L of a diverged filter (NaN)
+
+
+@dataclass
+class StartRecord:
+    """One start of a noise fit and the end of the optimiser's run from it (``NoiseFit.starts``).
+
+    ``start``/``end``: all stds (fixed ones included); ``*_loglik``: log L there; ``*_lost``: why the filter is not
+    valid there (``filter_lost``), None when it is. ``end`` is None for a start the optimiser did not run from (EM
+    runs from the best start only)."""
+
+    label: str
+    start: np.ndarray
+    start_loglik: float
+    start_lost: str | None
+    end: np.ndarray | None = None
+    end_loglik: float = math.nan
+    end_lost: str | None = None
+
+    def describe(self) -> str:
+        """One phrase: the label, log L at the start (why it is not valid), → log L at the end (why)."""
+        def point(ll, lost):
+            return f"{ll:.6g}" + (f" ({lost})" if lost else "")
+        text = f"{self.label} {point(self.start_loglik, self.start_lost)}"
+        return text + (f" → {point(self.end_loglik, self.end_lost)}" if self.end is not None else "")
 
 
 @dataclass
@@ -62,21 +106,28 @@ class NoiseFit:
     values : ndarray
         The learned stds (a fixed measurement std is included as given).
     ci_low, ci_high : ndarray
-        Approximate 95 % intervals (NaN where the Hessian gives none; equal to the value for a fixed one).
+        Approximate 95 % intervals; NaN where the parameter is not identified (no positive definite Hessian, an
+        interval narrower than the data can give, or values kept at a start, which is not an optimum); equal to
+        the value for a fixed one.
     log_se : ndarray
-        Standard errors of the log stds (NaN: not available or fixed).
+        Standard errors of the log stds from the Hessian (NaN: not available or fixed).
     loglik : float
-        The maximised innovation log-likelihood.
+        The innovation log-likelihood at ``values`` (the maximum found).
     n_updates, n_tracks : int
         Measurements that updated a filter, and tracks used.
     fixed : tuple of bool
         Which parameters were held fixed.
-    starts : list
-        (start values, end values, log-likelihood) of every start.
+    starts : list of StartRecord
+        Every start: its log-likelihood and that of the optimiser's end, and why either is not valid.
     problems : list of str
-        Why the noise may not be identified (empty when it is).
+        Why the noise may not be identified, or why the values are a start (empty when identified).
     method : str
         "lbfgs" (the likelihood optimiser) or "em" (``lgekf.estimators.em``).
+    kept : str
+        Where ``values`` come from: "the optimum from the <label> start" (the optimiser's end, maybe polished),
+        or "start <label>" / "best point" when no valid optimiser end reached the best start (see ``problems``).
+    hessian : bool
+        Whether the intervals were computed (``learn_noise(hessian=False)``: no interval, not a problem).
     """
 
     model: str
@@ -93,6 +144,8 @@ class NoiseFit:
     starts: list = field(default_factory=list)
     problems: list = field(default_factory=list)
     method: str = "lbfgs"
+    kept: str = "optimum"
+    hessian: bool = True
 
     @property
     def accel_std(self) -> tuple:
@@ -112,17 +165,21 @@ class NoiseFit:
         return not self.problems
 
     def report(self) -> str:
-        """A few lines for a human: every value with its interval, the likelihood and the problems."""
+        """A few lines for a human: every value with its interval ("not identified" without one), the
+        log-likelihood, every start's log-likelihood and its optimiser end's, and the problems."""
         parts = []
         for nm, v, lo, hi, fx in zip(self.names, self.values, self.ci_low, self.ci_high, self.fixed):
             if fx:
                 parts.append(f"{nm} = {v:.4g} (fixed)")
-            elif np.isfinite(lo):
+            elif np.isfinite(lo) and np.isfinite(hi):
                 parts.append(f"{nm} = {v:.4g} [95 %: {lo:.3g}, {hi:.3g}]")
             else:
-                parts.append(f"{nm} = {v:.4g} [no interval]")
+                parts.append(f"{nm} = {v:.4g} [{'not identified' if self.hessian else 'no interval computed'}]")
         head = (f"learned noise for {self.model}{' by EM' if self.method == 'em' else ''} ({self.measurement}, {self.n_tracks} tracks, {self.n_updates} updates, "
                 f"log-likelihood {self.loglik:.6g}): " + ", ".join(parts))
+        if self.starts:
+            head += ("\n  starts (log-likelihood at the start → at the optimiser's end): "
+                     + "; ".join(s.describe() for s in self.starts) + f"; kept: {self.kept}")
         if self.problems:
             head += "\n  not identified: " + "; ".join(self.problems)
         return head
@@ -204,9 +261,179 @@ def _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline):
     return batch, nq, nr, names, fixed_r, d, n_upd
 
 
+class _Likelihood:
+    """The innovation log-likelihood of a batch of tracks as a function of all stds (process then measurement),
+    every track started from its two-point prior; θ are the logs of the stds not held fixed (``free``)."""
+
+    def __init__(self, spec, measurement: str, batch: TrackBatch, fixed_r, omega_std: float, heading_cap: float):
+        meas = spec.measurement(measurement)
+        self.spec, self.measurement, self.batch, self.m = spec, measurement, batch, meas.dim
+        self.nq, self.nr = len(spec.noise_names), len(meas.noise_names)
+        self.angles = bool(meas.angles)
+        self.fixed_r = fixed_r
+        self.free = np.array([True] * self.nq + [fixed_r is None] * self.nr)
+        self.x0, self.prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)
+
+    def split(self, values) -> tuple[np.ndarray, np.ndarray]:
+        v = np.asarray(values, dtype=float)
+        return v[:self.nq], v[self.nq:]
+
+    def p0(self, r) -> np.ndarray:
+        """The packed two-point priors for measurement stds r."""
+        return pack(self.prior(r[0], r[-1] if self.angles else None))
+
+    def loglik(self, values) -> float:
+        q, r = self.split(values)
+        return float(np.sum(_loglik_tracks(self.spec, self.measurement, self.batch, q, r, self.x0, self.p0(r))[0]))
+
+    def values(self, th) -> np.ndarray:
+        v = np.empty(self.nq + self.nr)
+        v[self.free] = np.exp(th)
+        if self.fixed_r is not None:
+            v[self.nq:] = self.fixed_r
+        return v
+
+    def theta(self, values) -> np.ndarray:
+        return np.log(np.asarray(values, dtype=float)[self.free])
+
+    def nll(self, th) -> float:
+        """−log L at θ (``PENALTY`` where it is not finite), the optimisers' objective."""
+        tot = self.loglik(self.values(th))
+        return -tot if math.isfinite(tot) else PENALTY
+
+    def assess(self, values) -> tuple[float, str | None]:
+        """(log L, why the filter is not a valid fit there or None): ``filter_lost`` unless log L is not finite."""
+        ll = self.loglik(values)
+        if not math.isfinite(ll):
+            return ll, "non-finite log-likelihood"
+        q, r = self.split(values)
+        return ll, filter_lost(self.spec, self.measurement, self.batch, self.x0, self.p0(r), q, r)
+
+
+def filter_lost(spec, measurement: str, batch: TrackBatch, x0: np.ndarray, p0: np.ndarray, q, r) -> str | None:
+    """Why the filter of ``spec`` with process-noise stds q and measurement stds r is not a valid fit of the tracks
+    of ``batch`` (started from physical states x0 (B, n) and packed covariances p0), or None when it is.
+
+    Not valid: a non-finite state or NIS within a track, or a lost track, whose median NIS over its updates is
+    above the ``LOST_QUANTILE`` (99.9 %) point of χ²_m (m the measurement dimension; a consistent filter's median
+    is the χ²_m median, 1.39 for positions; an outlying measurement does not move it, a lost filter keeps it high).
+    One pass of the generated ``run_batch_<measurement>`` (the same filter as the likelihood's), without covariances.
+    """
+    from scipy.stats import chi2
+
+    B, K, m = batch.z.shape
+    out_x = np.empty((B, K, spec.n))
+    nis = np.empty((B, K))
+    spec.kernel("run_batch", measurement)(batch.z, batch.dts, x0, p0, np.asarray(q, dtype=float), np.asarray(r, dtype=float),
+                                          out_x, np.empty((B, 0, spec.n_packed)), nis)
+    inside = np.arange(K)[None, :] < batch.lengths[:, None]
+    updated = inside & ~np.any(np.isnan(batch.z), axis=2)
+    if not (np.all(np.isfinite(out_x[inside])) and np.all(np.isfinite(nis[updated]))):
+        return "non-finite filter states"
+    limit = float(chi2.ppf(LOST_QUANTILE, m))
+    has = updated.any(axis=1)
+    median = np.nanmedian(np.where(updated[has], nis[has], np.nan), axis=1)
+    lost = int(np.sum(median > limit))
+    return f"the filter loses {lost} of {B} tracks" if lost else None
+
+
+def _start_points(spec, meas, batch: TrackBatch, fixed_r, starts, n_default: int) -> list:
+    """[(label, stds)]: the caller's ``starts`` ({label: (accel_std, meas_std)}; a measurement std given as one
+    number serves every entry; a fixed ``fixed_r`` replaces it), then ``n_default`` of the model's defaults
+    (``default_accel_std`` × ``DEFAULT_FACTORS``, with the second-difference guess of the measurement std and
+    0.1 rad for an angle; at least one when no start is given). ValueError for a start that is not positive stds."""
+    nq, nr = len(spec.noise_names), len(meas.noise_names)
+    points = []
+    for label, (q, r) in dict(starts or {}).items():
+        q = np.asarray(q, dtype=float).reshape(-1)
+        r = np.asarray(r if fixed_r is None else fixed_r, dtype=float).reshape(-1)
+        if (q.shape != (nq,) or r.size not in (1, nr) or not (np.all(np.isfinite(q)) and np.all(np.isfinite(r)))
+                or np.any(q < 0) or np.any(r <= 0)):
+            raise ValueError(f"start {label!r} of {spec.name}: expected {nq} non-negative process-noise stds "
+                             f"({', '.join(spec.noise_names)}) and a positive measurement std, got {q.tolist()} and {r.tolist()}")
+        points.append((label, np.concatenate([q, np.broadcast_to(r, (nr,))])))
+    q0 = np.asarray(spec.default_accel_std, dtype=float)
+    if fixed_r is not None:
+        r0 = fixed_r
+    else:
+        r0 = np.full(nr, _meas_guess(batch, meas.dim))
+        r0[list(meas.angles)] = 0.1
+    for f in DEFAULT_FACTORS[:max(n_default, 0 if points else 1)]:
+        label = "default" + ("" if f == 1 else f" ×{f:g}" if f > 1 else f" ÷{1 / f:g}")
+        points.append((label, np.concatenate([q0 * f, r0])))
+    return points
+
+
+def _fallback(records: list, best_ll: float):
+    """None when the best valid optimiser end (log L ``best_ll``, −inf if there is none) is at least the best
+    valid start's log L; else (stds, log L, kept, problem) of that start, or with no valid start and no valid
+    end, of the point of highest finite log L (starts and ends)."""
+    valid = [r for r in records if r.start_lost is None]
+    floor = max(valid, key=lambda r: r.start_loglik, default=None)
+    if floor is not None:
+        if best_ll >= floor.start_loglik:
+            return None
+        return (floor.start, floor.start_loglik, f"start {floor.label}",
+                f"no valid optimiser end reached the log-likelihood of the {floor.label} start ({floor.start_loglik:.6g}): "
+                f"the noise is kept at that start, without intervals (it is not an optimum)")
+    if best_ll > -math.inf:
+        return None
+    points = [(r.start, r.start_loglik, r.start_lost) for r in records]
+    points += [(r.end, r.end_loglik, r.end_lost) for r in records if r.end is not None]
+    finite = [pt for pt in points if math.isfinite(pt[1])]
+    v, ll, why = max(finite, key=lambda pt: pt[1]) if finite else points[0]
+    return (v, ll, "best point", f"no start and no optimiser end is a valid fit ({why} at the best): kept the highest "
+                                 f"log-likelihood, without intervals")
+
+
+def _intervals(names, values, log_se, free, n_obs: int):
+    """(ci_low, ci_high, problems): the 95 % intervals exp(log θ̂ ± 1.96 se) of the free stds, NaN where there is no
+    standard error or where it is below the information bound 1/(``NARROW_FACTOR``·√(2·n_obs)) (module docstring;
+    n_obs scalar measurements), and the problems: such a too narrow interval, or one wider than ×/÷``WIDE_FACTOR``."""
+    ci_low = np.asarray(values, dtype=float).copy()
+    ci_high = ci_low.copy()
+    se_min = 1.0 / (NARROW_FACTOR * math.sqrt(2.0 * max(n_obs, 1)))
+    problems = []
+    for i in np.flatnonzero(free):
+        se = log_se[i]
+        if not np.isfinite(se) or se < se_min:
+            ci_low[i] = ci_high[i] = np.nan
+            if np.isfinite(se):
+                problems.append(f"{names[i]}: its 95 % interval ×/÷(1 + {math.expm1(1.96 * se):.2g}) is narrower than "
+                                f"{n_obs} measured values can give (×/÷(1 + {math.expm1(1.96 * se_min * NARROW_FACTOR):.2g}) "
+                                f"at best): the curvature of log L there is numerical, not information")
+            continue
+        with np.errstate(over="ignore"):
+            ci_low[i] = values[i] * math.exp(-1.96 * se)
+            ci_high[i] = values[i] * np.exp(1.96 * se)
+        if 1.96 * se > math.log(WIDE_FACTOR):
+            problems.append(f"{names[i]}: the 95 % interval spans more than ×/÷{WIDE_FACTOR:g}")
+    return ci_low, ci_high, problems
+
+
+def _optimum_uncertainty(lik: _Likelihood, names, values, hessian: bool, n_obs: int):
+    """(log_se, ci_low, ci_high, problems) at an optimum: the standard errors from the Hessian (``hessian``), the
+    intervals (``_intervals``; NaN without the Hessian) and the free parameters on a search bound."""
+    log_se = np.full(len(values), np.nan)
+    problems = []
+    if hessian:
+        se = _standard_errors(lik.nll, lik.theta(values))
+        if se is not None:
+            log_se[lik.free] = se
+        else:
+            problems.append(FLAT_LIKELIHOOD)
+    ci_low, ci_high, more = _intervals(names, values, log_se, lik.free, n_obs)
+    problems += more
+    for i in np.flatnonzero(lik.free):
+        if not BOUNDS[0] * math.exp(0.05) < values[i] < BOUNDS[1] * math.exp(-0.05):
+            problems.append(f"{names[i]} at the search bound {values[i]:.3g}")
+    return log_se, ci_low, ci_high, problems
+
+
 def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str = "position",
                 meas_std: float | ArrayLike | None = None, n_starts: int = 3, omega_std: float = 0.5,
-                heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0) -> NoiseFit:
+                heading_cap: float = math.pi, hessian: bool = True, baseline: float = 1.0,
+                starts: dict | None = None) -> NoiseFit:
     """Maximum-likelihood process noise (and measurement noise) of ``model`` from measured tracks.
 
     Parameters
@@ -222,7 +449,8 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
     meas_std : float or array_like, optional
         The measurement std(s), if known: then held fixed and only the process noise is learned.
     n_starts : int
-        Number of starting points of the optimiser (the defaults of the model, ×4 and ÷4).
+        Number of the model's default starts (``default_accel_std`` ×1, ×4, ÷4, ...), after ``starts``; 0 with
+        ``starts`` given runs from those only.
     omega_std, heading_cap : float
         Of the two-point prior (``lgekf.estimators.tracks.two_point_prior``).
     hessian : bool
@@ -232,16 +460,20 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
         two-point prior, ``lgekf.estimators.tracks.batch_tracks``); the measurements in between are not used.
         Two points 0.1 s apart leave the heading almost unknown (velocity error √2·r/Δ), and the likelihood
         of the steps that follow then asks for a much larger process noise than the motion has.
+    starts : dict, optional
+        Further starting points {label: (accel_std, meas_std)}, tried first, e.g. {"data": (q, r)} with the
+        noise estimated from the data (``lgekf.apps.defaults.NoisePlan.tune_starts``, ``data_starts``). The
+        returned log-likelihood is never below the best valid start's (module docstring).
 
     Returns
     -------
     NoiseFit
-        Learned stds, 95 % intervals, log-likelihood and ``problems`` (empty when identified).
+        Learned stds, 95 % intervals, log-likelihood, every start's record and ``problems`` (empty when identified).
 
     Raises
     ------
     ValueError
-        Bad input, or fewer than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter.
+        Bad input (a start included), or fewer than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter.
 
     See Also
     --------
@@ -256,78 +488,50 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
 
     spec = get_model(model)
     meas = spec.measurement(measurement)
-    m = meas.dim
     batch, nq, nr, names, fixed_r, d, n_upd = _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline)
-    x0, prior = two_point_prior(spec, batch, _angle_index(meas), omega_std, heading_cap)
-
-    def unpack_theta(th):
-        v = np.exp(th)
-        q = v[:nq]
-        r = fixed_r if fixed_r is not None else v[nq:]
-        return q, r
-
-    def nll(th):
-        q, r = unpack_theta(th)
-        P0 = prior(r[0], r[-1] if meas.angles else None)
-        ll, _ = _loglik_tracks(spec, measurement, batch, q, r, x0, pack(P0))
-        tot = float(np.sum(ll))
-        return -tot if math.isfinite(tot) else PENALTY
-
-    q0 = np.asarray(spec.default_accel_std, dtype=float)
-    r0 = np.full(nr, _meas_guess(batch, m))
-    if nr > 1:
-        r0[list(meas.angles)] = 0.1
+    points = _start_points(spec, meas, batch, fixed_r, starts, n_starts)
+    lik = _Likelihood(spec, measurement, batch, fixed_r, omega_std, heading_cap)
     lo, hi = math.log(BOUNDS[0]), math.log(BOUNDS[1])
-    bounds = [(lo, hi)] * d
-    starts = []
-    factors = [1.0, 4.0, 0.25, 16.0, 1 / 16][:max(1, n_starts)]
-    for f in factors:
-        th0 = np.log(np.concatenate([q0 * f, r0 if fixed_r is None else []]))
-        th0 = np.clip(th0, lo + 0.1, hi - 0.1)
+    records = []
+    for label, v0 in points:
+        th0 = np.clip(lik.theta(v0), lo + 0.1, hi - 0.1)
+        rec = StartRecord(label, lik.values(th0), *lik.assess(lik.values(th0)))
         # finite-difference gradient steps of 1e-3 in log θ: the likelihood of a real run has small kinks
         # (angle-variance cap, heading of slow objects) that make steps near machine precision useless
-        res = minimize(nll, th0, method="L-BFGS-B", bounds=bounds, options={"maxiter": 200, "eps": 1e-3})
-        starts.append((np.exp(th0), np.exp(res.x), -float(res.fun), res))
-    best = max(starts, key=lambda s: s[2])
-    # polish the best with Nelder–Mead (derivative-free, indifferent to the kinks), inside the bounds
-    nm = minimize(lambda x: nll(np.clip(x, lo, hi)), best[3].x, method="Nelder-Mead",
-                  options={"xatol": 1e-3, "fatol": 1e-3, "maxfev": 400 * d})
-    if nm.fun < best[3].fun:
-        nm.x = np.clip(nm.x, lo, hi)
-        best = (best[0], np.exp(nm.x), -float(nm.fun), nm)
-    th = best[3].x
-    q, r = unpack_theta(th)
-    values = np.concatenate([q, r])
-    fixed = tuple([False] * nq + [fixed_r is not None] * nr)
-    problems = []
-    log_se = np.full(nq + nr, np.nan)
-    if hessian:
-        se = _standard_errors(nll, th)
-        if se is not None:
-            log_se[:d] = se  # the free parameters come first
-        else:
-            problems.append(FLAT_LIKELIHOOD)
-    free = [i for i in range(nq + nr) if not fixed[i]]
-    ci_low = values.copy()
-    ci_high = values.copy()
-    for i in free:
-        with np.errstate(over="ignore"):  # a flat direction: the interval reaches 0 or ∞
-            ci_low[i] = values[i] * np.exp(-1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
-            ci_high[i] = values[i] * np.exp(1.96 * log_se[i]) if np.isfinite(log_se[i]) else np.nan
-        if np.isfinite(log_se[i]) and 1.96 * log_se[i] > math.log(WIDE_FACTOR):
-            problems.append(f"{names[i]}: the 95 % interval spans more than ×/÷{WIDE_FACTOR:g}")
-    for j, i in enumerate(free):
-        if th[j] <= lo + 0.05 or th[j] >= hi - 0.05:
-            problems.append(f"{names[i]} at the search bound {math.exp(th[j]):.3g}")
-    others = [s for s in starts if s is not best and abs(s[2] - best[2]) < 0.5]
-    for s in others:
-        diff = np.abs(np.log(s[1][:d]) - th)
-        se = log_se[:d]
-        if np.any(diff > 2 * np.where(np.isfinite(se), se, 0.1) + 0.05):
-            problems.append("several optima with the same likelihood (starts ended at different values)")
-            break
-    return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(best[2]), n_upd,
-                    int(batch.z.shape[0]), fixed, [(s[0], s[1], s[2]) for s in starts], problems)
+        res = minimize(lik.nll, th0, method="L-BFGS-B", bounds=[(lo, hi)] * d, options={"maxiter": 200, "eps": 1e-3})
+        rec.end = lik.values(res.x)
+        rec.end_loglik, rec.end_lost = lik.assess(rec.end)
+        records.append(rec)
+    best = max((r for r in records if r.end_lost is None), key=lambda r: r.end_loglik, default=None)
+    values, ll = (best.end, best.end_loglik) if best is not None else (None, -math.inf)
+    if best is not None:
+        # polish the best with Nelder–Mead (derivative-free, indifferent to the kinks), inside the bounds
+        nm = minimize(lambda x: lik.nll(np.clip(x, lo, hi)), lik.theta(values), method="Nelder-Mead",
+                      options={"xatol": 1e-3, "fatol": 1e-3, "maxfev": 400 * d})
+        if -nm.fun > ll:
+            v = lik.values(np.clip(nm.x, lo, hi))
+            ll_nm, why = lik.assess(v)
+            if why is None and ll_nm > ll:
+                values, ll = v, ll_nm
+    fixed = tuple(not f for f in lik.free)
+    n_obs = n_upd * meas.dim
+    fallback = _fallback(records, ll)
+    if fallback is not None:
+        values, ll, kept, why = fallback
+        nan = np.where(lik.free, np.nan, values)
+        return NoiseFit(model, measurement, names, values, nan, nan.copy(), np.full(nq + nr, np.nan), float(ll), n_upd,
+                        int(batch.z.shape[0]), fixed, records, [why], kept=kept)
+    log_se, ci_low, ci_high, problems = _optimum_uncertainty(lik, names, values, hessian, n_obs)
+    th = lik.theta(values)
+    se = log_se[lik.free]
+    for r in records:
+        if r is not best and r.end_lost is None and abs(r.end_loglik - ll) < 0.5:
+            if np.any(np.abs(lik.theta(r.end) - th) > 2 * np.where(np.isfinite(se), se, 0.1) + 0.05):
+                problems.append("several optima with the same likelihood (starts ended at different values)")
+                break
+    return NoiseFit(model, measurement, names, values, ci_low, ci_high, log_se, float(ll), n_upd,
+                    int(batch.z.shape[0]), fixed, records, problems, kept=f"the optimum from the {best.label} start",
+                    hessian=hessian)
 
 
 #: what the fits report when the observed information is not positive definite
