@@ -66,11 +66,21 @@ class Filter:
     Attributes
     ----------
     x : ndarray
-        The state in physical coordinates (a copy).
+        The state in physical coordinates: a read-only copy (``f.x[0] = 5`` raises); assign a whole state with
+        ``f.x = [...]`` (checked like ``x0``; the covariance is kept).
     P : ndarray
-        The covariance in the filter's tangent coordinates (a copy).
+        The covariance in the filter's tangent coordinates: a read-only copy; ``f.P = ...`` sets it (symmetric positive
+        definite, checked like ``P0``).
     nis : float
         Normalised innovation squared of the last update (NaN before the first).
+    x_prior, P_prior : ndarray
+        The state and covariance before the last ``update`` (FilterPy's names; None before the first).
+    y, S, K : ndarray
+        The last update's innovation y = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K), its covariance S = ℋ P ℋᵀ + R and the Kalman gain
+        K = P ℋᵀ S⁻¹, all at the prior (the fused update damps K where a large heading correction would bend it:
+        then its step is α K y; ``lgekf.estimators`` docs); None before the first update.
+    log_likelihood : float
+        log N(y; 0, S) of the last update (NaN before the first).
     """
 
     model = ""
@@ -92,6 +102,7 @@ class Filter:
         self._s = self._k.state_from_physical(x0)
         self._p = pack(P0)
         self.nis = float("nan")
+        self._prior = None  # (s, p, z) before the last update: x_prior, P_prior, y, S, K are made from it on demand
         self.record = bool(record)
         self._history = []  # per predict: [dt, s_pred, p_pred, s_post, p_post]
 
@@ -129,6 +140,7 @@ class Filter:
     def update(self, z: ArrayLike) -> float:
         """Correct with one measurement z ((x, y) or (x, y, θ)); returns the NIS of the innovation."""
         z = as_float_array("z", z, (self._m,))
+        self._prior = (self._s.copy(), self._p.copy(), z)
         self.nis = float(self._update(self._s, self._p, *z.tolist(), *self._r))
         if self.record and self._history:
             self._history[-1][3] = self._s.copy()
@@ -162,11 +174,63 @@ class Filter:
 
     @property
     def x(self) -> np.ndarray:
-        return np.asarray(self._k.state_to_physical(self._s))
+        return _read_only(self._k.state_to_physical(self._s))
+
+    @x.setter
+    def x(self, value):
+        x = as_float_array("x", value, (self._spec.n,))
+        self._spec.check_state("x", x)
+        self._s = self._k.state_from_physical(x)
 
     @property
     def P(self) -> np.ndarray:
-        return unpack(self._p, self._spec.n)
+        return _read_only(unpack(self._p, self._spec.n))
+
+    @P.setter
+    def P(self, value):
+        self._p = pack(spd_matrix("P", value, self._spec.n))
+
+    @property
+    def x_prior(self) -> np.ndarray | None:
+        return None if self._prior is None else _read_only(self._k.state_to_physical(self._prior[0]))
+
+    @property
+    def P_prior(self) -> np.ndarray | None:
+        return None if self._prior is None else _read_only(unpack(self._prior[1], self._spec.n))
+
+    def _innovation(self):
+        """(y, S, K) of the last update, at its prior (class docstring)."""
+        s, p, z = self._prior
+        H = np.asarray(self._spec.kernel("calH", self.measurement)(s), dtype=float)
+        y = np.empty(self._m)
+        self._spec.kernel("innovation_into", self.measurement)(s, *z.tolist(), y)
+        meas = self._spec.measurement(self.measurement)
+        r = np.asarray(self._r)
+        R = np.diag(r[list(meas.noise_inputs)] ** 2) if meas.noise_inputs is not None else np.eye(self._m) * r[0] ** 2
+        P = unpack(p, self._spec.n)
+        S = H @ P @ H.T + R
+        K = np.linalg.solve(S, H @ P).T
+        return y, S, K
+
+    @property
+    def y(self) -> np.ndarray | None:
+        return None if self._prior is None else _read_only(self._innovation()[0])
+
+    @property
+    def S(self) -> np.ndarray | None:
+        return None if self._prior is None else _read_only(self._innovation()[1])
+
+    @property
+    def K(self) -> np.ndarray | None:
+        return None if self._prior is None else _read_only(self._innovation()[2])
+
+    @property
+    def log_likelihood(self) -> float:
+        if self._prior is None:
+            return float("nan")
+        y, S, _ = self._innovation()
+        _, logdet = np.linalg.slogdet(S)
+        return float(-0.5 * (y.size * np.log(2 * np.pi) + logdet + y @ np.linalg.solve(S, y)))
 
     @property
     def mean(self) -> np.ndarray:
@@ -176,6 +240,13 @@ class Filter:
     def __repr__(self) -> str:
         xs = ", ".join(f"{n}={v:.4g}" for n, v in zip(self.state_names, self.x))
         return f"{type(self).__name__}({xs})"
+
+
+def _read_only(a) -> np.ndarray:
+    """A copy that refuses in-place assignment (``f.x[0] = 5`` would otherwise change nothing, silently)."""
+    a = np.array(a, dtype=float)
+    a.flags.writeable = False
+    return a
 
 
 def _model_class(spec: ModelSpec) -> type:
