@@ -96,7 +96,7 @@ def score(df, t, p, z, sigma, starts):
     k = np.arange(t.size) - np.repeat(starts[:-1], np.diff(starts))
     diverged = (err > 10 * sigma) & (err > 5 * std) & (k >= 2)
     obj = np.repeat(np.arange(len(starts) - 1), np.diff(starts))
-    keep = (k >= 2) & (flag == 0)
+    keep = (k >= 2) & ((flag & 1) == 0)  # rows the monitor vouches for (bit 2: only the smoothing failed)
     raw = np.hypot(*(z - p).T)
     row = {"nonfinite": nonfinite, "diverged rows": int(diverged.sum()), "unflagged": int((diverged & ((flag & 1) == 0)).sum()),
            "diverged objects": int(np.unique(obj[diverged]).size), "flagged": int(((flag & 1) > 0).sum()),

@@ -111,3 +111,12 @@ def test_track_gives_each_class_its_noise(mixed_file, tmp_path, capsys, model):
         raw = KINDS[kind][1] * np.sqrt(2)
         assert np.sqrt(np.mean(err2[kind])) < 0.75 * raw, kind
     assert all(r["flag"] == "0" for r in rows if r["id"].startswith("ped"))
+
+
+def test_tune_fits_each_class_on_its_own_objects(mixed_file, tmp_path, capsys):
+    src, truth = mixed_file
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), "--model", "cv", "--tune", "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    fitted = [float(v) for v in re.findall(r"class \d: learned noise for cv .*?meas_r = ([0-9.e+-]+)", err)]
+    np.testing.assert_allclose(fitted, [0.2, 0.5, 20.0], rtol=0.3)  # one fit per class, each its own sensor's noise

@@ -222,22 +222,26 @@ class ModelsTrack:
                 say(f"  class {c + 1}: {p.describe(heading_std if pose else None, heading_given=a.heading_std is not None)}")
         elif classes.plans[0].estimated:
             say(classes.plans[0].describe(heading_std if pose else None, heading_given=a.heading_std is not None))
-        main_class = int(np.argmax(np.bincount(classes.of_object, weights=np.diff(starts))))  # the class of most rows: --tune's
         warn_misfit(a.meas_std, meas, starts)
         configs = [TrackConfig(dict(p.accel_std), p.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
                    for p in classes.plans]
-        cfg = configs[main_class]
-        self.cfgs = {m: ClassConfigs(classes.of_object, configs) for m in models}
-        if a.tune:
+        per_model = {m: list(configs) for m in models}
+        if a.tune:  # each class of objects fitted on its own objects, from its own plan
+            from ..apps.defaults import objects_subset
             from ..apps.smooth_track import tune_models
 
-            fits = tune_models(meas.t, meas.z, starts, models, measure, a.meas_std, self.given_q, meas.heading, a.omega_std,
-                               a.tune_method, start_noise=classes.plans[main_class].tune_starts(measure, heading_std))
-            for m, fit in fits.items():
-                print(f"lgekf track: {fit.report()}", file=sys.stderr)
-                r = fit.meas_std
-                self.cfgs[m] = TrackConfig({**cfg.accel_std, m: fit.accel_std}, r[0], a.omega_std,
-                                           r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
+            for c, plan in enumerate(classes.plans):
+                rows, sub = objects_subset(starts, np.flatnonzero(classes.of_object == c))
+                h = None if meas.heading is None else meas.heading[rows]
+                fits = tune_models(meas.t[rows], meas.z[rows], sub, models, measure, a.meas_std, self.given_q, h, a.omega_std,
+                                   a.tune_method, start_noise=plan.tune_starts(measure, heading_std))
+                head = f"class {c + 1}: " if len(classes.plans) > 1 else ""
+                for m, fit in fits.items():
+                    print(f"lgekf track: {head}{fit.report()}", file=sys.stderr)
+                    r = fit.meas_std
+                    per_model[m][c] = TrackConfig({**configs[c].accel_std, m: fit.accel_std}, r[0], a.omega_std,
+                                                  r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
+        self.cfgs = {m: ClassConfigs(classes.of_object, per_model[m]) for m in models}
 
     def write(self, handles, meas, starts, monitor, bar) -> list:
         """Track and write every model's file; returns (what, extra) per file for its report line."""
