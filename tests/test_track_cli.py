@@ -100,12 +100,16 @@ def test_columns_rows_and_first_rows(tmp_path):
     assert r.returncode == 0, r.stderr
     header, data = read_out(out)
     assert header == ["id", "t", "x", "y", "theta", "vx", "vy", "omega",
-                      "std_x", "std_y", "std_theta", "std_vx", "std_vy", "std_omega", "nis", "flag"]
+                      "std_x", "std_y", "std_theta", "std_vx", "std_vy", "std_omega", "speed", "course", "nis", "flag"]
     assert data.shape == (4, len(header))
     vals = data[:, 1:].astype(float)
     np.testing.assert_allclose(vals[0, 1:3], [0, 0])  # row 0: the first measurement
     np.testing.assert_allclose(vals[:2, 3:7], [[0, 3, 0, 0]] * 2, atol=1e-12)  # two-point velocity (3, 0), heading 0
     np.testing.assert_allclose(vals[:2, 7:9], 0.2)  # position std = meas std
+    np.testing.assert_allclose(vals[:2, 13:15], [[3, 0]] * 2, atol=1e-12)  # speed 3 m/s, course 0 (east)
+    th, vx, vy = vals[:, 3], vals[:, 4], vals[:, 5]  # speed and course: the body velocity turned into the world frame
+    np.testing.assert_allclose(vals[:, 13], np.hypot(vx, vy), rtol=1e-9)
+    np.testing.assert_allclose(np.cos(vals[:, 14] - th - np.arctan2(vy, vx)), 1.0, atol=1e-9)
     assert np.isnan(vals[:2, -2]).all() and np.isfinite(vals[2:, -2]).all()
     assert list(data[:, -1]) == ["0"] * 4  # flag: written as 0 / 1
 
@@ -121,7 +125,7 @@ def test_model_all_and_full_cov(tmp_path):
         assert len([h for h in header if h.startswith("cov_")]) == n * (n + 1) // 2
         vals = data[:, 1:].astype(float)
         std = vals[:, 1 + n:1 + 2 * n]
-        cov = unpack(vals[:, 1 + 2 * n:-2], n)
+        cov = unpack(vals[:, 3 + 2 * n:-2], n)  # after state, stds, speed, course
         np.testing.assert_allclose(std**2, np.diagonal(cov, axis1=1, axis2=2), rtol=1e-8)
     assert not (tmp_path / "tracks.csv").exists()
 
@@ -154,7 +158,7 @@ def test_irregular_dt_equals_filter_batch(tmp_path, model):
     np.testing.assert_allclose(vals[:, 0], t, rtol=1e-14)
     np.testing.assert_array_equal(vals[:, -1], 0)  # --no-monitor: flag 0
     np.testing.assert_allclose(vals[2:, 1:1 + n], xs[0], rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(unpack(vals[2:, 1 + 2 * n:-2], n), Ps[0], rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(unpack(vals[2:, 3 + 2 * n:-2], n), Ps[0], rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(vals[2:, -2], nis[0], rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(vals[1, 1:1 + n], x0[0], atol=1e-12)
 

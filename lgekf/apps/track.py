@@ -271,10 +271,24 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
 
 # ------------------------------------------------------------------------------------------ CLI
 ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
+MOTION_COLUMNS = ("speed", "course")  # beside every model's own state (``speed_course``)
+
+
+def speed_course(model: str, x: np.ndarray) -> np.ndarray:
+    """(N, 2): the speed |v| (m/s) and the course atan2(v_y, v_x) (rad, the direction of motion in the world frame) of
+    physical states x (N, n), v the world velocity of the model's definition (``world_velocity``)."""
+    v = np.empty((x.shape[0], 2))
+    get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), v)
+    return np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])])
 
 
 def output_columns(model, full_cov=False, origin=False, smooth=False):
-    """The header of a track file: id, t, state, std_<state>, [cov_<i>_<j>], nis, [origin_lat, origin_lon], flag.
+    """The header of a track file: id, t, state, std_<state>, speed, course, [cov_<i>_<j>], nis, [origin_lat,
+    origin_lon], flag.
+
+    ``speed`` and ``course`` (``speed_course``): every model's speed and direction of motion in the world frame, the
+    same quantities whatever the state (SE(2)×SE(2) / SE(2)×R³: θ is the body heading, the course is θ +
+    atan2(v_y, v_x); CTRV: ψ is the course; CV: atan2(v_y, v_x)).
 
     ``origin``: the input had lat, lon columns; those two columns then hold the origin (degrees) of
     the east/north frame of x, y (``lgekf.io.geo``), the same on every row. ``flag``: 1 on the rows of a
@@ -282,7 +296,7 @@ def output_columns(model, full_cov=False, origin=False, smooth=False):
     """
     spec = get_model(model)
     names = list(spec.state_names)
-    cols = ["id", "t", *names, *(f"std_{s}" for s in names)]
+    cols = ["id", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS]
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
@@ -399,7 +413,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
         fh.write((",".join(columns) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
-    m = spec.n * 2 + (spec.n_packed if full_cov else 0) + 1
+    m = spec.n * 2 + len(MOTION_COLUMNS) + (spec.n_packed if full_cov else 0) + 1
     ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
@@ -434,7 +448,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
                 al.row += a if alarm_row0 is None else alarm_row0
             alarms.extend(r.alarms)
             flagged += int((r.flag & 1).sum())
-            parts = [r.x, r.p] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: its stds, made per block
+            parts = [r.x, r.p, speed_course(model, r.x)] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: stds
             if origin:
                 parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
             parts.append(r.flag[:, None])

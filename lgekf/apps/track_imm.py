@@ -8,7 +8,8 @@ on. The noise comes from the data as for the filters (:func:`imm_noise`): the me
 (calm, manoeuvre) a factor on that estimate; modes given as numbers in ``--imm-modes`` keep them. The divergence
 monitor and recovery of ``lgekf.apps.imm_monitor`` watch the combined estimate (``--no-monitor``: off); ``flag``
 is 1 on the rows of an alarm. Output columns: id, t, the combined estimate in the common
-coordinates x, y, theta, vx, vy (body frame), omega, their stds, mu_<mode> (mode probabilities), and
+coordinates x, y, theta, vx, vy (body frame), omega, their stds, speed and course (the world velocity's norm and
+direction), mu_<mode> (mode probabilities), and
 origin_lat, origin_lon for lat/lon input, flag.
 
 ``--tune`` (:func:`tune_imm`): every distinct model of the modes whose noise is not given as numbers is fitted by
@@ -41,7 +42,7 @@ from ..io.formatting import format_rows, label_bytes
 from ..io.grouping import row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
-from .track import ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
+from .track import MOTION_COLUMNS, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
 __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
            "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
@@ -128,7 +129,7 @@ def imm_columns(opts: ImmTrackOptions, origin: bool = False, smooth: bool = Fals
     (the labels of modes given as numbers: their labels at the time of parsing, i.e. the numbers)."""
     smoothed = ([*(f"smooth_{s}" for s in COMMON_NAMES), *(f"smooth_std_{s}" for s in COMMON_NAMES),
                  *_mode_columns(opts, "smooth_mu_")] if smooth else [])
-    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *_mode_columns(opts, "mu_")]
+    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *MOTION_COLUMNS, *_mode_columns(opts, "mu_")]
             + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"] + smoothed)
 
 
@@ -369,11 +370,12 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     res = imm_track_classes(t, meas.z, starts, classes, omega_std, smooth, monitor)
     for b in res.smooth_failed:
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
-    ncol = 12 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
+    ncol = 14 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
     col_digits = np.full(ncol, digits, dtype=np.int64)
-    parts = [res.c, res.sd, res.mu]
+    v = common_world_velocity(res.c)
+    parts = [res.c, res.sd, np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])]), res.mu]
     if origin:
-        col_digits[12 + M:12 + M + 2] = 17
+        col_digits[14 + M:14 + M + 2] = 17
         parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
     parts.append(res.flag[:, None])
     if smooth:
