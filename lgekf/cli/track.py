@@ -101,6 +101,8 @@ def track_parser():
                     help="measurement std per axis in m (default: estimated from the data, local quadratic residuals)")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
     ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
+    ap.add_argument("--heading-unit", choices=["rad", "deg"], default="rad",
+                    help="unit of the heading column (default rad; values beyond ±2π are refused as probably degrees)")
     ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
@@ -190,6 +192,8 @@ class ModelsTrack:
         require_dask("lgekf track --workers/--scheduler")  # first: without Dask nothing else matters
         if a.tune or a.smooth:
             raise ValueError("--tune/--smooth: not available with --workers/--scheduler (yet); run without them")
+        if a.heading_unit != "rad":
+            raise ValueError("--heading-unit deg: not available with --workers/--scheduler (yet); convert the column to radians")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
         if a.meas_std is None or missing:
@@ -266,7 +270,21 @@ def read_track_input(a):
         meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
+    if meas.heading is not None:
+        meas.heading = heading_in_radians(meas.heading, a.heading_unit)
     return meas, starts
+
+
+def heading_in_radians(h, unit: str):
+    """The heading column in radians: converted from ``--heading-unit deg``; in radians (the default) a value beyond
+    ±2π is refused with one line (a heading in degrees read as radians tracked worse than the raw positions)."""
+    if unit == "deg":
+        return np.radians(h)
+    big = np.abs(h) > 2 * math.pi + 1e-9
+    if big.any():
+        raise ValueError(f"heading column: {int(big.sum())} value{'s' if big.sum() > 1 else ''} beyond ±2π (largest "
+                         f"{float(np.abs(h[np.isfinite(h)]).max()):g}): degrees? give --heading-unit deg")
+    return h
 
 
 def cmd_track(argv) -> int:
