@@ -20,7 +20,8 @@ from ..core.registry import MODELS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming
-from ..io.readers import parse_delimiter, read_measurements
+from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
+from ..io.readers import parse_delimiter, read_measurements, skipping_nonfinite_rows
 from ..io.units import TIME_UNITS, to_seconds, unit_warnings
 from . import ArgumentParser
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
@@ -101,6 +102,11 @@ def track_parser():
                     help="measurement std per axis in m (default: estimated from the data, local quadratic residuals)")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
     ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
+    ap.add_argument("--sort", action="store_true",
+                    help="sort each object's rows by time first (says how many moved); without it unsorted rows are refused")
+    ap.add_argument("--skip-invalid", action="store_true",
+                    help="drop what no filter can take, with one line per reason: rows with NaN/inf, a time not after the "
+                         "object's previous row (duplicates), objects left with a single row; without it they are refused")
     ap.add_argument("--heading-unit", choices=["rad", "deg"], default="rad",
                     help="unit of the heading column (default rad; values beyond ±2π are refused as probably degrees)")
     ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
@@ -261,13 +267,22 @@ class ModelsTrack:
 
 def read_track_input(a):
     """The measurements of ``lgekf track``'s input (CSV, pedestrian format or Parquet), grouped by object (objects of
-    at least 2 rows, t increasing: else one clear error), t in seconds. Returns (meas, starts)."""
+    at least 2 rows, t increasing: else one clear error; ``--sort`` and ``--skip-invalid``: ``lgekf.io.cleaning``), t in
+    seconds. Returns (meas, starts)."""
     single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
     heading = a.use_heading or a.measure == "pose"
-    if is_parquet(a.input):
-        meas = read_parquet(a.input, heading)
-    else:
-        meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
+    with skipping_nonfinite_rows(a.skip_invalid):
+        if is_parquet(a.input):
+            meas = read_parquet(a.input, heading)
+        else:
+            meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
+    if a.sort:
+        meas, moved = sort_within_objects(meas)
+        print(f"lgekf track: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)
+    if a.skip_invalid:
+        meas = drop_invalid(meas)
+        for line in skipped_summary(meas):
+            print(f"lgekf track: {line}", file=sys.stderr)
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
     if meas.heading is not None:

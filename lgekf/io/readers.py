@@ -36,6 +36,7 @@ import os
 import re
 import warnings
 import zlib
+from contextvars import ContextVar
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 
@@ -49,7 +50,7 @@ from .mapped import MAP_MIN_BYTES, MappedFile, parse_mapped
 
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
-    "measurements_from_columns", "parse_number_column", "csv_header", "header_keys",
+    "measurements_from_columns", "parse_number_column", "csv_header", "header_keys", "skipping_nonfinite_rows",
 ]
 
 CHUNK_LINES = 1 << 18
@@ -92,6 +93,7 @@ class Measurements:
     source: str
     extra: dict = field(default_factory=dict)
     origin: tuple | None = None
+    skipped: dict = field(default_factory=dict)  # reason -> line numbers of rows dropped while reading (--skip-invalid)
 
     @property
     def n_objects(self) -> int:
@@ -115,7 +117,7 @@ class Measurements:
                 more = f" ({short.size} objects in all)" if short.size > 1 else ""
                 raise DataError(
                     f"{self.source}: object id {self.labels[i]} (line {first}) has {what}{more}; "
-                    f"at least {min_length} are needed to initialise its velocity"
+                    f"at least {min_length} are needed to initialise its velocity (--skip-invalid drops such objects)"
                 )
             keep_obj = np.ones(self.n_objects, bool)
             keep_obj[short] = False
@@ -141,7 +143,8 @@ class Measurements:
                 raise DataError(
                     f"{self.source} line {int(self.line[order[k + 1]])}: time is not increasing within object id {labels[o]} "
                     f"(t = {float(t[k + 1])!r} after t = {float(t[k])!r} on line {int(self.line[order[k]])}); "
-                    "each object's rows must be in strictly increasing time"
+                    "each object's rows must be in strictly increasing time (--sort sorts them, --skip-invalid drops repeated "
+                    "times)"
                 )
         out = Measurements(
             t, self.z[order], None if self.heading is None else self.heading[order], obj, labels,
@@ -289,15 +292,37 @@ def _read_chunks(source, f, first_line, delimiter, usecols, colnames, str_cols=(
     return cat, (np.concatenate(lines_no) if lines_no else np.empty(0, dtype=np.int64))
 
 
+#: ``skipping_nonfinite_rows``: whether a row with a NaN or infinite number is dropped (recorded) instead of refused
+_SKIP_NONFINITE: ContextVar[bool] = ContextVar("skip_nonfinite", default=False)
+
+
+@contextmanager
+def skipping_nonfinite_rows(skip: bool = True):
+    """Within the block, the readers drop rows with a NaN or infinite number (``lgekf track --skip-invalid``) and
+    record them in ``Measurements.skipped["non-finite"]`` (their line numbers) instead of refusing the file."""
+    token = _SKIP_NONFINITE.set(bool(skip))
+    try:
+        yield
+    finally:
+        _SKIP_NONFINITE.reset(token)
+
+
 def _check_finite(source, cols: dict, lines, names):
+    """None when every number of the columns ``names`` is finite; else, within ``skipping_nonfinite_rows``, the mask
+    of the rows to keep, and outside it one DataError naming the first bad line and column."""
+    bad_rows = None
     for name in names:
         a = cols[name]
         bad = ~np.isfinite(a)
         if bad.any():
-            k = int(np.flatnonzero(bad)[0])
-            raise DataError(
-                f"{source} line {int(lines[k])}: column {name!r} is {float(a[k])!r}; NaN and infinite values are not allowed"
-            )
+            if not _SKIP_NONFINITE.get():
+                k = int(np.flatnonzero(bad)[0])
+                raise DataError(
+                    f"{source} line {int(lines[k])}: column {name!r} is {float(a[k])!r}; NaN and infinite values are not "
+                    "allowed (--skip-invalid drops such rows)"
+                )
+            bad_rows = bad if bad_rows is None else bad_rows | bad
+    return None if bad_rows is None else ~bad_rows
 
 
 def _number_label(v: float) -> str:
@@ -662,7 +687,17 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
     Measurements
         Objects numbered in order of first appearance among these rows.
     """
-    _check_finite(source, cols, lines, [n for n in cols if n != "id"])
+    keep = _check_finite(source, cols, lines, [n for n in cols if n != "id"])
+    skipped = {}
+    if keep is not None:  # skipping_nonfinite_rows: the rows with a NaN or infinite number dropped
+        skipped["non-finite"] = lines[~keep].tolist()
+        cols = {n: v[keep] for n, v in cols.items()}
+        lines = lines[keep]
+        positions = None if positions is None else positions[keep]
+        if objects is not None:
+            objects = (objects[0][keep], objects[1])
+        if lines.size == 0:
+            raise DataError(f"{source}: no measurements with finite numbers")
     if objects is not None:
         obj, labels = objects
     elif "id" in cols:
@@ -683,7 +718,8 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         origin = None
         z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
     ext = {n: cols[n] for n in extra if n in cols}
-    return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin)
+    return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin,
+                        skipped=skipped)
 
 
 def parse_number_column(source: str, name: str, texts, lines) -> np.ndarray:
@@ -754,10 +790,15 @@ def read_pedestrian(path, frame_dt: float) -> Measurements:
         cols, lines = _read_chunks(source, f, 1, None, [0, 1, 2, 3], colnames)
     if lines.size == 0:
         raise DataError(f"{source}: empty file; expected whitespace-separated lines 'frame id x y'")
-    _check_finite(source, cols, lines, colnames)
+    keep = _check_finite(source, cols, lines, colnames)
+    skipped = {}
+    if keep is not None:
+        skipped["non-finite"] = lines[~keep].tolist()
+        cols = {n: v[keep] for n, v in cols.items()}
+        lines = lines[keep]
     obj, labels = _objects_from_numbers(cols["id"])
     z = np.column_stack([cols["x"], cols["y"]])
-    return Measurements(cols["frame"] * frame_dt, z, None, obj, labels, lines, source)
+    return Measurements(cols["frame"] * frame_dt, z, None, obj, labels, lines, source, skipped=skipped)
 
 
 def read_measurements(path, fmt: str = "csv", frame_dt: float | None = None, use_heading: bool = False,
