@@ -27,6 +27,7 @@ _PUBLIC = {
     "MODELS": "lgekf.core.registry",
     "get_model": "lgekf.core.registry",
     "track": "lgekf.cli.api",
+    "plot_tracks": "lgekf.apps.plot_tracks",
 }
 
 

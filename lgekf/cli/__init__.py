@@ -50,6 +50,8 @@ COMMANDS = {
                  "evaluate every filter on real ground-truth trajectories (ETH/UCY, KITTI, cyclists, DUT or your CSV)"),
     "sweep": ("lgekf.cli.sweep", "cmd_sweep",
               "run a grid of study protocols (GRID.toml) as Dask tasks: cells.csv, meta.json, a figure per swept axis; resumable"),
+    "plot": ("lgekf.cli.plot", "cmd_plot",
+             "draw a track file: the map with 95 % ellipses and flagged rows, speed, course and turn rate against time"),
     "derive": ("lgekf.cli.derive", "cmd_derive",
                "derive the model ingredients with SymPy and regenerate the numba kernels (--check, --verify)"),
 }

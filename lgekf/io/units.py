@@ -64,7 +64,8 @@ def _step_values(t, z, starts, what: str, out: np.ndarray) -> int:
         v = t[a + 1:b + 1] - t[a:b]
         if what == "speed":
             dz = z[a + 1:b + 1] - z[a:b]
-            v = np.hypot(dz[:, 0], dz[:, 1]) / v
+            with np.errstate(divide="ignore", invalid="ignore"):  # a pair across two objects may share a time: dropped below
+                v = np.hypot(dz[:, 0], dz[:, 1]) / v
         lo, hi = np.searchsorted(cut, [a, b])
         if hi > lo:
             keep = np.ones(b - a, dtype=bool)
