@@ -40,17 +40,17 @@ def test_one_outlier_does_not_trigger_but_a_run_does():
     nis[10] = 1e6  # a single gross measurement: clipped, no alarm
     row, kind, *_ = _scan_nis(nis)
     assert row[0] == -1
-    nis[25:30] = 20.0  # a run of large innovations: the short window (3 updates) fires on the 2nd:
-    row, kind, val, start, lim = _scan_nis(nis)  # 1 + 2 x 13.82 (clipped) = 28.6 > 27.9 (χ²₆ at 1 - 1e-4)
-    assert (row[0], kind[0], start[0]) == (26, 1, 24)
-    assert val[0] == pytest.approx((1 + 2 * chi2_quantile(1 - CFG.clip, 2)) / 3)
+    nis[25:30] = 30.0  # a run of large innovations: the short window (3 updates) fires on the 3rd:
+    row, kind, val, start, lim = _scan_nis(nis)  # 1 + 2 x 18.4 (clipped) = 37.8 < 38.3 (χ²₆ at 1 - 1e-6) < 3 x 18.4
+    assert (row[0], kind[0], start[0]) == (27, 1, 25)
+    assert val[0] == pytest.approx(chi2_quantile(1 - CFG.clip, 2))
 
 
 def test_long_window_catches_a_moderate_persistent_excess():
     nis = np.full(60, 1.0)
-    nis[20:] = 6.0  # each below the short window's mean limit ≈ 9.3; 10-update sums: 1 + 9 x 6 = 55 > 52.4
+    nis[20:] = 7.0  # each below the short window's mean limit ≈ 12.8; 10-update sums: 1 + 9 x 7 = 64 < 65.4 < 10 x 7
     row, kind, val, start, lim = _scan_nis(nis)
-    assert kind[0] == 1 and row[0] == 28 and start[0] == 19
+    assert kind[0] == 1 and row[0] == 29 and start[0] == 20
     assert lim[0] == pytest.approx(chi2_quantile(1 - CFG.alpha, 20) / 10)
 
 

@@ -7,7 +7,7 @@ scanned row by row since the last (re-)initialisation:
 
 * **Residual window**: the posterior residual e_k = z_k − (x_k, y_k) of a consistent filter has covariance
   R − H P_k Hᵀ ⪯ R = r² I (r the measurement std in use), so d_k = |e_k|² / r², each clipped at its
-  99.9 % χ²₂ quantile, summed over the last W = ``window`` (and over the last ``short``) updates exceeds the
+  99.99 % χ²₂ quantile (``clip``), summed over the last W = ``window`` (and over the last ``short``) updates exceeds the
   (1 − α) χ² quantile with 2W (2·short) degrees of freedom with probability at most α (the test is
   conservative). An IMM that has lost the object, over-confident while its estimate drifts off the
   measurements, exceeds it persistently. (The IMM's combined prediction, which a NIS would need, is not an
