@@ -81,14 +81,14 @@ def test_study_with_imm(tmp_path, capsys):
     assert len(rows) == 2 and all(float(r["mean_rmse"]) > 0 for r in rows)
 
 
-def test_readme_imm_example_runs():
+def test_docs_imm_example_runs():
     from pathlib import Path
     import re
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    block = re.search(r"## Interacting multiple models \(IMM\)\n.*?```python\n(.*?)```", readme, re.S).group(1)
+    chapter = (Path(__file__).resolve().parents[1] / "docs" / "imm.md").read_text(encoding="utf-8")
+    block = re.search(r"# Interacting multiple models \(IMM\)\n.*?```python\n(.*?)```", chapter, re.S).group(1)
     ns: dict = {}
-    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
+    exec(compile(block, "docs/imm.md", "exec"), ns)  # noqa: S102 - our own documentation
     imm = ns["imm"]
     assert imm.x.shape == (6,) and imm.P.shape == (6, 6) and abs(imm.mu.sum() - 1) < 1e-12
 

@@ -215,14 +215,14 @@ def test_tracker_runs_on_any_bank_with_the_interface():
     assert bank.calls["gate"] == bank.calls["update"] == len(sc.times) - 2  # the first tracks start at scan 2
 
 
-def test_readme_python_example_runs(capsys):
+def test_docs_python_example_runs(capsys):
     import re
     from pathlib import Path
 
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
-    block = re.search(r"## Many objects in clutter\n.*?```python\n(.*?)```", readme, re.S).group(1)
+    chapter = (Path(__file__).resolve().parents[1] / "docs" / "multi_target.md").read_text(encoding="utf-8")
+    block = re.search(r"# Many objects in clutter.*?\n.*?```python\n(.*?)```", chapter, re.S).group(1)
     ns: dict = {}
-    exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
+    exec(compile(block, "docs/multi_target.md", "exec"), ns)  # noqa: S102 - our own documentation
     rep = ns["rep"]
     assert rep.ids.size == 2 and np.all(rep.existence > 0.9)
     np.testing.assert_allclose(np.sort(rep.states[:, 0]), [5.8, 50.0], atol=0.5)

@@ -1,20 +1,22 @@
-"""Every `lgekf ...` command the README shows runs and exits with status 0 — on small inputs.
+"""Every `lgekf ...` command the documentation shows runs and exits with status 0 — on small inputs.
 
-The commands are collected from the README's code blocks and inline code (``lgekf ...``), plus the
-`lgekf study` options in the table of the study section (``--noise-scale cv=30 ctrv=3`` and others,
-run as ``lgekf study OPTIONS``). The README's first block (setup, the full study, the test suite) is
-what CI runs (`.ci/run`) and is left out. ``README_TO_RUN`` maps each collected command to what is run;
-when the README gains a command the test fails until it is added there. Substitutions, all for size:
+The commands are collected from the code blocks and inline code (``lgekf ...``) of the README and of every
+chapter in ``docs/``, plus the `lgekf study` options in the table of the study chapter (``--noise-scale cv=30
+ctrv=3`` and others, run as ``lgekf study OPTIONS``). The README's first block (setup, the full study, the test
+suite) is what CI runs (`.ci/run`) and is left out. ``README_TO_RUN`` maps each collected command to what is run;
+when the documentation gains a command the test fails until it is added there. Substitutions, all for size:
 
-* synopses (``[...]``, ``{a,b,...}``, ``INPUT.csv``, ``DATASET...``) and bare mentions (``lgekf track``)
-  become concrete commands (one per model for ``{se2se2,...}``, each option of ``[--check | --verify]``);
+* synopses (``[...]``, ``{a,b,...}``, ``INPUT``, ``GRID.toml``) and bare mentions (``lgekf track``) become
+  concrete commands (one per model for ``{se2se2,...}``, each option of ``[--check | --verify]``);
 * every ``lgekf study`` gets ``--trajectories 3 --sigmas 0,1 --steps 10`` where it does not set them;
 * every ``lgekf evaluate`` reads a stand-in data folder (``$LGEKF_DATA``: the presets' file layout
   with a few synthetic tracks each, built below) and gets ``--seeds 1``;
 * ``lgekf derive`` (which rewrites the package's ``generated/``) gets ``--out`` a temporary folder;
 * the files the commands name (``detections.csv``, ``poses.csv``, ``biwi_eth.txt``, ``phone.csv.gz``, ``year.csv``,
   ``detections.parquet``, ``grid.toml``) are small synthetic stand-ins written into the temporary working folder;
-  ``examples/sweep_sigma_dt.toml`` is the real example with 5 trajectories of 10 steps per cell;
+  ``cars.csv`` and ``my_tracks.csv`` / ``scene.txt`` are run as ``poses.csv`` (a heading column) and
+  ``detections.csv`` / ``biwi_eth.txt``; ``examples/data/detections.csv`` is the shipped example itself, and
+  ``examples/sweep_sigma_dt.toml`` the real example with 5 trajectories of 10 steps per cell;
 * a scheduler address (``tcp://10.0.0.5:8786``) becomes the address of a local test cluster (``{scheduler}``).
 
 The ``lgekf derive`` runs are SymPy work (30-45 s each on 2 cores) and are marked slow.
@@ -33,19 +35,30 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+ROOT = Path(__file__).resolve().parents[1]
+README = (ROOT / "README.md").read_text(encoding="utf-8")
+DOCS = {p.name: p.read_text(encoding="utf-8") for p in sorted((ROOT / "docs").glob("*.md"))}
 MODELS = ("se2se2", "se2r3", "ctrv", "cv")
+STUDY_CHAPTER = "study.md"  # its "## The Monte Carlo study" section has the table of study protocols
 
 
-def readme_commands() -> list[str]:
-    """The `lgekf ...` commands of the README (first block excluded), in order, without duplicates."""
-    first = re.search(r"```\n(.*?)```", README, re.S)
-    text = README[:first.start()] + README[first.end():]
+def _commands(text: str) -> list[str]:
+    """The `lgekf ...` lines of the code blocks of ``text``, then its inline ``lgekf ...`` code."""
     cmds = []
     for block in re.finditer(r"```[^\n]*\n(.*?)```", text, re.S):
         cmds += [re.sub(r"\s+#.*$", "", ln).strip() for ln in block.group(1).splitlines() if ln.startswith("lgekf ")]
     prose = re.sub(r"```.*?```", "", text, flags=re.S)
     cmds += [" ".join(m.group(1).split()) for m in re.finditer(r"`(lgekf(?: [^`]*)?)`", prose)]
+    return cmds
+
+
+def readme_commands() -> list[str]:
+    """The `lgekf ...` commands of the README (first block excluded) and of docs/*.md, in order, without duplicates."""
+    first = re.search(r"```\n(.*?)```", README, re.S)
+    cmds = _commands(README[:first.start()] + README[first.end():])
+    for text in DOCS.values():
+        cmds += _commands(text)
+    prose = re.sub(r"```.*?```", "", DOCS[STUDY_CHAPTER], flags=re.S)
     study = re.search(r"\n## The Monte Carlo study.*?(?=\n## )", prose, re.S).group(0)
     cmds += ["lgekf study " + m.group(1) for m in re.finditer(r"^\| `(--[^`]*)` \|", study, re.M)]
     return list(dict.fromkeys(cmds))
@@ -55,7 +68,7 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
                   "[--truth se2se2|se2r3] [--filters se2se2,se2r3,se2r2,ctrv,cv] [--measure position|pose] [--heading-std S] "
                   "[--noise-scale cv=10 ...] [--out results/] [--quiet]")
 
-# README command -> the commands run for it (None: run as written)
+# documented command -> the commands run for it (None: run as written)
 README_TO_RUN = {
     "lgekf track detections.csv --multi --model se2se2 -o tracks.csv --clutter-density 1e-4 --detection-prob 0.9 --association jpda": None,
     "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
@@ -70,12 +83,12 @@ README_TO_RUN = {
                      "--truth se2r3 --filters se2se2,se2r2,cv --measure pose --heading-std 0.1 --noise-scale cv=10 ctrv=3 "
                      "--out results/ --quiet"],
     "lgekf figures [--out figures/] [--pdf]": ["lgekf figures --out figures/ --pdf"],
-    "lgekf track INPUT.csv --model {se2se2,se2r3,se2r2,ctrv,cv,all} [--measure position|pose] -o OUTPUT.csv":
-        [f"lgekf track detections.csv --model {m} -o out_{m}.csv" for m in (*MODELS, "all")]
-        + ["lgekf track poses.csv --model all --measure pose -o out_pose.csv"],
+    "lgekf track INPUT -o OUTPUT [--model {se2se2,se2r3,se2r2,ctrv,cv,all,imm}] [--measure position|pose] [--smooth] [--tune]":
+        [f"lgekf track detections.csv -o out_{m}.csv --model {m}" for m in (*MODELS, "se2r2", "all", "imm")]
+        + ["lgekf track poses.csv -o out_pose.csv --model all --measure pose",
+           "lgekf track detections.csv -o out_smooth_tune.csv --model cv --smooth --tune"],
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv": None,
     "lgekf study --measure pose --heading-std 0.1": None,
-    "lgekf evaluate DATASET...": ["lgekf evaluate hotel detections.csv --out evaluation_mine/"],
     "lgekf derive [--check | --verify]": ["lgekf derive --check", "lgekf derive --verify"],
     "lgekf --version": None,
     "lgekf derive": ["lgekf derive"],
@@ -118,6 +131,20 @@ README_TO_RUN = {
         "lgekf track detections.csv --model imm --smooth -o out.csv"],
     "lgekf evaluate ethucy kitti cyclists dut --imm": None,
     "lgekf evaluate ethucy kitti cyclists dut --imm --tune": None,
+    # the quick start: the shipped example input (copied into the working folder)
+    "lgekf track examples/data/detections.csv -o tracks.csv": None,
+    "lgekf track --help": None,
+    "lgekf track --tune": ["lgekf track detections.csv --model cv --tune -o tracks.csv"],
+    "lgekf track --multi": ["lgekf track detections.csv --multi -o tracks_multi.csv"],
+    "lgekf track cars.csv -o cars.csv --model ctrv --accel-std 1,0.5 --meas-std 0.5 --use-heading --full-cov":
+        ["lgekf track poses.csv -o cars.csv --model ctrv --accel-std 1,0.5 --meas-std 0.5 --use-heading --full-cov"],
+    "lgekf track detections.csv --model imm --smooth -o tracks_imm.csv": None,
+    "lgekf evaluate ethucy kitti cyclists dut": None,
+    "lgekf evaluate ethucy kitti cyclists dut --tune": None,
+    "lgekf evaluate ethucy kitti cyclists dut --markdown": None,
+    "lgekf evaluate ethucy kitti cyclists dut --tune --tune-method grid --markdown": None,
+    "lgekf evaluate my_tracks.csv": ["lgekf evaluate detections.csv --out evaluation_mine/"],
+    "lgekf evaluate scene.txt --format pedestrian --frame-dt 0.04": ["lgekf evaluate biwi_eth.txt --format pedestrian --frame-dt 0.04 --out evaluation_scene/"],
 }
 
 
@@ -202,11 +229,13 @@ def workdir(tmp_path_factory):
 
     pd.read_csv(d / "detections.csv", dtype={"id": str}).to_parquet(d / "detections.parquet")
     (d / "grid.toml").write_text('[grid]\nsigmas = [0.0, 2.0]\n[fixed]\ntrajectories = 3\nsteps = 10\n')
-    example = (Path(__file__).resolve().parents[1] / "examples" / "sweep_sigma_dt.toml").read_text(encoding="utf-8")
+    example = (ROOT / "examples" / "sweep_sigma_dt.toml").read_text(encoding="utf-8")
     small = example.replace("trajectories = 1000", "trajectories = 5").replace("steps = 100", "steps = 10")
     assert small.count("= 5\n") == 1 and "steps = 10\n" in small, "the example's sizes changed: update this stand-in"
     (d / "examples").mkdir()
     (d / "examples" / "sweep_sigma_dt.toml").write_text(small, encoding="utf-8")
+    (d / "examples" / "data").mkdir()
+    (d / "examples" / "data" / "detections.csv").write_bytes((ROOT / "examples" / "data" / "detections.csv").read_bytes())
     return d
 
 
