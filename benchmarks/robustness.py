@@ -4,7 +4,7 @@ divergence monitor and recovery). Prints two markdown tables: the per-case summa
 
     python benchmarks/robustness.py [--cases gnss-car,kitti-1m,...] [--data-root DIR] [--out FILE.md]
 
-The cases, the criteria and what "hard" means: lgekf/apps/robustness.py (and docs/track_evaluate.md,
+The cases, the criteria and what "hard" means: lgekf/apps/robustness.py (and docs/robustness.md,
 "Robustness"). Real cases are skipped, with the reason, when their data are absent.
 """
 

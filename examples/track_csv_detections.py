@@ -5,7 +5,7 @@ walking pedestrian, irregular timestamps, 0.3 m detection noise) and tracks it; 
 ``python examples/track_csv_detections.py detections.csv`` (t in s, x and y in m; rows of different
 objects may be interleaved). ``lgekf.track`` runs the engine of the ``lgekf track`` command (the same checks,
 noise estimated from the data, divergence monitor) and returns its output as a pandas DataFrame: one row per
-detection with the state, its stds, the NIS and the flag column (docs/track_evaluate.md).
+detection with the state, its stds, the NIS and the flag column (docs/track.md).
 
 Run: ``python examples/track_csv_detections.py [detections.csv]``
 """

@@ -133,6 +133,11 @@ README_TO_RUN = {
     "lgekf evaluate ethucy kitti cyclists dut --imm --tune": None,
     # the quick start: the shipped example input (copied into the working folder)
     "lgekf track examples/data/detections.csv -o tracks.csv": None,
+    # lgekf plot draws a track file: made first, in the same run (the runs may go in any order)
+    "lgekf plot tracks.csv --measurements examples/data/detections.csv -o tracks.png":
+        ["lgekf track examples/data/detections.csv -o plot_in.csv && "
+         "lgekf plot plot_in.csv --measurements examples/data/detections.csv -o tracks.png"],
+    "lgekf plot": ["lgekf track examples/data/detections.csv -o plot_in2.csv --smooth && lgekf plot plot_in2.csv -o tracks.svg"],
     "lgekf track --help": None,
     "lgekf track --tune": ["lgekf track detections.csv --model cv --tune -o tracks.csv"],
     "lgekf track --multi": ["lgekf track detections.csv --multi -o tracks_multi.csv"],

@@ -127,7 +127,7 @@ def _regular(rate):
 
 
 def simulated_cases(names=None) -> list:
-    """The simulated cases (fixed seeds): see ``docs/track_evaluate.md`` (Robustness) for the list."""
+    """The simulated cases (fixed seeds): see ``docs/robustness.md`` for the list."""
     car = lambda rng: drive(urban_drive(280.0, rng))  # noqa: E731
     ped = lambda rng: drive(urban_drive(120.0, rng, cruise=(1.0, 1.6), turn_speed=(0.8, 1.2), radius=(1.0, 3.0),  # noqa: E731
                                         accel=(0.5, 1.0), brake=(0.5, 1.0), wait=(1.0, 5.0), cruise_time=(3.0, 10.0)))

@@ -16,7 +16,7 @@ velocity) and converted to each model with the generated ``common_to_state`` / `
   otherwise. The split between θ and v_y matters only to the models with a side-slip velocity
   (SE(2)×SE(2), SE(2)×R³; for the others the conversion folds var v_y back into the heading): their
   LG-EKF update turns a position innovation into a rotation when the heading is very uncertain and
-  bends the correction (docs/track_evaluate.md), so ``lgekf track`` keeps the heading std at most
+  bends the correction (docs/evaluate.md), so ``lgekf track`` keeps the heading std at most
   0.3 rad and lets the body velocity carry the rest (ETH pedestrians, robustness set: the lost tracks of
   the first updates disappear);
 * var ω = ``omega_std``² (default 0.5 rad/s: a pedestrian or car turns at well under 1 rad/s);

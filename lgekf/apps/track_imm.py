@@ -50,10 +50,10 @@ __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTrack
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 
 #: ``lgekf track --model imm`` / ``lgekf evaluate --imm`` modes by default: CV and a calm and a manoeuvring SE(2)×R³
-#: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see README)
+#: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see docs/imm.md)
 DEFAULT_TRACK_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
 COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
-#: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (README, real
+#: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (docs/imm.md, real
 #: data: two CV modes win on pedestrians, a manoeuvring SE(2)×R³ added to them or the default on cars and cyclists)
 TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre", "cv:calm,cv:manoeuvre,se2r3:manoeuvre")
 #: at most about this many steps (whole tracks, a seeded random subset) enter the IMM's joint fit

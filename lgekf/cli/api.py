@@ -81,7 +81,7 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
     Returns
     -------
     pandas.DataFrame
-        Exactly the columns of the CLI's output file (``docs/track_evaluate.md``), ``id`` as str.
+        Exactly the columns of the CLI's output file (``docs/track.md``), ``id`` as str.
 
     Raises
     ------

@@ -60,6 +60,9 @@ def cmd_plot(argv) -> int:
     os.close(fd)
     try:
         _, drawn = plot_tracks(tracks, meas, a.id, a.every, path=tmp, title=Path(a.tracks).name)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp's file is private (0600); a figure is not
         os.replace(tmp, a.output)
     finally:
         if os.path.exists(tmp):

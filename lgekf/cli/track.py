@@ -95,7 +95,7 @@ def track_parser():
                     help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
                     help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
-                    + "); repeatable MODEL=LIST (default: from the data, see docs/track_evaluate.md)")
+                    + "); repeatable MODEL=LIST (default: from the data, see docs/track.md)")
     ap.add_argument("--measure", default="position", choices=["position", "pose"],
                     help="measurement model: position (x, y) or pose (x, y and the heading column as an SE(2) pose; noise meas-std, meas-std, heading-std)")
     ap.add_argument("--meas-std", type=float, default=None,

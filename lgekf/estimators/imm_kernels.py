@@ -38,7 +38,7 @@ the predicted state, and νᵀS⁻¹ν the NIS returned by the fused update; a m
 predicted probabilities. The combined output is in the common coordinates (the same reduction with the
 mode probabilities, on the group when ``same_group``, then converted to c).
 
-Speed (issue #11; README "Speed of the IMM"). numba brackets a function with atomic reference counting
+Speed (issue #11; docs/performance.md, "Speed of the IMM"). numba brackets a function with atomic reference counting
 (``NRT_incref``/``NRT_decref``) of the arrays it receives when it passes arrays on to a call that is not inlined or
 can raise; views (``S[j]``) and tuples of arrays multiply the count. So the step loop works on arrays it already
 holds: ONE 2-D float workspace per IMM (``workspace(M)``) carries everything the step reads and writes, a quantity

@@ -12,7 +12,7 @@ trajectories simulated with the study's protocol at that σ_ω (their own random
 [seed, 1]; common to every σ_ω), each started like the study's filters; the IMM then starts from the fitted
 chain's stationary distribution. Only the training draws are used for the fit, never the scored ones. With
 ``switch`` given the chain is the symmetric ``transition_matrix(M, switch)`` with uniform initial probabilities
-(the study's IMM before the fit; see README "The IMM: best of both worlds?").
+(the study's IMM before the fit; see docs/study.md, "The IMM: best of both worlds?").
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUD
            "imm_options_record", "imm_study_rmse", "study_chain", "training_draws"]
 
 IMM_FILTER = "imm"
-#: the study's default modes (chosen by measurement, see README "The IMM in the study")
+#: the study's default modes (chosen by measurement, see docs/study.md, "The IMM: best of both worlds?")
 DEFAULT_STUDY_MODES = "cv,se2r3"
 #: the study's fixed switching probability before the chain was learned (0.05 left the IMM 8 % behind CV at
 #: σ_ω = 0, 0.002 2.8 %; README); the comparison of ``--imm-switch``

@@ -28,7 +28,7 @@ MULTI_COLUMNS = ("model", "association", "gospa", "localisation", "missed", "fal
 
 @dataclass
 class MultiStudyConfig:
-    """The protocol of ``lgekf study --multi`` (defaults: the README's table)."""
+    """The protocol of ``lgekf study --multi`` (defaults: the table of docs/multi_target.md)."""
 
     models: tuple = ("se2se2", "se2r3", "se2r2", "ctrv", "cv")
     associations: tuple = ("jpda", "pda", "gnn")
