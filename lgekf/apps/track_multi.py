@@ -26,26 +26,32 @@ Noise (``fit_noise``)
 ---------------------
 The measurement std from the detections themselves, by tracking: the tracker is run with a std s, and the
 detections that its *confirmed* tracks hold (β_ij ≥ 0.5: detection j is track i's with probability at least
-one half given that the track exists; ``MultiTargetTracker.held``) form one sequence per track, on which
-``lgekf.apps.noise.measurement_std`` gives e: the MAD of the local-quadratic residuals of 4-point windows,
-robust to the odd false alarm a track holds and to manoeuvres. Measured on simulated scenes
-(``tests/test_track_multi_defaults.py``; 0.3 and 1 m noise, 4-8 targets, 2-4 false alarms per scan): started
-*above* the truth (up to 30x), e is within 15 % of the truth after one pass (a wide gate holds every own
-detection); started *below*, e is biased towards s (the narrow gate cuts the residuals: s = 0.3 m gives
-e ≈ 0.48 m for 1 m noise) and the tracks fragment. Hence:
+one half given that the track exists; ``MultiTargetTracker.held``) form one sequence per track (each
+detection at its own time), on which ``lgekf.apps.noise.measurement_std`` gives e: the MAD of the
+local-quadratic residuals of 4-point windows, robust to the odd false alarm a track holds and to manoeuvres.
+Measured on simulated scenes (0.3 and 1 m noise, 4-8 targets, 2-4 false alarms per scan): started *above*
+the truth (2-30x), e is within 15 % of the truth after one pass (a wide gate holds every own detection);
+started *below*, e is biased towards s (the narrow gate cuts the residuals: s = 0.3 m gives e ≈ 0.48 m for
+1 m noise) and the tracks fragment; far above (7 m for 0.3 m noise at 10 Hz: the two-point start's
+velocity std √2·s/Δt is then 100 m/s) no track is confirmed at all. Hence:
 
-1. s starts at an over-estimate from the data (``provisional_meas_std``): the median distance from a
-   detection to the nearest one of the previous scan over 1.665 (the median of that distance for a still
-   object without clutter, √2·σ·√(2 ln 2)); motion, misses and clutter only make it larger;
+1. s starts at an over-estimate from the data (``provisional_meas_std``): the lower quartile of the
+   distance from a detection to the nearest one of the previous scan, over 1.07 (the lower quartile of that
+   distance for a still object without clutter, 2σ·√(ln 4/3)); motion and misses make it larger, and false
+   alarms, which are mostly farther from their nearest neighbour, too (the quartile, not the median, so that
+   scenes with more false alarms than target detections stay within a few times the truth);
 2. each pass tracks at (s, q) and estimates e from the held detections, and the process noise q from the
-   same sequences (``lgekf.apps.defaults.plan_noise``, what single-object ``lgekf track`` does: the
-   prediction-error search at the measurement std e);
-3. e > 1.25·s (s was below the truth): s ← 4·e (from above again); e < s/1.25: s ← e; else, once q came from
-   the data, s is the estimate and that pass is the output (at most ``MAX_PASSES`` = 5 passes; typically 2-3).
+   same sequences at the std e (``lgekf.apps.defaults.plan_noise``, what single-object ``lgekf track`` does:
+   the prediction-error search);
+3. e > 1.25·s (s below the truth): s ← 4·e (from above again); e < s/1.25: s ← e; no confirmed track: s ← s/4
+   (too wide); confirmed tracks but none holding 4 detections: s ← 4·s (fragments of too narrow a noise);
+   a step never goes back past a std already found too narrow or too wide (the geometric mean instead);
+   once e agrees with s (within 1.25x) and (s, q) came from an estimate, that pass is the output (at most
+   ``MAX_PASSES`` = 5 passes; typically 2; the output is the last pass, or the last that had an estimate).
 
-A given ``--meas-std`` is kept fixed (the passes then estimate q only, and e checks the value); a given
-``--accel-std`` too. With no confirmed track holding 4 detections nothing can be estimated: the pass's
-result is the output and the noise is the provisional one (said so).
+A given ``--meas-std`` is kept fixed (the passes then estimate q only; e checks the given value); a given
+``--accel-std`` too. With no confirmed track holding 4 detections in any pass nothing can be estimated: the
+last pass is the output and the noise is the provisional one (said so).
 
 The clutter density, when not given, is the mean number of detections per scan over the area of the
 detections' bounding box (an over-estimate: the targets' own detections count too, which errs on the safe
@@ -220,6 +226,7 @@ class MultiRun:
 
     @property
     def n_confirmed(self) -> int:
+        """Number of confirmed tracks (tracks in the output)."""
         return int(np.unique(self.ids).size)
 
 
@@ -250,9 +257,8 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, **tracker_args) -> Mult
     hid, hrow = hid[keep], hrow[keep]
     by = np.argsort(hid, kind="stable")  # by track, scan order within each
     hid, hrow = hid[by], hrow[by]
-    labels, first, count = np.unique(hid, return_index=True, return_counts=True)
-    long = np.repeat(count >= MIN_HELD, count)
-    hrow = hrow[long]
+    count = np.unique(hid, return_counts=True)[1]
+    hrow = hrow[np.repeat(count >= MIN_HELD, count)]
     counts = count[count >= MIN_HELD]
     hstarts = np.zeros(counts.size + 1, dtype=np.int64)
     np.cumsum(counts, out=hstarts[1:])
@@ -268,7 +274,8 @@ class NoiseFit:
     meas_std : float
         The position std used (m).
     meas_source : str
-        "given", "data" (estimated from the held detections) or "provisional" (nothing to estimate from).
+        "given", "data" (estimated from the held detections) or "provisional" (nothing to estimate from: the
+        provisional std or where the passes left it).
     accel_std : tuple or None
         The process-noise stds used (None: the model's default).
     plan : NoisePlan or None
@@ -279,6 +286,10 @@ class NoiseFit:
         Per pass: the std used, the std estimated from its held detections (None: none), confirmed tracks.
     converged : bool
         False when ``MAX_PASSES`` passes ended without the estimate agreeing with the std used.
+    wider : (float, int, float) or None
+        When the pass at the estimated noise confirmed no track that held ``MIN_HELD`` detections but an earlier
+        pass at a wider std did: that std, its number of confirmed tracks and their fastest speed (m/s,
+        ``fastest_track_speed``); typically objects faster than ``max_speed``, which only a wide noise let start.
     """
 
     meas_std: float
@@ -288,27 +299,43 @@ class NoiseFit:
     provisional: float | None = None
     passes: list = field(default_factory=list)
     converged: bool = True
+    wider: tuple | None = None
 
     @property
     def check(self) -> float | None:
         """The std estimated from the output pass's held detections (None: no confirmed track held enough)."""
         return self.passes[-1][1] if self.passes else None
 
-    def describe(self, model: str, accel_given: bool) -> str:
-        """One line for stderr: the noise used and where it came from (``lgekf track``'s wording)."""
+    def describe(self, model: str, accel_given: bool, heading_std: float | None = None, heading_given: bool = True) -> str:
+        """One line for stderr: the noise used and where it came from (``lgekf track``'s wording; ``heading_std``:
+        pose measurements, the heading std and whether it was given)."""
         if self.plan is not None:
-            return self.plan.describe() + (f"; from the detections held by the confirmed tracks, {len(self.passes)} "
+            return self.plan.describe(heading_std, heading_given) + (f"; from the detections held by the confirmed tracks, {len(self.passes)} "
                                            f"tracking passes" + (f", the first at the provisional meas-std {self.provisional:.3g} m"
                                                                  if self.provisional is not None else "")
                                            + ("" if self.converged else f" (the estimate had not settled after {MAX_PASSES})"))
-        meas = f"meas-std {self.meas_std:.3g} m (" + ("given)" if self.meas_source == "given" else
-                                                      "provisional: lower quartile of the distance to the previous scan's nearest detection / 1.07)")
+        n = len(self.passes)
+        if self.meas_source == "given":
+            meas = f"meas-std {self.meas_std:.3g} m (given)"
+        else:
+            first = ("no two consecutive scans hold detections" if self.provisional is None else
+                     f"the first at the provisional {self.provisional:.3g} m: lower quartile of the distance to the previous "
+                     "scan's nearest detection / 1.07")
+            meas = f"meas-std {self.meas_std:.3g} m (not estimated; {n} tracking pass{'es' if n != 1 else ''}, {first})"
         if accel_given:
             accel = f"{model} {','.join(f'{v:.3g}' for v in self.accel_std)} (given)"
         else:
             accel = f"{model} {','.join(f'{v:.3g}' for v in get_model(model).default_accel_std)} (default)"
-        return (f"noise from the data: {meas}; accel-std {accel}; no confirmed track held {MIN_HELD} detections to "
-                "estimate from")
+        head = "" if heading_std is None else f"; heading-std {heading_std:.3g} rad ({'given' if heading_given else 'default'})"
+        return (f"noise from the data: {meas}; accel-std {accel}{head}; no confirmed track held {MIN_HELD} detections to "
+                "estimate the noise from")
+
+
+@dataclass
+class _Pass:
+    meas_std: float
+    n_confirmed: int
+    speed: float
 
 
 def _held_plan(run: MultiRun, model: str, measurement: str, meas_std, accel_std, omega_std: float,
@@ -367,7 +394,7 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
         s = 1.0 if provisional is None else provisional  # fewer than two scans hold detections: nothing to track anyway
     else:
         s = float(meas_std)
-    q, used, passes, best = accel_std, None, [], None  # used: the plan (s, q) came from; best: the last pass with tracks
+    q, used, passes, last = accel_std, None, [], None  # used: the plan (s, q) came from; last: the previous pass with an estimate
     low, high = 0.0, math.inf  # stds known to be below the truth / to confirm no track
     while True:
         run = track_scans(t, Z, sc, meas_std=_meas_tuple(s, measurement, heading_std), accel_std=q, **tracker_args)
@@ -379,9 +406,10 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
         agrees = plan is not None and (meas_std is not None or 1 / AGREE <= e / s <= AGREE)
         if agrees and (used is not None or (meas_std is not None and accel_std is not None)):
             return run, fit
-        if len(passes) == MAX_PASSES or (plan is None and meas_std is not None):
-            if plan is None and best is not None:  # nothing to estimate from now, but earlier: that pass
-                run, fit = best
+        if plan is None and last is not None:  # no estimate at the estimated noise, one at a wider one: say so
+            fit.wider = (last.meas_std, last.n_confirmed, last.speed)
+            return run, fit
+        if len(passes) == MAX_PASSES or (plan is None and (meas_std is not None or provisional is None)):
             fit.converged = False
             return run, fit
         if plan is None:
@@ -392,7 +420,7 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
                 high = min(high, s)
                 s = s / RESTART if s / RESTART > low else math.sqrt(s * low)
             continue
-        best = (run, fit)
+        last = _Pass(s, run.n_confirmed, fastest_track_speed(run))
         if meas_std is None:
             if e > AGREE * s:  # s below the truth: e is biased towards s; from above again
                 low = max(low, s)
@@ -404,24 +432,42 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
         used = plan
 
 
-def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, meas_std: float, confirm: float) -> str:
-    """Why no track was confirmed, and what to try (one line)."""
+def _round_up(v: float) -> str:
+    """v rounded up to two significant digits, as text."""
+    e = 10.0 ** (math.floor(math.log10(v)) - 1) if v > 0 else 1.0
+    return f"{math.ceil(v / e) * e:g}"
+
+
+def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, meas_std: float, confirm: float,
+                    wider: tuple | None = None) -> str:
+    """Why no track was confirmed, and what to try (one line): the scans (count, period, detections per scan,
+    window), then the first that applies of: tracks confirmed only at a wider noise (``wider``:
+    ``NoiseFit.wider``; with their speed against ``max_speed``), no track started (no pair of detections of
+    consecutive scans within reach), tracks started but the largest existence reached below ``confirm``."""
     trk = run.tracker
     per_scan = n_rows / max(sc.count, 1)
     period = sc.period
-    text = (f"no track confirmed: {sc.count} scan{'s' if sc.count != 1 else ''} "
-            f"({'' if not math.isfinite(period) else f'period {period:.3g} s, '}{per_scan:.3g} detections per scan"
-            f"{'' if sc.window == 0 else f', scan window {sc.window:.3g} s'}); ")
-    if trk.next_id == 0:
+    text = (f"no track confirmed: {sc.count} scan{'s' if sc.count != 1 else ''} ("
+            + ("" if not math.isfinite(period) else f"period {period:.3g} s, ")
+            + f"{per_scan:.3g} detection{'s' if per_scan != 1 else ''} per scan"
+            + ("" if sc.window == 0 else f", scan window {sc.window:.3g} s") + "); ")
+    hint = "; try --meas-std, --max-speed, --scan-window, --detection-prob or --clutter-density"
+    if wider is not None:
+        s, n, v = wider
+        text += (f"none at the meas-std estimated from the data ({meas_std:.3g} m), {n} at the wider {s:.3g} m, the "
+                 f"fastest moving at {v:.3g} m/s")
+        if v >= 0.5 * max_speed:
+            text += f": objects faster than --max-speed {max_speed:g} m/s start no track"
+            hint = f"; try --max-speed {_round_up(1.25 * v)}"
+    elif trk.next_id == 0:
         text += (f"no track started: no two detections of consecutive scans within --max-speed x dt + 3*sqrt(2) x "
                  f"meas-std ({max_speed:g} m/s, {meas_std:.3g} m)")
     else:
         text += (f"{trk.next_id} track{'s' if trk.next_id != 1 else ''} started, the largest existence reached "
                  f"{trk.max_existence:.2f} (confirmed at {confirm:g})")
-    hint = "; try --meas-std, --max-speed, --scan-window, --detection-prob or --clutter-density"
     if per_scan < 1.5 and sc.count > 1:
-        hint = (f"; most scans hold a single detection: if each detection has its own time, group them into scans "
-                f"with --scan-window SECONDS{hint.replace('; try', ', and try')}")
+        hint = ("; most scans hold a single detection: if each detection has its own time, group them into scans "
+                "with --scan-window SECONDS" + hint.replace("; try", ", and try").replace(", --scan-window", ""))
     return text + hint
 
 

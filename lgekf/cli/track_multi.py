@@ -49,7 +49,7 @@ def track_multi_parser():
     ap.add_argument("--meas-std", type=float, default=None,
                     help="measurement std per axis in m (default: estimated from the detections that the confirmed tracks hold, "
                          "local quadratic residuals; printed)")
-    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    ap.add_argument("--heading-std", type=float, default=None, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--accel-std", action="append", default=[], metavar="LIST",
                     help="process noise stds of the model (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
                     + "; default: from the confirmed tracks' detections as `lgekf track` learns it; printed)")
@@ -114,6 +114,7 @@ def cmd_track_multi(argv) -> int:
     q = _check_arguments(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
     max_speed = DEFAULT_MAX_SPEED if a.max_speed is None else a.max_speed
+    heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
     args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=a.measure,
                 gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
                 confirm_existence=a.confirm_existence, delete_existence=a.delete_existence, max_speed=max_speed,
@@ -121,7 +122,7 @@ def cmd_track_multi(argv) -> int:
     from ..estimators.tracker import MultiTargetTracker
 
     r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
-    MultiTargetTracker(**args, accel_std=q, meas_std=(r,) if a.measure == "position" else (r, r, a.heading_std))  # every option checked before reading
+    MultiTargetTracker(**args, accel_std=q, meas_std=(r,) if a.measure == "position" else (r, r, heading_std))  # every option checked before reading
     t0 = time.perf_counter()
     meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
     if not is_stdio(a.input) and not is_stdio(a.output):
@@ -140,12 +141,12 @@ def cmd_track_multi(argv) -> int:
         args["clutter_density"] = estimated_clutter_density(sc, meas.z)
         say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
             "bounding-box area; give --clutter-density to set it)")
-    fit_args = dict(heading_std=a.heading_std, omega_std=a.omega_std)
+    fit_args = dict(heading_std=heading_std, omega_std=a.omega_std)
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
         run, fit = fit_noise(t, Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
         if a.meas_std is None or q is None:
-            say(fit.describe(a.model, q is not None))
+            say(fit.describe(a.model, q is not None, heading_std if a.measure == "pose" else None, a.heading_std is not None))
         if a.meas_std is not None:
             e = fit.check
             if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate
@@ -156,12 +157,13 @@ def cmd_track_multi(argv) -> int:
                       "leave --meas-std out to use the estimate")
         n_conf = run.n_confirmed
         if n_conf == 0:
-            _warn(no_track_reason(run, sc, t.size, max_speed, fit.meas_std, a.confirm_existence))
+            _warn(no_track_reason(run, sc, t.size, max_speed, fit.meas_std, a.confirm_existence, fit.wider))
         elif a.max_speed is None:
             v = fastest_track_speed(run)
             if v >= SPEED_WARN_FRACTION * max_speed:
-                _warn(f"a confirmed track moves at {v:.3g} m/s, near --max-speed {max_speed:g} m/s: objects faster than "
-                      "that start no track; give a larger --max-speed if there are any")
+                _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > max_speed else 'near'} --max-speed "
+                      f"{max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a larger "
+                      "--max-speed if there are any")
         write_multi(fh, a.model, run.ids, run.times, run.values, a.precision)
         files.commit()
     if not a.quiet:

@@ -153,6 +153,18 @@ class MultiTargetTracker:
     bank : TrackFilterBank, optional
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
 
+    Attributes
+    ----------
+    held : (ndarray of int, ndarray of int)
+        After each ``step``: the ids of the tracks that *hold* a detection of that scan and its row in the
+        scan's detections: β_ij ≥ ``HELD_FROM`` (0.5), the probability that detection j is track i's given that
+        the track exists (at most one detection per track; e.g. the sequences ``lgekf track --multi``
+        estimates the noise from).
+    max_existence : float
+        The largest existence probability any track has had after an update.
+    next_id : int
+        The number of tracks started so far (the next track's id).
+
     Examples
     --------
     >>> trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9)
