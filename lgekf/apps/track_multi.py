@@ -17,10 +17,14 @@ times the next smaller one (largest break value first), the times are linked whe
 τ; the break is taken when the gaps between the linked groups are at least ``SCAN_GAP_RATIO`` times the
 widest group's spread s, and then the window is √(s·d) (d the smallest gap between groups), which makes
 exactly those groups (every group spans at most s < window, every gap between groups is at least d >
-window). No such break (one t per scan, also with missed or irregular scans: their gaps differ by less
-than 10x; a single long pause, whose groups would be wider than the pause): window 0, the scans of
-identical t. Two sensors whose scans are offset by less than a tenth of the period are grouped into one
-scan by this rule: give ``--scan-window 0`` to keep them apart.
+window) -- provided the groups look like scans: the median distance from a detection to the nearest
+detection of *another time in its group* is at least twice the median distance to the nearest detection
+of the *previous group* (over up to 200 groups spread over the data, up to 256 rows of each). A scan holds different objects and the next
+scan the same ones again; a stretch of scans cut off by pauses (0.1-s scans, a 100-s pause: a break of 1000x)
+holds the same objects again and again, and is rejected. No accepted break (one t per scan, also with
+missed or irregular scans: their gaps differ by less than 10x; pauses): window 0, the scans of identical t.
+Two sensors whose scans are offset by less than a tenth of the period are grouped into one scan by this
+rule: give ``--scan-window 0`` to keep them apart.
 
 Noise (``fit_noise``)
 ---------------------
@@ -80,6 +84,9 @@ __all__ = [
 
 SCAN_GAP_RATIO = 10.0  # scans: gaps between scans at least this many times the spread of a scan's times
 MAX_BREAKS = 20  # scan_window_from_data: breaks tried at most
+SCAN_CHECK_GROUPS = 200  # scan_window_from_data: groups whose nearest-neighbour distances are compared, at most
+SCAN_CHECK_ROWS = 256  # ... and rows of each group
+SCAN_SPACING_RATIO = 2.0  # ... a group's detections this much farther apart than from the previous group's: scans
 PROVISIONAL_PAIRS = 2000  # provisional_meas_std: consecutive scan pairs looked at, at most (evenly spread)
 RAYLEIGH_QUARTILE = 2.0 * math.sqrt(math.log(4.0 / 3.0))  # lower quartile of |z1 − z0|/σ, z0, z1 ~ N(·, σ² I₂): 1.0727
 MAX_PASSES = 5  # fit_noise: tracking passes at most
@@ -146,23 +153,51 @@ def scans(t: np.ndarray, window: float = 0.0) -> Scans:
     return Scans(order, starts, times, float(window))
 
 
-def scan_window_from_data(t: np.ndarray) -> float:
-    """The default scan window (s) from the gaps between the sorted distinct times (module docstring); 0 when
-    the data show no scan structure coarser than their distinct times."""
-    u = np.unique(np.asarray(t, dtype=float))
+def _nearest_medians(ts, zs, first_row, sample):
+    """Median distance from a detection to the nearest detection of *another time in its own group* and median
+    distance from a detection to the nearest detection of the *previous group*, over the groups ``sample``
+    (rows sorted by time ts, positions zs (N, 2), group g = rows first_row[g]:first_row[g + 1]; of a group
+    longer than ``SCAN_CHECK_ROWS`` rows its first ones, of the previous group its last ones)."""
+    within, between = [], []
+    for g in sample:
+        a, b = first_row[g], min(first_row[g + 1], first_row[g] + SCAN_CHECK_ROWS)
+        z, tt = zs[a:b], ts[a:b]
+        d = np.hypot(z[:, None, 0] - z[None, :, 0], z[:, None, 1] - z[None, :, 1])
+        d[tt[:, None] == tt[None, :]] = np.inf  # the same time: not another detection of the scan
+        within.append(d.min(axis=1)[np.isfinite(d.min(axis=1))])
+        if g > 0:
+            p = zs[max(first_row[g - 1], a - SCAN_CHECK_ROWS):a]
+            between.append(np.hypot(z[:, None, 0] - p[None, :, 0], z[:, None, 1] - p[None, :, 1]).min(axis=1))
+    w = np.concatenate(within) if within else np.zeros(0)
+    v = np.concatenate(between) if between else np.zeros(0)
+    return (float(np.median(w)) if w.size else math.nan), (float(np.median(v)) if v.size else math.nan)
+
+
+def scan_window_from_data(t: np.ndarray, z: np.ndarray) -> float:
+    """The default scan window (s) from the detection times t (N,) and positions z (N, ≥2) (module docstring): 0
+    when the data show no scan structure coarser than their distinct times."""
+    t = np.asarray(t, dtype=float)
+    u = np.unique(t)
     g = np.diff(u)
     if g.size < 2:
         return 0.0
     gs = np.sort(g)
     ratio = gs[1:] / gs[:-1]
-    breaks = np.flatnonzero(ratio >= SCAN_GAP_RATIO)[::-1][:MAX_BREAKS]  # largest break value first
-    for k in breaks:
+    order = np.argsort(t, kind="stable")
+    ts, zs = t[order], np.asarray(z, dtype=float)[order, :2]
+    row_of_time = np.searchsorted(ts, u)  # first row of each distinct time
+    for k in np.flatnonzero(ratio >= SCAN_GAP_RATIO)[::-1][:MAX_BREAKS]:  # largest break value first
         tau, d = gs[k], gs[k + 1]
         cut = np.flatnonzero(g > tau)  # a new group after these gaps
         first = np.concatenate([[0], cut + 1])
         last = np.concatenate([cut, [u.size - 1]])
         spread = float(np.max(u[last] - u[first]))
-        if d >= SCAN_GAP_RATIO * spread:
+        if d < SCAN_GAP_RATIO * spread:
+            continue
+        first_row = np.append(row_of_time[first], ts.size)
+        sample = np.unique(np.linspace(0, first.size - 1, min(first.size, SCAN_CHECK_GROUPS)).astype(np.int64))
+        within, between = _nearest_medians(ts, zs, first_row, sample)
+        if within > SCAN_SPACING_RATIO * between:  # a group holds different objects, the next the same ones again
             return math.sqrt(spread * d)
     return 0.0
 
@@ -449,7 +484,7 @@ def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, mea
     period = sc.period
     text = (f"no track confirmed: {sc.count} scan{'s' if sc.count != 1 else ''} ("
             + ("" if not math.isfinite(period) else f"period {period:.3g} s, ")
-            + f"{per_scan:.3g} detection{'s' if per_scan != 1 else ''} per scan"
+            + f"{per_scan:.3g} detection{'s' if f'{per_scan:.3g}' != '1' else ''} per scan"
             + ("" if sc.window == 0 else f", scan window {sc.window:.3g} s") + "); ")
     hint = "; try --meas-std, --max-speed, --scan-window, --detection-prob or --clutter-density"
     if wider is not None:

@@ -132,7 +132,7 @@ def cmd_track_multi(argv) -> int:
     if meas.origin is not None:
         say(f"lat, lon projected to x, y in metres east and north of {meas.origin} (the first row; local equirectangular)")
     Z = meas.z if a.measure == "position" else np.column_stack([meas.z, meas.heading])
-    window = scan_window_from_data(t) if a.scan_window is None else a.scan_window
+    window = scan_window_from_data(t, meas.z) if a.scan_window is None else a.scan_window
     sc = scans(t, window)
     if a.scan_window is None and window > 0:
         say(f"scans: the detections within {window:.3g} s of a scan's first grouped into one (from the data: "
