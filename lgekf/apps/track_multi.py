@@ -34,7 +34,7 @@ one half given that the track exists; ``MultiTargetTracker.held``) form one sequ
 detection at its own time), on which ``lgekf.apps.noise.measurement_std`` gives e: the MAD of the
 local-quadratic residuals of 4-point windows, robust to the odd false alarm a track holds and to manoeuvres.
 Measured on simulated scenes (0.3 and 1 m noise, 4-8 targets, 2-4 false alarms per scan): started *above*
-the truth (2-30x), e is within 15 % of the truth after one pass (a wide gate holds every own detection);
+the truth (2-30x), e is within 20 % of the truth after one pass (a wide gate holds every own detection);
 started *below*, e is biased towards s (the narrow gate cuts the residuals: s = 0.3 m gives e ≈ 0.48 m for
 1 m noise) and the tracks fragment; far above (7 m for 0.3 m noise at 10 Hz: the two-point start's
 velocity std √2·s/Δt is then 100 m/s) no track is confirmed at all. Hence:
@@ -118,6 +118,7 @@ class Scans:
 
     @property
     def count(self) -> int:
+        """Number of scans."""
         return int(self.starts.size - 1)
 
     @property
@@ -164,7 +165,8 @@ def _nearest_medians(ts, zs, first_row, sample):
         z, tt = zs[a:b], ts[a:b]
         d = np.hypot(z[:, None, 0] - z[None, :, 0], z[:, None, 1] - z[None, :, 1])
         d[tt[:, None] == tt[None, :]] = np.inf  # the same time: not another detection of the scan
-        within.append(d.min(axis=1)[np.isfinite(d.min(axis=1))])
+        near = d.min(axis=1)
+        within.append(near[np.isfinite(near)])
         if g > 0:
             p = zs[max(first_row[g - 1], a - SCAN_CHECK_ROWS):a]
             between.append(np.hypot(z[:, None, 0] - p[None, :, 0], z[:, None, 1] - p[None, :, 1]).min(axis=1))
@@ -266,7 +268,8 @@ class MultiRun:
 
 
 def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, **tracker_args) -> MultiRun:
-    """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m))."""
+    """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m)); the
+    output rows and the confirmed tracks' held detections as a ``MultiRun``."""
     trk = MultiTargetTracker(**tracker_args)
     order, starts = sc.order, sc.starts
     ids, times, vals, held_id, held_row = [], [], [], [], []
@@ -418,7 +421,8 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
     Returns
     -------
     run : MultiRun
-        The output pass: the last one, or the last that confirmed a track.
+        The output pass: the last one; the one before when the last, at the same std but with the process
+        noise estimated, left no track to estimate from.
     fit : NoiseFit
         The noise it used.
     """
@@ -441,9 +445,13 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
         agrees = plan is not None and (meas_std is not None or 1 / AGREE <= e / s <= AGREE)
         if agrees and (used is not None or (meas_std is not None and accel_std is not None)):
             return run, fit
-        if plan is None and last is not None:  # no estimate at the estimated noise, one at a wider one: say so
-            fit.wider = (last.meas_std, last.n_confirmed, last.speed)
-            return run, fit
+        if plan is None and last is not None:
+            prev, prev_run, prev_fit = last
+            if prev.meas_std > s:  # no estimate at the estimated noise, one at a wider noise: this pass, and say so
+                fit.wider = (prev.meas_std, prev.n_confirmed, prev.speed)
+                return run, fit
+            prev_fit.converged = False  # the same std, the new process noise lost the tracks: the previous pass
+            return prev_run, prev_fit
         if len(passes) == MAX_PASSES or (plan is None and (meas_std is not None or provisional is None)):
             fit.converged = False
             return run, fit
@@ -455,13 +463,13 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
                 high = min(high, s)
                 s = s / RESTART if s / RESTART > low else math.sqrt(s * low)
             continue
-        last = _Pass(s, run.n_confirmed, fastest_track_speed(run))
+        last = (_Pass(s, run.n_confirmed, fastest_track_speed(run)), run, fit)
         if meas_std is None:
             if e > AGREE * s:  # s below the truth: e is biased towards s; from above again
                 low = max(low, s)
                 s = RESTART * e if RESTART * e < high else math.sqrt(e * high)
             else:
-                s = e
+                s = e if e > low else math.sqrt(s * low)
         if accel_std is None:
             q = plan.accel_std[model] if plan.accel_source[model] == "data" else None
         used = plan

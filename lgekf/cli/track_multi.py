@@ -1,5 +1,8 @@
 """`lgekf track DETECTIONS.csv --multi`: many objects from unlabelled detections in clutter (one clear error
-line per bad input, all-or-nothing output). The tracking is ``lgekf.apps.track_multi``."""
+line per bad input, all-or-nothing output). The tracking, the scans and the noise from the data are
+``lgekf.apps.track_multi``; on stderr: the scan window and the noise when they come from the data (not with
+--quiet), and, also with --quiet, warnings: a given --meas-std 2x or more off the data's estimate, no
+confirmed track (one line saying why), a confirmed track near the default --max-speed."""
 
 from __future__ import annotations
 
@@ -14,18 +17,18 @@ from ..apps.track_multi import (
     AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, no_track_reason, scan_window_from_data, scans,
     write_multi,
 )
-from ..core.validate import positive_scalar
 from ..core.registry import MODELS
+from ..core.validate import positive_scalar
 from ..estimators.association import ASSOCIATIONS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
+from .track import MEAS_STD_WARN_FACTOR  # the same rule as `lgekf track` (its module is loaded already: it dispatches here)
 
-__all__ = ["cmd_track_multi", "track_multi_parser", "MEAS_STD_WARN_FACTOR", "SPEED_WARN_FRACTION"]
+__all__ = ["cmd_track_multi", "track_multi_parser", "SPEED_WARN_FRACTION", "DEFAULT_MAX_SPEED"]
 
-MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about (as `lgekf track`)
 SPEED_WARN_FRACTION = 0.8  # a confirmed track this close to the default --max-speed is warned about
 DEFAULT_MAX_SPEED = 30.0  # m/s
 
