@@ -1,5 +1,8 @@
 """`lgekf track DETECTIONS.csv --multi`: many objects from unlabelled detections in clutter (one clear error
-line per bad input, all-or-nothing output). The tracking is ``lgekf.apps.track_multi``."""
+line per bad input, all-or-nothing output). The tracking, the scans and the noise from the data are
+``lgekf.apps.track_multi``; on stderr: the scan window and the noise when they come from the data (not with
+--quiet), and, also with --quiet, warnings: a given --meas-std 2x or more off the data's estimate, no
+confirmed track (one line saying why), a confirmed track near the default --max-speed."""
 
 from __future__ import annotations
 
@@ -10,23 +13,31 @@ from pathlib import Path
 import numpy as np
 
 from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD
-from ..apps.track_multi import estimated_clutter_density, track_scans, write_multi
+from ..apps.track_multi import (
+    AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, no_track_reason, scan_window_from_data, scans,
+    write_multi,
+)
 from ..core.registry import MODELS
+from ..core.validate import positive_scalar
 from ..estimators.association import ASSOCIATIONS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
+from .track import MEAS_STD_WARN_FACTOR  # the same rule as `lgekf track` (its module is loaded already: it dispatches here)
 
-__all__ = ["cmd_track_multi", "track_multi_parser"]
+__all__ = ["cmd_track_multi", "track_multi_parser", "SPEED_WARN_FRACTION", "DEFAULT_MAX_SPEED"]
+
+SPEED_WARN_FRACTION = 0.8  # a confirmed track this close to the default --max-speed is warned about
+DEFAULT_MAX_SPEED = 30.0  # m/s
 
 
 def track_multi_parser():
     ap = ArgumentParser(
         prog="lgekf track --multi",
         description="Track many objects from unlabelled detections with clutter and missed detections (JPDA/PDA/GNN "
-                    "with integrated track existence; one scan = all rows with the same t).",
+                    "with integrated track existence). The noise comes from the data unless given; see docs/track_multi.md.",
     )
     ap.add_argument("input", help="detections: CSV with header t,x,y[,heading] (an id column is ignored); - reads stdin; gzip is recognised")
     ap.add_argument("--multi", action="store_true", required=True, help="multi-target mode")
@@ -38,21 +49,30 @@ def track_multi_parser():
     ap.add_argument("--clutter-density", type=float, default=None,
                     help="expected false alarms per m² per scan (default: detections per scan / bounding-box area of the data)")
     ap.add_argument("--measure", default="position", choices=["position", "pose"], help="position (x, y) or pose (x, y, heading column)")
-    ap.add_argument("--meas-std", type=float, default=DEFAULT_MEAS_STD, help=f"measurement std per axis in m (default {DEFAULT_MEAS_STD})")
-    ap.add_argument("--heading-std", type=float, default=DEFAULT_HEADING_STD, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    ap.add_argument("--meas-std", type=float, default=None,
+                    help="measurement std per axis in m (default: estimated from the detections that the confirmed tracks hold, "
+                         "local quadratic residuals; printed)")
+    ap.add_argument("--heading-std", type=float, default=None, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--accel-std", action="append", default=[], metavar="LIST",
-                    help="process noise stds of the model (default the model's: " + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items()) + ")")
+                    help="process noise stds of the model (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
+                    + "; default: from the confirmed tracks' detections as `lgekf track` learns it; printed)")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial turn-rate std of a new track in rad/s (default {DEFAULT_OMEGA_STD})")
     ap.add_argument("--gate-prob", type=float, default=0.99, help="gate probability P_G (default 0.99)")
     ap.add_argument("--survival-prob", type=float, default=0.99, help="probability that an object survives one scan (default 0.99)")
     ap.add_argument("--birth-existence", type=float, default=0.1, help="existence probability of a new track (default 0.1)")
     ap.add_argument("--confirm-existence", type=float, default=0.9, help="existence that confirms a track (default 0.9)")
     ap.add_argument("--delete-existence", type=float, default=0.01, help="existence below which a track is deleted (default 0.01)")
-    ap.add_argument("--max-speed", type=float, default=30.0, help="largest speed of a new track's two detections in m/s (default 30)")
+    ap.add_argument("--max-speed", type=float, default=None,
+                    help=f"largest speed of a new track's two detections in m/s (default {DEFAULT_MAX_SPEED:g}; a confirmed track "
+                         f"faster than {SPEED_WARN_FRACTION:g}x that is warned about)")
+    ap.add_argument("--scan-window", type=float, default=None, metavar="SECONDS",
+                    help="one scan = the detections at most SECONDS after the scan's first; its time the midpoint of its first "
+                         "and last (default: from the gaps between the distinct times, 0 = one scan per distinct t when the "
+                         "data have one t per scan)")
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success")
+    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings")
     return ap
 
 
@@ -72,23 +92,40 @@ def _accel_std(items, model):
         raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
 
 
-def cmd_track_multi(argv) -> int:
-    a = track_multi_parser().parse_args(argv)
+def _check_arguments(a):
+    """Every argument error before any reading (one line each, exit 2)."""
     if not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
+    if a.meas_std is not None:
+        positive_scalar("meas-std", a.meas_std)
+    if a.max_speed is not None:
+        positive_scalar("max-speed", a.max_speed)
+    if a.scan_window is not None:
+        positive_scalar("scan-window", a.scan_window, allow_zero=True)
     q = _accel_std(a.accel_std, a.model)
     MODELS[a.model].measurement(a.measure)
     check_output_path(a.output)
+    return q
+
+
+def _warn(text):
+    print(f"lgekf track: warning: {text}", file=sys.stderr)
+
+
+def cmd_track_multi(argv) -> int:
+    a = track_multi_parser().parse_args(argv)
+    q = _check_arguments(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
-    meas_std = (a.meas_std,) if a.measure == "position" else (a.meas_std, a.meas_std, a.heading_std)
-    args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, meas_std=meas_std,
-                accel_std=q, measurement=a.measure, gate_prob=a.gate_prob, survival_prob=a.survival_prob,
-                birth_existence=a.birth_existence, confirm_existence=a.confirm_existence,
-                delete_existence=a.delete_existence, max_speed=a.max_speed, omega_std=a.omega_std,
-                clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
+    max_speed = DEFAULT_MAX_SPEED if a.max_speed is None else a.max_speed
+    heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
+    args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=a.measure,
+                gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
+                confirm_existence=a.confirm_existence, delete_existence=a.delete_existence, max_speed=max_speed,
+                omega_std=a.omega_std, clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
     from ..estimators.tracker import MultiTargetTracker
 
-    MultiTargetTracker(**args)  # every option checked before reading
+    r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
+    MultiTargetTracker(**args, accel_std=q, meas_std=(r,) if a.measure == "position" else (r, r, heading_std))  # every option checked before reading
     t0 = time.perf_counter()
     meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
     if not is_stdio(a.input) and not is_stdio(a.output):
@@ -98,20 +135,44 @@ def cmd_track_multi(argv) -> int:
     if meas.origin is not None:
         say(f"lat, lon projected to x, y in metres east and north of {meas.origin} (the first row; local equirectangular)")
     Z = meas.z if a.measure == "position" else np.column_stack([meas.z, meas.heading])
+    window = scan_window_from_data(t, meas.z) if a.scan_window is None else a.scan_window
+    sc = scans(t, window)
+    if a.scan_window is None and window > 0:
+        say(f"scans: the detections within {window:.3g} s of a scan's first grouped into one (from the data: "
+            f"{np.unique(t).size} distinct times, {sc.count} scans, period {sc.period:.3g} s); --scan-window sets it")
     if a.clutter_density is None:
-        args["clutter_density"] = estimated_clutter_density(t, meas.z)
+        args["clutter_density"] = estimated_clutter_density(sc, meas.z)
         say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
             "bounding-box area; give --clutter-density to set it)")
+    fit_args = dict(heading_std=heading_std, omega_std=a.omega_std)
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
-        ids, times, values, trk = track_scans(t, Z, **args)
-        write_multi(fh, a.model, ids, times, values, a.precision)
+        run, fit = fit_noise(t, Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
+        if a.meas_std is None or q is None:
+            say(fit.describe(a.model, q is not None, heading_std if a.measure == "pose" else None, a.heading_std is not None))
+        if a.meas_std is not None:
+            e = fit.check
+            if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate
+                _, own = fit_noise(t, Z, sc, args, accel_std=q, **fit_args)
+                e = own.meas_std if own.meas_source == "data" else None
+            if e is not None and max(a.meas_std / e, e / a.meas_std) >= MEAS_STD_WARN_FACTOR:
+                _warn(f"--meas-std {a.meas_std:g} m is {a.meas_std / e:.2g}x the std estimated from the data ({e:.3g} m); "
+                      "leave --meas-std out to use the estimate")
+        n_conf = run.n_confirmed
+        if n_conf == 0:
+            _warn(no_track_reason(run, sc, t.size, max_speed, fit.meas_std, a.confirm_existence, fit.wider))
+        elif a.max_speed is None:
+            v = fastest_track_speed(run)
+            if v >= SPEED_WARN_FRACTION * max_speed:
+                _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > max_speed else 'near'} --max-speed "
+                      f"{max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a larger "
+                      "--max-speed if there are any")
+        write_multi(fh, a.model, run.ids, run.times, run.values, a.precision)
         files.commit()
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout
         name = "<stdout>" if is_stdio(a.output) else a.output
-        n_conf = len(set(ids.tolist()))
-        print(f"{name}: {ids.size} rows, {n_conf} confirmed track{'s' if n_conf != 1 else ''} from {t.size} detections "
-              f"({a.model}, {a.association})", file=report)
+        print(f"{name}: {run.ids.size} rows, {n_conf} confirmed track{'s' if n_conf != 1 else ''} from {t.size} detections "
+              f"in {sc.count} scans ({a.model}, {a.association})", file=report)
         print(f"total {time.perf_counter() - t0:.2f} s", file=sys.stderr)
     return 0

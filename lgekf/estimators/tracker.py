@@ -52,6 +52,7 @@ __all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP"]
 
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
+HELD_FROM = 0.5  # a track holds detection j when β_ij (the probability that j is its, given that it exists) ≥ this
 
 
 @nb.njit(cache=True)
@@ -152,6 +153,18 @@ class MultiTargetTracker:
     bank : TrackFilterBank, optional
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
 
+    Attributes
+    ----------
+    held : (ndarray of int, ndarray of int)
+        After each ``step``: the ids of the tracks that *hold* a detection of that scan and its row in the
+        scan's detections: β_ij ≥ ``HELD_FROM`` (0.5), the probability that detection j is track i's given that
+        the track exists (at most one detection per track; e.g. the sequences ``lgekf track --multi``
+        estimates the noise from).
+    max_existence : float
+        The largest existence probability any track has had after an update.
+    next_id : int
+        The number of tracks started so far (the next track's id).
+
     Examples
     --------
     >>> trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9)
@@ -215,6 +228,8 @@ class MultiTargetTracker:
             raise ValueError(f"seed-scans: must be at least 1, got {seed_scans}")
         self._scan_times = []
         self.last_exact = True
+        self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
+        self.max_existence = 0.0
 
     # ------------------------------------------------------------------ one scan
     def step(self, t: float, detections) -> ScanReport:
@@ -249,6 +264,7 @@ class MultiTargetTracker:
         live = bank.live
         M = Z.shape[0]
         claimed = np.zeros(M)
+        self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
         if live.any():
             bank.predict(dt)
             self.r[live] *= self.ps
@@ -265,6 +281,12 @@ class MultiTargetTracker:
             existence_and_weights(p0, P, w0, self.r, live, self.pd, self.pg, r_new, beta0, beta)
             bank.update(beta0, beta)
             self.r = r_new
+            rows = np.flatnonzero(live)
+            self.max_existence = max(self.max_existence, float(np.max(r_new[rows])))
+            if M:
+                best = np.argmax(beta[rows], axis=1)
+                ok = beta[rows, best] >= HELD_FROM
+                self.held = (self.ids[rows[ok]].copy(), best[ok])
             claimed = P[live].sum(axis=0)
             self.confirmed |= live & (self.r >= self.r_confirm)
             dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
