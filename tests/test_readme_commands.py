@@ -46,7 +46,8 @@ def _commands(text: str) -> list[str]:
     """The `lgekf ...` lines of the code blocks of ``text``, then its inline ``lgekf ...`` code."""
     cmds = []
     for block in re.finditer(r"```[^\n]*\n(.*?)```", text, re.S):
-        cmds += [re.sub(r"\s+#.*$", "", ln).strip() for ln in block.group(1).splitlines() if ln.startswith("lgekf ")]
+        cmds += [re.sub(r"\s+#.*$", "", ln).strip() for ln in block.group(1).splitlines()
+                 if ln.startswith("lgekf ") and not re.match(r"lgekf [a-z]+: ", ln)]  # "lgekf track: ..." is output
     prose = re.sub(r"```.*?```", "", text, flags=re.S)
     cmds += [" ".join(m.group(1).split()) for m in re.finditer(r"`(lgekf(?: [^`]*)?)`", prose)]
     return cmds
@@ -141,6 +142,9 @@ README_TO_RUN = {
     "lgekf track --help": None,
     "lgekf track --tune": ["lgekf track detections.csv --model cv --tune -o tracks.csv"],
     "lgekf track --multi": ["lgekf track detections.csv --multi -o tracks_multi.csv"],
+    "lgekf track detections.csv --multi -o tracks.csv": None,
+    "lgekf track DETECTIONS.csv --multi -o OUT.csv": ["lgekf track detections.csv --multi -o out_multi.csv"],
+    "lgekf track detections.csv --multi -o tracks.csv --meas-std 1 --accel-std 0.5,0.5,0.1 --scan-window 0.01": None,
     "lgekf track cars.csv -o cars.csv --model ctrv --accel-std 1,0.5 --meas-std 0.5 --use-heading --full-cov":
         ["lgekf track poses.csv -o cars.csv --model ctrv --accel-std 1,0.5 --meas-std 0.5 --use-heading --full-cov"],
     "lgekf track detections.csv --model imm --smooth -o tracks_imm.csv": None,

@@ -8,7 +8,7 @@ import sys
 from ..apps.divergence import MonitorConfig
 from ..apps.noise import measurement_std
 
-__all__ = ["divergence_warnings", "smooth_failure_warnings", "warn_misfit", "MAX_DIVERGENCE_LINES", "MEAS_STD_WARN_FACTOR"]
+__all__ = ["divergence_warnings", "smooth_failure_warnings", "warn_misfit", "misfit_line", "MAX_DIVERGENCE_LINES", "MEAS_STD_WARN_FACTOR"]
 
 MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up in one line
 MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
@@ -55,11 +55,19 @@ def smooth_failure_warnings(model, meas, failed) -> list:
             f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]
 
 
+def misfit_line(given: float, estimated: float | None) -> str | None:
+    """The warning about a given ``--meas-std`` ``MEAS_STD_WARN_FACTOR`` or more off the data's estimate, else None."""
+    if estimated is None or max(given / estimated, estimated / given) < MEAS_STD_WARN_FACTOR:
+        return None
+    return (f"--meas-std {given:g} m is {given / estimated:.2g}x the std estimated from the data ({estimated:.3g} m); "
+            "leave --meas-std out to use the estimate")
+
+
 def warn_misfit(meas_std, meas, starts) -> None:
     """One warning line when a given ``--meas-std`` is ``MEAS_STD_WARN_FACTOR`` or more off the data's estimate."""
     if meas_std is None:
         return
     est = measurement_std(meas.t, meas.z, starts)
-    if est.usable and not est.floored and max(meas_std / est.meas_std, est.meas_std / meas_std) >= MEAS_STD_WARN_FACTOR:
-        print(f"lgekf track: warning: --meas-std {meas_std:g} m is {meas_std / est.meas_std:.2g}x the std "
-              f"estimated from the data ({est.meas_std:.3g} m); leave --meas-std out to use the estimate", file=sys.stderr)
+    line = misfit_line(meas_std, est.meas_std if est.usable and not est.floored else None)
+    if line is not None:
+        print(f"lgekf track: warning: {line}", file=sys.stderr)

@@ -25,7 +25,7 @@ from ..io.readers import parse_delimiter, read_measurements
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
-from .track import MEAS_STD_WARN_FACTOR  # the same rule as `lgekf track` (its module is loaded already: it dispatches here)
+from .alarms import misfit_line  # the same rule and words as `lgekf track`
 
 __all__ = ["cmd_track_multi", "track_multi_parser", "SPEED_WARN_FRACTION", "DEFAULT_MAX_SPEED"]
 
@@ -155,9 +155,9 @@ def cmd_track_multi(argv) -> int:
             if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate
                 _, own = fit_noise(t, Z, sc, args, accel_std=q, **fit_args)
                 e = own.meas_std if own.meas_source == "data" else None
-            if e is not None and max(a.meas_std / e, e / a.meas_std) >= MEAS_STD_WARN_FACTOR:
-                _warn(f"--meas-std {a.meas_std:g} m is {a.meas_std / e:.2g}x the std estimated from the data ({e:.3g} m); "
-                      "leave --meas-std out to use the estimate")
+            line = misfit_line(a.meas_std, e)
+            if line is not None:
+                _warn(line)
         n_conf = run.n_confirmed
         if n_conf == 0:
             _warn(no_track_reason(run, sc, t.size, max_speed, fit.meas_std, a.confirm_existence, fit.wider))
