@@ -46,6 +46,20 @@ def test_heading_in_degrees_is_refused_with_a_hint_and_converted_on_request(tmp_
     assert in_deg < 0.5  # and better than the raw 0.5 m per axis (0.71 m)
 
 
+def test_an_unwrapped_heading_in_radians_is_kept(tmp_path, capsys):
+    """A heading beyond ±2π that follows the motion as radians (an unwrapped yaw) is not mistaken for degrees."""
+    src = tmp_path / "unwrapped.csv"
+    rng = np.random.default_rng(3)
+    t = 0.1 * np.arange(200)
+    psi = 0.5 + 0.6 * t  # two full turns: the yaw grows past 2π
+    p = np.column_stack([20 * np.sin(psi), -20 * np.cos(psi)])
+    z = p + 0.2 * rng.standard_normal(p.shape)
+    src.write_text("t,x,y,heading\n" + "".join(f"{t[k]:.2f},{z[k, 0]:.4f},{z[k, 1]:.4f},{psi[k]:.5f}\n" for k in range(t.size)))
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), "--measure", "pose", "-o", str(out), "--quiet"]) == 0
+    assert _pos_rmse(out, p) < 0.2
+
+
 def _two_objects_rows(seed=1):
     """Rows id,t,x,y of a car (60 rows, 10 Hz) and a cyclist (40 rows), 0.2 m noise, in file order."""
     rng = np.random.default_rng(seed)

@@ -22,7 +22,7 @@ from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming
 from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.readers import parse_delimiter, read_measurements, skipping_nonfinite_rows
-from ..io.units import TIME_UNITS, to_seconds, unit_warnings
+from ..io.units import TIME_UNITS, heading_in_radians, to_seconds, unit_warnings
 from . import ArgumentParser
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
 from .cluster import add_cluster_options, check_cluster_options, cluster_requested
@@ -107,8 +107,9 @@ def track_parser():
     ap.add_argument("--skip-invalid", action="store_true",
                     help="drop what no filter can take, with one line per reason: rows with NaN/inf, a time not after the "
                          "object's previous row (duplicates), objects left with a single row; without it they are refused")
-    ap.add_argument("--heading-unit", choices=["rad", "deg"], default="rad",
-                    help="unit of the heading column (default rad; values beyond ±2π are refused as probably degrees)")
+    ap.add_argument("--heading-unit", choices=["rad", "deg"], default=None,
+                    help="unit of the heading column (default rad, but values beyond ±2π that follow the direction of "
+                         "motion as degrees, not as radians, are refused: give deg)")
     ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
@@ -198,7 +199,7 @@ class ModelsTrack:
         require_dask("lgekf track --workers/--scheduler")  # first: without Dask nothing else matters
         if a.tune or a.smooth:
             raise ValueError("--tune/--smooth: not available with --workers/--scheduler (yet); run without them")
-        if a.heading_unit != "rad":
+        if a.heading_unit == "deg":
             raise ValueError("--heading-unit deg: not available with --workers/--scheduler (yet); convert the column to radians")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
@@ -286,20 +287,8 @@ def read_track_input(a):
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
     if meas.heading is not None:
-        meas.heading = heading_in_radians(meas.heading, a.heading_unit)
+        meas.heading = heading_in_radians(meas.heading, a.heading_unit, meas.z, starts)
     return meas, starts
-
-
-def heading_in_radians(h, unit: str):
-    """The heading column in radians: converted from ``--heading-unit deg``; in radians (the default) a value beyond
-    ±2π is refused with one line (a heading in degrees read as radians tracked worse than the raw positions)."""
-    if unit == "deg":
-        return np.radians(h)
-    big = np.abs(h) > 2 * math.pi + 1e-9
-    if big.any():
-        raise ValueError(f"heading column: {int(big.sum())} value{'s' if big.sum() > 1 else ''} beyond ±2π (largest "
-                         f"{float(np.abs(h[np.isfinite(h)]).max()):g}): degrees? give --heading-unit deg")
-    return h
 
 
 def cmd_track(argv) -> int:

@@ -14,9 +14,12 @@ of the same object and returns one line per implausible value, saying what to do
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
-__all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings"]
+__all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings",
+           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN"]
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 UNIT_NAMES = {"s": "seconds", "ms": "milliseconds", "us": "microseconds", "ns": "nanoseconds"}
@@ -127,3 +130,42 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
         out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
                    "name the columns lon, lat instead (they are then projected to metres)")
     return out
+
+
+DEGREES_MARGIN = 0.3  # the heading follows the direction of motion this much better (mean cosine) read as degrees
+
+
+def heading_agreement(h, z, starts) -> tuple[float, float]:
+    """How well the heading column follows the direction of motion, read as radians and as degrees: the mean of
+    cos(h − course) over the moving steps (a step longer than the median step of the file; course = atan2 of the step
+    from row k to k + 1 of an object, h at row k). NaN, NaN without such steps."""
+    starts = np.asarray(starts, dtype=np.int64)
+    inside = np.ones(max(len(h) - 1, 0), bool)
+    inside[starts[1:-1] - 1] = False  # steps across two objects
+    d = np.diff(np.asarray(z, float)[:, :2], axis=0)[inside]
+    hk = np.asarray(h, float)[:-1][inside]
+    step = np.hypot(d[:, 0], d[:, 1])
+    ok = np.isfinite(step) & np.isfinite(hk) & (step > 0)
+    if not ok.any():
+        return math.nan, math.nan
+    moving = ok & (step >= np.median(step[ok]))
+    course = np.arctan2(d[moving, 1], d[moving, 0])
+    return float(np.mean(np.cos(hk[moving] - course))), float(np.mean(np.cos(np.radians(hk[moving]) - course)))
+
+
+def heading_in_radians(h, unit, z, starts):
+    """The heading column in radians. ``unit`` "deg": converted; "rad": as it is; None (not given): radians, but when a
+    value lies beyond ±2π (degrees, or an unwrapped heading in radians) and the column follows the direction of motion
+    clearly better read as degrees (``heading_agreement``, by ``DEGREES_MARGIN``), one ValueError saying to give
+    ``--heading-unit deg`` (a heading in degrees read as radians tracked worse than the raw positions)."""
+    if unit == "deg":
+        return np.radians(h)
+    if unit == "rad" or not np.any(np.abs(h) > 2 * math.pi + 1e-9):
+        return h
+    as_rad, as_deg = heading_agreement(h, z, starts)
+    if as_deg > as_rad + DEGREES_MARGIN:
+        big = np.abs(h) > 2 * math.pi + 1e-9
+        raise ValueError(f"heading column: {int(big.sum())} value{'s' if big.sum() > 1 else ''} beyond ±2π (largest "
+                         f"{float(np.nanmax(np.abs(h))):g}), and it follows the direction of motion as degrees (mean cos "
+                         f"{as_deg:.2f}), not as radians ({as_rad:.2f}): give --heading-unit deg (or rad to keep radians)")
+    return h
