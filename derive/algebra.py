@@ -9,7 +9,7 @@ Paper (Sec. "EKF on matrix Lie groups"), right perturbation X = μ·exp(ε):
   the Joseph form (I − K'ℋ) P (I − K'ℋ)ᵀ + K' R K'ᵀ equals P − β K (ℋP), β = α(2 − α), exactly, because
   K S Kᵀ = P ℋᵀ S⁻¹ ℋ P = K (ℋP).  ``form="symmetric"`` computes that right-hand side on the upper triangle only
   (symmetric by construction, m multiply-adds per entry), ``form="joseph"`` the Joseph products.  Equal in regular
-  steps to rounding; in a diverging filter (R ≪ ℋPℋᵀ, measured: tests/test_covariance_health.py extreme cases) the
+  steps to rounding; in a diverging filter (R ≪ ℋPℋᵀ, measured: tests/core/test_covariance_health.py extreme cases) the
   symmetric form cancels and can lose positive definiteness where the Joseph form keeps it.  So ``update_<meas>``
   uses the Joseph form and the fused ``step_<meas>`` the symmetric one, falling back to ``update_<meas>`` when a
   cheap screen flags the step (derive/codegen/fused.py).

@@ -1,5 +1,5 @@
 """The output number formatter as it was before the fast path (lgekf/io/formatting.py at commit 025d2e0),
-vendored as the reference for tests/test_formatting_exact.py and benchmarks/bench_format.py: the new formatter
+vendored as the reference for tests/io/test_formatting_exact.py and benchmarks/bench_format.py: the new formatter
 must write exactly these bytes. Not part of the library; do not change it."""
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """An IMM of CV modes written out in numpy (Blom and Bar-Shalom), independent of lgekf's IMM kernels: the
-reference of the IMM likelihood tests (tests/test_imm_tuning.py, tests/test_imm_chain.py)."""
+reference of the IMM likelihood tests (tests/estimators/test_imm_tuning.py, tests/estimators/test_imm_chain.py)."""
 
 import math
 

@@ -45,7 +45,7 @@ def family_source(polys: dict) -> str:
     The same Taylor polynomials and thresholds as the four functions (their ``tau``; the code asserts that sinc,
     cosc and cosc2 share theirs), and the same closed forms with the divisions shared: h = 1 − cos x (as
     sin²x/(1 + cos x) when cos x > 0), sinc = s·(1/x), cosc = h·(1/x), cosc2 = h·(1/x)², sinc2 = (x − s)·(1/x)².
-    A multiplication by a rounded reciprocal adds at most half an ulp to each (tests/test_special_accuracy.py
+    A multiplication by a rounded reciprocal adds at most half an ulp to each (tests/derive/test_special_accuracy.py
     checks the family against mpmath on both sides of every threshold). The printer calls it when a stage needs
     two or more of the four for one angle (derive/codegen/printer.py). Inlined by numba (``inline="always"``):
     LLVM would not inline it by itself, and a call left in a fused step keeps numba's reference counting of the

@@ -80,7 +80,7 @@ def se2_kernels():
 PD_TOL = 1e-13  # LDLᵀ pivot / largest variance below which a covariance counts as lost to rounding
 # the same test inlined into the fused steps runs under their FMA contraction, whose rounding differs from the IEEE
 # test's; it asks for 100× larger pivots, so that it accepts no covariance that covariance_is_pd rejects (measured on
-# tests/test_covariance_health.py; derive/codegen/fused.py)
+# tests/core/test_covariance_health.py; derive/codegen/fused.py)
 PD_TOL_FUSED = 1e-11
 
 

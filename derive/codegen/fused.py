@@ -24,13 +24,13 @@ is not inlined; it and the special functions it inlines (``sinc_family``, ``gain
 ``error_model="numpy"``: a division by zero gives inf or NaN instead of raising, and a NaN covariance fails the test,
 so such a step still ends in ``update_<meas>``, which raises as before. In the loop the counting is hoisted out.
 The inlined test runs under the step's FMA contraction, whose rounding differs from the IEEE ``covariance_is_pd``:
-on covariances conditioned beyond 1e16 the two can disagree (tests/test_covariance_health.py caught a CTRV step with
+on covariances conditioned beyond 1e16 the two can disagree (tests/core/test_covariance_health.py caught a CTRV step with
 eigenvalue −1e-16 that passed the contracted test at the same tolerance), so the fused test asks for pivots 100×
 larger (``PD_TOL_FUSED``, derive/codegen/emitter.py) and sends such borderline steps to the Joseph form. Measured
 (``/tmp`` harness, CPU time, one trajectory of 2·10⁵ steps): the copy-and-retest alternative in the loop cost more
 than the reference counting it saved.
 
-Why not a cheaper screen: measured on tests/test_covariance_health.py (10⁵ steps, extreme settings), the symmetric
+Why not a cheaper screen: measured on tests/core/test_covariance_health.py (10⁵ steps, extreme settings), the symmetric
 form alone leaves 85 % of the CTRV covariances and 0.2 % of the SE(2)×R³ ones indefinite (the Joseph form keeps them
 positive definite: that is the accuracy it buys, in diverging filters with R ≪ ℋPℋᵀ), and a screen on the diagonal
 (a variance shrunk by the update below 1e-6 of its prediction, or below PD_TOL × the largest) still missed 179

@@ -10,7 +10,7 @@ For that the step must be branch-free straight-line code without calls:
 
 * sin and cos are the polynomial ``sin_v`` / ``cos_v`` (Cody–Waite reduction by π/2 in three parts, Taylor
   polynomials of degree 17 and 18 on |r| ≤ π/4: truncation error below 1e-19, well under the rounding of the
-  Horner evaluation; measured against math.sin/cos in tests/test_soa.py), the output heading's atan2 the polynomial
+  Horner evaluation; measured against math.sin/cos in tests/derive/test_soa.py), the output heading's atan2 the polynomial
   ``atan2_v`` (reduction to |t| ≤ tan(π/32) by a table of tan(kπ/16), Taylor degree 17);
 * the angle functions, the gain damping and the wrap evaluate both branches and select (``<name>_v``);
 * the LDLᵀ test is branch-free (``covariance_is_pd_lane``: all pivots, one combined comparison).

@@ -12,7 +12,7 @@ Each group offers two kinds of functions: the *closed forms* written with the an
 ``derive.special`` (the forms the code generator emits), and ``derived_*`` functions that obtain
 the same quantity from first principles (matrix exponential, definition of Ad by conjugation,
 the Lie bracket, the series of Φ summed as ∫_0^1 exp(-s ad) ds).  ``derive.verify`` compares the paper's printed
-equations with them, and ``tests/test_groups.py`` checks symbolically that closed and derived forms agree
+equations with them, and ``tests/derive/test_groups.py`` checks symbolically that closed and derived forms agree
 (exp, Ad, ad, Φ, Φ·Φ^-1 = I, exp∘log).
 """
 

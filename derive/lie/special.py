@@ -16,7 +16,7 @@ The thresholds were chosen by measurement (``python -m lgekf.derive.lie.threshol
 50-digit mpmath reference (measured: sinc2 0.70, dsinc 0.66, halfcot1 0.96 but up to 7 ulp until 1.4,
 so 1.5 is used; the others are exact
 down to 1e-6 and only x = 0 needs the series), and the Taylor order is one whose truncation error at
-``tau`` is below 1e-17 relative.  ``tests/test_special_accuracy.py`` checks both sides of every threshold.
+``tau`` is below 1e-17 relative.  ``tests/derive/test_special_accuracy.py`` checks both sides of every threshold.
 
 Generated kernels call these functions as ``f(x, s, c)`` with ``s = sin x`` and ``c = cos x``
 computed once per angle, so a step needs one sincos per distinct angle.

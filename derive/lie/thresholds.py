@@ -9,7 +9,7 @@ in 50-digit mpmath.  Reported per function:
   (measured, by evaluating the polynomial in mpmath against the definition).
 
 The values recorded in derive/lie/special.py were chosen from this output (rounded up to simple numbers);
-tests/test_special_accuracy.py checks both sides of every threshold.
+tests/derive/test_special_accuracy.py checks both sides of every threshold.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ the least-squares quadratic through them leaves a one-dimensional residual, prop
 divided difference ``e = Σ_j w_j z_j`` with ``w_j = 1 / Π_{k≠j} (t_j − t_k)``. Because Σ_j w_j t_j^p = 0
 for p ≤ 2, e does not depend on the position, velocity or acceleration of the object, and with i.i.d.
 noise of std σ per axis ``e / ‖w‖`` has std σ exactly (no bias factor: the normalisation is derived, not
-fitted; ``tests/test_noise.py`` checks it by simulation). The estimate pools both axes of every window
+fitted; ``tests/tracking/test_noise.py`` checks it by simulation). The estimate pools both axes of every window
 of every object: ``σ̂ = median|e/‖w‖| / Φ⁻¹(0.75)`` (the MAD, robust to the windows where the motion is
 not locally quadratic — sharp turns, braking — and to outlying measurements; each measurement is in four
 windows, so a fraction ε of gross outliers spoils about 4ε of them and the MAD reads high by about 5 %
@@ -15,7 +15,7 @@ at ε = 1 %, 19 % at ε = 3 %). Four points are the shortest window with a resid
 spans more time, so more of the motion's jerk leaks in. The estimate is biased upwards where the
 motion's third derivative over three steps is not small against the noise (≈ |jerk|·Δt³ ≳ 0.5 σ in
 more than a few per cent of the windows): low rates with small noise on a turning vehicle. Measured on
-simulated urban driving (``tests/test_noise.py``: σ 0.05–2 m, 0–30 m/s, 1–25 Hz, irregular or regular
+simulated urban driving (``tests/tracking/test_noise.py``: σ 0.05–2 m, 0–30 m/s, 1–25 Hz, irregular or regular
 steps): within 15 % everywhere except 1 Hz with σ = 0.05 m on a moving car (+17 to +25 %).
 
 Process noise (``process_noise_search``)

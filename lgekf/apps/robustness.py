@@ -1,6 +1,6 @@
 """The robustness set of ``lgekf track``: simulated and real runs on which no filter may diverge when
 ``lgekf track`` is run with no options (``benchmarks/robustness.py`` prints the table,
-``tests/test_robustness.py`` asserts it on a reduced set).
+``tests/tracking/test_robustness.py`` asserts it on a reduced set).
 
 Each case is a set of tracks (objects) with truth positions, truth speeds (and turn rates where known)
 and noisy positions. Two runs per case and model:

@@ -5,7 +5,7 @@ stage — of every model at once under ``--model all`` — run in a pool of thre
 (``usable_cpus``). The kernels of a run release the GIL (``nogil=True``: the generated ``recover_<meas>`` — the
 filter's first pass, the divergence monitor and its re-initialisations and reruns in one call —, the two-point
 start's ``two_points`` / ``initial_covariances``, ``propagate_positions``), so the threads overlap; none of them is a
-numba ``parallel=True`` one (``tests/test_search.py`` replaces every parallel kernel by one that raises), so no two
+numba ``parallel=True`` one (``tests/tracking/test_search.py`` replaces every parallel kernel by one that raises), so no two
 threads enter numba's threading layer at once.
 
 The result is that of the serial search, exactly: every run is deterministic, each stage's choice is made

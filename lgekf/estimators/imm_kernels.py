@@ -16,7 +16,7 @@ X = μ_i·exp(ε_i), ε_i ~ N(0, P_i). The mixture Σ w_i N_G(μ_i, P_i) is redu
   ``right_jacobian`` (log(exp(−d) exp(d + δ)) ≈ Φ(d) δ, i.e. exp(d + δ) ≈ exp(d)·exp(Φ(d) δ)), putting
   δ = Φ(d_i)⁻¹ ε_i gives exp(d_i)·exp(ε_i) ≈ exp(d_i + Φ(d_i)⁻¹ ε_i), so to first order in ε_i the error
   about μ is ε = d_i + Φ(d_i)⁻¹ ε_i and
-  P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]  (``right_jacobian_inv``; tests/test_imm.py checks it
+  P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]  (``right_jacobian_inv``; tests/estimators/test_imm.py checks it
   against samples pushed through dense expm/logm). Each term comes from the generated ``mix_transport``
   (between, Φ⁻¹ and the congruence in one straight-line kernel over the packed covariances; derive/codegen/mixing.py).
 

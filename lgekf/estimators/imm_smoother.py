@@ -40,7 +40,7 @@ modes). Where the stored prediction is already the larger, nothing changes.
 Limits (what is approximate): the collapse of each pair mixture to one Gaussian (as in every IMM), Kim's
 probabilities using the forward predicted probabilities, the first-order group transports of the single-model
 RTS step; the smoothed covariance is an approximation, not a bound (no NEES test here). With ONE mode
-everything reduces exactly to the single-model RTS smoother (tests/test_imm_smoother.py). Cost: M² RTS steps
+everything reduces exactly to the single-model RTS smoother (tests/estimators/test_imm_smoother.py). Cost: M² RTS steps
 per time step, run from Python per step (about M² × 10 µs per row): much slower than the filter.
 """
 

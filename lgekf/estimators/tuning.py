@@ -40,7 +40,7 @@ error below 1/(``NARROW_FACTOR``·√(2n)) is curvature of a numerically rough l
 tracks), not precision, and that parameter gets no interval. The report prints "not identified" for every
 parameter without an interval.
 
-Measured (tests/test_tuning.py): with SE(2)×SE(2) truth (σ_v, σ_ω, r) = (0.5, 0.2, 0.2) the 95 % intervals
+Measured (tests/estimators/test_tuning.py): with SE(2)×SE(2) truth (σ_v, σ_ω, r) = (0.5, 0.2, 0.2) the 95 % intervals
 cover the truth on 60 tracks of 20 s. From positions alone the lateral-velocity std of SE(2)×SE(2) and
 SE(2)×R³ trades against the turn-rate std (both bend the path) and on 6 s tracks it is reported as not
 identified. The two-point start needs a baseline: with the first two measurements 0.1 s apart (heading

@@ -5,7 +5,7 @@ A number's digits: its decimal exponent from the binary one (``_decimal_exponent
 ONE double product or quotient, exact but where the scaled value's fraction is exactly 1/2 (then the
 double-double ``_round_scaled``; ``_round_scaled_fast`` has the proof). The text is written 8 digits a store
 (``_put_digits``) straight into the output (no scratch copy), trailing zeros dropped from the integer first.
-``tests/test_formatting_exact.py`` checks every byte against the formatter this replaced (about 2.7x slower) and
+``tests/io/test_formatting_exact.py`` checks every byte against the formatter this replaced (about 2.7x slower) and
 against Python's ``%g``; ``benchmarks/bench_format.py`` times both.
 """
 
@@ -199,7 +199,7 @@ def _decimal_digits(v, p):
     within about 2^-54 of 1/2: ``_round_scaled``'s double-double rounds it as 1/2); outside, the last of 16-17
     digits can be off by one unit, and next to a power of ten (log10's start) the result can be the
     neighbouring p-digit decimal (e.g. 9.999999999999994e22 at p = 15: 1e+23). Exactly the digits of the
-    formatter before the fast path, everywhere (tests/test_formatting_exact.py).
+    formatter before the fast path, everywhere (tests/io/test_formatting_exact.py).
     """
     e = _decimal_exponent(v)
     if 0 <= e < p and e <= 22 and v == math.floor(v):  # an integer of e + 1 <= p digits: as is

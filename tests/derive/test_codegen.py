@@ -54,7 +54,7 @@ def _render_in_subprocess(out: Path, seed: str, jobs: int) -> subprocess.Popen:
 def rendered(tmp_path_factory):
     """One regeneration of every generated module (PYTHONHASHSEED=0), shared by the freshness tests: the
     SymPy derivation is the suite's most expensive step (the CLI's own `lgekf derive --check` runs in
-    tests/test_readme_commands.py)."""
+    tests/architecture/test_readme_commands.py)."""
     out = tmp_path_factory.mktemp("render") / "render_0.json"
     p = _render_in_subprocess(out, "0", 2)
     _, err = p.communicate(timeout=900)
@@ -289,7 +289,7 @@ def test_lg_predict_is_consistent_with_building_blocks(name, xp):
     """Fused predict with zero noise: μ ← f(μ) and P ← F P Fᵀ (F from `transition`).
 
     P is scaled so that the angle stds stay below π, where the predict's angle-variance cap
-    (limit_angle_variance) is inactive; the cap itself is tested in tests/test_safeguards.py."""
+    (limit_angle_variance) is inactive; the cap itself is tested in tests/core/test_safeguards.py."""
     G = DenseModel(name)
     k = G.kernels
     dt = 0.1

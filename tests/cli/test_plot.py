@@ -11,7 +11,7 @@ import pytest
 from lgekf.apps.plot_tracks import MAX_OBJECTS, plot_tracks
 from lgekf.cli import main
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = ROOT / "examples" / "data" / "detections.csv"
 DATA = Path(os.environ.get("LGEKF_DATA") or ROOT.parent / "shared" / "data")
 

@@ -219,7 +219,7 @@ def test_docs_python_example_runs(capsys):
     import re
     from pathlib import Path
 
-    chapter = (Path(__file__).resolve().parents[1] / "docs" / "multi_target.md").read_text(encoding="utf-8")
+    chapter = (Path(__file__).resolve().parents[2] / "docs" / "multi_target.md").read_text(encoding="utf-8")
     block = re.search(r"# Many objects in clutter.*?\n.*?```python\n(.*?)```", chapter, re.S).group(1)
     ns: dict = {}
     exec(compile(block, "docs/multi_target.md", "exec"), ns)  # noqa: S102 - our own documentation

@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 from _cli import cli_command
-from test_evaluate import synthetic_tracks, write_synthetic
+from _synthetic_tracks import synthetic_tracks, write_synthetic
 
 from lgekf.apps.evaluate import FILTERS
 from lgekf.experiments.simulate import simulate

@@ -35,7 +35,7 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 DOCS = {p.name: p.read_text(encoding="utf-8") for p in sorted((ROOT / "docs").glob("*.md"))}
 MODELS = ("se2se2", "se2r3", "ctrv", "cv")
@@ -126,7 +126,7 @@ README_TO_RUN = {
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
     # as above: too few stand-in detections to learn SE(2)xR3's noise; CV modes tuned, the default modes smoothed
-    # (tests/test_imm_smoother.py runs the command as written on a larger file)
+    # (tests/estimators/test_imm_smoother.py runs the command as written on a larger file)
     "lgekf track data.csv --model imm --tune --smooth -o out.csv": [
         "lgekf track detections.csv --model imm --imm-modes cv,cv:calm,cv:manoeuvre --tune --smooth -o out.csv",
         "lgekf track detections.csv --model imm --smooth -o out.csv"],

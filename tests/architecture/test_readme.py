@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-README = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+README = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
 
 
 def test_python_example_runs():
@@ -31,7 +31,7 @@ def test_quick_start_tracks_the_example_early():
     """The quick start tracks the shipped example within the README's first 60 lines."""
     line = next(i for i, ln in enumerate(README.splitlines(), 1) if ln.startswith("lgekf track examples/data/detections.csv"))
     assert line <= 60
-    assert (Path(__file__).resolve().parents[1] / "examples" / "data" / "detections.csv").is_file()
+    assert (Path(__file__).resolve().parents[2] / "examples" / "data" / "detections.csv").is_file()
 
 
 def test_quick_start_python_gives_the_documented_columns(monkeypatch):
@@ -39,7 +39,7 @@ def test_quick_start_python_gives_the_documented_columns(monkeypatch):
     quick = _quick_start()
     header = re.search(r"```\n(id,t,[^\n]*)\n```", quick).group(1).split(",")
     block = re.search(r"```python\n(.*?)```", quick, re.S).group(1)
-    monkeypatch.chdir(Path(__file__).resolve().parents[1])
+    monkeypatch.chdir(Path(__file__).resolve().parents[2])
     ns: dict = {}
     exec(compile(block, "README.md", "exec"), ns)  # noqa: S102 - our own documentation
     assert list(ns["df"].columns) == header

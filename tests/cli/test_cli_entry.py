@@ -34,7 +34,7 @@ def test_run_sets_openblas_threads_before_numpy_and_passes_the_status(given):
 
 
 def test_the_script_and_python_m_lgekf_call_run():
-    scripts = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())["project"]["scripts"]
+    scripts = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())["project"]["scripts"]
     assert scripts["lgekf"] == "lgekf.cli:run"
     r = subprocess.run([sys.executable, "-m", "lgekf", "nonsense"], capture_output=True, text=True)
     assert r.returncode == 2 and "unknown command 'nonsense'" in r.stderr

@@ -15,8 +15,9 @@ from lgekf.apps.report import evaluation_figure, format_table, markdown_table
 from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_quantile
 from lgekf.io.datasets import Dataset, data_root, load_dataset
 from lgekf.apps.track import TrackConfig, track_arrays
+from _synthetic_tracks import synthetic_tracks, write_synthetic
 
-DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[1].parent / "shared" / "data")
+DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[2].parent / "shared" / "data")
 
 
 def needs(rel):
@@ -89,35 +90,6 @@ def test_world_velocity_of_each_model():
     np.testing.assert_allclose(world_velocity("se2se2", np.array([[0, 0, th, v, 0, 0.1]])), [expect])
     np.testing.assert_allclose(world_velocity("ctrv", np.array([[0, 0, th, v, 0.1]])), [expect])
     np.testing.assert_allclose(world_velocity("cv", np.array([[0, 0, *expect]])), [expect])
-
-
-def synthetic_tracks(n=12, K=40, dt=0.1, seed=0):
-    """Circles (turning) and straight lines with exact velocities."""
-    rng = np.random.default_rng(seed)
-    rows = []
-    for i in range(n):
-        t = np.arange(K) * dt + rng.uniform(0, 1)
-        w = 0.0 if i % 3 == 0 else rng.uniform(-0.8, 0.8)
-        sp, th0 = rng.uniform(1, 4), rng.uniform(-np.pi, np.pi)
-        th = th0 + w * (t - t[0])
-        if w == 0:
-            x = sp * np.cos(th0) * (t - t[0])
-            y = sp * np.sin(th0) * (t - t[0])
-        else:
-            x = sp / w * (np.sin(th) - np.sin(th0))
-            y = -sp / w * (np.cos(th) - np.cos(th0))
-        rows += [(i, tt, xx, yy, sp * np.cos(a), sp * np.sin(a)) for tt, xx, yy, a in zip(t, x, y, th)]
-    return rows
-
-
-def write_synthetic(path, rows, short=0):
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["id", "t", "x", "y", "vx", "vy"])
-        w.writerows([[r[0], *map(repr, map(float, r[1:]))] for r in rows])
-        for k in range(short):  # a track too short to evaluate
-            w.writerow([999, float(k), 0.0, 0.0, 0.0, 0.0])
-    return path
 
 
 def test_evaluate_synthetic_end_to_end(tmp_path):

@@ -85,7 +85,7 @@ def test_docs_imm_example_runs():
     from pathlib import Path
     import re
 
-    chapter = (Path(__file__).resolve().parents[1] / "docs" / "imm.md").read_text(encoding="utf-8")
+    chapter = (Path(__file__).resolve().parents[2] / "docs" / "imm.md").read_text(encoding="utf-8")
     block = re.search(r"# Interacting multiple models \(IMM\)\n.*?```python\n(.*?)```", chapter, re.S).group(1)
     ns: dict = {}
     exec(compile(block, "docs/imm.md", "exec"), ns)  # noqa: S102 - our own documentation

@@ -11,7 +11,7 @@ import pytest
 import lgekf
 from lgekf.cli import main
 
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "data" / "detections.csv"
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "data" / "detections.csv"
 
 
 def _example(tmp_path):

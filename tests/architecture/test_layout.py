@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[2]
 RUNTIME_LAYERS = {"generated": 0, "core": 1, "io": 1, "estimators": 2, "experiments": 3, "apps": 4, "cli": 5}
 DERIVE_LAYERS = {"lie": 0, "models": 1, "measurements": 1, "algebra": 2, "codegen": 3, "paper": 3}
 
