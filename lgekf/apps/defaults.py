@@ -33,7 +33,7 @@ BURN_IN = 3  # updates after each object's initialisation left out of the search
 CLASS_GAP = 1.5  # objects whose (shrunk) measurement stds are separated by a gap of more than this factor: classes of their own
 CLASS_SPAN = 2.0  # a class whose stds span more than this factor is cut into bins CLASS_GAP wide
 MAX_CLASSES = 6  # more would be cut into this many bins of equal width (log scale) over the whole range
-SHRINK_WINDOWS = 10  # an object's own std weighs n / (n + SHRINK_WINDOWS) against the pooled one (n its windows, log scale)
+LOG_STD_SPREAD = 1.2  # the standard error of an object's log std from n windows is about LOG_STD_SPREAD / √n
 
 
 @dataclass
@@ -190,15 +190,24 @@ def objects_subset(starts, objs) -> tuple:
 def noise_classes(t, z, starts, pooled: float) -> tuple:
     """Classes of objects by their own measurement std: (class of each object (B,), its shrunk std (B,)).
 
-    Each object's std (``noise.object_measurement_stds``, n windows) is shrunk toward the ``pooled`` one on the log
-    scale with weight n / (n + ``SHRINK_WINDOWS``) (an object of 3 rows or less: the pooled one); sorted, a gap of
+    Each object's log std (``noise.object_measurement_stds``, n windows; standard error s_b = ``LOG_STD_SPREAD``/√n)
+    is shrunk toward the ``pooled`` one with weight τ² / (τ² + s_b²), τ² = max(0, the spread of the objects' log stds −
+    the mean s_b²): the share of the spread the objects' own noise explains (James–Stein). One sensor: τ² ≈ 0 and
+    every object sits at the pooled std; several sensors: τ² large and each object keeps its own (an object of 3 rows
+    or less: the pooled one). Sorted, a gap of
     more than ``CLASS_GAP`` starts a new class, and a class spanning more than ``CLASS_SPAN`` is cut into bins
     ``CLASS_GAP`` wide; more than ``MAX_CLASSES`` classes become ``MAX_CLASSES`` bins of equal width. Classes are
     numbered by increasing std; one class when the objects agree."""
     r, n = object_measurement_stds(t, z, starts)
-    w = n / (n + SHRINK_WINDOWS)
+    own = np.isfinite(r) & (n > 0)
     lp = math.log(pooled)
-    lr = np.where(np.isfinite(r), w * np.log(np.where(np.isfinite(r), r, 1.0)) + (1 - w) * lp, lp)
+    lr = np.full(r.size, lp)
+    if own.sum() >= 2:
+        lo = np.log(r[own])
+        se2 = LOG_STD_SPREAD ** 2 / n[own]
+        tau2 = max(float(np.var(lo)) - float(np.mean(se2)), 0.0)
+        w = tau2 / (tau2 + se2)
+        lr[own] = w * lo + (1 - w) * lp
     order = np.argsort(lr, kind="stable")
     cut = np.flatnonzero(np.diff(lr[order]) > math.log(CLASS_GAP)) + 1
     label = np.empty(lr.size, dtype=np.int64)

@@ -244,9 +244,15 @@ class ModelsTrack:
             for c, plan in enumerate(classes.plans):
                 rows, sub = objects_subset(starts, np.flatnonzero(classes.of_object == c))
                 h = None if meas.heading is None else meas.heading[rows]
-                fits = tune_models(meas.t[rows], meas.z[rows], sub, models, measure, a.meas_std, self.given_q, h, a.omega_std,
-                                   a.tune_method, start_noise=plan.tune_starts(measure, heading_std))
                 head = f"class {c + 1}: " if len(classes.plans) > 1 else ""
+                try:
+                    fits = tune_models(meas.t[rows], meas.z[rows], sub, models, measure, a.meas_std, self.given_q, h,
+                                       a.omega_std, a.tune_method, start_noise=plan.tune_starts(measure, heading_std))
+                except ValueError as e:  # too few measurements: with one class that is the answer (exit 2), else the class
+                    if len(classes.plans) == 1:  # keeps its noise from the data
+                        raise
+                    print(f"lgekf track: {head}not tuned ({e}): its noise from the data is kept", file=sys.stderr)
+                    continue
                 for m, fit in fits.items():
                     print(f"lgekf track: {head}{fit.report()}", file=sys.stderr)
                     r = fit.meas_std
