@@ -193,11 +193,12 @@ def noise_classes(t, z, starts, pooled: float) -> tuple:
     Each object's log std (``noise.object_measurement_stds``, n windows; standard error s_b = ``LOG_STD_SPREAD``/√n)
     is shrunk toward the ``pooled`` one with weight τ² / (τ² + s_b²), τ² = max(0, the spread of the objects' log stds −
     the mean s_b²): the share of the spread the objects' own noise explains (James–Stein). One sensor: τ² ≈ 0 and
-    every object sits at the pooled std; several sensors: τ² large and each object keeps its own (an object of 3 rows
-    or less: the pooled one). Sorted, a gap of
+    every object sits at the pooled std; several sensors: τ² large and each object keeps its own. Sorted, a gap of
     more than ``CLASS_GAP`` starts a new class, and a class spanning more than ``CLASS_SPAN`` is cut into bins
     ``CLASS_GAP`` wide; more than ``MAX_CLASSES`` classes become ``MAX_CLASSES`` bins of equal width. Classes are
-    numbered by increasing std; one class when the objects agree."""
+    numbered by increasing std; one class when the objects agree. An object of 3 rows or less (no window, no estimate
+    of its own) joins the class of most windows (alone it would make a class whose plan is the library default).
+    """
     r, n = object_measurement_stds(t, z, starts)
     own = np.isfinite(r) & (n > 0)
     lp = math.log(pooled)
@@ -225,7 +226,13 @@ def noise_classes(t, z, starts, pooled: float) -> tuple:
     if k > MAX_CLASSES:  # a continuum of stds rather than a few sensors: MAX_CLASSES bins of equal width
         width = (lr.max() - lr.min()) / MAX_CLASSES
         _, label = np.unique(np.minimum(np.floor((lr - lr.min()) / width), MAX_CLASSES - 1), return_inverse=True)
-    return label.astype(np.int64), np.exp(lr)
+    label = label.astype(np.int64)
+    if own.any() and not own.all():  # objects without an estimate of their own (< 4 rows) make no class of their own:
+        rows = np.bincount(label[own], weights=n[own], minlength=label.max() + 1)  # they join the class of most windows
+        label[~own] = int(np.argmax(rows))
+        _, label = np.unique(label, return_inverse=True)  # classes numbered by increasing std, none left empty
+        label = label.astype(np.int64)
+    return label, np.exp(lr)
 
 
 @dataclass

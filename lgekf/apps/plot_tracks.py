@@ -7,8 +7,9 @@ The bands are first-order, from the diagonal stds the file holds (correlations a
 the turn rate ω ± 2σ_ω where ω is a state; the speed |v| of a body or world velocity (v_x, v_y) with
 σ² = (v_x σ_vx)² + (v_y σ_vy)² / |v|² (or σ_v of a speed state, CTRV and SE(2)×R²); the course with σ² = σ_θ² +
 ((v_y σ_vx)² + (v_x σ_vy)²) / |v|⁴ (σ_θ only where the course adds the heading θ to the velocity's angle), or σ_ψ of
-CTRV's course ψ (drawn unwrapped, its band at most ±π). The ellipses: chi-square 95 % (2 dof, 2.4477 σ) of the position, axis-aligned from std_x, std_y, or
-rotated by cov_0_1 when the file has the covariances.
+CTRV's course ψ (drawn unwrapped, its band at most ±π). The ellipses: chi-square 95 % (2 dof, 2.4477 σ) of the
+position from std_x, std_y (and cov_0_1 when the file has the covariances), in the body axes for the LG models (their
+P is in the tangent of the group: turned by θ into the world frame), else in the world axes.
 """
 
 from __future__ import annotations
@@ -59,10 +60,21 @@ def _course_speed(df):
     return speed, np.angle(np.exp(1j * course)), s_speed, s_course
 
 
-def _ellipse(ax, x, y, sx, sy, cxy, color):
+def body_frame_position(columns) -> bool:
+    """Whether the file's position stds are along the body axes: the LG models' (a ``theta`` state, P in the tangent of
+    the group, X = μ·exp(ε)); not the IMM's (``mu_`` columns: its combined covariance is in the common coordinates,
+    world x, y), CTRV's (``psi``) or CV's (world frame)."""
+    return "theta" in columns and not any(str(c).startswith("mu_") for c in columns)
+
+
+def _ellipse(ax, x, y, sx, sy, cxy, color, theta=0.0):
+    """The 95 % ellipse of a position covariance [[sx², cxy], [cxy, sy²]] given in axes turned by ``theta`` (the body
+    axes of the LG models; 0: the world axes), turned into the world frame: R(θ) C R(θ)ᵀ."""
     from matplotlib.patches import Ellipse
 
-    C = np.array([[sx * sx, cxy], [cxy, sy * sy]])
+    c, s = math.cos(theta), math.sin(theta)
+    R = np.array([[c, -s], [s, c]])
+    C = R @ np.array([[sx * sx, cxy], [cxy, sy * sy]]) @ R.T
     w, V = np.linalg.eigh(C)
     if not np.all(np.isfinite(w)) or w[0] < 0:
         return
@@ -123,8 +135,10 @@ def plot_tracks(tracks, measurements=None, ids=None, ellipse_every: int | None =
             ax_map.plot(df["smooth_x"], df["smooth_y"], "--", lw=1.0, color=c, alpha=0.8)
         every = ellipse_every or max(1, len(df) // ELLIPSES_PER_OBJECT)
         cxy = df["cov_0_1"].to_numpy() if "cov_0_1" in df.columns else np.zeros(len(df))
+        body = body_frame_position(df.columns)
         for i in range(0, len(df), every):
-            _ellipse(ax_map, df["x"].iat[i], df["y"].iat[i], df["std_x"].iat[i], df["std_y"].iat[i], cxy[i], c)
+            _ellipse(ax_map, df["x"].iat[i], df["y"].iat[i], df["std_x"].iat[i], df["std_y"].iat[i], cxy[i], c,
+                     df["theta"].iat[i] if body else 0.0)
         if "flag" in df.columns:
             bad = (df["flag"].to_numpy().astype(int) & 1) > 0
             if bad.any():

@@ -14,8 +14,9 @@ MAX_DIVERGENCE_LINES = 10  # per model; further diverged objects are summed up i
 MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estimate is warned about
 
 
-def divergence_warnings(model, meas, alarms, flagged) -> list:
-    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest)."""
+def divergence_warnings(model, meas, alarms, flagged, statistic: str = "NIS") -> list:
+    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest); ``statistic``: what the
+    window test averages (the IMM's monitor: the posterior residuals' |e|²/r², not a NIS)."""
     first, count, scale = {}, {}, {}
     for al in alarms:
         first.setdefault(al.obj, al)
@@ -24,7 +25,7 @@ def divergence_warnings(model, meas, alarms, flagged) -> list:
     lines = []
     for obj, al in list(first.items())[:MAX_DIVERGENCE_LINES]:
         if al.kind_name == "NIS":
-            why = f"mean NIS {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
+            why = f"mean {statistic} {al.value:.3g} over its last {al.updates} updates > {al.limit:.3g}"
         elif al.kind_name == "speed":
             why = f"speed {al.value:.3g} m/s > {al.limit:.3g} m/s, far above the data's"
         else:

@@ -16,7 +16,7 @@ def _write_input(data, path: Path) -> None:
     """A DataFrame or a mapping of equal-length columns as a CSV the reader of ``lgekf track`` takes (floats
     written with 17 significant digits: read back bit for bit)."""
     if hasattr(data, "to_csv"):  # a pandas DataFrame
-        data.to_csv(path, index=False, float_format="%.17g")
+        data.to_csv(path, index=False, float_format="%.17g", na_rep="nan")  # NaN as the reader's nan (skip_invalid)
         return
     cols = {str(k): np.asarray(v) for k, v in dict(data).items()}
     if not cols:
@@ -92,6 +92,7 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
 
     from . import UsageError
     from .track import cmd_track
+    from .track_parquet import is_parquet
     from ..apps.track import output_path
     from ..core.registry import MODELS
 
@@ -110,6 +111,9 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
             raise ValueError(str(e)) from None
         if status:
             raise RuntimeError(f"lgekf track exited with status {status}")
+        def read(path):
+            return pd.read_parquet(path) if is_parquet(path) else pd.read_csv(path, dtype={"id": str, "track": str})
+
         if model == "all":
-            return {m: pd.read_csv(output_path(out, m, True), dtype={"id": str, "track": str}) for m in MODELS}
-        return pd.read_csv(out, dtype={"id": str, "track": str})
+            return {m: read(output_path(out, m, True)) for m in MODELS}
+        return read(out)

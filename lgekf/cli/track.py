@@ -131,7 +131,7 @@ def track_parser():
     return ap
 
 
-def _check_arguments(a, models):
+def check_track_arguments(a, models):
     """Every argument error before any reading or computing (one line each, exit 2)."""
     if not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
@@ -168,14 +168,14 @@ class ModelsTrack:
         self.a, self.say = a, say
         self.models = list(MODELS) if a.model == "all" else [a.model]
 
-    def check(self) -> list:
-        """Every argument error before any reading (one line each); returns the output paths."""
+    def check(self) -> None:
+        """The models' own argument errors before any reading (one line each; the shared ones:
+        ``check_track_arguments``)."""
         a, models = self.a, self.models
         self.given_q = parse_accel_std(a.accel_std, models)
         # validate the given values before any reading (the estimated ones are valid by construction)
         TrackConfig(self.given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
                     DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
-        self.outs = _check_arguments(a, models)
         measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
         if a.model != "all" and measure[a.model] is None:
             MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
@@ -185,7 +185,6 @@ class ModelsTrack:
                 self.say(f"{m} has no heading: it gets the positions only")
         self.measure = measure
         check_cluster_options(a)
-        return self.outs
 
     def run_on_cluster(self) -> int | None:
         """``--workers/--scheduler``: the same output computed on Dask in partitions of whole objects (its exit status);
@@ -199,6 +198,8 @@ class ModelsTrack:
         require_dask("lgekf track --workers/--scheduler")  # first: without Dask nothing else matters
         if a.tune or a.smooth:
             raise ValueError("--tune/--smooth: not available with --workers/--scheduler (yet); run without them")
+        if a.sort or a.skip_invalid:
+            raise ValueError("--sort/--skip-invalid: not available with --workers/--scheduler (yet); clean the file first")
         if a.heading_unit == "deg":
             raise ValueError("--heading-unit deg: not available with --workers/--scheduler (yet); convert the column to radians")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
@@ -285,11 +286,11 @@ def read_track_input(a):
             meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
     if a.sort:
         meas, moved = sort_within_objects(meas)
-        print(f"lgekf track: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)
+        print(f"lgekf track: warning: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)
     if a.skip_invalid:
         meas = drop_invalid(meas)
         for line in skipped_summary(meas):
-            print(f"lgekf track: {line}", file=sys.stderr)
+            print(f"lgekf track: warning: {line}", file=sys.stderr)
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
     if meas.heading is not None:
@@ -313,7 +314,8 @@ def cmd_track(argv) -> int:
 
         check_imm_options(a)
     est = ImmTrack(a, say) if a.model == "imm" else ModelsTrack(a, say)
-    outs = est.check()
+    est.check()
+    outs = est.outs = check_track_arguments(a, est.models)  # every estimator: format options, output paths, not the input
     t0 = time.perf_counter()
     status = est.run_on_cluster()
     if status is not None:

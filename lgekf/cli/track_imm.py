@@ -6,7 +6,6 @@ from __future__ import annotations
 import sys
 
 from ..apps.track_imm import ImmClasses, ImmTrackOptions, imm_noise, tune_imm, write_imm
-from ..io.files import check_output_path
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_parquet import is_parquet
 
@@ -31,8 +30,10 @@ class ImmTrack:
     def __init__(self, a, say):
         self.a, self.say = a, say
         self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch)
+        self.models = ["imm"]  # one output file
 
-    def check(self) -> list:
+    def check(self) -> None:
+        """The IMM's own argument errors (the shared ones: ``lgekf.cli.track.check_track_arguments``)."""
         a = self.a
         unsupported = [(a.accel_std, "--accel-std (give the modes' noise in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
                        (a.measure != "position", "--measure pose"), (a.full_cov, "--full-cov"),
@@ -41,12 +42,8 @@ class ImmTrack:
         for given, name in unsupported:
             if given:
                 raise ValueError(f"--model imm: {name} is not supported")
-        if not 1 <= a.precision <= 17:
-            raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
-        check_output_path(a.output)
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--model imm: Parquet input or output is not supported (yet); use CSV")
-        return [a.output]
 
     def run_on_cluster(self):
         return None
@@ -66,6 +63,7 @@ class ImmTrack:
             say(summary)
             self.classes = ImmClasses.of_all(opts, r, meas.n_objects)
             say(f"imm: modes {_modes(opts)}; switch {opts.switch:g} per step; meas-std {r:.3g} m (tuned)")
+            warn_misfit(a.meas_std, meas, starts)
         else:
             self.classes, found = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)
             if len(found.plans) > 1:
@@ -84,6 +82,7 @@ class ImmTrack:
         res = write_imm(handles[0], meas, starts, self.classes, self.a.omega_std, self.a.precision, bar,
                         smooth=getattr(self.a, "smooth", False), monitor=monitor)
         flagged = int((res.flag & 1).sum())
-        for line in divergence_warnings("imm", meas, res.alarms, flagged) + smooth_failure_warnings("imm", meas, res.smooth_failed):
+        lines = divergence_warnings("imm", meas, res.alarms, flagged, statistic="residual²/r²")
+        for line in lines + smooth_failure_warnings("imm", meas, res.smooth_failed):
             print(f"lgekf track: warning: {line}", file=sys.stderr)
         return [("imm", f", {flagged} rows flagged" if flagged else "")]

@@ -77,7 +77,7 @@ def drop_invalid(meas: Measurements, min_length: int = 2) -> Measurements:
     if short.any():
         skipped[f"objects with fewer than {min_length} rows"] = meas.line[short].tolist()
         keep &= ~short
-    if keep.all():
+    if keep.all() and counts.all():  # (an object whose every row had a NaN has no row left: renumbered below)
         return meas
     out = take_rows(meas, keep)
     out.skipped = skipped

@@ -103,7 +103,7 @@ def test_skip_invalid_drops_the_defects_and_tracks_the_rest_as_the_clean_file(tm
     code, err, text = _run(tmp_path, capsys, dirty, "--skip-invalid")
     assert code == 0 and text == clean
     lines = err.strip().splitlines()
-    assert len(lines) == 3 and all(line.startswith("lgekf track: skipped 1 row (") for line in lines), err
+    assert len(lines) == 3 and all(line.startswith("lgekf track: warning: skipped 1 row (") for line in lines), err
     assert "non-finite; line 7" in err and "time not after the previous row's; line 13" in err and "fewer than 2 rows" in err
 
 
@@ -120,3 +120,18 @@ def test_sort_puts_unsorted_rows_in_time_order(tmp_path, capsys):
     # last); the bike's first 11 (its t = 1.0 row, now in the car's block, comes before its t = 0.0 row)
     assert code == 0 and "--sort: 23 rows moved into time order" in err
     assert text == clean
+
+
+def test_skip_invalid_drops_an_object_whose_every_row_is_not_finite(tmp_path, capsys):
+    good = _two_objects_rows()
+    rows = good + [["ghost", 0.0, "1e999", 0.0], ["ghost", 0.1, "1e999", 0.0]]  # read as inf by the fast reader
+    code, _, clean = _run(tmp_path, capsys, good)
+    code, err, text = _run(tmp_path, capsys, rows, "--skip-invalid")
+    assert code == 0 and text == clean and "skipped 2 rows (non-finite" in err
+
+
+def test_the_imm_refuses_to_overwrite_its_input(tmp_path, capsys):
+    src = _write(tmp_path / "in.csv", _two_objects_rows())
+    before = src.read_bytes()
+    assert main(["track", str(src), "--model", "imm", "-o", str(src)]) == 2
+    assert "would overwrite the input" in capsys.readouterr().err and src.read_bytes() == before

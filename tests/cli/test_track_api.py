@@ -51,3 +51,14 @@ def test_track_options_and_errors(tmp_path):
         lgekf.track(src, model="nope")
     with pytest.raises(ValueError, match="same length"):
         lgekf.track({"t": [0.0, 1.0], "x": [0.0], "y": [0.0, 1.0]})
+
+
+def test_track_takes_a_dataframe_with_nan_rows_and_writes_parquet(tmp_path):
+    table = pd.read_csv(EXAMPLE, dtype={"id": str})
+    dirty = table.copy()
+    dirty.loc[5, "x"] = np.nan  # NaN in a DataFrame: written as the reader's nan, dropped by skip_invalid
+    clean = table.drop(index=5).reset_index(drop=True)
+    pd.testing.assert_frame_equal(lgekf.track(dirty, skip_invalid=True), lgekf.track(clean), check_exact=True)
+    pytest.importorskip("pyarrow", reason="Parquet output needs the optional pyarrow (lgekf[parquet])")
+    df = lgekf.track(EXAMPLE, output=tmp_path / "tracks.parquet")
+    assert list(df.columns) == list(lgekf.track(EXAMPLE).columns) and len(df) == len(table)

@@ -72,7 +72,7 @@ def test_first_imm_alarm_finds_each_kind_at_its_row():
     drift = c.copy()
     drift[60:, 0] += 30.0  # the estimate leaves the measurements at row 60
     k, kind, value, thr, updates, k_flag = first_imm_alarm(z, drift, P, r, 1e9, CFG)
-    # each residual is clipped at its 99.9 % quantile (one outlier cannot raise an alarm): the short window of 3
+    # each residual is clipped at its 99.99 % quantile (one outlier cannot raise an alarm): the short window of 3
     # updates is the first to exceed its threshold, on its third row; flagged from the row before the window
     assert kind == 1 and k == 60 + CFG.short - 1 and updates == CFG.short and value > thr and k_flag == 59
     fast = c.copy()

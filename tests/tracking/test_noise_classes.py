@@ -120,3 +120,39 @@ def test_tune_fits_each_class_on_its_own_objects(mixed_file, tmp_path, capsys):
     err = capsys.readouterr().err
     fitted = [float(v) for v in re.findall(r"class \d: learned noise for cv .*?meas_r = ([0-9.e+-]+)", err)]
     np.testing.assert_allclose(fitted, [0.2, 0.5, 20.0], rtol=0.3)  # one fit per class, each its own sensor's noise
+
+
+def test_short_objects_join_the_class_of_most_windows():
+    """Objects of 3 rows have no estimate of their own: with the pooled std between two sensors' they would make a class
+    whose plan is the library default; they join the class of most windows instead."""
+    t, z, _, starts, _ = _objects(["ped", "air"], n_each=3)
+    rng = np.random.default_rng(9)
+    for _ in range(3):  # three short objects
+        t = np.r_[t, 0.1 * np.arange(3)]
+        z = np.vstack([z, rng.uniform(-50, 50, 2) + 5.0 * rng.standard_normal((3, 2))])
+        starts = np.r_[starts, starts[-1] + 3]
+    label, _ = noise_classes(t, z, starts, measurement_std(t, z, starts).meas_std)
+    assert label.max() == 1  # the two sensors' classes, no third one
+    assert (label[-3:] == label[0]).all() or (label[-3:] == label[3]).all()
+
+
+def test_interleaved_classes_are_put_back_in_place(tmp_path, capsys):
+    """Objects of different classes alternating in the file: a class's rows are gathered and put back, row by row."""
+    t, z, p, starts, labels = _objects(["ped", "air"], n_each=3, K=80, seed=5)
+    order = [0, 3, 1, 4, 2, 5]  # ped0, air0, ped1, air1, ...
+    src = tmp_path / "alternating.csv"
+    rows, truth = ["id,t,x,y"], {}
+    for b in order:
+        for i in range(starts[b], starts[b + 1]):
+            rows.append(f"{labels[b]},{t[i]:.2f},{float(z[i, 0])!r},{float(z[i, 1])!r}")
+            truth[(labels[b], round(t[i], 2))] = p[i]
+    src.write_text("\n".join(rows) + "\n")
+    for model in ("se2se2", "imm"):
+        out = tmp_path / f"{model}.csv"
+        assert main(["track", str(src), "--model", model, "--smooth", "-o", str(out), "--quiet"]) == 0
+        got = list(csv.DictReader(out.open()))
+        assert [r["id"] for r in got][::80] == [labels[b] for b in order]  # the file's object order
+        for kind in ("ped", "air"):
+            e = [np.hypot(float(r["smooth_x"]) - truth[(r["id"], round(float(r["t"]), 2))][0],
+                          float(r["smooth_y"]) - truth[(r["id"], round(float(r["t"]), 2))][1]) for r in got if r["id"].startswith(kind)]
+            assert np.sqrt(np.mean(np.square(e))) < 0.75 * KINDS[kind][1] * np.sqrt(2), (model, kind)
