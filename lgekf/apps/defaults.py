@@ -15,6 +15,7 @@ import numpy as np
 
 from ..core.registry import get_model
 from .divergence import MonitorConfig, speed_limits
+from ..io.grouping import objects_subset
 from .noise import (
     SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
 )
@@ -24,7 +25,7 @@ from .track import (
     track_monitored,
 )
 
-__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class", "objects_subset",
+__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class",
            "data_starts"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
@@ -174,17 +175,6 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         plan.median_nis[m] = res.median_nis
         plan.search[m] = res
     return plan
-
-
-def objects_subset(starts, objs) -> tuple:
-    """(rows, starts of the subset): the rows of objects ``objs`` (sorted) of a table with ``starts``, in order."""
-    starts = np.asarray(starts, dtype=np.int64)
-    objs = np.asarray(objs, dtype=np.int64)
-    lens = starts[objs + 1] - starts[objs]
-    sub = np.zeros(objs.size + 1, dtype=np.int64)
-    np.cumsum(lens, out=sub[1:])
-    rows = np.concatenate([np.arange(starts[b], starts[b + 1]) for b in objs]) if objs.size else np.zeros(0, np.int64)
-    return rows, sub
 
 
 def noise_classes(t, z, starts, pooled: float) -> tuple:

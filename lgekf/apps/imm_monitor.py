@@ -37,7 +37,6 @@ import numpy as np
 from ..core.initiation import two_point
 from ..estimators.imm import Mode, imm_batch
 from .divergence import Alarm, MonitorConfig
-from .noise import chi2_quantile
 
 __all__ = ["Segment", "ImmRun", "imm_monitored", "first_imm_alarm", "scaled_modes"]
 
@@ -92,8 +91,7 @@ def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
     if K == 0:
         return None
     finite = np.isfinite(c).all(axis=1) & np.isfinite(P.reshape(K, -1)).all(axis=1)
-    clip, thr_w, thr_s = (chi2_quantile(1.0 - cfg.clip, MEAS_DIM), chi2_quantile(1.0 - cfg.alpha, cfg.window * MEAS_DIM),
-                          chi2_quantile(1.0 - cfg.alpha, cfg.short * MEAS_DIM))
+    clip, thr_w, thr_s = cfg.nis_thresholds(MEAS_DIM)  # the single models' thresholds, for m = 2
     e = z[:, :2] - c[:, :2]
     d = np.minimum(np.where(finite, (e[:, 0] ** 2 + e[:, 1] ** 2) / meas_std ** 2, 0.0), clip)
     sw, ss = _window_sums(d, cfg.window), _window_sums(d, cfg.short)

@@ -60,7 +60,7 @@ from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
 from ..io.formatting import label_bytes, write_rows_made
-from ..io.grouping import row_objects
+from ..io.grouping import objects_subset, row_objects
 from ..io.parquet import ParquetRows
 
 __all__ = [
@@ -372,10 +372,7 @@ def track_chunk(model, t, z, heading, starts, classes: ClassConfigs, measurement
     failed = []
     for c in present:
         objs = np.flatnonzero(classes.of_object == c)
-        lens = starts[objs + 1] - starts[objs]
-        rows = np.concatenate([np.arange(starts[b], starts[b + 1]) for b in objs])
-        st = np.zeros(objs.size + 1, dtype=np.int64)
-        np.cumsum(lens, out=st[1:])
+        rows, st = objects_subset(starts, objs)
         r, ex, fl = run(classes.configs[int(c)], t[rows], z[rows], None if heading is None else heading[rows], st)
         out.x[rows], out.p[rows], out.nis[rows], out.flag[rows] = r.x, r.p, r.nis, r.flag
         for dst, src in zip(extra, ex):

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes
-from ..io.grouping import row_objects
+from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
 from .track import MOTION_COLUMNS, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
@@ -330,7 +330,6 @@ def imm_track_classes(t, z, starts, classes: ImmClasses, omega_std: float, smoot
                       monitor: MonitorConfig | None = MonitorConfig()) -> ImmTracked:
     """``imm_track_common(..., full=True)`` with each class of objects' own noise: the rows of a class gathered, tracked
     and put back in place (alarms and failures in objects and rows of t, z)."""
-    from .defaults import objects_subset
 
     if len(classes.noise) == 1:
         opts, r = classes.noise[0]

@@ -16,10 +16,10 @@ from ..apps.track import (
     DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
 from ..apps.track_dask import PARTITION_ROWS
-from ..core.registry import MODELS
+from ..core.registry import MODELS, get_measurement
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
-from ..io.grouping import grouped_consuming
+from ..io.grouping import grouped_consuming, objects_subset
 from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.readers import parse_delimiter, read_measurements, skipping_nonfinite_rows
 from ..io.units import TIME_UNITS, heading_in_radians, to_seconds, unit_warnings
@@ -227,7 +227,7 @@ class ModelsTrack:
         classes = plan_noise_by_class(meas.t, meas.z, starts, models, meas_std=a.meas_std, accel_std=self.given_q,
                                       omega_std=a.omega_std, heading_std=heading_std, heading_cap=TRACK_HEADING_CAP,
                                       heading=meas.heading, measurement=measure, monitor=monitor)
-        pose = any(v == "pose" for v in measure.values())
+        pose = any(get_measurement(v).angles for v in measure.values())  # a measured heading: its std is printed
         if len(classes.plans) > 1:
             say(classes.describe(meas.labels))
             for c, p in enumerate(classes.plans):
@@ -239,7 +239,6 @@ class ModelsTrack:
                    for p in classes.plans]
         per_model = {m: list(configs) for m in models}
         if a.tune:  # each class of objects fitted on its own objects, from its own plan
-            from ..apps.defaults import objects_subset
             from ..apps.smooth_track import tune_models
 
             for c, plan in enumerate(classes.plans):
@@ -258,7 +257,7 @@ class ModelsTrack:
                     print(f"lgekf track: {head}{fit.report()}", file=sys.stderr)
                     r = fit.meas_std
                     per_model[m][c] = TrackConfig({**configs[c].accel_std, m: fit.accel_std}, r[0], a.omega_std,
-                                                  r[-1] if measure[m] == "pose" else heading_std, TRACK_HEADING_CAP).validate()
+                                                  r[-1] if get_measurement(measure[m]).angles else heading_std, TRACK_HEADING_CAP).validate()
         self.cfgs = {m: ClassConfigs(classes.of_object, per_model[m]) for m in models}
 
     def write(self, handles, meas, starts, monitor, bar) -> list:
@@ -278,7 +277,7 @@ def read_track_input(a):
     at least 2 rows, t increasing: else one clear error; ``--sort`` and ``--skip-invalid``: ``lgekf.io.cleaning``), t in
     seconds. Returns (meas, starts)."""
     single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
-    heading = a.use_heading or a.measure == "pose"
+    heading = a.use_heading or bool(get_measurement(a.measure).angles)  # a measurement with an angle reads the column
     with skipping_nonfinite_rows(a.skip_invalid):
         if is_parquet(a.input):
             meas = read_parquet(a.input, heading)

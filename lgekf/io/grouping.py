@@ -16,7 +16,7 @@ import numpy as np
 from .fastcsv import group_order, times_increase
 from .readers import Measurements
 
-__all__ = ["grouped_consuming", "row_objects"]
+__all__ = ["grouped_consuming", "row_objects", "objects_subset"]
 
 
 def grouped_consuming(meas: Measurements, min_length: int = 2):
@@ -99,3 +99,14 @@ def row_objects(starts: np.ndarray, first: int, last: int) -> np.ndarray:
         What ``Measurements.grouped``'s ``obj`` holds on those rows.
     """
     return np.repeat(np.arange(first, last, dtype=np.int64), np.diff(starts[first:last + 1]))
+
+
+def objects_subset(starts, objs) -> tuple:
+    """(rows, starts of the subset): the rows of objects ``objs`` (sorted) of a table with ``starts``, in order."""
+    starts = np.asarray(starts, dtype=np.int64)
+    objs = np.asarray(objs, dtype=np.int64)
+    lens = starts[objs + 1] - starts[objs]
+    sub = np.zeros(objs.size + 1, dtype=np.int64)
+    np.cumsum(lens, out=sub[1:])
+    rows = np.concatenate([np.arange(starts[b], starts[b + 1]) for b in objs]) if objs.size else np.zeros(0, np.int64)
+    return rows, sub

@@ -9,7 +9,8 @@ import re
 import numpy as np
 import pytest
 
-from lgekf.apps.defaults import noise_classes, objects_subset, plan_noise, plan_noise_by_class
+from lgekf.apps.defaults import noise_classes, plan_noise, plan_noise_by_class
+from lgekf.io.grouping import objects_subset
 from lgekf.apps.noise import measurement_std, object_measurement_stds
 from lgekf.cli import main
 
