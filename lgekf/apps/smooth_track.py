@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.covariance import unpack
-from ..core.registry import get_model
+from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.smoother import smooth_segments
 from ..estimators.em import em_or_lbfgs, learn_noise_em
 from ..estimators.tuning import NoiseFit, learn_noise
@@ -125,12 +125,10 @@ def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=
         if given_q and m in given_q:
             continue
         meas = measurement[m]
-        cols = [z] if meas == "position" else [z, heading[:, None]]
-        zz = np.hstack(cols)
+        spec = get_measurement(meas)
+        zz = spec.columns(z, heading)
         tracks = [(t[a:b], zz[a:b]) for a, b in zip(starts[:-1], starts[1:])]
-        fixed = None
-        if meas_std is not None:
-            fixed = meas_std if meas == "position" else None
+        fixed = meas_std if meas_std is not None and not spec.has_angle else None  # a scalar fixes no heading std
         learn = learn_noise_em if em_or_lbfgs(m, meas, method) == "em" else learn_noise
         first = {DATA_START: start_noise[m]} if start_noise and m in start_noise else None
         fits[m] = learn(m, tracks, measurement=meas, meas_std=fixed, omega_std=omega_std, starts=first)
@@ -155,7 +153,7 @@ def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs
     out = {}
     for m in models:
         try:
-            learn = learn_noise_em if em_or_lbfgs(m, "position", method) == "em" else learn_noise
+            learn = learn_noise_em if em_or_lbfgs(m, BASE_MEASUREMENT, method) == "em" else learn_noise
             out[m] = learn(m, tracks, meas_std=meas_std)
         except ValueError as e:  # too few points: the caller keeps the default noise and says why
             out[m] = str(e)

@@ -118,12 +118,11 @@ def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=
 
 def _measurement_inputs(spec, z, heading, cfg, measurement):
     """(measurements (N, m), noise stds r) of the measurement model."""
-    spec.measurement(measurement)
-    if measurement == "pose":
-        if heading is None:
-            raise ValueError("--measure pose: the input needs a heading column")
-        return np.ascontiguousarray(np.column_stack([z[:, :2], heading])), np.array([cfg.meas_std, cfg.meas_std, cfg.heading_std])
-    return z, np.array([float(cfg.meas_std)])
+    meas = spec.measurement(measurement)
+    if meas.has_angle and heading is None:
+        raise ValueError(f"--measure {measurement}: the input needs a heading column")
+    return (np.ascontiguousarray(meas.columns(z[:, :2], heading)),
+            np.array(meas.stds(float(cfg.meas_std), cfg.heading_std), dtype=float))
 
 
 def _run_segments(model, measurement, t, zm, first, lengths, x0, p0, q, r, out_x, out_p, out_nis):

@@ -70,7 +70,7 @@ from dataclasses import dataclass, field
 import numba as nb
 import numpy as np
 
-from ..core.registry import get_model
+from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.tracker import HEADING_CAP, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes
 from .defaults import NoisePlan, plan_noise
@@ -385,7 +385,7 @@ def _held_plan(run: MultiRun, model: str, measurement: str, meas_std, accel_std,
     est = measurement_std(run.held_t, run.held_z, run.held_starts)
     if not est.usable:
         return None
-    heading = run.held_z[:, 2] if measurement == "pose" else None
+    heading = run.held_z[:, 2] if get_measurement(measurement).has_angle else None
     plan = plan_noise(run.held_t, run.held_z[:, :2], run.held_starts, [model], meas_std=est.meas_std if meas_std is None else meas_std,
                       accel_std={} if accel_std is None else {model: accel_std}, omega_std=omega_std, heading_std=heading_std,
                       heading_cap=HEADING_CAP, heading=heading, measurement={model: measurement}, workers=1)
@@ -394,7 +394,7 @@ def _held_plan(run: MultiRun, model: str, measurement: str, meas_std, accel_std,
 
 
 def _meas_tuple(s: float, measurement: str, heading_std: float):
-    return (s,) if measurement == "position" else (s, s, heading_std)
+    return get_measurement(measurement).stds(s, heading_std)
 
 
 def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = None, accel_std=None,
@@ -426,7 +426,7 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
     fit : NoiseFit
         The noise it used.
     """
-    model, measurement = tracker_args["model"], tracker_args.get("measurement", "position")
+    model, measurement = tracker_args["model"], tracker_args.get("measurement", BASE_MEASUREMENT)
     provisional = None
     if meas_std is None:
         provisional = provisional_meas_std(sc, Z)

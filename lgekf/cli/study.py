@@ -129,6 +129,7 @@ def cmd_study(argv) -> int:
 
         return cmd_study_multi(argv)
     from .. import __version__
+    from ..core.registry import get_measurement
     from ..experiments.study import claims_check, config_dict, run_study
 
     a = study_parser().parse_args(argv)
@@ -206,7 +207,7 @@ def cmd_study(argv) -> int:
     for name, counts in res.aliased.items():
         if counts.sum():
             print(f"trajectories the {name} filter cannot represent (its estimate aliases): {int(counts.sum())} of {counts.size * cfg.trajectories}")
-    if cfg.measurement != "position":
+    if get_measurement(cfg.measurement).has_angle:
         pos_only = [f for f in res.filters if cfg.filter_measurement(f) != cfg.measurement]
         print(f"measurements: {cfg.measurement} (heading std {cfg.heading_std} rad)"
               + (f"; {', '.join(pos_only)} got the position part only (no heading)" if pos_only else ""))

@@ -16,7 +16,7 @@ from ..apps.track import (
     DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
 from ..apps.track_dask import PARTITION_ROWS
-from ..core.registry import MODELS, get_measurement
+from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS, get_measurement
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming, objects_subset
@@ -96,8 +96,10 @@ def track_parser():
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
                     help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
                     + "); repeatable MODEL=LIST (default: from the data, see docs/track.md)")
-    ap.add_argument("--measure", default="position", choices=["position", "pose"],
-                    help="measurement model: position (x, y) or pose (x, y and the heading column as an SE(2) pose; noise meas-std, meas-std, heading-std)")
+    ap.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(MEASUREMENTS),
+                    help=f"measurement model (default {BASE_MEASUREMENT}): "
+                    + "; ".join(f"{m}: {s.description}" for m, s in MEASUREMENTS.items())
+                    + " (angles from the heading column; noise: --meas-std for positions, --heading-std for angles)")
     ap.add_argument("--meas-std", type=float, default=None,
                     help="measurement std per axis in m (default: estimated from the data, local quadratic residuals)")
     ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
@@ -181,8 +183,8 @@ class ModelsTrack:
             MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
         for m in models:
             if measure[m] is None:
-                measure[m] = "position"
-                self.say(f"{m} has no heading: it gets the positions only")
+                measure[m] = BASE_MEASUREMENT
+                self.say(f"{m} cannot take {a.measure} measurements: it gets {BASE_MEASUREMENT} only")
         self.measure = measure
         check_cluster_options(a)
 

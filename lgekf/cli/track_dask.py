@@ -11,6 +11,7 @@ import numpy as np
 from ..apps.cluster import dask_client, require_dask, worker_count
 from ..apps.track import output_columns
 from ..apps.track_dask import open_source, plan_partitions, track_partitions
+from ..core.registry import get_measurement
 from ..io.files import AtomicFiles, is_stdio
 from ..io.readers import parse_delimiter
 from ..io.units import unit_warnings
@@ -28,7 +29,7 @@ def cmd_track_dask(a, models, cfg, outs, measure, say, monitor=None) -> int:
     if a.partition_rows < 2:
         raise ValueError(f"--partition-rows: must be at least 2, got {a.partition_rows}")
     t0 = time.perf_counter()
-    use_heading = a.use_heading or a.measure == "pose"
+    use_heading = a.use_heading or get_measurement(a.measure).has_angle
     src = open_source(a.input, use_heading, parse_delimiter(a.delimiter))
     with dask_client(workers=a.workers, scheduler=a.scheduler, what="lgekf track --workers/--scheduler") as client:
         where = cluster_label(a, worker_count(client))

@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 
 from ..apps.track_imm import ImmClasses, ImmTrackOptions, imm_noise, tune_imm, write_imm
+from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_parquet import is_parquet
 
@@ -36,7 +37,7 @@ class ImmTrack:
         """The IMM's own argument errors (the shared ones: ``lgekf.cli.track.check_track_arguments``)."""
         a = self.a
         unsupported = [(a.accel_std, "--accel-std (give the modes' noise in --imm-modes, e.g. se2r3:0.2/0.2/0.5)"),
-                       (a.measure != "position", "--measure pose"), (a.full_cov, "--full-cov"),
+                       (a.measure != BASE_MEASUREMENT, f"--measure {a.measure}"), (a.full_cov, "--full-cov"),
                        (getattr(a, "workers", None) or getattr(a, "scheduler", None), "--workers/--scheduler"),
                        (a.use_heading, "--use-heading")]
         for given, name in unsupported:

@@ -14,7 +14,7 @@ import numpy as np
 from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
-__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "get_model", "get_measurement"]
+__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "BASE_MEASUREMENT", "get_model", "get_measurement"]
 
 
 @dataclass(frozen=True)
@@ -28,6 +28,29 @@ class MeasurementSpec:
     angles: tuple
     dim: int
     noise_inputs: tuple | None = None  # per entry of z, the index of its std when R = diag(σ_idx²); else None
+
+    @property
+    def has_angle(self) -> bool:
+        """Whether z has an angle entry (read from the file's heading column)."""
+        return bool(self.angles)
+
+    def stds(self, position_std: float, angle_std: float) -> tuple:
+        """The noise stds (``noise_names``) from one std for the position entries and one for the angles.
+
+        An std shared by several entries of z (``noise_inputs``) is an angle's only if every entry it serves is
+        an angle (the position measurement's isotropic r is one std for x and y)."""
+        inputs = self.noise_inputs if self.noise_inputs is not None else tuple(range(self.dim))
+        return tuple(angle_std if all(i in self.angles for i, k in enumerate(inputs) if k == j) else position_std
+                     for j in range(len(self.noise_names)))
+
+    def columns(self, positions, heading=None):
+        """z (N, dim) from the positions (N, 2) and, for a measurement with an angle, the heading (N,) in rad."""
+        positions = np.asarray(positions, dtype=float)
+        if not self.has_angle:
+            return positions
+        if heading is None:
+            raise ValueError(f"the {self.name} measurement needs a heading column")
+        return np.column_stack([positions, np.asarray(heading, dtype=float)])
 
 
 @dataclass(frozen=True)
@@ -90,6 +113,11 @@ class ModelSpec:
                     f"{self.name} model: {self.bound_reason}"
                 )
 
+    def measurement_or_base(self, name: str) -> str:
+        """``name`` if this model takes that measurement, else ``BASE_MEASUREMENT`` (e.g. CV given poses gets
+        their position part)."""
+        return name if name in self.measurements else BASE_MEASUREMENT
+
     def measurement(self, name: str) -> MeasurementSpec:
         """The measurement model ``name`` if this model supports it, else a ValueError saying why."""
         meas = get_measurement(name)
@@ -104,6 +132,10 @@ class ModelSpec:
 
 MODELS: dict[str, ModelSpec] = {name: ModelSpec(name=name, **entry) for name, entry in _TABLE.items()}
 MEASUREMENTS: dict[str, MeasurementSpec] = {name: MeasurementSpec(name=name, **entry) for name, entry in _MEASUREMENTS.items()}
+# the measurement every model takes (the smallest one): the default of every command, and what a model that cannot
+# take a study's measurement gets instead (from the table, not by name)
+BASE_MEASUREMENT: str = min((m for m in MEASUREMENTS if all(m in spec.measurements for spec in MODELS.values())),
+                            key=lambda m: MEASUREMENTS[m].dim)
 
 
 def get_model(name: str) -> ModelSpec:

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.filters import SE2SE2Filter
-from ..core.registry import MODELS
+from ..core.registry import BASE_MEASUREMENT, MODELS
 from ..generated import se2
 from .simulate import simulate
 
@@ -53,7 +53,7 @@ def study_figure(result, path, pdf: bool = False):
     c = result.config
     ax.set_xlabel("rotational process noise σ_ω [rad/s²]")
     ax.set_ylabel("position RMSE [m]")
-    meas = "" if c.measurement == "position" else f", {c.measurement} measurements"
+    meas = "" if c.measurement == BASE_MEASUREMENT else f", {c.measurement} measurements"
     ax.set_title(f"{c.trajectories} trajectories per σ_ω, T = {c.dt:g} s, {c.steps} steps, truth {c.truth}{meas}")
     ax.set_xlim(s.min(), s.max() if s.max() > s.min() else s.min() + 1)
     ax.set_ylim(bottom=0)

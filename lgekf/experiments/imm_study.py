@@ -134,13 +134,15 @@ def training_draws(cfg, B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     rng = np.random.default_rng([cfg.seed, TRAIN_STREAM])
     K = cfg.steps
     truth = get_model(cfg.truth)
-    n_meas = 2 if cfg.measurement == "position" else truth.measurement(cfg.measurement).dim
+    n_meas = truth.measurement(cfg.measurement).dim
     return (rng.standard_normal((B, K, max(3, len(truth.noise_inputs)))), rng.standard_normal((B, K, n_meas)),
             rng.standard_normal((B, 6)))
 
 
 def _measured(cfg, sim) -> np.ndarray:
-    return sim.z if cfg.measurement != "position" else np.ascontiguousarray(sim.z[..., :2])
+    from ..core.registry import get_measurement
+
+    return np.ascontiguousarray(sim.z[..., :get_measurement(cfg.measurement).dim])
 
 
 def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float) -> "ChainFit":

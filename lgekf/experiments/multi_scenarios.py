@@ -22,6 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.registry import get_measurement
+
 __all__ = ["MultiScenario", "BASE_TARGETS", "base_scenario", "truth_trajectories", "detection_stream", "dataset_scenario"]
 
 # id: (birth s, death s, x0, y0, heading deg, speed m/s, turn rate rad/s)
@@ -125,7 +127,7 @@ def detection_stream(truth, rng, detection_prob: float, clutter_density: float, 
     """
     r = np.atleast_1d(np.asarray(meas_std, dtype=float))
     rxy, rth = float(r[0]), float(r[-1]) if r.size > 1 else 0.0
-    m = 3 if measurement == "pose" else 2
+    m = get_measurement(measurement).dim
     x0, x1, y0, y1 = region
     area = (x1 - x0) * (y1 - y0)
     dets, srcs = [], []

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.registry import get_model
+from ..core.registry import MEASUREMENTS, get_measurement, get_model
 from ..estimators.tracker import MultiTargetTracker
 from .gospa import gospa, track_switches
 from ..io.datasets import load_dataset
@@ -58,8 +58,8 @@ class MultiStudyConfig:
                 raise ValueError(f"{name}: must be a positive number, got {v}")
         if not 0 < self.detection_prob <= 1:
             raise ValueError(f"--detection-prob: must be a probability in (0, 1], got {self.detection_prob}")
-        if self.measurement not in ("position", "pose"):
-            raise ValueError(f"--measure: position or pose, got {self.measurement!r}")
+        if self.measurement not in MEASUREMENTS:
+            raise ValueError(f"--measure: one of {', '.join(MEASUREMENTS)}, got {self.measurement!r}")
         if not self.p >= 1:
             raise ValueError(f"--gospa-p: must be at least 1, got {self.p}")
         return self
@@ -104,19 +104,19 @@ def scenarios(cfg: MultiStudyConfig) -> list:
     trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent)."""
     if cfg.dataset:
         ds = load_dataset(cfg.dataset, root=cfg.data_root)
-        if measures_pose(cfg):
+        if measures_heading(cfg):
             raise ValueError("--measure pose: the real trajectories have no measured heading; use position")
         return [dataset_scenario(ds, seed=cfg.seed + k, detection_prob=cfg.detection_prob, clutter_density=cfg.clutter_density,
                                  meas_std=cfg.meas_std) for k in range(cfg.runs)]
-    r = (cfg.meas_std, cfg.heading_std) if measures_pose(cfg) else cfg.meas_std
+    r = (cfg.meas_std, cfg.heading_std) if measures_heading(cfg) else cfg.meas_std
     return [base_scenario(seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration, detection_prob=cfg.detection_prob,
                           clutter_density=cfg.clutter_density, meas_std=r, measurement=cfg.measurement)
             for k in range(cfg.runs)]
 
 
-def measures_pose(cfg: MultiStudyConfig) -> bool:
-    """Whether the study measures poses."""
-    return cfg.measurement == "pose"
+def measures_heading(cfg: MultiStudyConfig) -> bool:
+    """Whether the study's measurement has an angle (a pose's heading)."""
+    return get_measurement(cfg.measurement).has_angle
 
 
 def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
@@ -127,14 +127,13 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
     for model in cfg.models:
         for assoc in cfg.associations:
             parts, sw, wall, scans = [], 0, 0.0, 0
-            pose = measures_pose(cfg) and "pose" in get_model(model).measurements
+            meas = get_measurement(get_model(model).measurement_or_base(cfg.measurement))
             for sc in scen:
                 trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
                                          clutter_density=cfg.clutter_density, max_speed=cfg.max_speed,
-                                         measurement="pose" if pose else "position",
-                                         meas_std=(cfg.meas_std, cfg.meas_std, cfg.heading_std) if pose else cfg.meas_std)
+                                         measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std))
 
-                def step(t, Z, trk=trk, m=3 if pose else 2):
+                def step(t, Z, trk=trk, m=meas.dim):
                     rep = trk.step(t, Z[:, :m])
                     return rep.ids, rep.states[:, :2]
 
@@ -155,7 +154,7 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     what = f"the {cfg.dataset} trajectories" if cfg.dataset else f"{int(round(cfg.duration / cfg.dt)) + 1} scans"
     head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
             f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
-            + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_pose(cfg) else ""))
+            + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else ""))
     lines = [head, f"{'model':<8} {'assoc':<5} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} {'switches':>8} {'scans/s':>8}"]
     for c in cells:
         lines.append(f"{c.model:<8} {c.association:<5} {c.gospa:7.3f} {c.localisation:7.3f} {c.missed:7.3f} {c.false:7.3f} "

@@ -88,7 +88,4 @@ def simulate(
 
 def measurement_noise(measurement: str, meas_std: float, heading_std: float) -> tuple:
     """The noise stds of a measurement model from a position std and a heading std."""
-    meas = get_measurement(measurement)
-    if len(meas.noise_names) != meas.dim:  # one isotropic std (position)
-        return (meas_std,)
-    return tuple(heading_std if i in meas.angles else meas_std for i in range(meas.dim))
+    return get_measurement(measurement).stds(meas_std, heading_std)

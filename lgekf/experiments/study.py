@@ -33,7 +33,7 @@ import numpy as np
 from ..core.batch import filter_batch
 from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
-from ..core.registry import MODELS, get_model
+from ..core.registry import BASE_MEASUREMENT, MODELS, get_model
 from ..core.validate import positive_scalar
 from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
@@ -94,7 +94,7 @@ class StudyConfig:
         for f in self.filters:
             if f != IMM_FILTER:
                 get_model(f)
-        if self.measurement != "position":
+        if self.measurement != BASE_MEASUREMENT:
             get_model(self.truth).measurement(self.measurement)
             positive_scalar("heading_std", self.heading_std)
         for k, v in self.noise_scale.items():
@@ -111,7 +111,7 @@ class StudyConfig:
         """The measurement a filter gets: the study's, or position where the filter cannot take it (CV, pose)."""
         if name == IMM_FILTER:
             return self.measurement
-        return self.measurement if self.measurement in get_model(name).measurements else "position"
+        return get_model(name).measurement_or_base(self.measurement)
 
     def meas_noise(self, measurement: str):
         return measurement_noise(measurement, self.meas_std, self.heading_std)
@@ -163,8 +163,9 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     u_proc = rng.standard_normal((B, K, 3))
     u_meas = rng.standard_normal((B, K, 2))
     u_init = rng.standard_normal((B, 6))
-    if cfg.measurement != "position":  # extra draws after the default ones: position studies are unchanged
-        u_meas = np.concatenate([u_meas, rng.standard_normal((B, K, get_model(cfg.truth).measurement(cfg.measurement).dim - 2))], axis=-1)
+    extra = get_model(cfg.truth).measurement(cfg.measurement).dim - 2
+    if extra:  # extra draws after the default ones: position studies are unchanged
+        u_meas = np.concatenate([u_meas, rng.standard_normal((B, K, extra))], axis=-1)
     if len(truth.noise_inputs) > 3:
         u_proc = np.concatenate([u_proc, rng.standard_normal((B, K, len(truth.noise_inputs) - 3))], axis=-1)
     truth0 = np.tile([0.0, 0.0, 0.0, cfg.v0[0], cfg.v0[1], cfg.w0], (B, 1))

@@ -459,7 +459,7 @@ def test_measure_pose_refused_for_cv_and_positions_for_cv_under_all(tmp_path):
     assert not (tmp_path / "cv.csv").exists()
     r = run(inp, "-o", tmp_path / "all.csv", "--model", "all", "--measure", "pose")
     assert r.returncode == 0, r.stderr
-    assert "cv has no heading: it gets the positions only" in r.stderr
+    assert "cv cannot take pose measurements: it gets position only" in r.stderr
     assert (tmp_path / "all_cv.csv").exists() and (tmp_path / "all_se2r2.csv").exists()
 
 
