@@ -74,11 +74,14 @@ from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.tracker import HEADING_CAP, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes
 from .defaults import NoisePlan, plan_noise
+from .divergence import KIND_NAMES
+from .multi_monitor import MultiMonitor
 from .noise import MIN_MEAS_STD, chord_speeds, measurement_std
+from .track import MOTION_COLUMNS, speed_course
 
 __all__ = [
     "Scans", "scans", "scan_window_from_data", "estimated_clutter_density", "provisional_meas_std", "MultiRun",
-    "track_scans", "NoiseFit", "fit_noise", "no_track_reason", "fastest_track_speed", "multi_output_columns",
+    "track_scans", "NoiseFit", "fit_noise", "no_track_reason", "fastest_track_speed", "multi_alarm_line", "multi_output_columns",
     "write_multi", "SCAN_GAP_RATIO", "MAX_PASSES", "AGREE", "RESTART", "MIN_HELD",
 ]
 
@@ -251,6 +254,10 @@ class MultiRun:
         grouped by track (``held_starts``) and in time order within a track; only tracks holding at least
         ``MIN_HELD`` detections.
     held_starts : ndarray of int, (T + 1,)
+    flags : ndarray of uint8, (R,)
+        1 on the rows of a divergence alarm (``lgekf.apps.multi_monitor``), else 0.
+    alarms : list of MultiAlarm
+        The monitor's alarms (each one deleted its track).
     """
 
     ids: np.ndarray
@@ -260,6 +267,8 @@ class MultiRun:
     held_t: np.ndarray
     held_z: np.ndarray
     held_starts: np.ndarray
+    flags: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.uint8))
+    alarms: list = field(default_factory=list)
 
     @property
     def n_confirmed(self) -> int:
@@ -267,12 +276,15 @@ class MultiRun:
         return int(np.unique(self.ids).size)
 
 
-def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, **tracker_args) -> MultiRun:
-    """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m)); the
-    output rows and the confirmed tracks' held detections as a ``MultiRun``."""
+def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, **tracker_args) -> MultiRun:
+    """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m)),
+    with the divergence monitor (``lgekf.apps.multi_monitor``) unless ``monitor`` is False; the output rows and
+    the confirmed tracks' held detections as a ``MultiRun``."""
     trk = MultiTargetTracker(**tracker_args)
+    mon = MultiMonitor(trk.model, trk.meas.dim, trk.max_speed) if monitor else None
     order, starts = sc.order, sc.starts
-    ids, times, vals, held_id, held_row = [], [], [], [], []
+    ids, times, vals, held_id, held_row, flagged = [], [], [], [], [], []
+    written = 0
     for k in range(sc.count):
         rows = order[starts[k]:starts[k + 1]]
         rep = trk.step(float(sc.times[k]), Z[rows])
@@ -280,15 +292,22 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, **tracker_args) -> Mult
         if hid.size:
             held_id.append(hid)
             held_row.append(rows[hj])
-        if rep.ids.size:
-            ids.append(rep.ids)
-            times.append(np.full(rep.ids.size, rep.t))
-            vals.append(np.hstack([rep.states, rep.stds, rep.existence[:, None]]))
+        keep = slice(None)
+        if mon is not None:
+            flag_rows, keep = mon.scan(trk, rep, written)
+            flagged += flag_rows
+        if rep.ids[keep].size:
+            ids.append(rep.ids[keep])
+            times.append(np.full(rep.ids[keep].size, rep.t))
+            vals.append(np.hstack([rep.states, rep.stds, rep.existence[:, None]])[keep])
+            written += ids[-1].size
     n = trk.spec.n
     if not ids:
         ids, times, vals = np.zeros(0, dtype=np.int64), np.zeros(0), np.zeros((0, 2 * n + 1))
     else:
         ids, times, vals = np.concatenate(ids), np.concatenate(times), np.vstack(vals)
+    flags = np.zeros(ids.size, dtype=np.uint8)
+    flags[np.asarray(flagged, dtype=np.int64)] = 1
     hid = np.concatenate(held_id) if held_id else np.zeros(0, dtype=np.int64)
     hrow = np.concatenate(held_row) if held_row else np.zeros(0, dtype=np.int64)
     keep = np.isin(hid, ids)  # confirmed tracks only
@@ -300,7 +319,7 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, **tracker_args) -> Mult
     counts = count[count >= MIN_HELD]
     hstarts = np.zeros(counts.size + 1, dtype=np.int64)
     np.cumsum(counts, out=hstarts[1:])
-    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts)
+    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts, flags, [] if mon is None else mon.alarms)
 
 
 @dataclass
@@ -398,7 +417,7 @@ def _meas_tuple(s: float, measurement: str, heading_std: float):
 
 
 def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = None, accel_std=None,
-              heading_std: float, omega_std: float) -> tuple[MultiRun, NoiseFit]:
+              heading_std: float, omega_std: float, monitor: bool = True) -> tuple[MultiRun, NoiseFit]:
     """Track the scans ``sc`` with the noise from the data (the passes of the module docstring).
 
     Parameters
@@ -436,7 +455,7 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
     q, used, passes, last = accel_std, None, [], None  # used: the plan (s, q) came from; last: the previous pass with an estimate
     low, high = 0.0, math.inf  # stds known to be below the truth / to confirm no track
     while True:
-        run = track_scans(t, Z, sc, meas_std=_meas_tuple(s, measurement, heading_std), accel_std=q, **tracker_args)
+        run = track_scans(t, Z, sc, monitor, meas_std=_meas_tuple(s, measurement, heading_std), accel_std=q, **tracker_args)
         plan = _held_plan(run, model, measurement, meas_std, accel_std, omega_std, heading_std)
         e = None if plan is None else plan.meas_estimate.meas_std
         passes.append((s, e, run.n_confirmed))
@@ -529,16 +548,32 @@ def fastest_track_speed(run: MultiRun) -> float:
     return best
 
 
+def multi_alarm_line(run: MultiRun, shown: int = 5) -> str:
+    """One warning line about the monitor's alarms of a run: how many tracks, of which kinds, the first few ids and
+    times."""
+    kinds = sorted({a.kind for a in run.alarms})
+    first = ", ".join(f"track {a.track} at t = {a.t:.6g} s ({KIND_NAMES[a.kind]})" for a in run.alarms[:shown])
+    more = f" and {len(run.alarms) - shown} more" if len(run.alarms) > shown else ""
+    return (f"possible divergence: {len(run.alarms)} track{'s' if len(run.alarms) != 1 else ''} deleted by the monitor "
+            f"({', '.join(KIND_NAMES[k] for k in kinds)}): {first}{more}; their last rows have flag 1 and new tracks start "
+            f"from the next detections (--no-monitor turns it off)")
+
+
 def multi_output_columns(model: str) -> list:
-    """The header: track, t, the model's state, std_<state>, existence."""
+    """The header: track, t, the model's state, std_<state>, speed, course (``track.speed_course``: the world
+    velocity's size and direction, whatever the model's state), existence, flag (1 on a divergence alarm's rows,
+    ``lgekf.apps.multi_monitor``)."""
     names = list(get_model(model).state_names)
-    return ["track", "t", *names, *(f"std_{s}" for s in names), "existence"]
+    return ["track", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS, "existence", "flag"]
 
 
-def write_multi(fh, model: str, ids, times, values, digits: int) -> None:
-    """Write the header and the rows of ``track_scans`` as CSV bytes to ``fh``."""
+def write_multi(fh, model: str, run: MultiRun, digits: int) -> None:
+    """Write the header and the rows of a ``MultiRun`` as CSV bytes to ``fh``."""
     fh.write((",".join(multi_output_columns(model)) + "\n").encode())
-    if ids.size == 0:
+    if run.ids.size == 0:
         return
-    labels, row = np.unique(ids, return_inverse=True)
-    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, times, values, digits))
+    n = get_model(model).n
+    values = np.hstack([run.values[:, :2 * n], speed_course(model, run.values[:, :n]), run.values[:, 2 * n:],
+                        run.flags[:, None].astype(float)])
+    labels, row = np.unique(run.ids, return_inverse=True)
+    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, run.times, values, digits))

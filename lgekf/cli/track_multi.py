@@ -14,8 +14,8 @@ import numpy as np
 
 from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD
 from ..apps.track_multi import (
-    AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, no_track_reason, scan_window_from_data, scans,
-    write_multi,
+    AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason,
+    scan_window_from_data, scans, write_multi,
 )
 from ..core.registry import MODELS
 from ..core.validate import positive_scalar
@@ -41,7 +41,7 @@ def track_multi_parser():
     )
     ap.add_argument("input", help="detections: CSV with header t,x,y[,heading] (an id column is ignored); - reads stdin; gzip is recognised")
     ap.add_argument("--multi", action="store_true", required=True, help="multi-target mode")
-    ap.add_argument("-o", "--output", required=True, help="output CSV (track,t,state,std_state,existence); - writes to stdout; .gz compresses")
+    ap.add_argument("-o", "--output", required=True, help="output CSV (track,t,state,std_state,speed,course,existence,flag); - writes to stdout; .gz compresses")
     ap.add_argument("--model", default="se2se2", choices=list(MODELS), help="filter of every track (default se2se2)")
     ap.add_argument("--association", default="jpda", choices=list(ASSOCIATIONS),
                     help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), pda or gnn (default jpda)")
@@ -72,6 +72,8 @@ def track_multi_parser():
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
     ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--no-monitor", action="store_true",
+                    help="no divergence monitor (default: a track whose filter diverges is flagged and deleted; docs/track_multi.md)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings")
     return ap
 
@@ -144,7 +146,7 @@ def cmd_track_multi(argv) -> int:
         args["clutter_density"] = estimated_clutter_density(sc, meas.z)
         say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
             "bounding-box area; give --clutter-density to set it)")
-    fit_args = dict(heading_std=heading_std, omega_std=a.omega_std)
+    fit_args = dict(heading_std=heading_std, omega_std=a.omega_std, monitor=not a.no_monitor)
     with AtomicFiles([a.output]) as files, compile_notice("lgekf track", enabled=not a.quiet):
         fh = files.open(0)
         run, fit = fit_noise(t, Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
@@ -167,7 +169,9 @@ def cmd_track_multi(argv) -> int:
                 _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > max_speed else 'near'} --max-speed "
                       f"{max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a larger "
                       "--max-speed if there are any")
-        write_multi(fh, a.model, run.ids, run.times, run.values, a.precision)
+        if run.alarms:
+            _warn(multi_alarm_line(run))
+        write_multi(fh, a.model, run, a.precision)
         files.commit()
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout

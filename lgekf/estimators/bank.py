@@ -36,6 +36,7 @@ class TrackFilterBank(Protocol):
     """What the multi-target tracker needs from its per-track filters (see the module docstring)."""
 
     live: np.ndarray
+    d2: np.ndarray  # after ``gate``: (N, M) the normalised innovations squared eᵀS⁻¹e of every row and detection
 
     def add(self, x0: np.ndarray, P0: np.ndarray) -> np.ndarray: ...
 

@@ -160,6 +160,9 @@ class MultiTargetTracker:
         scan's detections: β_ij ≥ ``HELD_FROM`` (0.5), the probability that detection j is track i's given that
         the track exists (at most one detection per track; e.g. the sequences ``lgekf track --multi``
         estimates the noise from).
+    held_nis : ndarray, (H,)
+        After each ``step``: the normalised innovation squared d² = eᵀS⁻¹e of each held detection against its
+        track's prediction (the order of ``held``; what a divergence monitor tests).
     max_existence : float
         The largest existence probability any track has had after an update.
     next_id : int
@@ -229,6 +232,7 @@ class MultiTargetTracker:
         self._scan_times = []
         self.last_exact = True
         self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
+        self.held_nis = np.zeros(0)
         self.max_existence = 0.0
 
     # ------------------------------------------------------------------ one scan
@@ -265,6 +269,7 @@ class MultiTargetTracker:
         M = Z.shape[0]
         claimed = np.zeros(M)
         self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
+        self.held_nis = np.zeros(0)
         if live.any():
             bank.predict(dt)
             self.r[live] *= self.ps
@@ -287,6 +292,7 @@ class MultiTargetTracker:
                 best = np.argmax(beta[rows], axis=1)
                 ok = beta[rows, best] >= HELD_FROM
                 self.held = (self.ids[rows[ok]].copy(), best[ok])
+                self.held_nis = bank.d2[rows[ok], best[ok]].copy()
             claimed = P[live].sum(axis=0)
             self.confirmed |= live & (self.r >= self.r_confirm)
             dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
@@ -345,6 +351,16 @@ class MultiTargetTracker:
         self.ids[rows] = np.arange(self.next_id, self.next_id + B)
         self.next_id += B
         self.confirmed[rows] = False
+
+    def drop(self, ids) -> None:
+        """Delete the tracks with these ids now (e.g. a divergence monitor's verdict); their detections are gone,
+        the next scans may start new tracks (new ids) where they are."""
+        rows = np.flatnonzero(np.isin(self.ids, np.asarray(ids, dtype=np.int64)) & self.bank.live)
+        if rows.size:
+            self.bank.remove(rows)
+            self.ids[rows] = -1
+            self.confirmed[rows] = False
+            self.r[rows] = 0.0
 
     # ------------------------------------------------------------------ reading out
     def report(self) -> ScanReport:

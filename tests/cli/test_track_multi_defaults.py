@@ -48,7 +48,7 @@ def scene(path, seed=1, jitter=0.0, targets=TARGETS, dt=0.2, scans=100, meas_std
 
 def read_tracks(path):
     data = np.genfromtxt(path, delimiter=",", skip_header=1, ndmin=2)
-    return data.reshape(-1, 15)  # se2se2: track, t, 6 states, 6 stds, existence
+    return data.reshape(-1, 18)  # se2se2: track, t, 6 states, 6 stds, speed, course, existence, flag
 
 
 def meas_std_printed(stderr):

@@ -115,9 +115,13 @@ def test_cli_multi_writes_confirmed_tracks(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "confirmed track" in r.stdout
     header = out.read_text().splitlines()[0].split(",")
-    assert header == ["track", "t", "x", "y", "vx", "vy", "std_x", "std_y", "std_vx", "std_vy", "existence"]
+    assert header == ["track", "t", "x", "y", "vx", "vy", "std_x", "std_y", "std_vx", "std_vy", "speed", "course",
+                      "existence", "flag"]
     data = np.loadtxt(out, delimiter=",", skiprows=1)
-    assert set(np.unique(data[:, 0]).astype(int)) and np.all(data[:, -1] >= 0.5) and np.all(data[:, -1] <= 1.0)
+    assert set(np.unique(data[:, 0]).astype(int)) and np.all(data[:, -2] >= 0.5) and np.all(data[:, -2] <= 1.0)
+    assert np.all(data[:, -1] == 0)  # a benign crossing: no alarm
+    np.testing.assert_allclose(data[:, 10], np.hypot(data[:, 4], data[:, 5]), rtol=1e-8)  # CV: speed = |(vx, vy)|
+    np.testing.assert_allclose(data[:, 11], np.arctan2(data[:, 5], data[:, 4]), atol=1e-8)
     last = data[data[:, 1] == data[:, 1].max()]
     truth = sc.truth[-1][1][:, :2]
     d = np.hypot(last[:, None, 2] - truth[None, :, 0], last[:, None, 3] - truth[None, :, 1]).min(axis=0)
