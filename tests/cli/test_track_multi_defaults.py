@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -249,3 +250,21 @@ def test_bad_option_is_one_line_and_no_output(tmp_path, capsys, opt, value, msg)
     assert len(lines) == 1 and msg in lines[0], err
     assert "Traceback" not in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["in.csv"]
+
+
+def test_shipped_example_with_multi_finds_its_three_objects(tmp_path):
+    """examples/data/detections.csv (car, cyclist, pedestrian at 10 Hz, 0.3 m noise; the cyclist stamped 10 ms after
+    the others) tracked as unlabelled detections: the 10 ms offsets make one scan, three tracks, the noise found."""
+    src = Path(__file__).resolve().parents[2] / "examples" / "data" / "detections.csv"
+    dets = np.genfromtxt(src, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    out = tmp_path / "tracks.csv"
+    r = run(src, "--multi", "-o", out)
+    assert r.returncode == 0, r.stderr
+    assert "3 confirmed tracks" in r.stdout, r.stdout
+    assert 0.24 <= meas_std_printed(r.stderr) <= 0.36  # the file's noise is 0.3 m
+    data = read_tracks(out)
+    assert np.all(data[:, -1] == 0)  # no alarm
+    for obj in np.unique(dets["id"]):  # every object is followed by one track within 1 m of its last detection (0.3 m noise)
+        last = dets[dets["id"] == obj][-1]
+        near = data[np.abs(data[:, 1] - last["t"]) < 0.051]
+        assert np.hypot(near[:, 2] - last["x"], near[:, 3] - last["y"]).min() < 1.0, obj
