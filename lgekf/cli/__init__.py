@@ -16,10 +16,15 @@ class UsageError(ValueError):
 
 
 class ArgumentParser(argparse.ArgumentParser):
-    """argparse that reports a bad option as one line (UsageError) instead of usage + message, and
-    accepts negative values after an option (``--v0 -3,0``, not only ``--v0=-3,0``)."""
+    """argparse that reports a bad option as one line (UsageError) instead of usage + message, accepts
+    negative values after an option (``--v0 -3,0``, not only ``--v0=-3,0``), and takes no abbreviated option
+    (``--mult`` is an error, not a silent ``--multi`` that another parser would not see)."""
 
     _NEGATIVE = re.compile(r"^-(\d|\.\d)")
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message):
         raise UsageError(f"{message} (see `{self.prog} --help`)")

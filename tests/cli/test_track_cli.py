@@ -59,6 +59,8 @@ BAD_CASES = {
     "use_heading_without_column": (GOOD, ["--use-heading"], "needs a 'heading' column"),
     "pedestrian_without_frame_dt": ("780 1 0 0\n790 1 1 0\n", ["--format", "pedestrian"], "frame-dt"),
     "precision": (GOOD, ["--precision", "30"], "precision"),
+    "abbreviated_multi": (GOOD, ["--mult"], "unrecognized arguments: --mult"),  # was a silent single-object run
+    "abbreviated_option": (GOOD, ["--meas", "0.3"], "unrecognized arguments: --meas"),
 }
 
 
