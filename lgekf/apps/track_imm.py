@@ -34,9 +34,11 @@ smoothed columns and has ``SMOOTH_FAILED`` (2) added to its ``flag``.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
 
+from ..core.registry import BASE_MEASUREMENT
 from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes
 from ..io.grouping import objects_subset, row_objects
@@ -232,7 +234,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                 models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
-    fits = tune_models(meas.t, meas.z, starts, models, {m: "position" for m in models}, meas_std, None, None, omega_std, method,
+    fits = tune_models(meas.t, meas.z, starts, models, {m: BASE_MEASUREMENT for m in models}, meas_std, None, None, omega_std, method,
                        start_noise=data_starts(meas.t, meas.z, starts, models, meas_std, omega_std))
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
@@ -383,6 +385,44 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     if bar is not None:
         bar.update(t.size)
     return res
+
+
+def tune_imm_classes(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float,
+                     monitor: MonitorConfig | None = MonitorConfig(), say=None, method: str = "lbfgs"):
+    """``--tune`` per class of objects: the classes of ``imm_noise`` (``lgekf.apps.defaults.noise_classes``), each
+    class's IMM learned on its own objects (``tune_imm``). With one class the fit covers every object (a fit that
+    cannot be made is the answer: ValueError). With several, the output has one set of mode columns, so one mode
+    set: it is chosen (unless ``--imm-modes`` gives it) by the class with the most measurements among the mode sets
+    compared, and the other classes fit that set; a class too small to learn keeps its noise from the data (that
+    set with its data's noise × the levels; said in its line). Returns (``ImmClasses``, the ``NoiseClasses``, one
+    summary per class)."""
+    classes, found = imm_noise(meas, starts, opts, meas_std, omega_std, monitor)
+    if len(found.plans) == 1:
+        r, _, summary = tune_imm(meas, starts, opts, meas_std, omega_std, say=say, method=method)
+        return ImmClasses.of_all(opts, r, meas.n_objects), found, [summary]
+    t, z = np.asarray(meas.t), np.asarray(meas.z)
+    switch = opts.switch if opts.switch_given else None
+    chosen = opts.modes_text if opts.modes_given else None
+    sizes = np.bincount(classes.of_object, weights=np.diff(starts),
+                        minlength=len(found.plans))
+    noise, summaries = [None] * len(found.plans), [None] * len(found.plans)
+    for c in np.argsort(-sizes, kind="stable").tolist():  # the largest class first: it chooses the mode set
+        rows, sub = objects_subset(starts, np.flatnonzero(classes.of_object == c))
+        o = ImmTrackOptions(chosen, switch)
+        try:
+            r, _, summary = tune_imm(SimpleNamespace(t=t[rows], z=z[rows]), sub, o, meas_std, omega_std, say=say,
+                                     method=method)
+        except ValueError as e:
+            summaries[c] = f"class {c + 1}: not tuned ({e}): its noise from the data is kept"
+            continue
+        chosen = o.modes_text
+        noise[c], summaries[c] = (o, r), f"class {c + 1}: " + summary
+    for c, plan in enumerate(found.plans):
+        if noise[c] is None:  # not tuned: the chosen mode set with the class's noise from the data
+            o = ImmTrackOptions(chosen, switch)
+            o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
+            noise[c] = (o, classes.noise[c][1])
+    return ImmClasses(classes.of_object, noise), found, summaries
 
 
 def imm_noise(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_std: float,

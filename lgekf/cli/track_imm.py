@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import sys
 
-from ..apps.track_imm import ImmClasses, ImmTrackOptions, imm_noise, tune_imm, write_imm
+from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm_classes, write_imm
 from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_parquet import is_parquet
@@ -58,12 +58,15 @@ class ImmTrack:
     def plan(self, meas, starts, monitor) -> None:
         """The IMM's noise: from the data per class of objects, or ``--tune``'s fit."""
         a, say, opts = self.a, self.say, self.opts
-        if getattr(a, "tune", False):
-            r, fits, summary = tune_imm(meas, starts, opts, a.meas_std, a.omega_std, say=say,
-                                        method=getattr(a, "tune_method", "lbfgs"))
-            say(summary)
-            self.classes = ImmClasses.of_all(opts, r, meas.n_objects)
-            say(f"imm: modes {_modes(opts)}; switch {opts.switch:g} per step; meas-std {r:.3g} m (tuned)")
+        if getattr(a, "tune", False):  # each class of objects learned on its own objects
+            self.classes, found, summaries = tune_imm_classes(meas, starts, opts, a.meas_std, a.omega_std, monitor,
+                                                              say=say, method=getattr(a, "tune_method", "lbfgs"))
+            if len(found.plans) > 1:
+                say(found.describe(meas.labels))
+            for c, (summary, (o, r)) in enumerate(zip(summaries, self.classes.noise)):
+                head = f"class {c + 1}: " if len(found.plans) > 1 else ""
+                say(summary)
+                say(f"{head}imm: modes {_modes(o)}; switch {o.switch:g} per step; meas-std {r:.3g} m")
             warn_misfit(a.meas_std, meas, starts)
         else:
             self.classes, found = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)

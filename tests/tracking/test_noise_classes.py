@@ -123,6 +123,28 @@ def test_tune_fits_each_class_on_its_own_objects(mixed_file, tmp_path, capsys):
     np.testing.assert_allclose(fitted, [0.2, 0.5, 20.0], rtol=0.3)  # one fit per class, each its own sensor's noise
 
 
+@pytest.mark.slow
+def test_imm_tune_fits_each_class_on_its_own_objects_with_one_mode_set(mixed_file, tmp_path, capsys):
+    """--model imm --tune on three sensors in one file: one IMM fit per class (one fit for the whole file gave
+    RMSE 0.36 / 0.88 / 25.2 m for pedestrians / cars / aircraft; per class 0.11 / 0.35 / 20.2 m), every class
+    with the same mode set (one set of mu_ columns)."""
+    src, truth = mixed_file
+    out = tmp_path / "out.csv"
+    assert main(["track", str(src), "--model", "imm", "--tune", "-o", str(out)]) == 0
+    err = capsys.readouterr().err
+    stds = [float(v) for v in re.findall(r"class \d: imm: modes .*? meas-std ([0-9.e+-]+) m", err)]
+    np.testing.assert_allclose(stds, [0.2, 0.5, 20.0], rtol=0.3)
+    modes = re.findall(r"class \d: imm: modes (.*?); switch", err)
+    assert len(modes) == 3 and len({tuple(n.split(" (")[0] for n in m.split("), ")) for m in modes}) == 1, modes
+    rows = list(csv.DictReader(out.open()))
+    err2 = {}
+    for r in rows:
+        tx = truth[(r["id"], round(float(r["t"]), 2))]
+        err2.setdefault(r["id"].rstrip("0123456789"), []).append((float(r["x"]) - tx[0]) ** 2 + (float(r["y"]) - tx[1]) ** 2)
+    for kind in ("ped", "car", "air"):
+        assert np.sqrt(np.mean(err2[kind])) < 0.8 * KINDS[kind][1] * np.sqrt(2), kind
+
+
 def test_short_objects_join_the_class_of_most_windows():
     """Objects of 3 rows have no estimate of their own: with the pooled std between two sensors' they would make a class
     whose plan is the library default; they join the class of most windows instead."""
