@@ -79,6 +79,15 @@ def test_objects_subset_rows_in_order():
     assert rows.tolist() == [0, 1, 2, 5, 6, 7, 8] and sub.tolist() == [0, 3, 7]
 
 
+def rmse_per_kind(rows, truth) -> dict:
+    """Position RMSE per kind of object (the id without its number) of output rows against the truth."""
+    err2 = {}
+    for r in rows:
+        tx = truth[(r["id"], round(float(r["t"]), 2))]
+        err2.setdefault(r["id"].rstrip("0123456789"), []).append((float(r["x"]) - tx[0]) ** 2 + (float(r["y"]) - tx[1]) ** 2)
+    return {k: float(np.sqrt(np.mean(v))) for k, v in err2.items()}
+
+
 @pytest.fixture(scope="module")
 def mixed_file(tmp_path_factory):
     t, z, p, starts, labels = _objects(["ped", "car", "air"], n_each=3, K=120, seed=4)
@@ -103,14 +112,11 @@ def test_track_gives_each_class_its_noise(mixed_file, tmp_path, capsys, model):
     stds = [float(v) for v in re.findall(r"class \d: noise from the data: meas-std ([0-9.e+-]+) m", err)]
     np.testing.assert_allclose(stds, [0.2, 0.5, 20.0], rtol=0.3)
     rows = list(csv.DictReader(out.open()))
-    err2 = {}
-    for r in rows:
-        tx = truth[(r["id"], round(float(r["t"]), 2))]
-        err2.setdefault(r["id"].rstrip("0123456789"), []).append((float(r["x"]) - tx[0]) ** 2 + (float(r["y"]) - tx[1]) ** 2)
+    rmse = rmse_per_kind(rows, truth)
     # every kind tracked well below its own raw noise (with one pooled std the pedestrians and cars were not)
     for kind in ("ped", "car", "air"):
         raw = KINDS[kind][1] * np.sqrt(2)
-        assert np.sqrt(np.mean(err2[kind])) < 0.75 * raw, kind
+        assert rmse[kind] < 0.75 * raw, kind
     assert all(r["flag"] == "0" for r in rows if r["id"].startswith("ped"))
 
 
@@ -137,12 +143,9 @@ def test_imm_tune_fits_each_class_on_its_own_objects_with_one_mode_set(mixed_fil
     modes = re.findall(r"class \d: imm: modes (.*?); switch", err)
     assert len(modes) == 3 and len({tuple(n.split(" (")[0] for n in m.split("), ")) for m in modes}) == 1, modes
     rows = list(csv.DictReader(out.open()))
-    err2 = {}
-    for r in rows:
-        tx = truth[(r["id"], round(float(r["t"]), 2))]
-        err2.setdefault(r["id"].rstrip("0123456789"), []).append((float(r["x"]) - tx[0]) ** 2 + (float(r["y"]) - tx[1]) ** 2)
+    rmse = rmse_per_kind(rows, truth)
     for kind in ("ped", "car", "air"):
-        assert np.sqrt(np.mean(err2[kind])) < 0.8 * KINDS[kind][1] * np.sqrt(2), kind
+        assert rmse[kind] < 0.8 * KINDS[kind][1] * np.sqrt(2), kind
 
 
 def test_short_objects_join_the_class_of_most_windows():
