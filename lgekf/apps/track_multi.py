@@ -72,7 +72,7 @@ import numpy as np
 
 from ..core.registry import get_model
 from ..estimators.tracker import HEADING_CAP, MultiTargetTracker
-from ..io.formatting import format_rows, label_bytes
+from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
 from .noise import MIN_MEAS_STD, chord_speeds, measurement_std
 
@@ -535,10 +535,14 @@ def multi_output_columns(model: str) -> list:
     return ["track", "t", *names, *(f"std_{s}" for s in names), "existence"]
 
 
-def write_multi(fh, model: str, ids, times, values, digits: int) -> None:
-    """Write the header and the rows of ``track_scans`` as CSV bytes to ``fh``."""
-    fh.write((",".join(multi_output_columns(model)) + "\n").encode())
+def write_multi(fh, model: str, ids, times, values, digits: int | None, z=None) -> None:
+    """Write the header and the rows of ``track_scans`` as CSV bytes to ``fh``. ``digits`` None (no ``--precision``):
+    10 significant digits, the positions as many as keep 0.1 mm at the largest |x|, |y| of ``z`` (the detections;
+    default the tracks' own), t 1 µs (``lgekf.io.formatting.output_digits``)."""
+    cols = multi_output_columns(model)
+    fh.write((",".join(cols) + "\n").encode())
     if ids.size == 0:
         return
     labels, row = np.unique(ids, return_inverse=True)
-    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, times, values, digits))
+    col_digits, t_digits = output_digits(cols[2:], digits, values[:, :2] if z is None else z, times)
+    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, times, values, col_digits, t_digits))

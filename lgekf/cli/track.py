@@ -137,7 +137,9 @@ def track_parser():
                          "motion as degrees, not as radians, are refused: give deg)")
     ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
-    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--precision", type=int, default=None,
+                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
+                         "keep 0.1 mm, t 1 µs)")
     ap.add_argument("--no-monitor", action="store_true",
                     help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
@@ -158,7 +160,7 @@ def track_parser():
 
 def check_track_arguments(a, models):
     """Every argument error before any reading or computing (one line each, exit 2)."""
-    if not 1 <= a.precision <= 17:
+    if a.precision is not None and not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
     if a.format == "csv" and a.frame_dt is not None:
         raise ValueError("--frame-dt: only used with --format pedestrian")

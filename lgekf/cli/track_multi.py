@@ -71,7 +71,9 @@ def track_multi_parser():
                          "data have one t per scan)")
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
-    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--precision", type=int, default=None,
+                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
+                         "keep 0.1 mm, t 1 µs)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings")
     return ap
 
@@ -94,7 +96,7 @@ def _accel_std(items, model):
 
 def _check_arguments(a):
     """Every argument error before any reading (one line each, exit 2)."""
-    if not 1 <= a.precision <= 17:
+    if a.precision is not None and not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
     if a.meas_std is not None:
         positive_scalar("meas-std", a.meas_std)
@@ -167,7 +169,7 @@ def cmd_track_multi(argv) -> int:
                 _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > max_speed else 'near'} --max-speed "
                       f"{max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a larger "
                       "--max-speed if there are any")
-        write_multi(fh, a.model, run.ids, run.times, run.values, a.precision)
+        write_multi(fh, a.model, run.ids, run.times, run.values, a.precision, meas.z)
         files.commit()
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout
