@@ -21,7 +21,8 @@ from ..core.registry import MODELS
 from ..core.validate import positive_scalar
 from ..estimators.association import ASSOCIATIONS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
-from ..io.readers import parse_delimiter, read_measurements
+from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
+from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
@@ -71,6 +72,14 @@ def track_multi_parser():
                          "data have one t per scan)")
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
+    from .track import add_column_options
+
+    add_column_options(ap, ("t", "x", "y", "heading"))
+    ap.add_argument("--sort", action="store_true",
+                    help="sort the rows by time first (stable; says how many moved); without it rows going back in time "
+                         "are refused (rows of equal t are one scan)")
+    ap.add_argument("--skip-invalid", action="store_true",
+                    help="drop rows with NaN/inf, with one summary line; without it they are refused")
     ap.add_argument("--precision", type=int, default=None,
                     help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
                          "keep 0.1 mm, t 1 µs)")
@@ -110,6 +119,26 @@ def _check_arguments(a):
     return q
 
 
+def read_multi_input(a):
+    """The detections of ``--multi``'s input in non-decreasing time: rows going back in time are refused unless
+    ``--sort`` (then sorted, stable, with one line saying how many moved), rows with NaN/inf refused unless
+    ``--skip-invalid`` (then dropped, one summary line): the rules of single-object tracking for a file of scans."""
+    from .track import column_names
+
+    with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
+        meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
+    if meas.time_iso and a.time_unit != "s":
+        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    if a.sort:
+        meas, moved = sort_by_time(meas)
+        _warn(f"--sort: {moved} row{'s' if moved != 1 else ''} moved into time order")
+    else:
+        check_time_order(meas)
+    for line in skipped_summary(meas):
+        _warn(line)
+    return meas
+
+
 def _warn(text):
     print(f"lgekf track: warning: {text}", file=sys.stderr)
 
@@ -129,7 +158,7 @@ def cmd_track_multi(argv) -> int:
     r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
     MultiTargetTracker(**args, accel_std=q, meas_std=(r,) if a.measure == "position" else (r, r, heading_std))  # every option checked before reading
     t0 = time.perf_counter()
-    meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
+    meas = read_multi_input(a)
     if not is_stdio(a.input) and not is_stdio(a.output):
         if Path(a.output).resolve() == Path(a.input).resolve():
             raise ValueError(f"--output: {a.output} would overwrite the input file")
