@@ -232,6 +232,9 @@ class ModelsTrack:
             raise ValueError("--sort/--skip-invalid: not available with --workers/--scheduler (yet); clean the file first")
         if a.heading_unit == "deg":
             raise ValueError("--heading-unit deg: not available with --workers/--scheduler (yet); convert the column to radians")
+        if column_names(a):
+            raise ValueError(f"{COLUMN_OPTIONS[next(iter(column_names(a)))]}: not available with --workers/--scheduler (yet); "
+                             "rename the columns in the file")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
         if a.meas_std is None or missing:
