@@ -9,7 +9,11 @@ Readers
   projected to metres east/north of the first row's position (``lgekf.io.geo``; the origin is kept in
   ``Measurements.origin``). Ids are text, compared exactly as written (surrounding spaces removed):
   ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
-  or spaces) unless given. Other columns are ignored. Blank lines are skipped.
+  or spaces) unless given. Other columns are ignored (with no id column they are listed in
+  ``Measurements.unused``: ``unused_columns_warning``). Blank lines are skipped. Within ``named_columns``
+  (``lgekf track --id-column NAME`` ...) the named columns replace the aliases. The t column holds numbers or
+  ISO-8601 date-times (``lgekf.io.times``: seconds since the epoch, naive = UTC), as its first row says; date-times
+  are read by the general reader (the fast parser takes numbers only).
 * ``read_pedestrian(path, frame_dt)``: the ETH/UCY text format: whitespace separated ``frame id x y``,
   no header; t = frame * frame_dt, where ``frame_dt`` is the time per frame *unit* (ETH/UCY files step
   the frame number by 10 per sample: biwi_eth 10 frames = 0.6667 s -> frame_dt = 0.06667;
@@ -83,7 +87,8 @@ class Measurements:
 
     t (N,), z (N, 2), heading (N,) or None; obj (N,) object index per row, objects numbered in order of
     first appearance; labels[i] the text of object i's id (as written in the output);
-    line (N,) the 1-based line number of each row in ``source`` (for error messages); extra: other
+    line (N,) int64, the 1-based line number of each row in ``source`` (header = line 1; a table's row number counted
+    from 1 when ``line_word`` is "row"), kept through sorting, cleaning and grouping for messages; extra: other
     numeric columns asked for (name -> (N,)); origin: (lat0, lon0) in degrees when z was projected
     from lat, lon columns (``lgekf.io.geo.to_local``), else None.
     """
