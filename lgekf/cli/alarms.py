@@ -47,13 +47,18 @@ def divergence_warnings(model, meas, alarms, flagged, statistic: str = "NIS") ->
     return lines
 
 
-def smooth_failure_warnings(model, meas, failed) -> list:
-    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``)."""
+def smooth_failure_warnings(model, meas, failed, starts=None) -> list:
+    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``),
+    each with the input's line of its first row when ``starts`` (the objects' row offsets) is given."""
     if not failed:
         return []
     from ..apps.track import SMOOTH_FAILED
 
-    names = ", ".join(str(meas.labels[b]) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
+    def name(b):
+        where = meas.where(int(starts[b])) if starts is not None and hasattr(meas, "where") else ""
+        return f"{meas.labels[b]} ({where})" if where else str(meas.labels[b])
+
+    names = ", ".join(name(b) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
     n = len(failed)
     return [f"{model}: the smoother failed (non-finite or far off the filter) on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
             f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]

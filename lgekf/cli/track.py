@@ -300,7 +300,7 @@ class ModelsTrack:
             w = write_model(fh, m, meas, starts, self.cfgs[m], a.full_cov, a.precision, bar, self.measure[m], monitor,
                             smooth=a.smooth, parquet=is_parquet(out))
             flagged[m] = w.flagged
-            for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed):
+            for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed, starts):
                 print(f"lgekf track: warning: {line}", file=sys.stderr)
         return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
 
