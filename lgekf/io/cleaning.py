@@ -95,7 +95,7 @@ def check_time_order(meas: Measurements) -> None:
         raise DataError(
             f"{meas.source} {meas.where(k + 1)}: time goes back (t = {float(t[k + 1])!r} after t = {float(t[k])!r} on {w} "
             f"{int(meas.line[k])}); detections must be in non-decreasing time, rows of equal t being one scan "
-            f"({back.size} such row{'s' if back.size != 1 else ''}; --sort sorts them)"
+            f"({back.size} row{'s' if back.size != 1 else ''} going back in time; --sort sorts them)"
         )
 
 
