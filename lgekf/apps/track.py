@@ -59,7 +59,7 @@ from ..core.validate import positive_scalar
 from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
 from ..io.files import is_stdio
-from ..io.formatting import label_bytes, write_rows_made
+from ..io.formatting import label_bytes, output_digits, write_rows_made
 from ..io.grouping import objects_subset, row_objects
 from ..io.parquet import ParquetRows
 
@@ -411,7 +411,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + len(MOTION_COLUMNS) + (spec.n_packed if full_cov else 0) + 1
     ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
-    col_digits = np.full(ncol, digits, dtype=np.int64)
+    col_digits, t_digits = output_digits(columns[2:], digits, meas.z, meas.t)  # digits None: positions to 0.1 mm, t to 1 µs
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
 
     def emit(parts, row_obj, a, b):  # the writer thread: chunk rows a..b as text (or row groups)
@@ -419,7 +419,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             return np.hstack([np.sqrt(np.maximum(v[lo:hi][:, diag], 0.0)) if i == 1 else v[lo:hi] for i, v in enumerate(parts)])
 
         if sink is None:  # made, formatted and written part by part in threads
-            write_rows_made(fh, lab, row_obj, meas.t[a:b], block, b - a, col_digits)
+            write_rows_made(fh, lab, row_obj, meas.t[a:b], block, b - a, col_digits, t_digits)
             return b - a
         for lo in range(0, b - a, FORMAT_ROWS):  # a row group at a time
             hi = min(lo + FORMAT_ROWS, b - a)

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT
 from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
-from ..io.formatting import format_rows, label_bytes
+from ..io.formatting import format_rows, label_bytes, output_digits
 from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
@@ -372,7 +372,7 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     for b in res.smooth_failed:
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
     ncol = 14 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
-    col_digits = np.full(ncol, digits, dtype=np.int64)
+    col_digits, t_digits = output_digits(imm_columns(opts, origin, smooth)[2:], digits, meas.z, t)  # None: 0.1 mm, 1 µs
     v = common_world_velocity(res.c)
     parts = [res.c, res.sd, np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])]), res.mu]
     if origin:
@@ -381,7 +381,7 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     parts.append(res.flag[:, None])
     if smooth:
         parts.extend([res.c_smooth, res.sd_smooth, res.mu_smooth])
-    fh.write(format_rows(lab, row_objects(starts, 0, len(starts) - 1), t, np.hstack(parts), col_digits))
+    fh.write(format_rows(lab, row_objects(starts, 0, len(starts) - 1), t, np.hstack(parts), col_digits, t_digits))
     if bar is not None:
         bar.update(t.size)
     return res

@@ -74,7 +74,7 @@ import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.tracker import HEADING_CAP, MultiTargetTracker
-from ..io.formatting import format_rows, label_bytes
+from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
 from .divergence import KIND_NAMES
 from .multi_monitor import MultiMonitor
@@ -569,13 +569,17 @@ def multi_output_columns(model: str) -> list:
     return ["track", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS, "existence", "flag"]
 
 
-def write_multi(fh, model: str, run: MultiRun, digits: int) -> None:
-    """Write the header and the rows of a ``MultiRun`` as CSV bytes to ``fh``."""
-    fh.write((",".join(multi_output_columns(model)) + "\n").encode())
+def write_multi(fh, model: str, run: MultiRun, digits: int | None, z=None) -> None:
+    """Write the header and the rows of a ``MultiRun`` as CSV bytes to ``fh``. ``digits`` None (no ``--precision``):
+    10 significant digits, the positions as many as keep 0.1 mm at the largest |x|, |y| of ``z`` (the detections;
+    default the tracks' own), t 1 µs (``lgekf.io.formatting.output_digits``)."""
+    cols = multi_output_columns(model)
+    fh.write((",".join(cols) + "\n").encode())
     if run.ids.size == 0:
         return
     n = get_model(model).n
     values = np.hstack([run.values[:, :2 * n], speed_course(model, run.values[:, :n]), run.values[:, 2 * n:],
                         run.flags[:, None].astype(float)])
     labels, row = np.unique(run.ids, return_inverse=True)
-    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, run.times, values, digits))
+    col_digits, t_digits = output_digits(cols[2:], digits, values[:, :2] if z is None else z, run.times)
+    fh.write(format_rows(label_bytes([str(i) for i in labels]), row, run.times, values, col_digits, t_digits))

@@ -15,7 +15,8 @@ MEAS_STD_WARN_FACTOR = 2.0  # a given --meas-std this far from the data's estima
 
 
 def divergence_warnings(model, meas, alarms, flagged, statistic: str = "NIS") -> list:
-    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest); ``statistic``: what the
+    """One line per diverged object (at most MAX_DIVERGENCE_LINES, then one line for the rest), naming the input's line
+    of its first diverged row (``Measurements.where``: "line N", "row N" of a table) and its t; ``statistic``: what the
     window test averages (the IMM's monitor: the posterior residuals' |e|²/r², not a NIS)."""
     first, count, scale = {}, {}, {}
     for al in alarms:
@@ -34,7 +35,9 @@ def divergence_warnings(model, meas, alarms, flagged, statistic: str = "NIS") ->
         cap = MonitorConfig().max_reinit
         stop = f"; monitoring stopped after {cap} re-initialisations (is the noise right?)" if n > cap else ""
         inflated = f"; its noise stds x{scale[obj]:.2g} from the repeated alarms on" if scale[obj] > 1 else ""
-        lines.append(f"{model}: object {meas.labels[obj]} diverged at t = {meas.t[al.row]:.6g} s ({why}); re-initialised "
+        where = getattr(meas, "where", lambda k: "")(al.row)  # the input's line of the row (grouping keeps them)
+        at = f"{where} (t = {float(meas.t[al.row]):.15g} s)" if where else f"t = {meas.t[al.row]:.6g} s"
+        lines.append(f"{model}: object {meas.labels[obj]} diverged at {at} ({why}); re-initialised "
                      f"from its last measurements{'' if n == 1 else f' ({min(n, cap)} times in all)'}{inflated}{stop}; "
                      f"rows flagged 1 in the flag column")
     rest = len(first) - MAX_DIVERGENCE_LINES
@@ -44,13 +47,18 @@ def divergence_warnings(model, meas, alarms, flagged, statistic: str = "NIS") ->
     return lines
 
 
-def smooth_failure_warnings(model, meas, failed) -> list:
-    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``)."""
+def smooth_failure_warnings(model, meas, failed, starts=None) -> list:
+    """One line naming the objects (at most MAX_DIVERGENCE_LINES) whose smoother failed (``smooth_track.implausible_rows``),
+    each with the input's line of its first row when ``starts`` (the objects' row offsets) is given."""
     if not failed:
         return []
     from ..apps.track import SMOOTH_FAILED
 
-    names = ", ".join(str(meas.labels[b]) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
+    def name(b):
+        where = meas.where(int(starts[b])) if starts is not None and hasattr(meas, "where") else ""
+        return f"{meas.labels[b]} ({where})" if where else str(meas.labels[b])
+
+    names = ", ".join(name(b) for b in failed[:MAX_DIVERGENCE_LINES]) + (", ..." if len(failed) > MAX_DIVERGENCE_LINES else "")
     n = len(failed)
     return [f"{model}: the smoother failed (non-finite or far off the filter) on {n} object{'s' if n > 1 else ''} ({names}): their smooth_* "
             f"columns repeat the filter's; flag +{SMOOTH_FAILED} on their rows"]

@@ -21,7 +21,9 @@ from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming, objects_subset
 from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
-from ..io.readers import parse_delimiter, read_measurements, skipping_nonfinite_rows
+from ..io.readers import (
+    COLUMN_OPTIONS, named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning,
+)
 from ..io.units import TIME_UNITS, heading_in_radians, to_seconds, unit_warnings
 from . import ArgumentParser
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
@@ -31,7 +33,7 @@ from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
 
-__all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
+__all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES", "add_column_options", "column_names"]
 
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
@@ -71,6 +73,28 @@ def parse_accel_std(items, models):
 
 
 
+COLUMN_HELP = {
+    "id": "the column of object ids (default: id, track_id or object_id)",
+    "t": "the time column (default: t, time or timestamp); numbers (seconds, or --time-unit) or ISO-8601 date-times",
+    "x": "the x column in m (default: x)",
+    "y": "the y column in m (default: y)",
+    "heading": "the heading column (default: heading or yaw)",
+}
+
+
+def add_column_options(ap, keys=tuple(COLUMN_OPTIONS)) -> None:
+    """``--id-column NAME`` ... (``readers.COLUMN_OPTIONS``): a column of another name taken for that key instead of
+    the automatic aliases."""
+    for k in keys:
+        ap.add_argument(COLUMN_OPTIONS[k], default=None, metavar="NAME", help=COLUMN_HELP[k])
+
+
+def column_names(a) -> dict:
+    """{key: NAME} of the column options given (``readers.named_columns``'s argument)."""
+    return {k: getattr(a, opt[2:].replace("-", "_"), None) for k, opt in COLUMN_OPTIONS.items()
+            if getattr(a, opt[2:].replace("-", "_"), None) is not None}
+
+
 def track_parser():
     ap = ArgumentParser(
         prog="lgekf track",
@@ -93,6 +117,7 @@ def track_parser():
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the CSV's t column, converted to seconds (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR",
                     help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
+    add_column_options(ap)
     ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
                     help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
                     + "); repeatable MODEL=LIST (default: from the data, see docs/track.md)")
@@ -114,7 +139,9 @@ def track_parser():
                          "motion as degrees, not as radians, are refused: give deg)")
     ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
     ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
-    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    ap.add_argument("--precision", type=int, default=None,
+                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
+                         "keep 0.1 mm, t 1 µs)")
     ap.add_argument("--no-monitor", action="store_true",
                     help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
@@ -135,12 +162,15 @@ def track_parser():
 
 def check_track_arguments(a, models):
     """Every argument error before any reading or computing (one line each, exit 2)."""
-    if not 1 <= a.precision <= 17:
+    if a.precision is not None and not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
     if a.format == "csv" and a.frame_dt is not None:
         raise ValueError("--frame-dt: only used with --format pedestrian")
     if a.format == "pedestrian" and a.time_unit != "s":
         raise ValueError("--time-unit: only for CSV input (the pedestrian format's time is frame * --frame-dt seconds)")
+    if a.format == "pedestrian" and column_names(a):
+        raise ValueError(f"{COLUMN_OPTIONS[next(iter(column_names(a)))]}: only for CSV or Parquet input (the pedestrian "
+                         "format has no header)")
     if is_stdio(a.output) and len(models) > 1:
         raise ValueError("--output -: --model all writes one file per model; give a file name")
     check_output_path(a.output)
@@ -204,6 +234,9 @@ class ModelsTrack:
             raise ValueError("--sort/--skip-invalid: not available with --workers/--scheduler (yet); clean the file first")
         if a.heading_unit == "deg":
             raise ValueError("--heading-unit deg: not available with --workers/--scheduler (yet); convert the column to radians")
+        if column_names(a):
+            raise ValueError(f"{COLUMN_OPTIONS[next(iter(column_names(a)))]}: not available with --workers/--scheduler (yet); "
+                             "rename the columns in the file")
         # the noise estimate pools every object of the file: on a cluster it is not made (yet); the noise is given
         missing = [m for m in models if m not in given_q]
         if a.meas_std is None or missing:
@@ -269,7 +302,7 @@ class ModelsTrack:
             w = write_model(fh, m, meas, starts, self.cfgs[m], a.full_cov, a.precision, bar, self.measure[m], monitor,
                             smooth=a.smooth, parquet=is_parquet(out))
             flagged[m] = w.flagged
-            for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed):
+            for line in divergence_warnings(m, meas, w.alarms, w.flagged) + smooth_failure_warnings(m, meas, w.smooth_failed, starts):
                 print(f"lgekf track: warning: {line}", file=sys.stderr)
         return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
 
@@ -280,11 +313,16 @@ def read_track_input(a):
     seconds. Returns (meas, starts)."""
     single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
     heading = a.use_heading or bool(get_measurement(a.measure).angles)  # a measurement with an angle reads the column
-    with skipping_nonfinite_rows(a.skip_invalid):
+    with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
         if is_parquet(a.input):
             meas = read_parquet(a.input, heading)
         else:
             meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
+    if meas.time_iso and a.time_unit != "s":
+        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    note = unused_columns_warning(meas)
+    if note is not None:
+        print(f"lgekf track: warning: {note}", file=sys.stderr)
     if a.sort:
         meas, moved = sort_within_objects(meas)
         print(f"lgekf track: warning: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)

@@ -87,6 +87,6 @@ class ImmTrack:
                         smooth=getattr(self.a, "smooth", False), monitor=monitor)
         flagged = int((res.flag & 1).sum())
         lines = divergence_warnings("imm", meas, res.alarms, flagged, statistic="residual²/r²")
-        for line in lines + smooth_failure_warnings("imm", meas, res.smooth_failed):
+        for line in lines + smooth_failure_warnings("imm", meas, res.smooth_failed, starts):
             print(f"lgekf track: warning: {line}", file=sys.stderr)
         return [("imm", f", {flagged} rows flagged" if flagged else "")]

@@ -17,11 +17,12 @@ from ..apps.track_multi import (
     AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason,
     scan_window_from_data, scans, write_multi,
 )
-from ..core.registry import MODELS
+from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS, get_measurement
 from ..core.validate import positive_scalar
 from ..estimators.association import ASSOCIATIONS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
-from ..io.readers import parse_delimiter, read_measurements
+from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
+from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
 from ..io.units import TIME_UNITS, to_seconds
 from . import ArgumentParser
 from .progress import compile_notice
@@ -48,7 +49,9 @@ def track_multi_parser():
     ap.add_argument("--detection-prob", type=float, default=0.9, help="probability of detecting an object in a scan (default 0.9)")
     ap.add_argument("--clutter-density", type=float, default=None,
                     help="expected false alarms per m² per scan (default: detections per scan / bounding-box area of the data)")
-    ap.add_argument("--measure", default="position", choices=["position", "pose"], help="position (x, y) or pose (x, y, heading column)")
+    ap.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(MEASUREMENTS),
+                    help=f"measurement model (default {BASE_MEASUREMENT}): "
+                    + "; ".join(f"{m}: {s.description}" for m, s in MEASUREMENTS.items()) + " (angles from the heading column)")
     ap.add_argument("--meas-std", type=float, default=None,
                     help="measurement std per axis in m (default: estimated from the detections that the confirmed tracks hold, "
                          "local quadratic residuals; printed)")
@@ -71,7 +74,17 @@ def track_multi_parser():
                          "data have one t per scan)")
     ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
     ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
-    ap.add_argument("--precision", type=int, default=10, help="significant digits of the output numbers (default 10, at most 17)")
+    from .track import add_column_options
+
+    add_column_options(ap, ("t", "x", "y", "heading"))
+    ap.add_argument("--sort", action="store_true",
+                    help="sort the rows by time first (stable; says how many moved); without it rows going back in time "
+                         "are refused (rows of equal t are one scan)")
+    ap.add_argument("--skip-invalid", action="store_true",
+                    help="drop rows with NaN/inf, with one summary line; without it they are refused")
+    ap.add_argument("--precision", type=int, default=None,
+                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
+                         "keep 0.1 mm, t 1 µs)")
     ap.add_argument("--no-monitor", action="store_true",
                     help="no divergence monitor (default: a track whose filter diverges is flagged and deleted; docs/track_multi.md)")
     ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings")
@@ -96,7 +109,7 @@ def _accel_std(items, model):
 
 def _check_arguments(a):
     """Every argument error before any reading (one line each, exit 2)."""
-    if not 1 <= a.precision <= 17:
+    if a.precision is not None and not 1 <= a.precision <= 17:
         raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
     if a.meas_std is not None:
         positive_scalar("meas-std", a.meas_std)
@@ -108,6 +121,26 @@ def _check_arguments(a):
     MODELS[a.model].measurement(a.measure)
     check_output_path(a.output)
     return q
+
+
+def read_multi_input(a):
+    """The detections of ``--multi``'s input in non-decreasing time: rows going back in time are refused unless
+    ``--sort`` (then sorted, stable, with one line saying how many moved), rows with NaN/inf refused unless
+    ``--skip-invalid`` (then dropped, one summary line): the rules of single-object tracking for a file of scans."""
+    from .track import column_names
+
+    with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
+        meas = read_measurements(a.input, "csv", None, get_measurement(a.measure).has_angle, parse_delimiter(a.delimiter))
+    if meas.time_iso and a.time_unit != "s":
+        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    if a.sort:
+        meas, moved = sort_by_time(meas)
+        _warn(f"--sort: {moved} row{'s' if moved != 1 else ''} moved into time order")
+    else:
+        check_time_order(meas)
+    for line in skipped_summary(meas):
+        _warn(line)
+    return meas
 
 
 def _warn(text):
@@ -127,16 +160,16 @@ def cmd_track_multi(argv) -> int:
     from ..estimators.tracker import MultiTargetTracker
 
     r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
-    MultiTargetTracker(**args, accel_std=q, meas_std=(r,) if a.measure == "position" else (r, r, heading_std))  # every option checked before reading
+    MultiTargetTracker(**args, accel_std=q, meas_std=get_measurement(a.measure).stds(r, heading_std))  # every option checked before reading
     t0 = time.perf_counter()
-    meas = read_measurements(a.input, "csv", None, a.measure == "pose", parse_delimiter(a.delimiter))
+    meas = read_multi_input(a)
     if not is_stdio(a.input) and not is_stdio(a.output):
         if Path(a.output).resolve() == Path(a.input).resolve():
             raise ValueError(f"--output: {a.output} would overwrite the input file")
     t = to_seconds(meas.t, a.time_unit)
     if meas.origin is not None:
         say(f"lat, lon projected to x, y in metres east and north of {meas.origin} (the first row; local equirectangular)")
-    Z = meas.z if a.measure == "position" else np.column_stack([meas.z, meas.heading])
+    Z = get_measurement(a.measure).columns(meas.z, meas.heading)
     window = scan_window_from_data(t, meas.z) if a.scan_window is None else a.scan_window
     sc = scans(t, window)
     if a.scan_window is None and window > 0:
@@ -151,7 +184,7 @@ def cmd_track_multi(argv) -> int:
         fh = files.open(0)
         run, fit = fit_noise(t, Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
         if a.meas_std is None or q is None:
-            say(fit.describe(a.model, q is not None, heading_std if a.measure == "pose" else None, a.heading_std is not None))
+            say(fit.describe(a.model, q is not None, heading_std if get_measurement(a.measure).has_angle else None, a.heading_std is not None))
         if a.meas_std is not None:
             e = fit.check
             if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate
@@ -171,7 +204,7 @@ def cmd_track_multi(argv) -> int:
                       "--max-speed if there are any")
         if run.alarms:
             _warn(multi_alarm_line(run))
-        write_multi(fh, a.model, run, a.precision)
+        write_multi(fh, a.model, run, a.precision, meas.z)
         files.commit()
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout

@@ -10,9 +10,9 @@ from __future__ import annotations
 import numba as nb
 import numpy as np
 
-from .readers import Measurements
+from .readers import DataError, Measurements
 
-__all__ = ["sort_within_objects", "drop_invalid", "take_rows", "skipped_summary"]
+__all__ = ["sort_within_objects", "drop_invalid", "take_rows", "skipped_summary", "sort_by_time", "check_time_order"]
 
 
 def take_rows(meas: Measurements, keep: np.ndarray) -> Measurements:
@@ -28,7 +28,7 @@ def take_rows(meas: Measurements, keep: np.ndarray) -> Measurements:
     new[order] = np.arange(order.size)
     return Measurements(meas.t[idx], meas.z[idx], None if meas.heading is None else meas.heading[idx], new[obj],
                         [meas.labels[i] for i in order], meas.line[idx], meas.source, {k: v[idx] for k, v in meas.extra.items()},
-                        meas.origin, dict(meas.skipped))
+                        meas.origin, dict(meas.skipped), unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word)
 
 
 def sort_within_objects(meas: Measurements) -> tuple[Measurements, int]:
@@ -82,6 +82,29 @@ def drop_invalid(meas: Measurements, min_length: int = 2) -> Measurements:
     out = take_rows(meas, keep)
     out.skipped = skipped
     return out
+
+
+def check_time_order(meas: Measurements) -> None:
+    """Detections (``lgekf track --multi``): the rows must be in non-decreasing time (rows of equal t are one scan);
+    else one DataError naming the first row that goes back in time and ``--sort``."""
+    t = np.asarray(meas.t, dtype=float)
+    back = np.flatnonzero(t[1:] < t[:-1])
+    if back.size:
+        k = int(back[0])
+        w = meas.line_word
+        raise DataError(
+            f"{meas.source} {meas.where(k + 1)}: time goes back (t = {float(t[k + 1])!r} after t = {float(t[k])!r} on {w} "
+            f"{int(meas.line[k])}); detections must be in non-decreasing time, rows of equal t being one scan "
+            f"({back.size} row{'s' if back.size != 1 else ''} going back in time; --sort sorts them)"
+        )
+
+
+def sort_by_time(meas: Measurements) -> tuple[Measurements, int]:
+    """The rows in non-decreasing time (stable: rows of equal time keep their file order; ``lgekf track --multi
+    --sort``). Returns (measurements, how many rows moved)."""
+    order = np.argsort(np.asarray(meas.t, dtype=float), kind="stable")
+    moved = int(np.count_nonzero(order != np.arange(order.size)))
+    return (take_rows(meas, order) if moved else meas), moved
 
 
 def skipped_summary(meas: Measurements, first: int = 3) -> list:

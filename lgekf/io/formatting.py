@@ -21,7 +21,14 @@ import numpy as np
 
 from .cpus import usable_cpus as _cpus  # a module name of its own: tests set it
 
-__all__ = ["format_rows", "write_rows", "write_rows_made", "format_g", "label_bytes"]
+__all__ = ["format_rows", "write_rows", "write_rows_made", "format_g", "label_bytes", "data_digits", "output_digits",
+           "DEFAULT_DIGITS", "POSITION_RESOLUTION", "TIME_RESOLUTION", "POSITION_COLUMNS"]
+
+DEFAULT_DIGITS = 10  # significant digits of the output's numbers when --precision is not given
+POSITION_RESOLUTION = 1e-4  # m: without --precision, positions are written to at least 0.1 mm
+TIME_RESOLUTION = 1e-6  # s: t is written to at least 1 µs (epoch seconds: 16 digits)
+T_DIGITS = 15  # t's digits at least (as always)
+POSITION_COLUMNS = ("x", "y", "smooth_x", "smooth_y")
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 PARTS_PER_THREAD = 4  # the rows are cut into this many parts per thread (load balance; see _formatted_parts)
@@ -482,6 +489,51 @@ def write_rows_made(fh, lab, row_label, t, values_of, n: int, digits, t_digits: 
         finally:
             for f in ahead:  # after an error: the parts not started are dropped
                 f.cancel()
+
+
+def data_digits(max_abs: float, resolution: float, at_least: int) -> int:
+    """Significant digits that write every value of magnitude at most ``max_abs`` to ``resolution`` (a unit of the
+    last digit at most ``resolution``, rounding error at most half of it), at least ``at_least``, at most 17.
+
+    E.g. max |x| = 1e9 m, resolution 1e-4 m: 14 digits (1000000000.0001); 5e6 m: 11; epoch seconds 1.7e9 at 1 µs: 16.
+    """
+    if not (math.isfinite(max_abs) and max_abs > 0):
+        return int(min(max(at_least, 1), 17))
+    need = math.floor(math.log10(max_abs)) + 1 - math.floor(math.log10(resolution))
+    return int(min(max(at_least, need), 17))
+
+
+def output_digits(columns, digits, z, t):
+    """Digits of a track file's value columns and of t.
+
+    Parameters
+    ----------
+    columns : sequence of str
+        The value columns' names (the header after ``id, t``).
+    digits : int or None
+        ``--precision``: every value column gets it; None (not given): ``DEFAULT_DIGITS``, but the position columns
+        (``POSITION_COLUMNS``) as many as keep ``POSITION_RESOLUTION`` at the data's largest |x|, |y| (``z``).
+    z : ndarray (N, 2)
+        The measured positions (m).
+    t : ndarray (N,)
+        The times (s): t gets at least ``T_DIGITS`` digits, more when needed to keep ``TIME_RESOLUTION``.
+
+    Returns
+    -------
+    (ndarray of int64, int)
+        The digits per value column, and t's.
+    """
+    z = np.asarray(z)
+    t = np.asarray(t)
+    col = np.full(len(columns), DEFAULT_DIGITS if digits is None else int(digits), dtype=np.int64)
+    if digits is None and z.size:
+        big = float(np.nanmax(np.abs(z[np.isfinite(z)]))) if np.isfinite(z).any() else 0.0
+        d = data_digits(big, POSITION_RESOLUTION, DEFAULT_DIGITS)
+        for i, c in enumerate(columns):
+            if c in POSITION_COLUMNS:
+                col[i] = d
+    t_big = float(np.nanmax(np.abs(t[np.isfinite(t)]))) if t.size and np.isfinite(t).any() else 0.0
+    return col, data_digits(t_big, TIME_RESOLUTION, T_DIGITS)
 
 
 def format_g(values, digits: int) -> list:

@@ -5,8 +5,9 @@ result of ``Measurements.grouped`` made with less peak memory.
 side by side (5 arrays of 10⁶ rows: 80 MB at once). ``grouped_consuming`` takes the input over instead:
 the checks run first (on failure ``Measurements.grouped`` raises its own error), then each column is sorted
 in turn and its file-order version released from the input; a file already grouped by object is not
-copied at all. The object index and line number of each row are not kept (``obj`` and ``line`` are None):
-after grouping, object b's rows are ``starts[b]:starts[b + 1]`` and no message names a line any more.
+copied at all. The object index of each row is not kept (``obj`` is None: after grouping, object b's rows are
+``starts[b]:starts[b + 1]``); the line number of each row is (``line``, int64, sorted with the rows), so that
+warnings about a row or an object can name its line in the input file.
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     -------
     grouped : Measurements
         Rows sorted by object (objects in order of first appearance, rows in file order), ``t``, ``z``,
-        ``heading``, ``extra`` as ``Measurements.grouped`` gives them; ``obj`` and ``line`` are None
+        ``heading``, ``line``, ``extra`` as ``Measurements.grouped`` gives them; ``obj`` is None
         (``row_objects`` gives the object of rows from ``starts``).
     starts : ndarray of int64, shape (objects + 1,)
         Object b's rows are ``starts[b]:starts[b + 1]``.
@@ -47,12 +48,10 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     obj = np.ascontiguousarray(meas.obj, dtype=np.int64)
     t = meas.t
     counts = np.bincount(obj, minlength=meas.n_objects).astype(np.int64, copy=False)
-    # the checks on the rows in file order, before anything is sorted: an error names lines (meas.line), which are
-    # then released before the sorted copies are made
+    # the checks on the rows in file order, before anything is sorted: an error names lines (meas.line)
     if np.any(counts < min_length) or not times_increase(np.ascontiguousarray(t, dtype=float), obj, meas.n_objects):
         meas.grouped(min_length)  # raises its error naming the object and lines
         raise AssertionError("grouped_consuming: a check failed that Measurements.grouped passed")  # not reached
-    meas.line = None
     in_order = obj.size < 2 or bool(np.all(obj[1:] >= obj[:-1]))  # the counting sort's order is then the identity
     order = None if in_order else group_order(obj, meas.n_objects)[0]
     starts = np.zeros(meas.n_objects + 1, dtype=np.int64)
@@ -63,7 +62,7 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
     t = _own(t) if in_order else t[order]
     labels = list(meas.labels)
     cols = {}
-    for name in ("z", "heading"):
+    for name in ("z", "heading", "line"):
         v = getattr(meas, name)
         setattr(meas, name, None)
         cols[name] = v if v is None else _own(v) if in_order else v[order]
@@ -73,7 +72,8 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
         v = meas.extra.pop(k)
         extra[k] = _own(v) if in_order else v[order]
         del v
-    out = Measurements(t, cols["z"], cols["heading"], None, labels, None, meas.source, extra, meas.origin)
+    out = Measurements(t, cols["z"], cols["heading"], None, labels, cols["line"], meas.source, extra, meas.origin,
+                       unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word)
     return out, starts
 
 

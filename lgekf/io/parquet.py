@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import FileError, is_stdio, source_name
-from .readers import DataError, Measurements, header_keys, measurements_from_columns
+from .readers import DataError, Measurements, _unused, header_keys, measurements_from_columns
 
 __all__ = ["PARQUET_SUFFIXES", "INSTALL_HINT", "is_parquet", "require_pyarrow", "read_parquet", "ParquetRows"]
 
@@ -76,7 +76,9 @@ def read_parquet(path, use_heading: bool = False, extra=()) -> Measurements:
     Returns
     -------
     Measurements
-        In file order; row i is reported as "line i + 1" in messages (the row number, counted from 1).
+        In file order; row i is reported as "row i + 1" in messages (the row number, counted from 1). A t column of
+        Parquet timestamps (or dates) is read as seconds since the epoch (a naive timestamp is UTC), one of text as
+        ISO-8601 date-times (``lgekf.io.times``).
     """
     source = source_name(path)
     pa, pq = require_pyarrow(source)
@@ -104,11 +106,24 @@ def read_parquet(path, use_heading: bool = False, extra=()) -> Measurements:
         if k == "id":
             cols[k] = _id_texts(col)
             continue
+        if k == "t" and (pa.types.is_timestamp(col.type) or pa.types.is_date(col.type)):  # seconds since the epoch (UTC)
+            ns = np.asarray(col.cast(pa.timestamp("ns", tz=getattr(col.type, "tz", None))).cast(pa.int64()).fill_null(0)
+                            .to_numpy(zero_copy_only=False), dtype=np.int64)
+            whole = np.floor_divide(ns, 1_000_000_000)
+            v = whole.astype(float) + (ns - whole * 1_000_000_000).astype(float) * 1e-9
+            if col.null_count:
+                v[np.asarray(col.is_null().to_numpy(zero_copy_only=False), bool)] = math.nan
+            cols[k] = v
+            continue
+        if k == "t" and (pa.types.is_string(col.type) or pa.types.is_large_string(col.type)):  # ISO-8601 date-times
+            cols[k] = np.asarray(col.fill_null("").to_numpy(zero_copy_only=False), dtype=str)
+            continue
         if not (pa.types.is_integer(col.type) or pa.types.is_floating(col.type)):
             raise DataError(f"{source}: column {names[i]!r} is {col.type}, expected numbers")
         cols[k] = np.asarray(col.cast(pa.float64()).fill_null(math.nan).to_numpy(zero_copy_only=False), dtype=float)
     lines = np.arange(1, table.num_rows + 1, dtype=np.int64)
-    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols])
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols],
+                                     unused=_unused(names, keys, extra), line_word="row")
 
 
 class ParquetRows:

@@ -9,7 +9,11 @@ Readers
   projected to metres east/north of the first row's position (``lgekf.io.geo``; the origin is kept in
   ``Measurements.origin``). Ids are text, compared exactly as written (surrounding spaces removed):
   ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
-  or spaces) unless given. Other columns are ignored. Blank lines are skipped.
+  or spaces) unless given. Other columns are ignored (with no id column they are listed in
+  ``Measurements.unused``: ``unused_columns_warning``). Blank lines are skipped. Within ``named_columns``
+  (``lgekf track --id-column NAME`` ...) the named columns replace the aliases. The t column holds numbers or
+  ISO-8601 date-times (``lgekf.io.times``: seconds since the epoch, naive = UTC), as its first row says; date-times
+  are read by the general reader (the fast parser takes numbers only).
 * ``read_pedestrian(path, frame_dt)``: the ETH/UCY text format: whitespace separated ``frame id x y``,
   no header; t = frame * frame_dt, where ``frame_dt`` is the time per frame *unit* (ETH/UCY files step
   the frame number by 10 per sample: biwi_eth 10 frames = 0.6667 s -> frame_dt = 0.06667;
@@ -47,10 +51,12 @@ from .fastcsv import group_order
 from .files import is_stdio, open_input, source_name
 from .geo import to_local
 from .mapped import MAP_MIN_BYTES, MappedFile, parse_mapped
+from .times import ISO_HINT, IsoError, iso_seconds, looks_iso
 
 __all__ = [
     "DataError", "Measurements", "read_csv", "read_pedestrian", "read_measurements", "parse_delimiter",
     "measurements_from_columns", "parse_number_column", "csv_header", "header_keys", "skipping_nonfinite_rows",
+    "named_columns", "COLUMN_OPTIONS", "unused_columns_warning",
 ]
 
 CHUNK_LINES = 1 << 18
@@ -64,6 +70,8 @@ COLUMN_ALIASES = {
     "lat": ("lat", "latitude"),
     "lon": ("lon", "lng", "long", "longitude"),
 }
+# the options naming a column (``lgekf track --id-column NAME`` ...): key -> option
+COLUMN_OPTIONS = {"id": "--id-column", "t": "--time-column", "x": "--x-column", "y": "--y-column", "heading": "--heading-column"}
 # separators tried on the header line, in this order (None: runs of spaces/tabs)
 AUTO_DELIMITERS = (",", ";", "\t", "|", None)
 DELIMITER_NAMES = {"tab": "\t", "\\t": "\t", "space": None, "whitespace": None, "comma": ",", "semicolon": ";"}
@@ -79,7 +87,8 @@ class Measurements:
 
     t (N,), z (N, 2), heading (N,) or None; obj (N,) object index per row, objects numbered in order of
     first appearance; labels[i] the text of object i's id (as written in the output);
-    line (N,) the 1-based line number of each row in ``source`` (for error messages); extra: other
+    line (N,) int64, the 1-based line number of each row in ``source`` (header = line 1; a table's row number counted
+    from 1 when ``line_word`` is "row"), kept through sorting, cleaning and grouping for messages; extra: other
     numeric columns asked for (name -> (N,)); origin: (lat0, lon0) in degrees when z was projected
     from lat, lon columns (``lgekf.io.geo.to_local``), else None.
     """
@@ -94,6 +103,16 @@ class Measurements:
     extra: dict = field(default_factory=dict)
     origin: tuple | None = None
     skipped: dict = field(default_factory=dict)  # reason -> line numbers of rows dropped while reading (--skip-invalid)
+    unused: tuple = ()  # no id column was found: the header's columns that were not read (named in a warning)
+    time_iso: bool = False  # t was read from ISO-8601 date-times (seconds since the epoch)
+    line_word: str = "line"  # what ``line`` counts: "line" of a text file (header = line 1), "row" of a table (from 1)
+
+    def where(self, k: int) -> str:
+        """Where row k (an index into these rows) came from: ``line 1234`` (or ``row 1233`` of a table); "" without
+        line numbers."""
+        if self.line is None:
+            return ""
+        return f"{self.line_word} {int(self.line[k])}"
 
     @property
     def n_objects(self) -> int:
@@ -149,6 +168,7 @@ class Measurements:
         out = Measurements(
             t, self.z[order], None if self.heading is None else self.heading[order], obj, labels,
             self.line[order], self.source, {k: v[order] for k, v in self.extra.items()}, self.origin,
+            unused=self.unused, time_iso=self.time_iso, line_word=self.line_word,
         )
         return out, starts, dropped
 
@@ -226,6 +246,8 @@ def _diagnose(source, lines, first_line, delimiter, usecols, colnames, numeric):
             except ValueError:
                 shown = v if v else "(empty)"
                 hint = " (a decimal comma? write numbers with a decimal point)" if _DECIMAL_COMMA.match(v) else ""
+                if name == "t" and not hint:
+                    hint = f"; {ISO_HINT}"
                 raise DataError(f"{where}: column {name!r}: {shown!r} is not a number{hint}") from None
     return None
 
@@ -307,7 +329,7 @@ def skipping_nonfinite_rows(skip: bool = True):
         _SKIP_NONFINITE.reset(token)
 
 
-def _check_finite(source, cols: dict, lines, names):
+def _check_finite(source, cols: dict, lines, names, line_word: str = "line"):
     """None when every number of the columns ``names`` is finite; else, within ``skipping_nonfinite_rows``, the mask
     of the rows to keep, and outside it one DataError naming the first bad line and column."""
     bad_rows = None
@@ -318,7 +340,7 @@ def _check_finite(source, cols: dict, lines, names):
             if not _SKIP_NONFINITE.get():
                 k = int(np.flatnonzero(bad)[0])
                 raise DataError(
-                    f"{source} line {int(lines[k])}: column {name!r} is {float(a[k])!r}; NaN and infinite values are not "
+                    f"{source} {line_word} {int(lines[k])}: column {name!r} is {float(a[k])!r}; NaN and infinite values are not "
                     "allowed (--skip-invalid drops such rows)"
                 )
             bad_rows = bad if bad_rows is None else bad_rows | bad
@@ -351,12 +373,58 @@ def _objects_from_texts(ids: np.ndarray):
     return rank[inv.ravel()], labels
 
 
-def _find_columns(header):
-    """{key: column index} for the known columns of a header (None if a key matches twice)."""
+#: ``named_columns``: key (id, t, x, y, heading) -> the column's name given by the user (--id-column ...)
+_COLUMN_NAMES: ContextVar[dict] = ContextVar("column_names", default={})
+
+
+@contextmanager
+def named_columns(names: dict | None = None):
+    """Within the block, the readers take the columns named here instead of the automatic aliases
+    (``COLUMN_ALIASES``).
+
+    Parameters
+    ----------
+    names : dict, optional
+        Key (``id``, ``t``, ``x``, ``y``, ``heading``) -> column name (compared without surrounding spaces, any
+        case); None values are ignored. A named column absent from a header is one ``DataError`` listing the
+        header's columns.
+    """
+    given = {k: str(v).strip() for k, v in (names or {}).items() if v is not None}
+    for k in given:
+        if k not in COLUMN_OPTIONS:
+            raise ValueError(f"named_columns: unknown key {k!r}; choose among {', '.join(COLUMN_OPTIONS)}")
+    token = _COLUMN_NAMES.set(given)
+    try:
+        yield
+    finally:
+        _COLUMN_NAMES.reset(token)
+
+
+def _named(source, header, strict: bool = True) -> dict:
+    """{key: column index} of the columns named by ``named_columns``; a DataError for a name the header lacks
+    (``strict``; else that key is left out)."""
     names = [h.strip().lower() for h in header]
-    where, twice = {}, {}
+    where = {}
+    for key, name in _COLUMN_NAMES.get().items():
+        if name.lower() in names:
+            where[key] = names.index(name.lower())
+        elif strict:
+            shown = ", ".join(h.strip() for h in header) or "(nothing)"
+            raise DataError(f"{source}: {COLUMN_OPTIONS[key]} {name}: no such column; the header has: {shown}")
+    return where
+
+
+def _find_columns(header, source=None):
+    """{key: column index} for the known columns of a header (None if a key matches twice); the columns named by
+    ``named_columns`` take their key (``source`` given: a named column that is missing is a DataError)."""
+    names = [h.strip().lower() for h in header]
+    where = _named(source, header, strict=source is not None)
+    taken = set(where.values())
+    twice = {}
     for key, aliases in COLUMN_ALIASES.items():
-        hits = [i for i, n in enumerate(names) if n in aliases]
+        if key in where or (key in ("lat", "lon") and "x" in where and "y" in where):
+            continue
+        hits = [i for i, n in enumerate(names) if n in aliases and i not in taken]
         if len(hits) > 1:
             twice[key] = hits
         if hits:
@@ -375,7 +443,7 @@ def _choose_delimiter(first: str, delimiter):
         return delimiter, _split(first, delimiter)
     for d in AUTO_DELIMITERS:
         header = _split(first, d)
-        if _usable(_find_columns(header)[0]):
+        if _usable(_find_columns(header)[0]) and len(_named(None, header, strict=False)) == len(_COLUMN_NAMES.get()):
             return d, header
     return ",", _split(first, ",")
 
@@ -383,7 +451,7 @@ def _choose_delimiter(first: str, delimiter):
 
 def _resolve_columns(source, header, want_heading, auto):
     """{key: column index}; x, y when present, else lat, lon (degrees). Raises a DataError naming what is missing."""
-    where, twice = _find_columns(header)
+    where, twice = _find_columns(header, source)
     for key, hits in twice.items():
         if key in ("lat", "lon") and "x" in where and "y" in where:
             continue  # not read
@@ -412,8 +480,28 @@ def _resolve_columns(source, header, want_heading, auto):
             f"the header has: {shown}{hint}; expected t, x, y (or t, lat, lon in degrees) and optionally id, heading"
         )
     if want_heading and "heading" not in where:
-        raise DataError(f"{source}: --use-heading needs a 'heading' column (rad); the header has: {', '.join(h.strip() for h in header)}")
+        raise DataError(f"{source}: --use-heading needs a 'heading' column (rad, or --heading-column NAME); the header has: "
+                        f"{', '.join(h.strip() for h in header)}")
     return where
+
+
+def _unused(header, keys: dict, extra=()) -> tuple:
+    """When ``keys`` has no id: the header's columns that are neither read nor a known column name (else ())."""
+    if "id" in keys:
+        return ()
+    known = {a for aliases in COLUMN_ALIASES.values() for a in aliases} | {e.lower() for e in extra}
+    used = set(keys.values())
+    return tuple(h.strip() for i, h in enumerate(header) if i not in used and h.strip() and h.strip().lower() not in known)
+
+
+def unused_columns_warning(meas) -> str | None:
+    """The warning for a file read as one object while its header has columns that were not read (one of them may
+    name the objects: ``--id-column``), else None."""
+    if not meas.unused or meas.n_objects != 1:
+        return None
+    shown = ", ".join(repr(c) for c in meas.unused[:8]) + (", ..." if len(meas.unused) > 8 else "")
+    return (f"no id column (id, track_id, object_id): all {meas.t.size} rows are read as one object; column"
+            f"{'s' if len(meas.unused) > 1 else ''} not used: {shown}; if one of them names the objects, give --id-column NAME")
 
 
 def _check_ids(source, ids, lines):
@@ -467,7 +555,7 @@ def _header_columns(source, first: str, use_heading: bool, extra, delimiter):
         if name in lower and name not in colnames:
             colnames.append(name)
             usecols.append(lower.index(name))
-    return delim, colnames, usecols
+    return delim, colnames, usecols, _unused(header, keys, extra)
 
 
 def csv_header(path, use_heading: bool = False, delimiter="auto"):
@@ -493,7 +581,7 @@ def csv_header(path, use_heading: bool = False, delimiter="auto"):
     """
     source = source_name(path)
     with open_input(path, DataError) as f, _reading(source):
-        delim, colnames, usecols = _header_columns(source, f.readline(), use_heading, (), delimiter)
+        delim, colnames, usecols, _ = _header_columns(source, f.readline(), use_heading, (), delimiter)
     with open(path, "rb") as raw:
         gz = raw.read(2) == b"\x1f\x8b"
     return delim, dict(zip(colnames, usecols)), gz
@@ -524,12 +612,30 @@ def read_csv(path, use_heading: bool = False, extra=(), delimiter="auto") -> Mea
     if fast is not None:
         return fast
     with open_input(path, DataError) as f, _reading(source):
-        delim, colnames, usecols = _header_columns(source, f.readline(), use_heading, extra, delimiter)
+        delim, colnames, usecols, unused = _header_columns(source, f.readline(), use_heading, extra, delimiter)
         str_cols = ("id",) if "id" in colnames else ()
-        cols, lines = _read_chunks(source, f, 2, delim, usecols, colnames, str_cols)
+        head = []  # the first line with data decides whether t holds numbers or ISO-8601 date-times
+        for line in f:
+            head.append(line)
+            if line.strip():
+                fields = _split(line, delim)
+                tc = usecols[colnames.index("t")]
+                if tc < len(fields) and _iso_not_number(fields[tc]):
+                    str_cols = (*str_cols, "t")
+                break
+        cols, lines = _read_chunks(source, itertools.chain(head, f), 2, delim, usecols, colnames, str_cols)
     if lines.size == 0:
         raise DataError(f"{source}: no measurements (the file has only a header line)")
-    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols])
+    return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], unused=unused)
+
+
+def _iso_not_number(text: str) -> bool:
+    """A t value that is no number but starts like an ISO-8601 date."""
+    try:
+        float(text)
+        return False
+    except ValueError:
+        return looks_iso(text)
 
 
 def _read_csv_fast(path, source, use_heading, extra, delimiter):
@@ -580,7 +686,7 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
         first = (head[:-1] if head.endswith(b"\r") else head).decode("utf-8")
         if "\r" in first:
             return None
-        delim, colnames, usecols = _header_columns(source, first, use_heading, extra, delimiter)
+        delim, colnames, usecols, unused = _header_columns(source, first, use_heading, extra, delimiter)
     except (UnicodeDecodeError, DataError):
         return None
     if delim not in fastcsv.FAST_DELIMITERS:
@@ -619,7 +725,7 @@ def _parse_fast(source, held, mapped, use_heading, extra, delimiter):
         cols = {n: np.ascontiguousarray(vals[:, i]) for i, n in enumerate(names)}
     del vals
     return measurements_from_columns(source, cols, lines, use_heading, extra=[n for n in extra if n in cols], objects=(obj, labels),
-                                     positions=z)
+                                     positions=z, unused=unused)
 
 
 def _positions_in_place(vals, ix: int, iy: int, block: int = 1 << 16):
@@ -658,7 +764,7 @@ def _is_utf8(data) -> bool:
 
 
 def measurements_from_columns(source, cols: dict, lines, use_heading: bool = False, origin=None, extra=(),
-                              objects=None, positions=None) -> Measurements:
+                              objects=None, positions=None, unused=(), line_word: str = "line") -> Measurements:
     """Check parsed columns and assemble them into ``Measurements`` (the last step of ``read_csv``).
 
     Parameters
@@ -681,13 +787,28 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
     positions : ndarray, optional
         (N, 2): ``cols["x"]``, ``cols["y"]`` side by side, used as the positions instead of a stacked copy
         (``read_csv``'s fast path, where they are its two columns).
+    unused : tuple of str
+        The header's columns not read when there is no id column (``Measurements.unused``).
+    line_word : str
+        ``"line"`` (a text file, header = line 1) or ``"row"`` (a table's row, from 1), in messages.
+
+    ``cols["t"]`` may be text: ISO-8601 date-times (``lgekf.io.times``), converted to seconds since the epoch
+    (``Measurements.time_iso``); a value that is not one is a DataError naming its line.
 
     Returns
     -------
     Measurements
         Objects numbered in order of first appearance among these rows.
     """
-    keep = _check_finite(source, cols, lines, [n for n in cols if n != "id"])
+    time_iso = cols["t"].dtype.kind in "UO"
+    if time_iso:
+        try:
+            cols = {**cols, "t": iso_seconds(cols["t"])}
+        except IsoError as e:
+            shown = e.value if e.value else "(empty)"
+            raise DataError(f"{source} {line_word} {int(lines[e.index])}: column 't': {shown!r} is neither a number nor an "
+                            f"ISO-8601 date-time; {ISO_HINT}") from None
+    keep = _check_finite(source, cols, lines, [n for n in cols if n != "id"], line_word)
     skipped = {}
     if keep is not None:  # skipping_nonfinite_rows: the rows with a NaN or infinite number dropped
         skipped["non-finite"] = lines[~keep].tolist()
@@ -719,7 +840,7 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
     ext = {n: cols[n] for n in extra if n in cols}
     return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin,
-                        skipped=skipped)
+                        skipped=skipped, unused=tuple(unused), time_iso=time_iso, line_word=line_word)
 
 
 def parse_number_column(source: str, name: str, texts, lines) -> np.ndarray:

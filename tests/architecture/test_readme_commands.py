@@ -224,8 +224,8 @@ def _data_root(root: Path):
 @pytest.fixture(scope="module")
 def workdir(tmp_path_factory):
     d = tmp_path_factory.mktemp("readme")
-    (d / "detections.csv").write_text("t,x,y,id\n" + "".join(
-        f"{0.4 * k:.1f},{x:.3f},{y:.3f},{i}\n" for i, k, x, y in _tracks(3, 12)))
+    (d / "detections.csv").write_text("t,x,y,id\n" + "".join(  # in time order, as a sensor logs (--multi needs it)
+        f"{0.4 * k:.1f},{x:.3f},{y:.3f},{i}\n" for i, k, x, y in sorted(_tracks(3, 12), key=lambda r: r[1])))
     (d / "poses.csv").write_text("t,x,y,heading,id\n" + "".join(  # a heading column for --measure pose
         f"{0.4 * k:.1f},{x:.3f},{y:.3f},{0.05 * k:.3f},{i}\n" for i, k, x, y in _tracks(3, 12)))
     (d / "biwi_eth.txt").write_text("".join(f"{10 * k}\t{i}.0\t{x:.3f}\t{y:.3f}\n" for i, k, x, y in _tracks(3, 10, 0.6667)))

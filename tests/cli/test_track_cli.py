@@ -508,7 +508,7 @@ def test_wrong_noise_is_warned_and_divergence_reported_once_per_object(tmp_path)
     assert r.returncode == 0, r.stderr
     warn = [ln for ln in r.stderr.splitlines() if ln.startswith("lgekf track: warning: ")]
     assert "--meas-std 0.1 m is 0.095x the std estimated from the data (1.05 m)" in warn[0]
-    div = [ln for ln in warn if "diverged at t = " in ln]
+    div = [ln for ln in warn if "diverged at line " in ln and " (t = " in ln]
     assert sorted(ln.split("object ")[1].split(" ")[0] for ln in div) == ["o0", "o1", "o2"]
     assert all("re-initialised from its last measurements" in ln for ln in div)
     _, data = read_out(tmp_path / "o.csv")

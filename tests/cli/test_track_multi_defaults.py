@@ -32,18 +32,20 @@ def run(*args):
 
 def scene(path, seed=1, jitter=0.0, targets=TARGETS, dt=0.2, scans=100, meas_std=1.0, clutter=2e-5, region=REGION,
           turn_noise=0.02):
-    """Write a detection file t,x,y (one t per scan, or with ``jitter``: each detection at scan time + U(0, jitter));
+    """Write a detection file t,x,y in time order (one t per scan, or with ``jitter``: each detection at scan time +
+    U(0, jitter));
     returns the scan times and the truth per scan (ids, (x, y, heading))."""
     rng = np.random.default_rng(seed)
     times = np.round(dt * np.arange(scans), 10)
     truth = truth_trajectories(targets, times, rng, turn_noise=turn_noise)
     dets, _ = detection_stream(truth, rng, 0.9, clutter, meas_std, region)
-    lines = ["t,x,y"]
+    rows = []
     for t, Z in zip(times, dets):
         for z in Z:
             tt = t + rng.uniform(0.0, jitter) if jitter else t
-            lines.append(f"{tt:.6f},{z[0]:.4f},{z[1]:.4f}")
-    path.write_text("\n".join(lines) + "\n")
+            rows.append((round(tt, 6), f"{tt:.6f},{z[0]:.4f},{z[1]:.4f}"))
+    rows.sort(key=lambda r: r[0])  # a sensor's log: rows in time order (stable; --multi refuses rows going back in time)
+    path.write_text("\n".join(["t,x,y", *(r[1] for r in rows)]) + "\n")
     return times, truth
 
 
@@ -258,7 +260,9 @@ def test_shipped_example_with_multi_finds_its_three_objects(tmp_path):
     src = Path(__file__).resolve().parents[2] / "examples" / "data" / "detections.csv"
     dets = np.genfromtxt(src, delimiter=",", names=True, dtype=None, encoding="utf-8")
     out = tmp_path / "tracks.csv"
-    r = run(src, "--multi", "-o", out)
+    r = run(src, "--multi", "-o", out)  # the file is written object by object: not in time order
+    assert r.returncode == 2 and "--sort sorts them" in r.stderr and not out.exists(), r.stderr
+    r = run(src, "--multi", "--sort", "-o", out)
     assert r.returncode == 0, r.stderr
     assert "3 confirmed tracks" in r.stdout, r.stdout
     assert 0.24 <= meas_std_printed(r.stderr) <= 0.36  # the file's noise is 0.3 m

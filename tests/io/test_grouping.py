@@ -53,7 +53,7 @@ def test_grouped_consuming_gives_the_rows_of_grouped(case):
         assert got.heading.tolist() == want.heading.tolist()
     assert got.extra["vx"].tolist() == want.extra["vx"].tolist()
     assert got.labels == want.labels and got.origin == want.origin and got.source == want.source
-    assert got.obj is None and got.line is None
+    assert got.obj is None and got.line.tolist() == want.line.tolist()  # the lines kept, sorted with the rows
     assert m.t is None and m.z is None and m.obj is None  # taken over: the file-order columns released
     assert row_objects(starts, 0, len(starts) - 1).tolist() == want.obj.tolist()
     for first, last in [(0, 1), (1, len(starts) - 1), (len(starts) - 2, len(starts) - 1)]:
