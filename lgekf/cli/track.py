@@ -13,10 +13,9 @@ import numpy as np
 from ..apps.defaults import plan_noise_by_class
 from ..apps.divergence import MonitorConfig
 from ..apps.track import (
-    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
-from ..apps.track_dask import PARTITION_ROWS
-from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS, get_measurement
+from ..core.registry import BASE_MEASUREMENT, MODELS, get_measurement
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming, objects_subset
@@ -24,16 +23,16 @@ from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.readers import (
     COLUMN_OPTIONS, named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning,
 )
-from ..io.units import TIME_UNITS, heading_in_radians, to_seconds, unit_warnings
-from . import ArgumentParser
+from ..io.units import heading_in_radians, to_seconds, unit_warnings
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
-from .cluster import add_cluster_options, check_cluster_options, cluster_requested
+from .cluster import check_cluster_options, cluster_requested
 from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
+from .track_options import check_estimator_options, column_names, track_parser
 from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
 
-__all__ = ["cmd_track", "track_parser", "parse_accel_std", "MAX_DIVERGENCE_LINES", "add_column_options", "column_names"]
+__all__ = ["cmd_track", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
@@ -73,91 +72,6 @@ def parse_accel_std(items, models):
 
 
 
-COLUMN_HELP = {
-    "id": "the column of object ids (default: id, track_id or object_id)",
-    "t": "the time column (default: t, time or timestamp); numbers (seconds, or --time-unit) or ISO-8601 date-times",
-    "x": "the x column in m (default: x)",
-    "y": "the y column in m (default: y)",
-    "heading": "the heading column (default: heading or yaw)",
-}
-
-
-def add_column_options(ap, keys=tuple(COLUMN_OPTIONS)) -> None:
-    """``--id-column NAME`` ... (``readers.COLUMN_OPTIONS``): a column of another name taken for that key instead of
-    the automatic aliases."""
-    for k in keys:
-        ap.add_argument(COLUMN_OPTIONS[k], default=None, metavar="NAME", help=COLUMN_HELP[k])
-
-
-def column_names(a) -> dict:
-    """{key: NAME} of the column options given (``readers.named_columns``'s argument)."""
-    return {k: getattr(a, opt[2:].replace("-", "_"), None) for k, opt in COLUMN_OPTIONS.items()
-            if getattr(a, opt[2:].replace("-", "_"), None) is not None}
-
-
-def track_parser():
-    ap = ArgumentParser(
-        prog="lgekf track",
-        description="Track every object of a measurement file with an LG-EKF (SE(2)xSE(2), SE(2)xR3), CTRV-EKF or CV-KF.",
-    )
-    ap.add_argument("input", help="measurements: CSV with header t,x,y[,id][,heading] (or t,lat,lon,...), or the pedestrian format; "
-                    "- reads stdin; gzip input is recognised")
-    ap.add_argument("--multi", action="store_true",
-                    help="unlabelled detections with clutter and misses: multi-target tracking (see `lgekf track --multi --help`)")
-    ap.add_argument("-o", "--output", required=True,
-                    help="output CSV; - writes to stdout; a name ending in .gz is gzip-compressed "
-                         "(with --model all: one file per model, OUTPUT_<model>.csv)")
-    ap.add_argument("--model", default="se2se2", choices=[*MODELS, "all", "imm"], help="filter (default se2se2); imm: an IMM of --imm-modes")
-    ap.add_argument("--imm-modes", default=None, metavar="LIST",
-                    help="--model imm: modes MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3:calm,se2r3:manoeuvre)")
-    ap.add_argument("--imm-switch", type=float, default=None, metavar="P",
-                    help="--model imm: probability of leaving a mode per step (default 0.05)")
-    ap.add_argument("--format", default="csv", choices=["csv", "pedestrian"], help="input format (default csv)")
-    ap.add_argument("--frame-dt", type=float, default=None, help="pedestrian format: seconds per frame unit (t = frame * frame_dt)")
-    ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the CSV's t column, converted to seconds (default s)")
-    ap.add_argument("--delimiter", default=None, metavar="CHAR",
-                    help="CSV separator: one character, tab or space (default: found from the header: , ; tab | or spaces)")
-    add_column_options(ap)
-    ap.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
-                    help="process noise stds (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
-                    + "); repeatable MODEL=LIST (default: from the data, see docs/track.md)")
-    ap.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(MEASUREMENTS),
-                    help=f"measurement model (default {BASE_MEASUREMENT}): "
-                    + "; ".join(f"{m}: {s.description}" for m, s in MEASUREMENTS.items())
-                    + " (angles from the heading column; noise: --meas-std for positions, --heading-std for angles)")
-    ap.add_argument("--meas-std", type=float, default=None,
-                    help="measurement std per axis in m (default: estimated from the data, local quadratic residuals)")
-    ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
-    ap.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
-    ap.add_argument("--sort", action="store_true",
-                    help="sort each object's rows by time first (says how many moved); without it unsorted rows are refused")
-    ap.add_argument("--skip-invalid", action="store_true",
-                    help="drop what no filter can take, with one line per reason: rows with NaN/inf, a time not after the "
-                         "object's previous row (duplicates), objects left with a single row; without it they are refused")
-    ap.add_argument("--heading-unit", choices=["rad", "deg"], default=None,
-                    help="unit of the heading column (default rad, but values beyond ±2π that follow the direction of "
-                         "motion as degrees, not as radians, are refused: give deg)")
-    ap.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
-    ap.add_argument("--full-cov", action="store_true", help="also write every covariance entry cov_<i>_<j> (upper triangle)")
-    ap.add_argument("--precision", type=int, default=None,
-                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
-                         "keep 0.1 mm, t 1 µs)")
-    ap.add_argument("--no-monitor", action="store_true",
-                    help="no divergence monitoring and re-initialisation (the flag column is then all 0)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings (about the data, divergence)")
-    ap.add_argument("--tune", action="store_true",
-                    help="learn each model's process noise (and the measurement std unless --meas-std) by maximum likelihood "
-                         "on the file's own tracks, print it with 95 %% intervals to stderr, then track with it")
-    ap.add_argument("--tune-method", choices=["lbfgs", "em"], default="lbfgs",
-                    help="with --tune: lbfgs = the likelihood optimiser (default), em = expectation-maximisation for the "
-                         "linear Gaussian models (cv), the optimiser for the others")
-    ap.add_argument("--smooth", action="store_true",
-                    help="also write RTS-smoothed columns smooth_<state>, smooth_std_<state> (after flag; "
-                         "with --model imm also smooth_mu_<mode>)")
-    add_cluster_options(ap)
-    ap.add_argument("--partition-rows", type=int, default=PARTITION_ROWS, metavar="N",
-                    help=f"with --workers/--scheduler: rows per partition (whole objects; default {PARTITION_ROWS})")
-    return ap
 
 
 def check_track_arguments(a, models):
@@ -341,12 +255,13 @@ def cmd_track(argv) -> int:
     """``lgekf track``: one pipeline for every estimator: check → read → plan the noise → estimate (with the monitor,
     and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model MODEL|all``) or ``ImmTrack``
     (``--model imm``, ``lgekf.cli.track_imm``); ``--multi`` (``lgekf.cli.track_multi``) has its own reading of
-    unlabelled detections."""
-    if "--multi" in argv:  # many objects from unlabelled detections: lgekf.cli.track_multi
+    unlabelled detections. One parser for all (``lgekf.cli.track_options``)."""
+    a = track_parser().parse_args(argv)
+    check_estimator_options(a)
+    if a.multi:  # many objects from unlabelled detections: lgekf.cli.track_multi
         from .track_multi import cmd_track_multi
 
-        return cmd_track_multi(argv)
-    a = track_parser().parse_args(argv)
+        return cmd_track_multi(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
     if a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
         from .track_imm import ImmTrack, check_imm_options

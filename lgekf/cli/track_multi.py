@@ -12,83 +12,22 @@ from pathlib import Path
 
 import numpy as np
 
-from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, DEFAULT_OMEGA_STD
+from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD
 from ..apps.track_multi import (
     AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason,
     scan_window_from_data, scans, write_multi,
 )
-from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS, get_measurement
+from ..core.registry import MODELS, get_measurement
 from ..core.validate import positive_scalar
-from ..estimators.association import ASSOCIATIONS
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
 from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
-from ..io.units import TIME_UNITS, to_seconds
-from . import ArgumentParser
+from ..io.units import to_seconds
 from .progress import compile_notice
+from .track_options import DEFAULT_MAX_SPEED, SPEED_WARN_FRACTION, column_names
 from .alarms import misfit_line  # the same rule and words as `lgekf track`
 
-__all__ = ["cmd_track_multi", "track_multi_parser", "SPEED_WARN_FRACTION", "DEFAULT_MAX_SPEED"]
-
-SPEED_WARN_FRACTION = 0.8  # a confirmed track this close to the default --max-speed is warned about
-DEFAULT_MAX_SPEED = 30.0  # m/s
-
-
-def track_multi_parser():
-    ap = ArgumentParser(
-        prog="lgekf track --multi",
-        description="Track many objects from unlabelled detections with clutter and missed detections (JPDA/PDA/GNN "
-                    "with integrated track existence). The noise comes from the data unless given; see docs/track_multi.md.",
-    )
-    ap.add_argument("input", help="detections: CSV with header t,x,y[,heading] (an id column is ignored); - reads stdin; gzip is recognised")
-    ap.add_argument("--multi", action="store_true", required=True, help="multi-target mode")
-    ap.add_argument("-o", "--output", required=True, help="output CSV (track,t,state,std_state,speed,course,existence,flag); - writes to stdout; .gz compresses")
-    ap.add_argument("--model", default="se2se2", choices=list(MODELS), help="filter of every track (default se2se2)")
-    ap.add_argument("--association", default="jpda", choices=list(ASSOCIATIONS),
-                    help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), pda or gnn (default jpda)")
-    ap.add_argument("--detection-prob", type=float, default=0.9, help="probability of detecting an object in a scan (default 0.9)")
-    ap.add_argument("--clutter-density", type=float, default=None,
-                    help="expected false alarms per m² per scan (default: detections per scan / bounding-box area of the data)")
-    ap.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(MEASUREMENTS),
-                    help=f"measurement model (default {BASE_MEASUREMENT}): "
-                    + "; ".join(f"{m}: {s.description}" for m, s in MEASUREMENTS.items()) + " (angles from the heading column)")
-    ap.add_argument("--meas-std", type=float, default=None,
-                    help="measurement std per axis in m (default: estimated from the detections that the confirmed tracks hold, "
-                         "local quadratic residuals; printed)")
-    ap.add_argument("--heading-std", type=float, default=None, help=f"pose: std of the heading column in rad (default {DEFAULT_HEADING_STD})")
-    ap.add_argument("--accel-std", action="append", default=[], metavar="LIST",
-                    help="process noise stds of the model (" + "; ".join(f"{m}: {','.join(s.noise_names)}" for m, s in MODELS.items())
-                    + "; default: from the confirmed tracks' detections as `lgekf track` learns it; printed)")
-    ap.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD, help=f"initial turn-rate std of a new track in rad/s (default {DEFAULT_OMEGA_STD})")
-    ap.add_argument("--gate-prob", type=float, default=0.99, help="gate probability P_G (default 0.99)")
-    ap.add_argument("--survival-prob", type=float, default=0.99, help="probability that an object survives one scan (default 0.99)")
-    ap.add_argument("--birth-existence", type=float, default=0.1, help="existence probability of a new track (default 0.1)")
-    ap.add_argument("--confirm-existence", type=float, default=0.9, help="existence that confirms a track (default 0.9)")
-    ap.add_argument("--delete-existence", type=float, default=0.01, help="existence below which a track is deleted (default 0.01)")
-    ap.add_argument("--max-speed", type=float, default=None,
-                    help=f"largest speed of a new track's two detections in m/s (default {DEFAULT_MAX_SPEED:g}; a confirmed track "
-                         f"faster than {SPEED_WARN_FRACTION:g}x that is warned about)")
-    ap.add_argument("--scan-window", type=float, default=None, metavar="SECONDS",
-                    help="one scan = the detections at most SECONDS after the scan's first; its time the midpoint of its first "
-                         "and last (default: from the gaps between the distinct times, 0 = one scan per distinct t when the "
-                         "data have one t per scan)")
-    ap.add_argument("--time-unit", default="s", choices=list(TIME_UNITS), help="unit of the t column (default s)")
-    ap.add_argument("--delimiter", default=None, metavar="CHAR", help="CSV separator (default: found from the header)")
-    from .track import add_column_options
-
-    add_column_options(ap, ("t", "x", "y", "heading"))
-    ap.add_argument("--sort", action="store_true",
-                    help="sort the rows by time first (stable; says how many moved); without it rows going back in time "
-                         "are refused (rows of equal t are one scan)")
-    ap.add_argument("--skip-invalid", action="store_true",
-                    help="drop rows with NaN/inf, with one summary line; without it they are refused")
-    ap.add_argument("--precision", type=int, default=None,
-                    help="significant digits of the output numbers, at most 17 (default 10, and the positions as many as "
-                         "keep 0.1 mm, t 1 µs)")
-    ap.add_argument("--no-monitor", action="store_true",
-                    help="no divergence monitor (default: a track whose filter diverges is flagged and deleted; docs/track_multi.md)")
-    ap.add_argument("--quiet", action="store_true", help="print nothing on success but warnings")
-    return ap
+__all__ = ["cmd_track_multi"]
 
 
 def _accel_std(items, model):
@@ -127,8 +66,6 @@ def read_multi_input(a):
     """The detections of ``--multi``'s input in non-decreasing time: rows going back in time are refused unless
     ``--sort`` (then sorted, stable, with one line saying how many moved), rows with NaN/inf refused unless
     ``--skip-invalid`` (then dropped, one summary line): the rules of single-object tracking for a file of scans."""
-    from .track import column_names
-
     with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
         meas = read_measurements(a.input, "csv", None, get_measurement(a.measure).has_angle, parse_delimiter(a.delimiter))
     if meas.time_iso and a.time_unit != "s":
@@ -147,8 +84,9 @@ def _warn(text):
     print(f"lgekf track: warning: {text}", file=sys.stderr)
 
 
-def cmd_track_multi(argv) -> int:
-    a = track_multi_parser().parse_args(argv)
+def cmd_track_multi(a) -> int:
+    """``lgekf track --multi`` on the parsed options of ``lgekf.cli.track_options.track_parser`` (the labelled-object
+    options refused and the multi-target defaults filled in by ``check_estimator_options``)."""
     q = _check_arguments(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
     max_speed = DEFAULT_MAX_SPEED if a.max_speed is None else a.max_speed

@@ -61,6 +61,8 @@ BAD_CASES = {
     "precision": (GOOD, ["--precision", "30"], "precision"),
     "abbreviated_multi": (GOOD, ["--mult"], "unrecognized arguments: --mult"),  # was a silent single-object run
     "abbreviated_option": (GOOD, ["--meas", "0.3"], "unrecognized arguments: --meas"),
+    "multi_option_without_multi": (GOOD, ["--association", "gnn", "--max-speed", "9"],
+                                   "--association, --max-speed: only with --multi"),
 }
 
 
