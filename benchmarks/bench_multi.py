@@ -19,7 +19,7 @@ import time
 
 import numpy as np
 
-from lgekf.estimators.tracker import MultiTargetTracker
+from lgekf.estimators.multitarget.tracker import MultiTargetTracker
 from lgekf.experiments.multi_scenarios import detection_stream, truth_trajectories
 
 SIDE = 2000.0

@@ -26,7 +26,7 @@ import time
 
 import numpy as np
 
-from lgekf.estimators.tracker import MultiTargetTracker
+from lgekf.estimators.multitarget.tracker import MultiTargetTracker
 from lgekf.experiments.multi_scenarios import base_scenario
 from lgekf.experiments.multi_study import run_tracker_on
 

@@ -1,13 +1,13 @@
 """Does an EM in the tangent space around the smoothed trajectory increase the likelihood of the LG models?
 
-The experiment behind the refusal of ``lgekf.estimators.em.learn_noise_em`` for the non-linear models. For every
+The experiment behind the refusal of ``lgekf.estimators.noise.em.learn_noise_em`` for the non-linear models. For every
 registry model (generically: only its generated kernels), on simulated SE(2)×SE(2) motion with position
 measurements, it runs the *approximate* EM that one would write: E-step = the RTS smoother on the group
 (``forward_store``, ``smooth_stored``); the process residual of step k is ē_k = between(motion(μˢ_{k-1}), μˢ_k) in the
 tangent at the predicted mean, its covariance Pˢ_k + F Pˢ_{k-1} Fᵀ − Pˢ_k Jᵀ Fᵀ − F J Pˢ_k with F and the noise
 shapes Q_i = process_noise(μˢ_{k-1}, dt, e_i) at the smoothed state, J the filter's smoother gain (the frames of
 the filtered and smoothed means are not distinguished: the approximation); the measurement residual is the
-innovation at μˢ_k with ℋ Pˢ_k ℋᵀ; M-step the closed forms of ``lgekf.estimators.em`` (the transition from the
+innovation at μˢ_k with ℋ Pˢ_k ℋᵀ; M-step the closed forms of ``lgekf.estimators.noise.em`` (the transition from the
 start and the start's dependence on r are left out). After every iteration it evaluates the exact objective of
 ``learn_noise`` (the innovation log-likelihood, ``log_likelihood``) and prints how often it went down, where it
 ended, and the L-BFGS maximum for comparison.
@@ -25,8 +25,8 @@ import numpy as np
 from lgekf.core.covariance import pack, unpack
 from lgekf.core.registry import MODELS
 from lgekf.core.rts import forward_store, smooth_stored
-from lgekf.estimators.tracks import batch_tracks, two_point_prior
-from lgekf.estimators.tuning import learn_noise, log_likelihood
+from lgekf.estimators.noise.tracks import batch_tracks, two_point_prior
+from lgekf.estimators.noise.tuning import learn_noise, log_likelihood
 from lgekf.experiments.simulate import simulate
 
 

@@ -1,4 +1,4 @@
-"""EM (lgekf.estimators.em.learn_noise_em) against the likelihood optimiser (learn_noise, L-BFGS-B + Nelder–Mead)
+"""EM (lgekf.estimators.noise.em.learn_noise_em) against the likelihood optimiser (learn_noise, L-BFGS-B + Nelder–Mead)
 for the CV model on real data: learned (σ_a, r), log-likelihood, EM iterations, and the time ratios EM / L-BFGS
 measured in one run (this machine is shared: ratios only). EM runs its kernels on one numba thread below
 ``SINGLE_THREAD_CELLS`` track steps; the optimiser is timed as it runs (its likelihood kernel in parallel) and on
@@ -15,9 +15,9 @@ from __future__ import annotations
 import argparse
 import time
 
-from lgekf.estimators.em import EMTrace, _numba_threads, learn_noise_em
-from lgekf.estimators.tracks import batch_tracks
-from lgekf.estimators.tuning import learn_noise
+from lgekf.estimators.noise.em import EMTrace, _numba_threads, learn_noise_em
+from lgekf.estimators.noise.tracks import batch_tracks
+from lgekf.estimators.noise.tuning import learn_noise
 from lgekf.io.datasets import load_dataset
 
 

@@ -28,7 +28,7 @@ from lgekf.apps.evaluate import FILTERS, _imm_fitted, _per_track_rmse, _seed_rng
 from lgekf.apps.smooth_track import learn_on_dataset
 from lgekf.apps.track import DEFAULT_ACCEL_STD, TrackConfig, track_arrays
 from lgekf.apps.track_imm import TUNE_MODE_SETS, ImmTrackOptions, imm_track_common
-from lgekf.estimators.tuning import learn_noise
+from lgekf.estimators.noise.tuning import learn_noise
 from lgekf.io.datasets import load_dataset
 
 BINS = ((2, 5), (5, 12), (12, 25), (25, 50), (50, 100), (100, 10**9))

@@ -325,7 +325,7 @@ class MotionModel:
         is μ + ε and the innovation a difference), and F (eq:pred_cov), Q = G diag(σ²) Gᵀ and ℋ (eq:calH)
         do not depend on the state.  Then x_k = F x_{k-1} + G n_k, z_k = ℋ x_k + m_k exactly, the filter is
         the Kalman filter, its innovation likelihood is exact, and EM (Shumway & Stoffer 1982) applies
-        (``lgekf.estimators.em``).
+        (``lgekf.estimators.noise.em``).
         """
         state = set(self.physical) | set(self.internal) | {s for _, c, s_ in self.carried for s in (c, s_)}
         eps = sp.Matrix(self.EPS)

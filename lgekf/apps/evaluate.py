@@ -31,7 +31,7 @@ Protocol
   that k (LG, CTRV); (3) k again over its grid at the chosen ρ. CV has only k.
 
 * ``tune_method="mle"`` (the default of ``lgekf evaluate --tune``): each filter's process noise is instead
-  learned by maximum likelihood (``lgekf.estimators.tuning.learn_noise``) from the noisy measurements of the
+  learned by maximum likelihood (``lgekf.estimators.noise.tuning.learn_noise``) from the noisy measurements of the
   tuning split (every seed's draw a track of its own, noise stream 1), with the measurement std held at the
   known ``meas_std``; ``"grid"`` is the search above. ``smooth=True`` adds a row ``<model>:smoothed`` per
   filter: the RTS smoother on the group (``lgekf.apps.smooth_track``) on the same measurements and noise,
@@ -233,7 +233,7 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     """Default-noise result (all tracks, or the evaluation split when tuning) and, with ``tune``, the tuned one.
 
     ``runner``: passed to ``run_filters`` (None: everything in this process). ``tune_method``: "grid",
-    "mle" or "em" (as "mle", with EM for the linear Gaussian models, ``lgekf.estimators.em``);
+    "mle" or "em" (as "mle", with EM for the linear Gaussian models, ``lgekf.estimators.noise.em``);
     ``smooth``: also the ``<model>:smoothed`` rows (module docstring). ``imm``: an
     ``lgekf.apps.track_imm.ImmTrackOptions`` adds an "imm" row: with its modes' noise as given there in the
     default run, and with ``tune`` (MLE) in the tuned run fitted on the tuning split by its own likelihood

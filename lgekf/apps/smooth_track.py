@@ -7,7 +7,7 @@ start with the noise the filter used there. The rows of a start or re-initialisa
 alarm's row) repeat the filter columns; the filter columns are those of the run without ``--smooth``. An object
 whose smoothed values are not all finite keeps the filter's values in its smoothed columns (the caller flags it).
 
-``--tune``: ``lgekf.estimators.tuning.learn_noise`` on all objects of the file (each object's first
+``--tune``: ``lgekf.estimators.noise.tuning.learn_noise`` on all objects of the file (each object's first
 measurement and the first one at least 1 s later start it), per model; a given ``--meas-std`` is held fixed,
 a given ``--accel-std`` is kept (that model is not tuned). The optimiser starts from the noise ``lgekf track``
 estimates from the data without ``--tune`` (``lgekf.apps.defaults.NoisePlan.tune_starts``, ``data_starts``) and
@@ -21,8 +21,8 @@ import numpy as np
 from ..core.covariance import unpack
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.smoother import smooth_segments
-from ..estimators.em import em_or_lbfgs, learn_noise_em
-from ..estimators.tuning import NoiseFit, learn_noise
+from ..estimators.noise.em import em_or_lbfgs, learn_noise_em
+from ..estimators.noise.tuning import NoiseFit, learn_noise
 
 __all__ = ["smoothed_columns", "smooth_segments_of", "implausible_rows", "SMOOTH_GATE", "tune_models", "learn_on_dataset",
            "noisy_tracks", "DATA_START"]
@@ -114,11 +114,11 @@ def smoothed_columns(model, measurement, t, zm, starts, tracked, q, r):
 def tune_models(t, z, starts, models, measurement: dict, meas_std=None, given_q=None, heading=None, omega_std=0.5,
                 method="lbfgs", start_noise: dict | None = None):
     """{model: NoiseFit} for every model not in ``given_q`` (learned from all objects of the file); ``method`` "em":
-    EM where it applies (``lgekf.estimators.em.em_or_lbfgs``), else the likelihood optimiser.
+    EM where it applies (``lgekf.estimators.noise.em.em_or_lbfgs``), else the likelihood optimiser.
 
     ``start_noise`` ({model: (accel_std, meas_std)}, e.g. ``NoisePlan.tune_starts``): a further start of each model's fit,
     labelled ``DATA_START`` and tried before the model's defaults; the fit's log-likelihood is never below the best
-    valid start's (``lgekf.estimators.tuning.learn_noise``)."""
+    valid start's (``lgekf.estimators.noise.tuning.learn_noise``)."""
     fits: dict[str, NoiseFit] = {}
     starts = np.asarray(starts, dtype=np.int64)
     for m in models:

@@ -1,7 +1,7 @@
 """`lgekf track --multi`: many objects from unlabelled detections with clutter and misses.
 
 Input: the rows of a detection file (``t, x, y`` [, ``heading``]; an ``id`` column is ignored), ordered by
-t (stably). Every scan goes through ``lgekf.estimators.tracker.MultiTargetTracker``. Output: one row per
+t (stably). Every scan goes through ``lgekf.estimators.multitarget.tracker.MultiTargetTracker``. Output: one row per
 confirmed track per scan, ``track, t, <state>, std_<state>, existence`` (t the scan's time, the model's
 physical state, the stds of its tangent coordinates, the existence probability).
 
@@ -73,7 +73,7 @@ import numba as nb
 import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
-from ..estimators.tracker import HEADING_CAP, MultiTargetTracker
+from ..estimators.multitarget.tracker import HEADING_CAP, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
 from .divergence import KIND_NAMES

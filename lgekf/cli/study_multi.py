@@ -16,7 +16,7 @@ __all__ = ["cmd_study_multi", "study_multi_parser"]
 
 def study_multi_parser():
     from ..core.registry import MODELS
-    from ..estimators.association import ASSOCIATIONS
+    from ..estimators.multitarget.association import ASSOCIATIONS
 
     ap = ArgumentParser(prog="lgekf study --multi",
                         description="Multi-target tracking in clutter: GOSPA of every model × association on the base scenario "
@@ -56,7 +56,7 @@ def _names(option, text, allowed):
 
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
-    from ..estimators.association import ASSOCIATIONS
+    from ..estimators.multitarget.association import ASSOCIATIONS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 
     a = study_multi_parser().parse_args(argv)

@@ -95,7 +95,7 @@ def cmd_track_multi(a) -> int:
                 gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
                 confirm_existence=a.confirm_existence, delete_existence=a.delete_existence, max_speed=max_speed,
                 omega_std=a.omega_std, clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
-    from ..estimators.tracker import MultiTargetTracker
+    from ..estimators.multitarget.tracker import MultiTargetTracker
 
     r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
     MultiTargetTracker(**args, accel_std=q, meas_std=get_measurement(a.measure).stds(r, heading_std))  # every option checked before reading

@@ -10,7 +10,7 @@ from __future__ import annotations
 from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS
-from ..estimators.association import ASSOCIATIONS
+from ..estimators.multitarget.association import ASSOCIATIONS
 from ..io.readers import COLUMN_OPTIONS
 from ..io.units import TIME_UNITS
 from . import ArgumentParser

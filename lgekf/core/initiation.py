@@ -1,7 +1,7 @@
 """Two-point initialisation of a track from two measurements (the rule of ``lgekf track``, documented in
 ``lgekf.apps.track``'s module docstring): common coordinates c = (x, y, θ, v_x, v_y, ω) and their variances
 from two positions, then any model's x0 and P0 through the generated ``common_to_state`` /
-``common_jacobian``. Shared by ``lgekf track`` and the multi-target tracker (``lgekf.estimators.tracker``).
+``common_jacobian``. Shared by ``lgekf track`` and the multi-target tracker (``lgekf.estimators.multitarget.tracker``).
 """
 
 from __future__ import annotations

@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike
 
 from .imm import _batch_inputs
 from .imm_tuning import imm_loglik_batch
-from .tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
+from .noise.tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
 
 __all__ = ["ChainFit", "learn_chain", "stationary_distribution", "chain_log_likelihood", "CHAIN_BOUNDS"]
 

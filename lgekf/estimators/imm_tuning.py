@@ -10,7 +10,7 @@ its covariance (eq:K), which :func:`lgekf.estimators.imm_kernels.imm_update` alr
 The parameters θ are the log of one factor a_j per mode (mode j runs with process-noise stds a_j · q_j, q_j
 its given ``accel_std``) and the logit of the switching probability p (the transition matrix
 ``transition_matrix(M, p)``); the measurement std is given (learned beforehand with the single models,
-:func:`lgekf.estimators.tuning.learn_noise`, or known).
+:func:`lgekf.estimators.noise.tuning.learn_noise`, or known).
 
 Why: fitting each model alone (``learn_noise``) and giving the IMM's calm / manoeuvring modes fixed multiples of
 the learned noise (0.2×, 4×) tunes the modes for a motion they do not each see. The joint fit lets the data
@@ -22,7 +22,7 @@ likelihood is conditioned on the first ``baseline`` seconds (their steps run but
 two-point start's velocity is poor (error √2·r/Δ), and counting the steps that repair it would ask for more
 process noise than the motion has (the reason for ``learn_noise``'s ``baseline``).
 
-Optimiser and uncertainty as in :func:`lgekf.estimators.tuning.learn_noise`: L-BFGS-B in θ (bounded, finite
+Optimiser and uncertainty as in :func:`lgekf.estimators.noise.tuning.learn_noise`: L-BFGS-B in θ (bounded, finite
 differences of 1e-3, two starts), a Nelder–Mead polish, the observed information (central-difference Hessian of
 −log L) for approximate 95 % intervals, and the same warnings when the data do not identify a parameter.
 """
@@ -38,8 +38,8 @@ import numpy as np
 from ..core.initiation import DEFAULT_OMEGA_STD, two_point
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
 from .imm_kernels import imm_loglik_one
-from .tracks import batch_tracks
-from .tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
+from .noise.tracks import batch_tracks
+from .noise.tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
 
 __all__ = ["ImmFit", "learn_imm", "imm_log_likelihood"]
 

@@ -73,7 +73,7 @@ class ImmStudyOptions:
             Bad modes or switch, fewer than 2 training trajectories, or training draws too few or too many.
         """
         from ..estimators.imm import transition_matrix
-        from ..estimators.tuning import MIN_UPDATES_PER_PARAMETER
+        from ..estimators.noise.tuning import MIN_UPDATES_PER_PARAMETER
 
         M = len(parse_modes(self.modes))
         if self.switch is not None:

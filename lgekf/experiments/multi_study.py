@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
-from ..estimators.tracker import MultiTargetTracker
+from ..estimators.multitarget.tracker import MultiTargetTracker
 from .gospa import gospa, track_switches
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario

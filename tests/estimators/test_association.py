@@ -13,10 +13,10 @@ from scipy.stats import chi2, multivariate_normal
 
 from lgekf.core.covariance import pack, unpack
 from lgekf.core.registry import MODELS
-from lgekf.estimators.association import association_marginals, association_weights, existence_and_weights
-from lgekf.estimators.bank import ModelBank
-from lgekf.estimators.gating import gate_threshold
-from lgekf.estimators.jpda import exact_cluster_marginals, lbp_cluster_marginals
+from lgekf.estimators.multitarget.association import association_marginals, association_weights, existence_and_weights
+from lgekf.estimators.multitarget.bank import ModelBank
+from lgekf.estimators.multitarget.gating import gate_threshold
+from lgekf.estimators.multitarget.jpda import exact_cluster_marginals, lbp_cluster_marginals
 
 PAIRS = [(m, meas) for m, spec in MODELS.items() for meas in spec.measurements]
 
@@ -242,7 +242,7 @@ def test_pda_update_spreads_the_covariance(model, meas):
     e1, e2 = np.array([0.5, 0.1, 0.02][:m]), np.array([-0.3, 0.2, -0.04][:m])
     Z = np.array([getattr(bank.kern, f"measure_{meas}")(s, *e) for e in (e1, e2)])
     bank.gate(Z, 1e9)
-    from lgekf.estimators.pda import pda_corrections
+    from lgekf.estimators.multitarget.pda import pda_corrections
 
     N = bank.live.size
     eps, Pc, upd = np.zeros((N, bank.n)), np.zeros((N, bank.n, bank.n)), np.zeros(N, bool)

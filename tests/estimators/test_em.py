@@ -1,4 +1,4 @@
-"""EM for the noise of the linear Gaussian models (lgekf.estimators.em): recovery of known CV noise, the EM
+"""EM for the noise of the linear Gaussian models (lgekf.estimators.noise.em): recovery of known CV noise, the EM
 property (likelihood non-decreasing), agreement with the L-BFGS maximum likelihood, the clear refusals, and the
 model table's ``linear`` flag checked against the generated kernels."""
 
@@ -9,9 +9,9 @@ import pytest
 from _cli import cli_command
 
 from lgekf.core.registry import MODELS
-from lgekf.estimators.em import EMTrace, em_models, em_or_lbfgs, learn_noise_em
-from lgekf.estimators.tracks import batch_tracks
-from lgekf.estimators.tuning import learn_noise, log_likelihood
+from lgekf.estimators.noise.em import EMTrace, em_models, em_or_lbfgs, learn_noise_em
+from lgekf.estimators.noise.tracks import batch_tracks
+from lgekf.estimators.noise.tuning import learn_noise, log_likelihood
 
 SIGMA_A, R = 0.3, 0.2
 

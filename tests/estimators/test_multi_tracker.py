@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 from _cli import cli_command
 
-from lgekf.estimators import gating, tracker as tracker_module
-from lgekf.estimators.tracker import MultiTargetTracker
+from lgekf.estimators.multitarget import gating, tracker as tracker_module
+from lgekf.estimators.multitarget.tracker import MultiTargetTracker
 from lgekf.experiments.gospa import gospa, track_switches
 from lgekf.experiments.multi_scenarios import BASE_TARGETS, base_scenario
 
@@ -208,7 +208,7 @@ class CountingBank:
 
 
 def test_tracker_runs_on_any_bank_with_the_interface():
-    from lgekf.estimators.bank import ModelBank
+    from lgekf.estimators.multitarget.bank import ModelBank
 
     sc = base_scenario(seed=0, targets=CROSSING, duration=3.0)
     ref = MultiTargetTracker(model="cv", clutter_density=1e-4)

@@ -13,10 +13,10 @@ from lgekf.apps.defaults import plan_noise
 from lgekf.apps.divergence import MonitorConfig
 from lgekf.apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, TRACK_HEADING_CAP
 from lgekf.core.registry import get_model
-from lgekf.estimators import tuning
-from lgekf.estimators.em import learn_noise_em
-from lgekf.estimators.tracks import batch_tracks
-from lgekf.estimators.tuning import learn_noise, log_likelihood
+from lgekf.estimators.noise import tuning
+from lgekf.estimators.noise.em import learn_noise_em
+from lgekf.estimators.noise.tracks import batch_tracks
+from lgekf.estimators.noise.tuning import learn_noise, log_likelihood
 
 NOISE = 20.0  # m per axis
 #: near the noise of the simulated motion (turn rates ±0.05 rad/s switched now and then, no speed change)

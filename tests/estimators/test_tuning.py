@@ -1,11 +1,11 @@
-"""Maximum-likelihood noise learning (lgekf.estimators.tuning): recovery of known noise on simulated data
+"""Maximum-likelihood noise learning (lgekf.estimators.noise.tuning): recovery of known noise on simulated data
 within the stated uncertainty, and the clear refusal when there are too few points."""
 
 import numpy as np
 import pytest
 
-from lgekf.estimators.tuning import MIN_UPDATES_PER_PARAMETER, learn_noise, log_likelihood
-from lgekf.estimators.tracks import batch_tracks
+from lgekf.estimators.noise.tuning import MIN_UPDATES_PER_PARAMETER, learn_noise, log_likelihood
+from lgekf.estimators.noise.tracks import batch_tracks
 from lgekf.experiments.simulate import simulate
 
 

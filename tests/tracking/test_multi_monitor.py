@@ -10,7 +10,7 @@ from scipy.stats import chi2
 from _cli import cli_command
 from lgekf.apps.divergence import MonitorConfig
 from lgekf.apps.multi_monitor import MultiMonitor
-from lgekf.estimators.tracker import ScanReport
+from lgekf.estimators.multitarget.tracker import ScanReport
 
 
 

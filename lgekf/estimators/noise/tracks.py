@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ..core.registry import ModelSpec
+from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
+from ...core.registry import ModelSpec
 
 __all__ = ["TrackBatch", "batch_tracks", "two_point_prior"]
 

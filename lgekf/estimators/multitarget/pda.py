@@ -22,7 +22,7 @@ import math
 import numba as nb
 import numpy as np
 
-from .packed import unpack_into
+from ..packed import unpack_into
 
 __all__ = ["pda_corrections", "transport_covariances"]
 

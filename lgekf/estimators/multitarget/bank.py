@@ -1,7 +1,7 @@
 """A bank of per-track filters of one registry model, stored as arrays (one row per track), and the small
 interface the multi-target tracker needs from it (``TrackFilterBank``).
 
-The tracker (``lgekf.estimators.tracker``) talks to its filters only through this interface, once per
+The tracker (``lgekf.estimators.multitarget.tracker``) talks to its filters only through this interface, once per
 scan for all tracks (no Python per track):
 
 * ``add(x0, P0) -> rows`` / ``remove(rows)``: start and end tracks;
@@ -24,8 +24,8 @@ from typing import Protocol
 
 import numpy as np
 
-from ..core.covariance import pack, packed_diagonal
-from ..core.registry import get_model
+from ...core.covariance import pack, packed_diagonal
+from ...core.registry import get_model
 from .gating import gate_scores, innovation_covariances
 from .pda import pda_corrections, transport_covariances
 
@@ -154,7 +154,7 @@ class ModelBank:
         return ll, g
 
     def update(self, beta0: np.ndarray, beta: np.ndarray) -> None:
-        """The PDA correction (``lgekf.estimators.pda``) of every live track with weights β_i0 (N,) and
+        """The PDA correction (``lgekf.estimators.multitarget.pda``) of every live track with weights β_i0 (N,) and
         β_ij (N, M) for the detections of the last ``gate`` call."""
         E = self._last
         N = self.live.size

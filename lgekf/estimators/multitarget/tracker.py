@@ -5,12 +5,12 @@ One call ``step(t, detections)`` per scan (all detections of one time):
 1. **predict** every track to t (``ModelBank.predict``: the model's fused LG-EKF prediction) and its
    existence r ← p_S r (``survival_prob`` per scan);
 2. **gate** every track × detection with the model's innovation covariance S = ℋPℋᵀ + R
-   (``lgekf.estimators.gating``: d² ≤ γ, γ the χ²_m quantile of ``gate_prob``);
-3. **associate** (``lgekf.estimators.association``): PDA, JPDA (JIPDA: joint events with existence) or
+   (``lgekf.estimators.multitarget.gating``: d² ≤ γ, γ the χ²_m quantile of ``gate_prob``);
+3. **associate** (``lgekf.estimators.multitarget.association``): PDA, JPDA (JIPDA: joint events with existence) or
    GNN marginals from the weights w0_i = 1 − r_i P_D P_G and W_ij = r_i P_D N(e_ij; 0, S_i)/κ, κ the
    clutter density (λ per m² per scan for position; λ/(2π) per m²·rad for pose);
 4. **update** the existence r_i⁺ = Σ_j p_ij + p_i0 r_i(1 − P_D P_G)/w0_i (integrated track existence,
-   IPDA/JIPDA) and the state by the PDA correction on the group (``lgekf.estimators.pda``:
+   IPDA/JIPDA) and the state by the PDA correction on the group (``lgekf.estimators.multitarget.pda``:
    μ ← μ·exp(ν), P ← Φ(ν) P_c Φ(ν)ᵀ);
 5. **manage tracks** (the choice: integrated track existence, not M-of-N):
 
@@ -26,7 +26,7 @@ One call ``step(t, detections)`` per scan (all detections of one time):
 
    Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
 
-The per-track filters are a ``TrackFilterBank`` (``lgekf.estimators.bank``): ``ModelBank`` for any
+The per-track filters are a ``TrackFilterBank`` (``lgekf.estimators.multitarget.bank``): ``ModelBank`` for any
 registry model; an IMM bank implementing the same five calls plugs in unchanged (``bank=`` argument).
 
 With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
@@ -40,9 +40,9 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ..core.registry import get_model
-from ..core.validate import positive_scalar
+from ...core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
+from ...core.registry import get_model
+from ...core.validate import positive_scalar
 from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
 from .gating import gate_threshold

@@ -16,7 +16,7 @@ import numba as nb
 import numpy as np
 from scipy.special import gammaincinv
 
-from .packed import unpack_into
+from ..packed import unpack_into
 
 __all__ = ["gate_threshold", "innovation_covariances", "gate_scores"]
 

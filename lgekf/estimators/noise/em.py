@@ -8,10 +8,10 @@ are exact only when the model is linear Gaussian: the group is a vector space in
 not depend on the state. The model definition says so (``MotionModel.is_linear_gaussian``, the generated
 ``ModelSpec.linear``: the measurements with which a model is linear): of the registry models only CV with
 position measurements. Then the LG-EKF is the Kalman filter, the innovation likelihood of
-:func:`~lgekf.estimators.tuning.learn_noise` is the exact likelihood, and EM maximises the same function. For
+:func:`~lgekf.estimators.noise.tuning.learn_noise` is the exact likelihood, and EM maximises the same function. For
 the Lie-group models (and CTRV) an EM around the smoothed trajectory would be an approximation whose
 iterations need not increase the likelihood; :func:`learn_noise_em` refuses them (ValueError naming the
-models it supports) and :func:`~lgekf.estimators.tuning.learn_noise` (L-BFGS-B) serves every model.
+models it supports) and :func:`~lgekf.estimators.noise.tuning.learn_noise` (L-BFGS-B) serves every model.
 Measured (``benchmarks/em_lie_groups.py``, that approximate EM on simulated SE(2)×SE(2) motion): on CTRV and
 SE(2)×R² the likelihood rose to near its maximum and then fell in 90 of 200 iterations, ending with the turn noise
 at half its maximum-likelihood value; on SE(2)×SE(2) the approximate E[n_y²] turned negative at once.
@@ -63,7 +63,7 @@ Each iteration cannot decrease the likelihood (Dempster, Laird, Rubin 1977); :cl
 EM converges linearly, slowly where the data identify a parameter weakly; by default it is accelerated by
 SQUAREM (Varadhan & Roland 2008), safeguarded so that the recorded likelihood still never decreases (on the
 test data 32 instead of 98 E-steps). The interval and the identification checks are those of
-:func:`~lgekf.estimators.tuning.learn_noise` (Hessian of −log L in log θ at the optimum). The E-step's kernels
+:func:`~lgekf.estimators.noise.tuning.learn_noise` (Hessian of −log L in log θ at the optimum). The E-step's kernels
 run on one numba thread below ``SINGLE_THREAD_CELLS`` track steps.
 
 References: R. H. Shumway, D. S. Stoffer, "An approach to time series smoothing and forecasting using the EM
@@ -81,9 +81,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.covariance import pack, unpack
-from ..core.registry import MODELS, get_model
-from ..core.rts import forward_store, smooth_stored
+from ...core.covariance import pack, unpack
+from ...core.registry import MODELS, get_model
+from ...core.rts import forward_store, smooth_stored
 from .tracks import TrackBatch
 from .tuning import (BOUNDS, NoiseFit, StartRecord, _fallback, _Likelihood, _noise_problem, _optimum_uncertainty,
                      _start_points)
@@ -275,7 +275,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
                    starts: dict | None = None, _numeric_r: bool = False) -> NoiseFit:
     r"""Maximum-likelihood noise of a linear Gaussian model by EM (E: RTS smoother, M: closed form).
 
-    The same inputs and result as :func:`~lgekf.estimators.tuning.learn_noise`, the same likelihood (the
+    The same inputs and result as :func:`~lgekf.estimators.noise.tuning.learn_noise`, the same likelihood (the
     innovation likelihood given each track's two-point start); the formulas are in the module docstring.
 
     Parameters
@@ -303,7 +303,7 @@ def learn_noise_em(model: str, tracks, *, dt: float | None = None, measurement: 
         Starting stds (process then measurement), a start labelled "init".
     starts : dict, optional
         Further starts {label: (accel_std, meas_std)} (as for ``learn_noise``). Every start's log-likelihood
-        is evaluated and EM runs from the best valid one (``lgekf.estimators.tuning.filter_lost``); EM never
+        is evaluated and EM runs from the best valid one (``lgekf.estimators.noise.tuning.filter_lost``); EM never
         lowers the likelihood, and the returned fit is never below that start's (else the start is kept, said in
         ``problems``). Without ``init`` and ``starts``: the model's ``default_accel_std`` and a second-difference
         guess of r.

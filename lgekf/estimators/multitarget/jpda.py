@@ -2,7 +2,7 @@
 when tracks share detections (every detection from at most one track, every track at most one
 detection).
 
-Input are the weights of a joint event's factors (``lgekf.estimators.association.association_weights``):
+Input are the weights of a joint event's factors (``lgekf.estimators.multitarget.association.association_weights``):
 w0_i (track i undetected, or not existing) and W_ij (track i detected as j, gated pairs only); a joint
 event θ has weight Π_i w_{i,θ(i)} and
 

@@ -55,8 +55,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.covariance import pack
-from ..core.registry import get_model
+from ...core.covariance import pack
+from ...core.registry import get_model
 from .tracks import TrackBatch, batch_tracks, two_point_prior
 
 __all__ = ["NoiseFit", "StartRecord", "learn_noise", "log_likelihood", "filter_lost", "MIN_UPDATES_PER_PARAMETER"]
@@ -122,7 +122,7 @@ class NoiseFit:
     problems : list of str
         Why the noise may not be identified, or why the values are a start (empty when identified).
     method : str
-        "lbfgs" (the likelihood optimiser) or "em" (``lgekf.estimators.em``).
+        "lbfgs" (the likelihood optimiser) or "em" (``lgekf.estimators.noise.em``).
     kept : str
         Where ``values`` come from: "the optimum from the <label> start" (the optimiser's end, maybe polished),
         or "start <label>" / "best point" when no valid optimiser end reached the best start (see ``problems``).
@@ -194,7 +194,7 @@ def log_likelihood(model: str, batch: TrackBatch, accel_std: ArrayLike, meas_std
     model : str
         A registry model.
     batch : TrackBatch
-        The tracks (``lgekf.estimators.tracks.batch_tracks``).
+        The tracks (``lgekf.estimators.noise.tracks.batch_tracks``).
     accel_std, meas_std : array_like
         Process-noise stds (``noise_names``) and measurement stds (one for position, three for pose).
     measurement : {"position", "pose"}
@@ -238,7 +238,7 @@ def _meas_guess(batch: TrackBatch, m: int) -> float:
 
 
 def _noise_problem(model, spec, meas, tracks, dt, meas_std, baseline):
-    """The checked inputs of a noise fit (``learn_noise``, ``lgekf.estimators.em.learn_noise_em``): the tracks'
+    """The checked inputs of a noise fit (``learn_noise``, ``lgekf.estimators.noise.em.learn_noise_em``): the tracks'
     batch, the numbers of process and measurement stds, the parameter names, the fixed measurement stds (or
     None), the number of learned parameters and of filter updates. ValueError for a bad ``meas_std`` or fewer
     than ``MIN_UPDATES_PER_PARAMETER`` updates per learned parameter."""
@@ -452,12 +452,12 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
         Number of the model's default starts (``default_accel_std`` ×1, ×4, ÷4, ...), after ``starts``; 0 with
         ``starts`` given runs from those only.
     omega_std, heading_cap : float
-        Of the two-point prior (``lgekf.estimators.tracks.two_point_prior``).
+        Of the two-point prior (``lgekf.estimators.noise.tracks.two_point_prior``).
     hessian : bool
         Compute the intervals (2d² extra likelihood evaluations).
     baseline : float
         Each track starts from its first measurement and the first one at least ``baseline`` s later (the
-        two-point prior, ``lgekf.estimators.tracks.batch_tracks``); the measurements in between are not used.
+        two-point prior, ``lgekf.estimators.noise.tracks.batch_tracks``); the measurements in between are not used.
         Two points 0.1 s apart leave the heading almost unknown (velocity error √2·r/Δ), and the likelihood
         of the steps that follow then asks for a much larger process noise than the motion has.
     starts : dict, optional
@@ -477,7 +477,7 @@ def learn_noise(model: str, tracks, *, dt: float | None = None, measurement: str
 
     See Also
     --------
-    lgekf.estimators.em.learn_noise_em : the same maximum likelihood by EM, for the linear Gaussian models (CV).
+    lgekf.estimators.noise.em.learn_noise_em : the same maximum likelihood by EM, for the linear Gaussian models (CV).
 
     Examples
     --------

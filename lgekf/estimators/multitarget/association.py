@@ -2,7 +2,7 @@
 (JIPDA with track existence) and GNN, all from the same factor weights.
 
 Model (every scan): each existing target is detected with probability P_D, its detection falls in its
-gate d² ≤ γ with probability P_G (``lgekf.estimators.gating``); false alarms are a Poisson process of
+gate d² ≤ γ with probability P_G (``lgekf.estimators.multitarget.gating``); false alarms are a Poisson process of
 density κ in the measurement space (``clutter_density``: λ per m² for position measurements; λ/(2π) per
 m²·rad for pose, the clutter heading uniform); a track exists with probability r (integrated track
 existence, IPDA/JIPDA: Musicki, Evans & Stankovic 1994; Musicki & Evans 2004). The factors of a joint
@@ -15,7 +15,7 @@ and the association marginals p_i0, p_ij (``association_marginals``) are
 
 * ``"pda"``: every track on its own (no sharing constraint): p_ij = W_ij / (w0_i + Σ_j W_ij); with r = 1
   these are the β's of the parametric PDA (Bar-Shalom & Tse 1975);
-* ``"jpda"``: joint events over clusters of tracks sharing detections (``lgekf.estimators.jpda``: exact
+* ``"jpda"``: joint events over clusters of tracks sharing detections (``lgekf.estimators.multitarget.jpda``: exact
   enumeration up to ``max_events`` events per cluster, loopy belief propagation beyond);
 * ``"gnn"``: one global nearest-neighbour assignment maximising Π w (scipy's
   ``linear_sum_assignment`` on −log ψ_ij, ψ_ij = W_ij/w0_i, with a "missed" column per track); the
@@ -23,7 +23,7 @@ and the association marginals p_i0, p_ij (``association_marginals``) are
 
 From the marginals (``existence_and_weights``): the existence after the scan
 r_i⁺ = Σ_j p_ij + p_i0 · r_i (1 − P_D P_G) / w0_i, and the weights of the state update given that the
-target exists, β_ij = p_ij / r_i⁺, β_i0 = 1 − Σ_j β_ij (``lgekf.estimators.pda`` applies them).
+target exists, β_ij = p_ij / r_i⁺, β_i0 = 1 − Σ_j β_ij (``lgekf.estimators.multitarget.pda`` applies them).
 """
 
 from __future__ import annotations

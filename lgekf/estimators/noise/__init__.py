@@ -1,0 +1,1 @@
+"""Noise learning: maximum likelihood (``tuning``) and EM (``em``) of the process and measurement noise on a file's own tracks (``tracks``)."""
