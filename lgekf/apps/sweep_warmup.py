@@ -52,6 +52,7 @@ def warmup_configs(configs) -> list:
     measurement and kernel path (``_path``), with the trajectories of the first such config, one σ_ω and as few steps
     as keep the same path (sizes do not enter numba's signatures)."""
     from ..core.batch import SERIAL_STEPS
+    from ..experiments.imm_study import IMM_FILTER, ImmStudyOptions
 
     seen, out = set(), []
     for cfg in configs:
@@ -62,6 +63,11 @@ def warmup_configs(configs) -> list:
                 continue
             seen.add(key)
             steps = min(2, cfg.steps) if serial else SERIAL_STEPS // cfg.trajectories + 1
+            if name == IMM_FILTER:  # the IMM learns its chain from training draws that need enough steps
+                try:
+                    ImmStudyOptions().validate(steps)
+                except ValueError:
+                    steps = cfg.steps
             out.append(replace(cfg, filters=(name,), steps=steps, sigmas=list(cfg.sigmas)[:1]))
     return out
 
@@ -167,10 +173,14 @@ def _child() -> int:
         def on_end(self, ev):
             pass
 
+    failed = 0
     with event.install_listener("numba:compile", Tell()):
         for cfg in configs:
-            run_study(cfg)
-    return 0
+            try:
+                run_study(cfg)
+            except Exception:  # noqa: BLE001 - the others still warm; the cell compiles what this one missed
+                failed += 1
+    return 1 if failed else 0
 
 
 if __name__ == "__main__":

@@ -269,10 +269,37 @@ def test_a_cold_and_a_warm_run_write_the_same_bytes(tmp_path):
     assert len(rows(tmp_path / "warm" / "cells.csv")) == 2  # se2se2 and the measurements
 
 
-def test_quiet_prints_no_compile_notice(tmp_path):
+def _on_a_terminal(args, cwd, env):
+    """(return code, stdout, stderr) of ``lgekf sweep ARGS`` whose stderr is a pseudo-terminal (where the bar shows)."""
+    import pty
+
+    master, slave = pty.openpty()
+    p = subprocess.Popen([*cli_command(), "sweep", *args], stdout=subprocess.PIPE, stderr=slave, cwd=cwd, env=env)
+    os.close(slave)
+    err = b""
+    while True:
+        try:
+            chunk = os.read(master, 4096)
+        except OSError:  # EIO: the child closed the terminal
+            break
+        if not chunk:
+            break
+        err += chunk
+    out = p.stdout.read()
+    os.close(master)
+    return p.wait(), out.decode(), err.decode(errors="replace")
+
+
+def test_notice_and_progress_bar_on_a_terminal_and_nothing_with_quiet(tmp_path):
     (tmp_path / "grid.toml").write_text(GRID)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
-    r = subprocess.run([*cli_command(), "sweep", "grid.toml", "-o", "res", "--workers", "1", "--quiet"],
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))  # cold: the notice
+    rc, out, err = _on_a_terminal(["grid.toml", "-o", "res", "--workers", "1"], tmp_path, env)
+    assert rc == 0, err
+    assert "lgekf sweep: compiling kernels, once, about" in err
+    assert "lgekf sweep:   0%|" in err and "/6.00 [" in err and "cells/s]" in err  # the tqdm bar over the 6 cells
+    assert "6 cells: 6 computed" in out
+    r = subprocess.run([*cli_command(), "sweep", "grid.toml", "-o", "res2", "--workers", "1", "--quiet"],
                        capture_output=True, text=True, cwd=tmp_path, env=env)
     assert r.returncode == 0, r.stderr
-    assert r.stderr.strip() == "" and r.stdout.strip() == "res"
+    assert r.stderr.strip() == "" and r.stdout.strip() == "res2"
+    assert (tmp_path / "res" / "cells.csv").read_bytes() == (tmp_path / "res2" / "cells.csv").read_bytes()
