@@ -8,6 +8,11 @@ as expanded, σ_ω, then the filters and ``measurements``), never in the order t
 the cell seeds of ``lgekf.experiments.grid`` the table is the same, byte for byte, whatever the number of
 workers, the batches or the interruptions.
 
+Before the first cell, the kernels the cells need are compiled (a cold cache) or loaded (a warm one) in child
+processes (``lgekf.apps.sweep_warmup``), so that every cell runs kernels loaded from numba's cache: a cold and a warm
+run write the same table, byte for byte (numba's freshly compiled SIMD kernels can differ from their cached copy in
+the last bits; that module says why).
+
 ``out/meta.json`` holds the grid, the columns, the versions and one entry per run (workers, cells
 computed and skipped, wall time, summed task time) and, with the ``imm`` filter, its options (the study's
 default: the chain learned on 100 training trajectories per σ_ω; a grid cannot change them); a folder holding
@@ -30,6 +35,7 @@ from ..experiments.imm_study import IMM_FILTER, ImmStudyOptions, imm_options_rec
 from ..experiments.study import run_study
 from ..io.output import write_atomic
 from .sweep_table import TableError, read_table, table_columns, table_name, write_table
+from .sweep_warmup import warm_cache, warmup_configs
 
 __all__ = ["compute_cell", "run_sweep", "SweepReport", "CellFailed", "check_folder", "figure_paths", "FLUSH_SECONDS"]
 
@@ -80,7 +86,8 @@ def _cell_rows(grid: Grid, cell, result_rows) -> list:
 
 @dataclass
 class SweepReport:
-    """What a run did: cells in the grid, computed now, found in the folder; times in seconds."""
+    """What a run did: cells in the grid, computed now, found in the folder; times in seconds (``wall_seconds`` from the
+    first cell on; the warm-up before it, compiling or loading the kernels, is ``warmup_seconds``)."""
 
     cells: int
     computed: int
@@ -90,6 +97,8 @@ class SweepReport:
     workers: int
     table: Path
     figures: list = field(default_factory=list)
+    warmup_seconds: float = 0.0
+    warmup_compiled: bool = False
 
     @property
     def overhead_per_task(self) -> float:
@@ -185,7 +194,8 @@ def _results_dask(client, tasks):
 
 
 def run_sweep(grid: Grid, out, client=None, fmt: str = "csv", progress=None, flush_seconds: float = FLUSH_SECONDS,
-              figures: bool = True, where: str | None = None) -> SweepReport:
+              figures: bool = True, where: str | None = None, warm_up: bool = True, warm_processes: int = 1,
+              on_compile=None) -> SweepReport:
     """Compute the cells of ``grid`` missing from ``out`` and write the table, meta.json and the figures.
 
     Parameters
@@ -206,6 +216,13 @@ def run_sweep(grid: Grid, out, client=None, fmt: str = "csv", progress=None, flu
         Write ``sweep_<axis>.png`` for every axis with more than one value.
     where : str, optional
         Where the tasks ran, for meta.json (``local cluster``, the scheduler's address).
+    warm_up : bool
+        First compile (or load) the cells' kernels in child processes, so that every cell runs kernels loaded from the
+        cache (``lgekf.apps.sweep_warmup``): cold and warm runs then write the same bytes. False skips it.
+    warm_processes : int
+        Child processes compiling at once.
+    on_compile : callable, optional
+        Called once, with no argument, when the warm-up starts compiling (a cold cache): the CLI's compile notice.
 
     Returns
     -------
@@ -235,6 +252,12 @@ def run_sweep(grid: Grid, out, client=None, fmt: str = "csv", progress=None, flu
            "task_seconds": None, "versions": _versions()}
     meta["runs"].append(run)
     write_atomic(out / META, json.dumps(meta, indent=2) + "\n")
+    warm_seconds, warm_compiled = 0.0, False
+    if warm_up and pending:
+        w0 = time.perf_counter()
+        warm_compiled = warm_cache(warmup_configs([c.config() for c in pending]), warm_processes, on_compile) > 0
+        warm_seconds = time.perf_counter() - w0
+        run.update(warmup_compiled=warm_compiled, warmup_seconds=round(warm_seconds, 4))
     t0 = time.perf_counter()
     task_seconds, done, last = 0.0, 0, time.perf_counter()
     dirty = False
@@ -265,7 +288,8 @@ def run_sweep(grid: Grid, out, client=None, fmt: str = "csv", progress=None, flu
         dicts = [dict(zip(names, r)) for r in all_rows]
         for axis, fig_path in figure_paths(grid, out, all_rows).items():
             written.append(axis_figure(dicts, axis, grid.filters, fig_path, n_cells=len(table)))
-    return SweepReport(len(cells), done, len(cells) - len(pending), wall, task_seconds, workers, path, written)
+    return SweepReport(len(cells), done, len(cells) - len(pending), wall, task_seconds, workers, path, written, warm_seconds,
+                       warm_compiled)
 
 
 def _workers(client) -> int:

@@ -12,7 +12,7 @@ from . import ArgumentParser
 
 __all__ = ["cmd_plot"]
 
-FORMATS = (".png", ".svg", ".pdf")
+FORMATS = (".png", ".svg", ".pdf", ".html")
 
 
 def cmd_plot(argv) -> int:
@@ -21,7 +21,7 @@ def cmd_plot(argv) -> int:
     ap.add_argument("tracks", help="a track file written by lgekf track (CSV, .gz)")
     ap.add_argument("--measurements", default=None, metavar="IN",
                     help="the input file of that run (drawn as dots under the tracks; read like lgekf track reads it)")
-    ap.add_argument("-o", "--output", required=True, help="the figure: .png, .svg or .pdf")
+    ap.add_argument("-o", "--output", required=True, help="the figure: .png, .svg, .pdf, or .html (a self-contained interactive page; needs lgekf[html])")
     ap.add_argument("--id", action="append", default=None, metavar="ID",
                     help="draw this object (repeatable; default: the first 12 of the file)")
     ap.add_argument("--every", type=int, default=None, metavar="N", help="a 95 %% ellipse every N rows of an object")
@@ -31,10 +31,17 @@ def cmd_plot(argv) -> int:
     a = ap.parse_args(argv)
     suffix = Path(a.output).suffix.lower()
     if suffix not in FORMATS:
-        raise ValueError(f"--output: {a.output}: write {', '.join(FORMATS)} (an interactive .html page is not made)")
+        raise ValueError(f"--output: {a.output}: write {', '.join(FORMATS)}")
     if a.every is not None and a.every < 1:
         raise ValueError(f"--every: must be at least 1, got {a.every}")
     check_output_path(a.output)
+    if suffix == ".html":
+        from ..apps.plot_tracks import HTML_INSTALL_HINT
+
+        try:
+            import plotly  # noqa: F401 - checked before any work: one line, no file
+        except ImportError:
+            raise ValueError(f"--output: {a.output}: {HTML_INSTALL_HINT}") from None
     import pandas as pd
 
     from ..apps.plot_tracks import object_column, plot_tracks

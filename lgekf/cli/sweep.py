@@ -8,10 +8,13 @@ from pathlib import Path
 from ..apps.cluster import dask_client, default_workers, require_dask, worker_count
 from ..apps.sweep import FLUSH_SECONDS, CellFailed, check_folder, run_sweep
 from ..apps.sweep_table import TABLE_FORMATS, read_table, table_columns, table_name
+from ..apps.sweep_warmup import compile_seconds, warmup_configs
 from ..experiments.grid import load_grid
 from . import ArgumentParser
 from .cluster import add_cluster_options, check_cluster_options, cluster_label
-from .progress import compile_notice, progress_bar, stderr_is_terminal
+from .progress import _write_line, compile_notice_text, progress_bar, stderr_is_terminal
+from .warmup import compile_estimate
+from .warmup import worker_count as warm_workers
 
 __all__ = ["cmd_sweep", "sweep_parser"]
 
@@ -54,10 +57,16 @@ def cmd_sweep(argv) -> int:
         where = cluster_label(a, n)
         say(f"{len(cells)} cells, {todo} to run, on {where}")
         bar_on = not a.quiet and stderr_is_terminal()
-        with compile_notice("lgekf sweep", enabled=not a.quiet), progress_bar(todo, "lgekf sweep", bar_on, unit="cells") as bar:
+        # the kernels are compiled (cold cache) or loaded in child processes before any cell: the notice when they compile
+        jobs = warmup_configs([c.config() for c in cells if c.key not in done])
+        procs = max(1, min(warm_workers(), len(jobs)))
+        tell = (lambda text: _write_line(text, sys.stderr)) if not a.quiet else (lambda text: None)  # not through the bar
+        notice = compile_notice_text(compile_estimate(compile_seconds(jobs), workers=procs))
+        with progress_bar(todo, "lgekf sweep", bar_on, unit="cells") as bar:
             try:
                 rep = run_sweep(grid, a.out, client, a.format, progress=bar.update, flush_seconds=a.flush_seconds,
-                                figures=not a.no_figures, where=where)
+                                figures=not a.no_figures, where=where, warm_processes=procs,
+                                on_compile=lambda: tell(f"lgekf sweep: {notice}"))
             except CellFailed as e:
                 print(f"lgekf sweep: error: {e} (the finished cells are in {a.out}; a rerun resumes)", file=sys.stderr)
                 return 1
@@ -69,6 +78,8 @@ def cmd_sweep(argv) -> int:
         print(f"wall {rep.wall_seconds:.2f} s on {where}; task compute {rep.task_seconds:.2f} s in all, "
               f"{rep.task_seconds / rep.computed * 1e3:.1f} ms per cell; overhead {rep.overhead_per_task * 1e3:.1f} ms per task "
               "((workers x wall - task compute) / tasks)")
+        if rep.warmup_compiled:
+            print(f"before the cells: {rep.warmup_seconds:.1f} s compiling the kernels into numba's cache (once)")
     figs = ", ".join(p.name for p in rep.figures)
     print(f"wrote {rep.table}, {a.out / 'meta.json'}{', ' + figs if figs else ''}")
     return 0
