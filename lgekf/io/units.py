@@ -10,6 +10,19 @@ of the same object and returns one line per implausible value, saying what to do
   in seconds;
 * median speed below 1 mm/s with every x, y within ±180: x, y are probably degrees (a lat, lon pair
   moves about 1e-5 "units" per second at walking speed); such files need ``lat, lon`` columns.
+
+Those medians are over all objects, so one object in other units among many is not seen there (and its noise, its
+speed, would spoil the noise estimated for all). ``object_warnings`` checks each object against the others and names
+it (its id as written) with the time of its first offending row:
+
+* scale: its median speed and its jitter (median |z_{k+1} − 2 z_k + z_{k−1}|, mostly measurement noise) both
+  ``SCALE_RATIO`` (30) times those of the median object, or both 1/30 of them: one object in mm or km among objects in
+  metres (a units mistake scales both; a faster object has a larger speed, a noisier sensor a larger jitter, not both);
+* speed: its median speed above ``MAX_PLAUSIBLE_SPEED`` while the file's is plausible;
+* step: a step of at least ``MAX_PLAUSIBLE_DT`` and ``GAP_RATIO`` times its own median step (a gap: the filter
+  predicts across it, see ``lgekf.apps.defaults.after_gaps``), when the file's median step is plausible.
+
+At most ``MAX_OBJECT_LINES`` lines per check, then one line counting the rest.
 """
 
 from __future__ import annotations
@@ -19,13 +32,17 @@ import math
 import numpy as np
 
 __all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings",
-           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN"]
+           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN", "object_warnings", "SCALE_RATIO", "GAP_RATIO",
+           "MAX_OBJECT_LINES"]
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 UNIT_NAMES = {"s": "seconds", "ms": "milliseconds", "us": "microseconds", "ns": "nanoseconds"}
 MAX_PLAUSIBLE_DT = 10.0
 MAX_PLAUSIBLE_SPEED = 300.0
 MIN_DEGREE_LIKE_SPEED = 1e-3
+SCALE_RATIO = 30.0
+GAP_RATIO = 10.0
+MAX_OBJECT_LINES = 5
 
 
 def to_seconds(t: np.ndarray, unit: str) -> np.ndarray:
@@ -129,6 +146,100 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
           and max(-float(z.min()), float(z.max())) <= 180.0):  # max |z| without an |z| copy
         out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
                    "name the columns lon, lat instead (they are then projected to metres)")
+    return out
+
+
+def _per_object_median(v, obj, B):
+    """The (lower) median of the finite values v with object index obj (sorted by object), nan without any."""
+    ok = np.isfinite(v)
+    v, obj = v[ok], obj[ok]
+    order = np.lexsort((v, obj))
+    n = np.bincount(obj, minlength=B)
+    first = np.concatenate([[0], np.cumsum(n)])[:-1]
+    out = np.full(B, np.nan)
+    has = n > 0
+    out[has] = v[order][first[has] + (n[has] - 1) // 2]
+    return out
+
+
+def _when(t, time_unit):
+    return f"t = {t / TIME_UNITS[time_unit]:.15g}{'' if time_unit == 's' else ' ' + time_unit}"
+
+
+def object_warnings(t, z, starts, labels, time_unit: str = "s") -> list[str]:
+    """Lines (without a prefix) naming the objects whose scale, speed or steps are implausible beside the others
+    (module docstring); empty when every object looks like the rest. ``labels`` (B,): the objects' ids as written."""
+    t, z = np.asarray(t, float), np.asarray(z, float)[:, :2]
+    starts = np.asarray(starts, dtype=np.int64)
+    B, N = len(starts) - 1, t.size
+    if B == 0 or N < 2:
+        return []
+    lens = np.diff(starts)
+    obj_row = np.repeat(np.arange(B), lens)
+    inside = obj_row[1:] == obj_row[:-1]  # pairs (k, k + 1) of one object
+    dt = np.diff(t)
+    dz = np.diff(z, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        speed = np.hypot(dz[:, 0], dz[:, 1]) / dt
+    pair_obj = obj_row[:-1]
+    speed_b = _per_object_median(np.where(inside, speed, np.nan), pair_obj, B)
+    dt_b = _per_object_median(np.where(inside, dt, np.nan), pair_obj, B)
+    inside2 = np.zeros(0, bool) if N < 3 else inside[1:] & inside[:-1]
+    jit = np.zeros(0) if N < 3 else np.hypot(*(z[2:] - 2 * z[1:-1] + z[:-2]).T)
+    jit_b = _per_object_median(np.where(inside2, jit, np.nan), obj_row[:-2], B) if N >= 3 else np.full(B, np.nan)
+    file_speed = float(np.nanmedian(np.where(inside, speed, np.nan))) if inside.any() else math.nan
+    file_dt = float(np.nanmedian(np.where(inside, dt, np.nan))) if inside.any() else math.nan
+
+    def first_pair(b, bad):
+        """The time of object b's first row whose pair from the previous row is ``bad`` (a bool over its pairs)."""
+        k = np.flatnonzero(bad)
+        return _when(t[starts[b] + 1 + int(k[0])], time_unit) if k.size else _when(t[starts[b]], time_unit)
+
+    def capped(lines, what):
+        if len(lines) > MAX_OBJECT_LINES:
+            return lines[:MAX_OBJECT_LINES] + [f"... and {len(lines) - MAX_OBJECT_LINES} more objects with {what}"]
+        return lines
+
+    out = []
+    with np.errstate(invalid="ignore", divide="ignore"):
+        med_v, med_j = np.nanmedian(speed_b) if np.isfinite(speed_b).any() else math.nan, \
+            np.nanmedian(jit_b) if np.isfinite(jit_b).any() else math.nan
+        rv, rj = speed_b / med_v, jit_b / med_j
+    scale = []
+    if B >= 3 and med_v > 0 and med_j > 0:
+        odd = ((rv > SCALE_RATIO) & (rj > SCALE_RATIO)) | ((rv < 1 / SCALE_RATIO) & (rj < 1 / SCALE_RATIO))
+        for b in np.flatnonzero(odd):
+            a, e = starts[b], starts[b + 1]
+            f = float(np.sqrt(rv[b] * rj[b]))
+            unit = "mm or cm" if f > 1 else "km"
+            scale.append(f"object {labels[b]}: its median speed {speed_b[b]:.3g} m/s and its jitter {jit_b[b]:.3g} m are "
+                         f"about {f:.3g} times those of the other objects ({med_v:.3g} m/s, {med_j:.3g} m), from "
+                         f"{_when(t[a], time_unit)}: x, y in {unit}? lgekf expects metres")
+    out += capped(scale, "another scale")
+    if file_speed <= MAX_PLAUSIBLE_SPEED:
+        fast = []
+        named = {ln.split(":")[0] for ln in scale}
+        for b in np.flatnonzero(speed_b > MAX_PLAUSIBLE_SPEED):
+            if f"object {labels[b]}" in named:
+                continue
+            a, e = starts[b], starts[b + 1]
+            fast.append(f"object {labels[b]}: median speed {speed_b[b]:.3g} m/s (the file's {file_speed:.3g} m/s), first "
+                        f"above {MAX_PLAUSIBLE_SPEED:g} m/s at {first_pair(b, speed[a:e - 1] > MAX_PLAUSIBLE_SPEED)}: x, y "
+                        "should be metres")
+        out += capped(fast, "implausible speeds")
+    if file_dt < MAX_PLAUSIBLE_DT:
+        gaps = []
+        for b in range(B):
+            a, e = starts[b], starts[b + 1]
+            if e - a < 2:
+                continue
+            d = dt[a:e - 1]
+            bad = (d >= MAX_PLAUSIBLE_DT) & (d > GAP_RATIO * dt_b[b])
+            if bad.any():
+                gaps.append(f"object {labels[b]}: a gap of {float(d[bad].max()):.4g} s (its median step {dt_b[b]:.3g} s), "
+                            f"the first ending at {first_pair(b, bad)}: the filter predicts across it (split the object "
+                            "if it is two)")
+        out += capped(gaps, "gaps")
     return out
 
 
