@@ -72,27 +72,19 @@ class NoisePlan:
 
     def bound_warnings(self) -> list:
         """One line per estimate that hit a floor or a bound of its search (empty when none did): the measurement std
-        at ``MIN_MEAS_STD`` (coordinates in km: the noise of metres-scale data reads 1000 times smaller), a model's
-        process noise at the largest factor ``K_GRID`` tries (coordinates in mm or cm, or t not in seconds) or at the
-        smallest when the measurement std was floored too. (The smallest factor alone is common on smooth tracks,
-        e.g. simulated ones, and is said in the noise line, not as a warning.)"""
-        out = []
+        at ``MIN_MEAS_STD`` (coordinates in km: the noise of metres-scale data reads 1000 times smaller; or positions
+        smoothed or interpolated, as in annotated pedestrian sets), else a model's process noise at the largest factor
+        ``K_GRID`` tries (coordinates in mm or cm, or t not in seconds). With the measurement std at its floor the
+        process noise searched against it is a consequence, not said again. (The smallest factor alone is common on
+        smooth tracks, e.g. simulated ones: the noise line says "the smallest tried", no warning.)"""
         est = self.meas_estimate
         if self.meas_source == "data" and est is not None and est.floored:
-            out.append(f"the measurement std from the data ({est.raw:.2g} m) is below its floor {MIN_MEAS_STD:g} m, "
-                       f"which was used: coordinates in km? lgekf expects metres (or give --meas-std if the data are "
-                       f"this precise)")
-        for m, k in self.accel_k.items():
-            if self.accel_source.get(m) != "data":
-                continue
-            if k >= K_GRID[-1]:
-                out.append(f"{m}: the process noise from the data is the largest the search tries (k = {k:g} × the "
-                           f"model's defaults): coordinates in mm or cm, or t not in seconds? lgekf expects metres and "
-                           f"seconds (or give --accel-std)")
-            elif k <= K_GRID[0] and est is not None and est.floored:
-                out.append(f"{m}: the process noise from the data is the smallest the search tries (k = {k:g} × the "
-                           f"model's defaults): coordinates in km? lgekf expects metres (or give --accel-std)")
-        return out
+            return [f"the measurement std from the data ({est.raw:.2g} m) is below its floor {MIN_MEAS_STD:g} m, which "
+                    f"was used: coordinates in km? lgekf expects metres (if the positions are smoothed or interpolated, "
+                    f"give --meas-std)"]
+        return [f"{m}: the process noise from the data is the largest the search tries (k = {k:g} × the model's "
+                f"defaults): coordinates in mm or cm, or t not in seconds? lgekf expects metres and seconds (or give "
+                f"--accel-std)" for m, k in self.accel_k.items() if self.accel_source.get(m) == "data" and k >= K_GRID[-1]]
 
     def describe(self, heading_std: float | None = None, heading_given: bool = True) -> str:
         """One line for stderr: every noise value used and where it came from."""
