@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 
+import numba as nb
 import numpy as np
 
 __all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings",
@@ -153,17 +154,39 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
     return out
 
 
-def _per_object_median(v, obj, B):
-    """The (lower) median of the finite values v with object index obj (sorted by object), nan without any."""
-    ok = np.isfinite(v)
-    v, obj = v[ok], obj[ok]
-    order = np.lexsort((v, obj))
-    n = np.bincount(obj, minlength=B)
-    first = np.concatenate([[0], np.cumsum(n)])[:-1]
-    out = np.full(B, np.nan)
-    has = n > 0
-    out[has] = v[order][first[has] + (n[has] - 1) // 2]
-    return out
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _object_medians(t, z, starts, speed, step, jitter, longest_step):
+    """Per object b: the median speed and time step over its consecutive pairs and its median jitter
+    |z_{k+1} − 2 z_k + z_{k−1}| (nan without any), the non-finite values left out, and its longest step (0 without
+    any); one scratch buffer of the longest object's size."""
+    longest = 0
+    for b in range(starts.shape[0] - 1):
+        longest = max(longest, starts[b + 1] - starts[b])
+    buf = np.empty(max(longest, 1))
+    for b in range(starts.shape[0] - 1):
+        a, e = starts[b], starts[b + 1]
+        longest_step[b] = 0.0
+        for k in range(a, e - 1):
+            longest_step[b] = max(longest_step[b], t[k + 1] - t[k])
+        for what in range(3):
+            n = 0
+            for k in range(a, e - 1 - (what == 2)):
+                if what == 0:
+                    v = math.hypot(z[k + 1, 0] - z[k, 0], z[k + 1, 1] - z[k, 1]) / (t[k + 1] - t[k])
+                elif what == 1:
+                    v = t[k + 1] - t[k]
+                else:
+                    v = math.hypot(z[k + 2, 0] - 2 * z[k + 1, 0] + z[k, 0], z[k + 2, 1] - 2 * z[k + 1, 1] + z[k, 1])
+                if np.isfinite(v):
+                    buf[n] = v
+                    n += 1
+            m = np.median(buf[:n]) if n > 0 else np.nan
+            if what == 0:
+                speed[b] = m
+            elif what == 1:
+                step[b] = m
+            else:
+                jitter[b] = m
 
 
 def _when(t, time_unit):
@@ -172,30 +195,27 @@ def _when(t, time_unit):
 
 def object_warnings(t, z, starts, labels, time_unit: str = "s") -> list[str]:
     """Lines (without a prefix) naming the objects whose scale, speed or steps are implausible beside the others
-    (module docstring); empty when every object looks like the rest. ``labels`` (B,): the objects' ids as written."""
-    t, z = np.asarray(t, float), np.asarray(z, float)[:, :2]
+    (module docstring); empty when every object looks like the rest. ``labels`` (B,): the objects' ids as written.
+    Arrays of the rows' size: one (the file's medians, as ``unit_warnings``)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(np.asarray(z, float)[:, :2])
     starts = np.asarray(starts, dtype=np.int64)
-    B, N = len(starts) - 1, t.size
-    if B == 0 or N < 2:
+    B = len(starts) - 1
+    if B == 0 or t.size < 2:
         return []
-    lens = np.diff(starts)
-    obj_row = np.repeat(np.arange(B), lens)
-    inside = obj_row[1:] == obj_row[:-1]  # pairs (k, k + 1) of one object
-    dt = np.diff(t)
-    dz = np.diff(z, axis=0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        speed = np.hypot(dz[:, 0], dz[:, 1]) / dt
-    pair_obj = obj_row[:-1]
-    speed_b = _per_object_median(np.where(inside, speed, np.nan), pair_obj, B)
-    dt_b = _per_object_median(np.where(inside, dt, np.nan), pair_obj, B)
-    inside2 = np.zeros(0, bool) if N < 3 else inside[1:] & inside[:-1]
-    jit = np.zeros(0) if N < 3 else np.hypot(*(z[2:] - 2 * z[1:-1] + z[:-2]).T)
-    jit_b = _per_object_median(np.where(inside2, jit, np.nan), obj_row[:-2], B) if N >= 3 else np.full(B, np.nan)
-    file_speed = float(np.nanmedian(np.where(inside, speed, np.nan))) if inside.any() else math.nan
-    file_dt = float(np.nanmedian(np.where(inside, dt, np.nan))) if inside.any() else math.nan
+    speed_b, dt_b, jit_b, long_b = np.empty(B), np.empty(B), np.empty(B), np.empty(B)
+    _object_medians(t, z, starts, speed_b, dt_b, jit_b, long_b)
+    buf = np.empty(t.size - 1)
+    n = _step_values(t, z, starts, "dt", buf)
+    if n == 0:
+        return []
+    file_dt = float(np.median(buf[:n], overwrite_input=True))
+    _step_values(t, z, starts, "speed", buf)
+    file_speed = float(np.median(buf[:n], overwrite_input=True))
+    del buf
 
-    def first_pair(b, bad):
-        """The time of object b's first row whose pair from the previous row is ``bad`` (a bool over its pairs)."""
+    def first_row(b, bad):
+        """The time of object b's first row at which ``bad`` (a bool over its pairs: from the previous row) holds."""
         k = np.flatnonzero(bad)
         return _when(t[starts[b] + 1 + int(k[0])], time_unit) if k.size else _when(t[starts[b]], time_unit)
 
@@ -205,44 +225,44 @@ def object_warnings(t, z, starts, labels, time_unit: str = "s") -> list[str]:
         return lines
 
     out = []
-    with np.errstate(invalid="ignore", divide="ignore"):
-        med_v, med_j = np.nanmedian(speed_b) if np.isfinite(speed_b).any() else math.nan, \
-            np.nanmedian(jit_b) if np.isfinite(jit_b).any() else math.nan
-        rv, rj = speed_b / med_v, jit_b / med_j
-    scale = []
+    named = set()
+    ok_v, ok_j = np.isfinite(speed_b), np.isfinite(jit_b)
+    med_v = float(np.median(speed_b[ok_v])) if ok_v.any() else math.nan
+    med_j = float(np.median(jit_b[ok_j])) if ok_j.any() else math.nan
     if B >= 3 and med_v > 0 and med_j > 0:
+        scale = []
         with np.errstate(invalid="ignore", divide="ignore"):
+            rv, rj = speed_b / med_v, jit_b / med_j
             odd = (rv >= SCALE_RATIO) & (rj >= SCALE_RATIO) & (np.abs(np.log(rv / rj)) <= math.log(SCALE_AGREE))
         for b in np.flatnonzero(odd):
-            a = starts[b]
             f = float(np.sqrt(rv[b] * rj[b]))
-            unit = "mm" if f > 300 else "cm"
+            named.add(int(b))
             scale.append(f"object {labels[b]}: its median speed {speed_b[b]:.3g} m/s and its jitter {jit_b[b]:.3g} m are "
                          f"about {f:.3g} times those of the other objects ({med_v:.3g} m/s, {med_j:.3g} m), from "
-                         f"{_when(t[a], time_unit)}: x, y in {unit}? lgekf expects metres")
-    out += capped(scale, "another scale")
+                         f"{_when(t[starts[b]], time_unit)}: x, y in {'mm' if f > 300 else 'cm'}? lgekf expects metres")
+        out += capped(scale, "another scale")
     if file_speed <= MAX_PLAUSIBLE_SPEED:
         fast = []
-        named = {ln.split(":")[0] for ln in scale}
         for b in np.flatnonzero(speed_b > MAX_PLAUSIBLE_SPEED):
-            if f"object {labels[b]}" in named:
+            if int(b) in named:
                 continue
             a, e = starts[b], starts[b + 1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                v = np.hypot(*np.diff(z[a:e], axis=0).T) / np.diff(t[a:e])
             fast.append(f"object {labels[b]}: median speed {speed_b[b]:.3g} m/s (the file's {file_speed:.3g} m/s), first "
-                        f"above {MAX_PLAUSIBLE_SPEED:g} m/s at {first_pair(b, speed[a:e - 1] > MAX_PLAUSIBLE_SPEED)}: x, y "
-                        "should be metres")
+                        f"above {MAX_PLAUSIBLE_SPEED:g} m/s at {first_row(b, v > MAX_PLAUSIBLE_SPEED)}: x, y should be metres")
         out += capped(fast, "implausible speeds")
     if file_dt < MAX_PLAUSIBLE_DT:
         gaps = []
-        for b in range(B):
+        with np.errstate(invalid="ignore"):
+            has_gap = np.flatnonzero((long_b >= MAX_PLAUSIBLE_DT) & (long_b > GAP_RATIO * dt_b))
+        for b in has_gap:
             a, e = starts[b], starts[b + 1]
-            if e - a < 2:
-                continue
-            d = dt[a:e - 1]
+            d = np.diff(t[a:e])
             bad = (d >= MAX_PLAUSIBLE_DT) & (d > GAP_RATIO * dt_b[b])
             if bad.any():
                 gaps.append(f"object {labels[b]}: a gap of {float(d[bad].max()):.4g} s (its median step {dt_b[b]:.3g} s), "
-                            f"the first ending at {first_pair(b, bad)}: the filter predicts across it (split the object "
+                            f"the first ending at {first_row(b, bad)}: the filter predicts across it (split the object "
                             "if it is two)")
         out += capped(gaps, "gaps")
     return out
