@@ -30,6 +30,7 @@ __all__ = ["NoisePlan", "plan_noise", "BURN_IN", "GAP_STEPS", "after_gaps", "gap
            "data_starts"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
+NOISE_FREE = 1e-6  # a measurement std from the data below this (m) reads noise-free positions (round-off), not km
 GAP_STEPS = 10.0  # a step longer than this many times its object's median step is a gap: it and the BURN_IN rows after
 # it are left out of the search's scores (``after_gaps``)
 # Classes of objects by measurement std: an object's own estimate from n ≈ 300 windows is within about ±20 % (2.5 σ),
@@ -73,12 +74,13 @@ class NoisePlan:
     def bound_warnings(self) -> list:
         """One line per estimate that hit a floor or a bound of its search (empty when none did): the measurement std
         at ``MIN_MEAS_STD`` (coordinates in km: the noise of metres-scale data reads 1000 times smaller; or positions
-        smoothed or interpolated, as in annotated pedestrian sets), else a model's process noise at the largest factor
+        smoothed, as in annotated pedestrian sets; not below ``NOISE_FREE``: noise-free positions, exactly polynomial
+        over 4 rows, such as simulated or linearly interpolated ones, are what the floor is for), else a model's process noise at the largest factor
         ``K_GRID`` tries (coordinates in mm or cm, or t not in seconds). With the measurement std at its floor the
         process noise searched against it is a consequence, not said again. (The smallest factor alone is common on
         smooth tracks, e.g. simulated ones: the noise line says "the smallest tried", no warning.)"""
         est = self.meas_estimate
-        if self.meas_source == "data" and est is not None and est.floored:
+        if self.meas_source == "data" and est is not None and est.floored and est.raw >= NOISE_FREE:
             return [f"the measurement std from the data ({est.raw:.2g} m) is below its floor {MIN_MEAS_STD:g} m, which "
                     f"was used: coordinates in km? lgekf expects metres (if the positions are smoothed or interpolated, "
                     f"give --meas-std)"]
