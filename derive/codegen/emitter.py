@@ -590,6 +590,7 @@ def registry_entry(model, measurements: dict, refused: dict) -> dict:
         "periodic_tangent": tuple(model.periodic_tangent()),
         "bounds": {int(k): float(v) for k, v in model.bounds.items()},
         "bound_reason": model.bound_reason,
+        "forward_speed": tuple(model.forward_speed),
         "noise_inputs": tuple(model.noise_symbols.index(sd) for sd in model.noise_stds()),
         "measurements": tuple(measurements),
         "refused": dict(refused),

@@ -78,6 +78,9 @@ class MotionModel:
     angles : physical coordinates that are angles (wrapped to (−π, π] on output and in differences)
     carried : (angle, cos symbol, sin symbol) carried in the internal state
     bounds : {physical index: largest representable |value|}, with ``bound_reason``
+    forward_speed : (heading index, speed index) of a model that moves along its heading at a signed scalar speed
+        (CTRV's ψ, v; SE(2)×R²'s θ, v): the state with (heading + π, −speed) is the same motion, and the runtime
+        chooses the one whose heading is the direction of motion at a start (``lgekf.core.initiation``); () for none
     mean(), internal_of(X), internal_from_physical(), physical_from_internal(), Omega_of(X),
     noise_input(), position(X), heading(X), from_common(), world_velocity()
     """
@@ -96,6 +99,7 @@ class MotionModel:
     carried: tuple = ()
     bounds: dict = {}
     bound_reason: str = ""
+    forward_speed: tuple = ()
     names: tuple = ()
 
     # ------------------------------------------------------------------ declared (abstract)

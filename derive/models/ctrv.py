@@ -26,6 +26,7 @@ class CTRV(MotionModel):
     default_accel_std = (0.5, 1.0)
     matched_noise = ("v", "w")
     angles = (2,)
+    forward_speed = (2, 3)  # (heading, v): (heading + π, −v) is the same motion
 
     def mean(self):
         return self.group.exp(self.physical)

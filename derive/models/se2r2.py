@@ -30,6 +30,7 @@ class SE2R2(MotionModel):
     default_accel_std = (0.5, 1.0)
     matched_noise = ("v", "w")
     angles = (2,)
+    forward_speed = (2, 3)  # (heading, v): (heading + π, −v) is the same motion
 
     def mean(self):
         return sp.diag(SE2.element(sp.cos(theta), sp.sin(theta), x, y), Rn(2).exp([v, omega]))

@@ -13,11 +13,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.initiation import moving_backwards
 from ..core.registry import get_model
 from .divergence import MonitorConfig, speed_limits
 from ..io.grouping import objects_subset
 from .noise import (
-    SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
+    K_GRID, MIN_MEAS_STD, SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
 )
 from .search import PARALLEL_MIN_ROWS, in_thread, process_noise_searches, usable_cpus
 from .track import (
@@ -25,10 +26,13 @@ from .track import (
     track_monitored,
 )
 
-__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "NoiseClasses", "noise_classes", "plan_noise_by_class",
+__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "GAP_STEPS", "after_gaps", "gap_alarms", "NoiseClasses", "noise_classes", "plan_noise_by_class",
            "data_starts"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
+NOISE_FREE = 1e-6  # a measurement std from the data below this (m) reads noise-free positions (round-off), not km
+GAP_STEPS = 10.0  # a step longer than this many times its object's median step is a gap: it and the BURN_IN rows after
+# it are left out of the search's scores (``after_gaps``)
 # Classes of objects by measurement std: an object's own estimate from n ≈ 300 windows is within about ±20 % (2.5 σ),
 # so a class of one sensor spans a factor of about 1.5
 CLASS_GAP = 1.5  # objects whose (shrunk) measurement stds are separated by a gap of more than this factor: classes of their own
@@ -67,6 +71,23 @@ class NoisePlan:
             out[m] = (tuple(q), tuple(r))
         return out
 
+    def bound_warnings(self) -> list:
+        """One line per estimate that hit a floor or a bound of its search (empty when none did): the measurement std
+        at ``MIN_MEAS_STD`` (coordinates in km: the noise of metres-scale data reads 1000 times smaller; or positions
+        smoothed, as in annotated pedestrian sets; not below ``NOISE_FREE``: noise-free positions, exactly polynomial
+        over 4 rows, such as simulated or linearly interpolated ones, are what the floor is for), else a model's process noise at the largest factor
+        ``K_GRID`` tries (coordinates in mm or cm, or t not in seconds). With the measurement std at its floor the
+        process noise searched against it is a consequence, not said again. (The smallest factor alone is common on
+        smooth tracks, e.g. simulated ones: the noise line says "the smallest tried", no warning.)"""
+        est = self.meas_estimate
+        if self.meas_source == "data" and est is not None and est.floored and est.raw >= NOISE_FREE:
+            return [f"the measurement std from the data ({est.raw:.2g} m) is below its floor {MIN_MEAS_STD:g} m, which "
+                    f"was used: coordinates in km? lgekf expects metres (if the positions are smoothed or interpolated, "
+                    f"give --meas-std)"]
+        return [f"{m}: the process noise from the data is the largest the search tries (k = {k:g} × the model's "
+                f"defaults): coordinates in mm or cm, or t not in seconds? lgekf expects metres and seconds (or give "
+                f"--accel-std)" for m, k in self.accel_k.items() if self.accel_source.get(m) == "data" and k >= K_GRID[-1]]
+
     def describe(self, heading_std: float | None = None, heading_given: bool = True) -> str:
         """One line for stderr: every noise value used and where it came from."""
         if self.meas_source == "data":
@@ -79,7 +100,9 @@ class NoisePlan:
         for m, q in self.accel_std.items():
             vals = ",".join(f"{v:.3g}" for v in q)
             if self.accel_source[m] == "data":
-                parts.append(f"{m} {vals} (k = {self.accel_k[m]:.3g}, median NIS {self.median_nis[m]:.2f})")
+                edge = (", the largest tried" if self.accel_k[m] >= K_GRID[-1] else
+                        ", the smallest tried" if self.accel_k[m] <= K_GRID[0] else "")
+                parts.append(f"{m} {vals} (k = {self.accel_k[m]:.3g}{edge}, median NIS {self.median_nis[m]:.2f})")
             elif self.accel_source[m] == "default":
                 parts.append(f"{m} {vals} (default: no object has {BURN_IN + 3} measurements to learn from)")
             else:
@@ -150,20 +173,24 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
     for j in range(BURN_IN):
         idx = sub_starts[:-1] + 2 + j
         skip[idx[idx < sub_starts[1:]]] = True
+    gaps = after_gaps(ts, sub_starts)
+    skip |= gaps
     runs = {}
     # what every run of the search shares (it does not depend on the process noise): made once, read by all
     common = initial_common(ts, zs, sub_starts, plan.meas_std, omega_std, hs, heading_std, heading_cap)
+    backwards = moving_backwards(ts, zs, sub_starts, plan.meas_std)
     limits = None if monitor is None else speed_limits(ts, zs, sub_starts, plan.meas_std, monitor)
     for m in todo:
         meas = measurement.get(m, "position")
         get_model(m).measurement(meas)
-        start = initial_estimates(m, *common)  # the model's two-point start (x0, P0) of every object
+        start = initial_estimates(m, *common, backwards)  # the model's two-point start (x0, P0) of every object
 
         def run(q, m=m, meas=meas, start=start):  # no shared mutable state: process_noise_searches calls it from several threads
             cfg = TrackConfig({m: q}, plan.meas_std, omega_std, heading_std, heading_cap)
             r = track_monitored(m, ts, zs, sub_starts, cfg, heading=hs, measurement=meas, monitor=monitor, start=start, limits=limits)
             err2 = one_step_errors(m, ts, zs, r.x, sub_starts)
-            return np.where(skip, np.nan, r.nis), np.where(skip, np.nan, err2)
+            left_out = skip | gap_alarms(r.flag, gaps, sub_starts) if gaps.any() else skip
+            return np.where(left_out, np.nan, r.nis), np.where(left_out, np.nan, err2)
 
         runs[m] = run
     if workers is None:
@@ -175,6 +202,58 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
         plan.median_nis[m] = res.median_nis
         plan.search[m] = res
     return plan
+
+
+def after_gaps(t, starts, factor: float = GAP_STEPS, burn_in: int = BURN_IN) -> np.ndarray:
+    """(N,) bool: the rows after a gap (a step longer than ``factor`` × the median step of its object) and the
+    ``burn_in`` rows after each, which the process-noise search leaves out of its score.
+
+    The score is a mean of squared prediction errors: over a gap of an hour one object's error is kilometres, its
+    mean dominated by a single row, and the search raised every object's process noise to predict across it (×8 with
+    one such object among six). What the filter does across a gap says nothing about the motion between measurements
+    that the process noise describes; the rows are left out as the rows after an object's start are (``BURN_IN``)."""
+    t = np.asarray(t, dtype=float)
+    starts = np.asarray(starts, dtype=np.int64)
+    out = np.zeros(t.size, bool)
+    lens = np.diff(starts)
+    if t.size < 2:
+        return out
+    d = np.diff(t)
+    inside = np.ones(d.size, bool)
+    inside[starts[1:-1] - 1] = False  # steps across two objects
+    obj = np.repeat(np.arange(lens.size), np.maximum(lens - 1, 0))  # the object of each step inside an object
+    d = d[inside]
+    order = np.lexsort((d, obj))
+    first = np.concatenate([[0], np.cumsum(np.maximum(lens - 1, 0))])
+    has = lens >= 2
+    med = np.full(lens.size, np.inf)
+    med[has] = d[order][first[:-1][has] + (lens[has] - 2) // 2]  # each object's (lower) median step
+    gap = np.flatnonzero(d > factor * med[obj])
+    row = np.flatnonzero(inside)[gap] + 1  # the row after the gap
+    end = starts[1:][obj[gap]]
+    for j in range(burn_in + 1):
+        r = row + j
+        out[r[r < end]] = True
+    return out
+
+
+def gap_alarms(flag, gaps, starts, burn_in: int = BURN_IN) -> np.ndarray:
+    """(N,) bool: the flagged rows of every divergence alarm that a gap raised (a run of flagged rows that meets a row
+    of ``gaps``, ``after_gaps``) and the ``burn_in`` rows after its re-initialisation: the gap's doing, not the motion's
+    (the alarms elsewhere keep counting: a filter unstable with some process noise must score badly)."""
+    f = np.asarray(flag).astype(bool)
+    out = np.zeros(f.size, bool)
+    if not f.any():
+        return out
+    s = np.flatnonzero(f & ~np.r_[False, f[:-1]])
+    e = np.flatnonzero(f & ~np.r_[f[1:], False])  # inclusive
+    cs = np.r_[0, np.cumsum(gaps)]
+    ends = np.asarray(starts, dtype=np.int64)[1:]
+    for a, b in zip(s, e):
+        if cs[b + 1] > cs[a]:
+            end = ends[np.searchsorted(ends, b, side="right")]  # the end of b's object
+            out[a:min(b + 1 + burn_in, end)] = True
+    return out
 
 
 def noise_classes(t, z, starts, pooled: float) -> tuple:

@@ -72,6 +72,7 @@ class NoiseEstimate:
     windows: int  # number of 4-point windows pooled
     floored: bool = False
     nonfinite: bool = False  # the residuals' median is not finite (meas_std nan): times too close, positions too large
+    raw: float = float("nan")  # the estimate before the floor (when ``floored``)
 
     @property
     def usable(self) -> bool:
@@ -253,7 +254,7 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
         return NoiseEstimate(float("nan"), windows, nonfinite=True)
     s = med / MAD_SCALE
     if s < MIN_MEAS_STD:
-        return NoiseEstimate(MIN_MEAS_STD, windows, floored=True)
+        return NoiseEstimate(MIN_MEAS_STD, windows, floored=True, raw=s)
     return NoiseEstimate(s, windows)
 
 

@@ -53,7 +53,9 @@ from pathlib import Path
 import numpy as np
 
 from ..core.covariance import pack, packed_diagonal
-from ..core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, two_point  # noqa: F401
+from ..core.initiation import (  # noqa: F401
+    DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, moving_backwards, two_point,
+)
 from ..core.registry import MODELS, get_model
 from ..core.validate import positive_scalar
 from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
@@ -168,7 +170,7 @@ def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
     spec = get_model(model)
     if x0 is None or P0 is None:
         c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
-        x0, P0 = initial_estimates(model, c, var)
+        x0, P0 = initial_estimates(model, c, var, moving_backwards(t, z, starts, cfg.meas_std))
     p0 = pack(P0)
     N = t.size
     out_x = np.empty((N, spec.n))
@@ -259,7 +261,7 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     z = np.ascontiguousarray(z, dtype=float)
     starts = np.array([0, t.size], dtype=np.int64)
     c, var = initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap)
-    x0, P0 = initial_estimates(model, c, var)
+    x0, P0 = initial_estimates(model, c, var, moving_backwards(t, z, starts, cfg.meas_std))
     zm, r = _measurement_inputs(spec, z, heading, cfg, measurement)
     limit = 0.0 if monitor is None else float(speed_limits(t, z, starts, cfg.meas_std, monitor)[0])
 

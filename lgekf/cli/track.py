@@ -23,7 +23,7 @@ from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.readers import (
     COLUMN_OPTIONS, named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning,
 )
-from ..io.units import heading_in_radians, to_seconds, unit_warnings
+from ..io.units import heading_in_radians, object_warnings, to_seconds, unit_warnings
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
 from .cluster import check_cluster_options, cluster_requested
 from .memory import single_heap
@@ -183,6 +183,10 @@ class ModelsTrack:
                 say(f"  class {c + 1}: {p.describe(heading_std if pose else None, heading_given=a.heading_std is not None)}")
         elif classes.plans[0].estimated:
             say(classes.plans[0].describe(heading_std if pose else None, heading_given=a.heading_std is not None))
+        for c, p in enumerate(classes.plans):  # an estimate at a floor or a bound: one warning line each
+            for line in p.bound_warnings():
+                head = f"class {c + 1}: " if len(classes.plans) > 1 else ""
+                print(f"lgekf track: warning: {head}{line}", file=sys.stderr)
         warn_misfit(a.meas_std, meas, starts)
         configs = [TrackConfig(dict(p.accel_std), p.meas_std, a.omega_std, heading_std, TRACK_HEADING_CAP).validate()
                    for p in classes.plans]
@@ -279,6 +283,8 @@ def cmd_track(argv) -> int:
     if meas.origin is not None:
         say(_frame_note(meas))
     for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
+        print(f"lgekf track: warning: {w}", file=sys.stderr)
+    for w in object_warnings(meas.t, meas.z, starts, meas.labels, a.time_unit if a.format == "csv" else "s", meas.where):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
     monitor = None if a.no_monitor else MonitorConfig()
     total = meas.t.size * len(outs)

@@ -74,6 +74,7 @@ class ModelSpec:
     measurements: tuple  # the measurement models this model supports
     refused: dict = field(default_factory=dict)  # {measurement: why not}
     linear: tuple = ()  # measurements with which the model is linear Gaussian (F, Q, ℋ state-free; EM applies)
+    forward_speed: tuple = ()  # (heading, speed) physical indices: (heading + π, −speed) is the same motion; () for none
 
     @property
     def kernels(self) -> ModuleType:

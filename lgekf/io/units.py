@@ -10,22 +10,44 @@ of the same object and returns one line per implausible value, saying what to do
   in seconds;
 * median speed below 1 mm/s with every x, y within ±180: x, y are probably degrees (a lat, lon pair
   moves about 1e-5 "units" per second at walking speed); such files need ``lat, lon`` columns.
+
+Those medians are over all objects, so one object in other units among many is not seen there (and its noise, its
+speed, would spoil the noise estimated for all). ``object_warnings`` checks each object against the others and names
+it (its id as written) with the time of its first offending row:
+
+* scale: its median speed and its jitter (median |z_{k+1} − 2 z_k + z_{k−1}|, mostly measurement noise) both at
+  least ``SCALE_RATIO`` (50) times those of the median object, by factors within ``SCALE_AGREE`` (3) of each other:
+  one object in mm or cm among objects in metres (a units mistake scales both alike; a faster object has a larger
+  speed, a noisier sensor a larger jitter, not both). The other direction (one object in km) is not checked: it looks
+  like a standing object whose positions are interpolated (speed and jitter near 0, common in annotated pedestrian
+  sets); its class's measurement std then hits its floor, which ``lgekf track`` says (``lgekf.apps.defaults``);
+* speed: its median speed above ``MAX_PLAUSIBLE_SPEED`` while the file's is plausible;
+* step: a step of at least ``MAX_PLAUSIBLE_DT`` and ``GAP_RATIO`` times its own median step (a gap: the filter
+  predicts across it, see ``lgekf.apps.defaults.after_gaps``), when the file's median step is plausible.
+
+At most ``MAX_OBJECT_LINES`` lines per check, then one line counting the rest.
 """
 
 from __future__ import annotations
 
 import math
 
+import numba as nb
 import numpy as np
 
 __all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings",
-           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN"]
+           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN", "object_warnings", "SCALE_RATIO", "GAP_RATIO",
+           "MAX_OBJECT_LINES"]
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
 UNIT_NAMES = {"s": "seconds", "ms": "milliseconds", "us": "microseconds", "ns": "nanoseconds"}
 MAX_PLAUSIBLE_DT = 10.0
 MAX_PLAUSIBLE_SPEED = 300.0
 MIN_DEGREE_LIKE_SPEED = 1e-3
+SCALE_RATIO = 50.0
+SCALE_AGREE = 3.0
+GAP_RATIO = 10.0
+MAX_OBJECT_LINES = 5
 
 
 def to_seconds(t: np.ndarray, unit: str) -> np.ndarray:
@@ -129,6 +151,123 @@ def unit_warnings(t, z, starts, time_unit: str = "s", projected: bool = False, f
           and max(-float(z.min()), float(z.max())) <= 180.0):  # max |z| without an |z| copy
         out.append(f"the median speed is {med_v:.3g} m/s: if x, y are degrees of longitude and latitude, "
                    "name the columns lon, lat instead (they are then projected to metres)")
+    return out
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def _object_medians(t, z, starts, speed, step, jitter, longest_step):
+    """Per object b: the median speed and time step over its consecutive pairs and its median jitter
+    |z_{k+1} − 2 z_k + z_{k−1}| (nan without any), the non-finite values left out, and its longest step (0 without
+    any); one scratch buffer of the longest object's size."""
+    longest = 0
+    for b in range(starts.shape[0] - 1):
+        longest = max(longest, starts[b + 1] - starts[b])
+    buf = np.empty(max(longest, 1))
+    for b in range(starts.shape[0] - 1):
+        a, e = starts[b], starts[b + 1]
+        longest_step[b] = 0.0
+        for k in range(a, e - 1):
+            longest_step[b] = max(longest_step[b], t[k + 1] - t[k])
+        for what in range(3):
+            n = 0
+            for k in range(a, e - 1 - (what == 2)):
+                if what == 0:
+                    v = math.hypot(z[k + 1, 0] - z[k, 0], z[k + 1, 1] - z[k, 1]) / (t[k + 1] - t[k])
+                elif what == 1:
+                    v = t[k + 1] - t[k]
+                else:
+                    v = math.hypot(z[k + 2, 0] - 2 * z[k + 1, 0] + z[k, 0], z[k + 2, 1] - 2 * z[k + 1, 1] + z[k, 1])
+                if np.isfinite(v):
+                    buf[n] = v
+                    n += 1
+            m = np.median(buf[:n]) if n > 0 else np.nan
+            if what == 0:
+                speed[b] = m
+            elif what == 1:
+                step[b] = m
+            else:
+                jitter[b] = m
+
+
+def _when(t, time_unit):
+    return f"t = {t / TIME_UNITS[time_unit]:.15g}{'' if time_unit == 's' else ' ' + time_unit}"
+
+
+def object_warnings(t, z, starts, labels, time_unit: str = "s", where=None) -> list[str]:
+    """Lines (without a prefix) naming the objects whose scale, speed or steps are implausible beside the others
+    (module docstring); empty when every object looks like the rest. ``labels`` (B,): the objects' ids as written;
+    ``where`` (optional, ``Measurements.where``): row index -> "line N", named beside the time of a row.
+    Arrays of the rows' size: one (the file's medians, as ``unit_warnings``)."""
+    t = np.ascontiguousarray(t, dtype=float)
+    z = np.ascontiguousarray(np.asarray(z, float)[:, :2])
+    starts = np.asarray(starts, dtype=np.int64)
+    B = len(starts) - 1
+    if B == 0 or t.size < 2:
+        return []
+    speed_b, dt_b, jit_b, long_b = np.empty(B), np.empty(B), np.empty(B), np.empty(B)
+    _object_medians(t, z, starts, speed_b, dt_b, jit_b, long_b)
+    buf = np.empty(t.size - 1)
+    n = _step_values(t, z, starts, "dt", buf)
+    if n == 0:
+        return []
+    file_dt = float(np.median(buf[:n], overwrite_input=True))
+    _step_values(t, z, starts, "speed", buf)
+    file_speed = float(np.median(buf[:n], overwrite_input=True))
+    del buf
+
+    def first_row(b, bad):
+        """The time of object b's first row at which ``bad`` (a bool over its pairs: from the previous row) holds."""
+        k = np.flatnonzero(bad)
+        row = starts[b] + 1 + int(k[0]) if k.size else starts[b]
+        at = where(row) if where is not None else ""
+        return f"{at} ({_when(t[row], time_unit)})" if at else _when(t[row], time_unit)
+
+    def capped(lines, what):
+        if len(lines) > MAX_OBJECT_LINES:
+            return lines[:MAX_OBJECT_LINES] + [f"... and {len(lines) - MAX_OBJECT_LINES} more objects with {what}"]
+        return lines
+
+    out = []
+    named = set()
+    ok_v, ok_j = np.isfinite(speed_b), np.isfinite(jit_b)
+    med_v = float(np.median(speed_b[ok_v])) if ok_v.any() else math.nan
+    med_j = float(np.median(jit_b[ok_j])) if ok_j.any() else math.nan
+    if B >= 3 and med_v > 0 and med_j > 0:
+        scale = []
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rv, rj = speed_b / med_v, jit_b / med_j
+            odd = (rv >= SCALE_RATIO) & (rj >= SCALE_RATIO) & (np.abs(np.log(rv / rj)) <= math.log(SCALE_AGREE))
+        for b in np.flatnonzero(odd):
+            f = float(np.sqrt(rv[b] * rj[b]))
+            named.add(int(b))
+            scale.append(f"object {labels[b]}: its median speed {speed_b[b]:.3g} m/s and its jitter {jit_b[b]:.3g} m are "
+                         f"about {f:.3g} times those of the other objects ({med_v:.3g} m/s, {med_j:.3g} m), from "
+                         f"{_when(t[starts[b]], time_unit)}: x, y in {'mm' if f > 300 else 'cm'}? lgekf expects metres")
+        out += capped(scale, "another scale")
+    if file_speed <= MAX_PLAUSIBLE_SPEED:
+        fast = []
+        for b in np.flatnonzero(speed_b > MAX_PLAUSIBLE_SPEED):
+            if int(b) in named:
+                continue
+            a, e = starts[b], starts[b + 1]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                v = np.hypot(*np.diff(z[a:e], axis=0).T) / np.diff(t[a:e])
+            fast.append(f"object {labels[b]}: median speed {speed_b[b]:.3g} m/s (the file's {file_speed:.3g} m/s), first "
+                        f"above {MAX_PLAUSIBLE_SPEED:g} m/s at {first_row(b, v > MAX_PLAUSIBLE_SPEED)}: x, y should be metres")
+        out += capped(fast, "implausible speeds")
+    if file_dt < MAX_PLAUSIBLE_DT:
+        gaps = []
+        with np.errstate(invalid="ignore"):
+            has_gap = np.flatnonzero((long_b >= MAX_PLAUSIBLE_DT) & (long_b > GAP_RATIO * dt_b))
+        for b in has_gap:
+            a, e = starts[b], starts[b + 1]
+            d = np.diff(t[a:e])
+            bad = (d >= MAX_PLAUSIBLE_DT) & (d > GAP_RATIO * dt_b[b])
+            if bad.any():
+                gaps.append(f"object {labels[b]}: a gap of {float(d[bad].max()):.4g} s (its median step {dt_b[b]:.3g} s), "
+                            f"the first ending at {first_row(b, bad)}: the filter predicts across it (split the object "
+                            "if it is two)")
+        out += capped(gaps, "gaps")
     return out
 
 

@@ -17,6 +17,7 @@ from lgekf.apps.divergence import MonitorConfig, speed_limits, speeds
 from lgekf.apps.noise import CHORD_S, chord_speeds
 from _reinit_rows import reinit_first_rows
 from lgekf.apps.track import TRACK_HEADING_CAP, TrackConfig, initial_common, initial_estimates, track_monitored
+from lgekf.core.initiation import moving_backwards
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
 
@@ -128,7 +129,8 @@ def test_track_monitored_with_a_given_start_and_limits_is_the_same(model):
     cfg = TrackConfig({model: tuple(0.3 * np.asarray(get_model(model).default_accel_std))}, 0.2, heading_cap=TRACK_HEADING_CAP)
     ref = track_monitored(model, t, z, starts, cfg, heading=heading)
     assert len(ref.alarms) > 0  # the recovery path is exercised
-    start = initial_estimates(model, *initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap))
+    start = initial_estimates(model, *initial_common(t, z, starts, cfg.meas_std, cfg.omega_std, heading, cfg.heading_std, cfg.heading_cap),
+                              moving_backwards(t, z, starts, cfg.meas_std))
     limits = speed_limits(t, z, starts, cfg.meas_std, MonitorConfig())
     got = track_monitored(model, t, z, starts, cfg, heading=heading, start=start, limits=limits)
     for a, b in ((ref.x, got.x), (ref.p, got.p), (ref.nis, got.nis), (ref.flag, got.flag)):
