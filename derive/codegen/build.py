@@ -14,9 +14,9 @@ from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
-from .monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
+from .families.monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
 from .printer import HEADER, SINC_FAMILY, render_module
-from .soa import VECTOR_NAMES, vector_helpers_source
+from .families.soa import VECTOR_NAMES, vector_helpers_source
 
 __all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
 
