@@ -26,6 +26,10 @@ row-major, in the tangent coordinates ε of X = μ·exp(ε)), by family:
 * smoother (``families/smoother.py``, ``families/smooth_step.py``): ``innovation_logdet_<meas>``,
   ``run_one_store_<meas>``, ``loglik_batch_<meas>``, ``smooth_one`` / ``smooth_batch`` (RTS on the group);
 * readout, mixing, imm_rows: the common coordinates, mixing on the group and the row variants of the IMM's loop.
+
+Modules that are not a model's: ``generated/dispatch.py`` (``derive/codegen/dispatch.py``: every model's kernels behind
+one signature), ``generated/imm.py`` (``families/imm.py``: the IMM's loop, its per-measurement parts from each
+measurement definition), ``generated/monitor.py`` and ``generated/special.py`` (``build.py``, templates).
 """
 
 from __future__ import annotations

@@ -14,7 +14,7 @@ import numpy as np
 from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
-__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "get_model", "get_measurement"]
+__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "get_model", "get_measurement", "imm_kernel"]
 
 
 @dataclass(frozen=True)
@@ -136,3 +136,11 @@ def get_measurement(name: str) -> MeasurementSpec:
         return MEASUREMENTS[name]
     except (KeyError, TypeError):
         raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(MEASUREMENTS)}") from None
+
+
+def imm_kernel(family: str, measurement: str):
+    """The generated IMM kernel of ``family`` for ``measurement`` (``generated/imm.py``, e.g.
+    ``imm_kernel("imm_run_batch", "pose")``): named ``<family>_<measurement>`` as ``ModelSpec.kernel`` names a model's
+    kernels (the IMM's loop spans models, so it is one module, not a model's)."""
+    get_measurement(measurement)
+    return getattr(importlib.import_module("lgekf.generated.imm"), f"{family}_{measurement}")

@@ -129,7 +129,7 @@ class ImmFit:
 
 
 @nb.njit(cache=True, parallel=True)
-def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas_pose, ll, cnt):
+def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas, ll, cnt):
     """Σ_k log Σ_j c̄_j N_j of each track b over its steps k in [skip[b], lengths[b]) (missed steps not counted).
 
     S0 (B, M, L), P0 (B, M, NP): each track's initial mode states and packed covariances; z (B, K, m), dts (B, K)
@@ -140,7 +140,7 @@ def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_
         S = S0[b].copy()
         Pp = P0[b].copy()
         mu = mu0.copy()
-        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas_pose)
+        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas)
         ll[b] = tot
         cnt[b] = n
 
@@ -188,7 +188,7 @@ class _Likelihood:
         ll = np.empty(tr.B)
         cnt = np.empty(tr.B, dtype=np.int64)
         imm_loglik_batch(s.models, self.S0, self.Pp0, s.mu0, PI, Q, s.r, tr.z, tr.dts, tr.lengths, tr.skip, s.same_group,
-                         s.meas_pose, ll, cnt)
+                         s.meas, ll, cnt)
         return float(np.sum(ll)), int(np.sum(cnt))
 
 
