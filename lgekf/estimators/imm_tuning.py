@@ -36,6 +36,7 @@ import numba as nb
 import numpy as np
 
 from ..core.initiation import DEFAULT_OMEGA_STD, two_point
+from ..core.registry import get_measurement
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
 from .imm_kernels import imm_loglik_one
 from .tracks import batch_tracks
@@ -368,10 +369,12 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
 
 
 def _position_only(measurement: str) -> int:
-    """The measurement dimension; the fit starts every track from two positions (pose: not supported)."""
-    if measurement != "position":
-        raise ValueError(f"measurement: the IMM's likelihood fit supports position measurements only, got {measurement!r}")
-    return 2
+    """The measurement dimension; the fit starts every track from two positions, so it takes a measurement without an
+    angle (as its definition says: a position; a pose's heading would go unused)."""
+    meas = get_measurement(measurement)
+    if meas.angles:
+        raise ValueError(f"measurement: the IMM's likelihood fit supports position measurements only (no angle), got {measurement!r}")
+    return meas.dim
 
 
 def _logit(p: float) -> float:
