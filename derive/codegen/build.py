@@ -14,9 +14,11 @@ from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
 from .emitter import model_kernels, registry_entry, se2_kernels
-from .monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
+from .families.imm import render_imm
+from .families.monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
 from .printer import HEADER, SINC_FAMILY, render_module
-from .soa import VECTOR_NAMES, vector_helpers_source
+from .template import load
+from .families.soa import VECTOR_NAMES, vector_helpers_source
 
 __all__ = ["render_all", "write_all", "check", "GENERATED_DIR", "main"]
 
@@ -55,28 +57,7 @@ def family_source(polys: dict) -> str:
 
     small = sinc.tau
     assert cosc.tau == small and cosc2.tau == small and sinc2.tau > small
-    return (
-        f"\n\n@nb.njit(cache=True, inline=\"always\", error_model=SCALAR_ERRORS)\ndef {FAMILY}(x, s, c):\n"
-        '    """(sinc, cosc, sinc2, cosc2)(x) with s = sin x, c = cos x, sharing 1/x and 1/(1 + c)\n'
-        '    (derive/codegen/build.py family_source; the same polynomials and thresholds as the four functions)."""\n'
-        "    x2 = x * x\n"
-        f"    if abs(x) < {small!r}:\n"
-        f"        a = {polys['sinc']}\n"
-        f"        b = {polys['cosc']}\n"
-        f"        d = {polys['cosc2']}\n"
-        f"        e = {polys['sinc2']}\n"
-        "        return a, b, e, d\n"
-        "    rx = 1.0 / x\n"
-        "    h = s * s / (1.0 + c) if c > 0.0 else 1.0 - c\n"
-        "    a = s * rx\n"
-        "    b = h * rx\n"
-        "    d = b * rx\n"
-        f"    if abs(x) < {sinc2.tau!r}:\n"
-        f"        e = {polys['sinc2']}\n"
-        "    else:\n"
-        "        e = (x - s) * (rx * rx)\n"
-        "    return a, b, e, d\n"
-    )
+    return load("sinc_family.py.tmpl").format(family=FAMILY, small=repr(small), sinc2_tau=repr(sinc2.tau), **polys)
 
 
 def render_special() -> str:
@@ -103,43 +84,9 @@ def render_special() -> str:
         doc += f"    |x| < {f.tau!r}: Taylor polynomial of degree {f.order} (coefficients from SymPy);\n"
         doc += f"    otherwise the cancellation-free closed form `{f.stable}`."
         polys[f.__name__] = poly
-        out.append(
-            f"\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef {f.__name__}(x, s, c):\n"
-            f'    """{doc}\n    """\n'
-            f"    if abs(x) < {f.tau!r}:\n"
-            f"        x2 = x * x\n"
-            f"        return {poly}\n"
-            f"    return {f.stable}\n"
-        )
+        out.append(load("angle_function.py.tmpl").format(name=f.__name__, doc=doc, tau=repr(f.tau), poly=poly, stable=f.stable))
     out.append(family_source(polys))
-    out.append(
-        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef wrap_angle(a):\n"
-        '    """a wrapped to (-π, π]."""\n'
-        "    if -math.pi < a <= math.pi:\n"
-        "        return a\n"
-        "    r = a - 2.0 * math.pi * math.floor((a + math.pi) / (2.0 * math.pi))\n"
-        "    if r <= -math.pi:\n"
-        "        r += 2.0 * math.pi\n"
-        "    return r\n"
-    )
-    out.append(
-        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef wrap_angle_sum(a, y):\n"
-        '    """wrap(a) with the sign of y beyond ±π/2: the angle of a composed rotation whose sine is y, as atan2 of\n'
-        '    its entries would give it, also at the branch cut (see derive.lie.special.angle_sum)."""\n'
-        "    w = wrap_angle(a)\n"
-        "    if abs(w) > 0.5 * math.pi:\n"
-        "        return math.copysign(abs(w), y)\n"
-        "    return w\n"
-    )
-    out.append(
-        "\n\n@nb.njit(cache=True, error_model=SCALAR_ERRORS)\ndef gain_damping(a, b):\n"
-        '    """min(1, π / max(|a|, |b|)): keeps the angles of a Kalman correction within [-π, π]\n'
-        '    (see derive.special.gain_damping)."""\n'
-        "    m = max(abs(a), abs(b))\n"
-        "    if m <= math.pi:\n"
-        "        return 1.0\n"
-        "    return math.pi / m\n"
-    )
+    out.append(load("special_helpers.py.tmpl"))  # wrap_angle, wrap_angle_sum, gain_damping
     out.append(vector_helpers_source())
     return "".join(out)
 
@@ -263,6 +210,7 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     from .dispatch import render_dispatch
 
     files["dispatch.py"] = render_dispatch(models, {n: _fitting(m, measurements)[0] for n, m in models.items()}, measurements)
+    files["imm.py"] = render_imm(measurements)  # the IMM's loop, per measurement from its definition (families/imm.py)
     files["__init__.py"] = HEADER.format(
         title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.",
         source="derive/codegen/build.py",

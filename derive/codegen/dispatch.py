@@ -21,49 +21,9 @@ its caller (``inline="always"``), so selecting the kernel costs a branch, not a 
 from __future__ import annotations
 
 
-from .blocks import matrix_kernel, vec_inputs, vector_kernel
-from dataclasses import replace
+from .printer import HEADER
 
-from .printer import HEADER, Kernel
-
-__all__ = ["common_readout_kernels", "render_dispatch"]
-
-
-#: kernels that also get an allocation-free ``<name>_into(..., out)`` variant (the IMM's inner loop, the smoother's
-#: backward step)
-INTO = ("state_from_physical", "between", "right_jacobian", "right_jacobian_inv", "transition", "calH_position",
-        "calH_pose", "common_to_state", "common_jacobian", "physical_to_common", "physical_to_common_jacobian")
-
-
-def into_variant(k: Kernel) -> Kernel:
-    """The same kernel writing into a caller's ``out`` (zeroed first) instead of allocating it."""
-    matrix = any("np.zeros((" in line for line in k.prologue)
-    return replace(k, name=f"{k.name}_into", params=[*k.params, "out"], ret=None,
-                   prologue=["out[:, :] = 0.0" if matrix else "out[:] = 0.0"],
-                   doc=f"{k.doc.rstrip()}\nWritten into ``out`` (no allocation).")
-
-
-def common_readout_kernels(model, kernels=()) -> list:
-    """``physical_to_common``, ``physical_to_common_jacobian`` and ``common_missing`` of one model, and the
-    ``_into`` variants (``INTO``) of those and of ``kernels`` (the model's other kernels)."""
-    xin = vec_inputs("xp", model.physical)
-    missing = [1.0 if i in model.common_missing else 0.0 for i in range(6)]
-    own = [
-        vector_kernel("physical_to_common", "c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model\n"
-                      "without a heading; 0 for the coordinates of common_missing).", ["xp"], xin, model.common_of_physical),
-        matrix_kernel("physical_to_common_jacobian", "A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.",
-                      ["xp"], xin, model.common_of_physical_jacobian),
-        ("common_missing", "@nb.njit(cache=True)\ndef common_missing():\n"
-         "    \"\"\"1.0 for each common coordinate (x, y, θ, v_x, v_y, ω) the model carries no information on.\"\"\"\n"
-         f"    return np.array({missing!r})\n"),
-    ]
-    every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in INTO]
-    from .mixing import common_kernels, mixing_kernels
-
-    from .imm_rows import imm_row_kernels
-
-    mixing = mixing_kernels(model) + common_kernels(model)
-    return own + [into_variant(k) for k in every] + mixing + imm_row_kernels(model, [*kernels, *mixing])
+__all__ = ["render_dispatch"]
 
 
 def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
@@ -128,7 +88,7 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
     for mname in sorted(measurements):
         funcs.append(_chain(f"calH_{mname}_into", "s, out", names,
                             lambda n, mname=mname: None if mname not in fits[n] else f"{n}.calH_{mname}_into(s, out)", False))
-    from .imm_rows import dispatch_chains
+    from .families.imm_rows import dispatch_chains
 
     funcs += dispatch_chains(_chain, names, models, fits, measurements)  # the IMM's row variants
     out.append("\n\n" + "\n\n".join(funcs))

@@ -14,7 +14,8 @@ import numpy as np
 from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
-__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "BASE_MEASUREMENT", "get_model", "get_measurement"]
+__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "BASE_MEASUREMENT", "get_model", "get_measurement",
+           "imm_kernel"]
 
 
 @dataclass(frozen=True)
@@ -82,11 +83,10 @@ class ModelSpec:
         return importlib.import_module(f"lgekf.generated.{self.name}")
 
     def kernel(self, family: str, measurement: str, default=None):
-        """The generated kernel of ``family`` for ``measurement`` (e.g. ``kernel("run_segments", "pose")``): the one
-        place of the runtime that forms a kernel's name (``<family>_<measurement>``, as the emitter names them,
-        ``derive.measurements.base.MeasurementModel.kernel_name``). ``default``: returned when the model has no such
+        """The generated kernel of ``family`` for ``measurement`` (e.g. ``kernel("run_segments", "pose")``), named by
+        ``kernel_name`` (``<family>_<measurement>``, as the emitter's templates name them). ``default``: returned when the model has no such
         kernel (a family that only some models emit); without it a missing kernel is an AttributeError."""
-        name = f"{family}_{measurement}"
+        name = kernel_name(family, measurement)
         if default is None:
             return getattr(self.kernels, name)
         return getattr(self.kernels, name, default)
@@ -169,3 +169,18 @@ def get_measurement(name: str) -> MeasurementSpec:
         return MEASUREMENTS[name]
     except (KeyError, TypeError):
         raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(MEASUREMENTS)}") from None
+
+
+def imm_kernel(family: str, measurement: str):
+    """The generated IMM kernel of ``family`` for ``measurement`` (``generated/imm.py``, e.g.
+    ``imm_kernel("imm_run_batch", "pose")``): named ``<family>_<measurement>`` as ``ModelSpec.kernel`` names a model's
+    kernels (the IMM's loop spans models, so it is one module, not a model's)."""
+    get_measurement(measurement)
+    return getattr(importlib.import_module("lgekf.generated.imm"), kernel_name(family, measurement))
+
+
+def kernel_name(family: str, measurement: str) -> str:
+    """The name of a generated kernel of ``family`` for ``measurement``: ``<family>_<measurement>``, as the emitter
+    names them (the templates' ``<family>_{meas}``); the one place of the runtime that forms
+    one (``ModelSpec.kernel``, ``imm_kernel``)."""
+    return f"{family}_{measurement}"

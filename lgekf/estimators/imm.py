@@ -162,9 +162,9 @@ class _Setup:
         for m in self.modes:
             get_model(m.model).measurement(measurement)
         self.r = np.ascontiguousarray(measurement_std(get_model(self.modes[0].model), measurement, meas_std), dtype=float)
-        self.meas_pose = measurement != "position"
-        if self.meas_pose and measurement != "pose":  # pragma: no cover - only two measurement models exist
-            raise ValueError(f"measurement: the IMM supports position and pose, got {measurement!r}")
+        from .imm_kernels import measurement_index
+
+        self.meas = measurement_index(measurement)  # the generated IMM kernels' measurement argument
         nq = max(len(m.accel_std) for m in self.modes)
         self.Q = np.zeros((M, nq))
         for j, m in enumerate(self.modes):
@@ -288,7 +288,7 @@ class IMM:
 
         z = as_float_array("z", z, (self._m,))
         s = self._set
-        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas_pose, self.nis,
+        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas, self.nis,
                                                self._ws))
         return self.log_likelihood
 
@@ -371,13 +371,13 @@ def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLi
     P : ndarray, (B, K, 6, 6)
         Only with ``return_cov``.
     """
-    from .imm_kernels import imm_run_batch_pose, imm_run_batch_position
+    from .imm_kernels import run_batch
 
     s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]
     out_c = np.empty((B, K, 6))
     out_P = np.empty((B, K if return_cov else 0, 6, 6))
     out_mu = np.empty((B, K, s.M))
-    run = imm_run_batch_pose if s.meas_pose else imm_run_batch_position  # each compiles its measurement's kernels only
+    run = run_batch(s.measurement)  # the generated loop of the measurement: compiles its kernels only
     run(s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r, z, dts, s.same_group, out_c, out_P, out_mu)
     return (out_c, out_mu, out_P) if return_cov else (out_c, out_mu)

@@ -168,7 +168,7 @@ class _ChainLikelihood:
         cnt = np.empty(self.B, dtype=np.int64)
         imm_loglik_batch(s.models, self.S0, self.Pp0, np.ascontiguousarray(stationary_distribution(PI)),
                          np.ascontiguousarray(PI), s.Q, s.r, self.z, self.dts, self.lengths, self.skip, s.same_group,
-                         s.meas_pose, ll, cnt)
+                         s.meas, ll, cnt)
         return float(np.sum(ll))
 
 

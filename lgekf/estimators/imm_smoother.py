@@ -60,7 +60,7 @@ __all__ = ["ImmForward", "imm_forward_store", "smoothed_mode_probabilities", "im
 
 
 @nb.njit(cache=True)
-def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose, S_mix, P_mix, S_pred, P_pred, S_filt,
+def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas, S_mix, P_mix, S_pred, P_pred, S_filt,
                       P_filt, mu_pred, mu_filt):
     """The IMM over one trajectory z (K, m), from (S, Pp, mu) (modified), keeping every step: S_mix/P_mix (K, M, ·)
     the mixed estimates the prediction to step k started from (at step k-1), S_pred/P_pred the predictions,
@@ -80,7 +80,7 @@ def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas_pose
         S_pred[k] = S
         P_pred[k] = Pp
         mu_pred[k] = mu
-        imm_update(models, S, Pp, mu, r, z[k], meas_pose, nis, ws)
+        imm_update(models, S, Pp, mu, r, z[k], meas, nis, ws)
         S_filt[k] = S
         P_filt[k] = Pp
         mu_filt[k] = mu
@@ -132,7 +132,7 @@ def _forward(s: _Setup, S0, P0, z, dts) -> ImmForward:
     f = ImmForward(np.empty((K, M, s.L)), np.empty((K, M, s.NP)), np.empty((K, M, s.L)), np.empty((K, M, s.NP)),
                    np.empty((K, M, s.L)), np.empty((K, M, s.NP)), np.empty((K, M)), np.empty((K, M)))
     imm_forward_store(s.models, S0.copy(), P0.copy(), s.mu0.copy(), s.PI, s.Q, s.r, np.ascontiguousarray(z),
-                      np.ascontiguousarray(dts, dtype=float), s.same_group, s.meas_pose, f.S_mix, f.P_mix, f.S_pred, f.P_pred,
+                      np.ascontiguousarray(dts, dtype=float), s.same_group, s.meas, f.S_mix, f.P_mix, f.S_pred, f.P_pred,
                       f.S_filt, f.P_filt, f.mu_pred, f.mu_filt)
     return f
 

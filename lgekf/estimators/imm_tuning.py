@@ -36,6 +36,7 @@ import numba as nb
 import numpy as np
 
 from ..core.initiation import DEFAULT_OMEGA_STD, two_point
+from ..core.registry import get_measurement
 from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
 from .imm_kernels import imm_loglik_one
 from .noise.tracks import batch_tracks
@@ -129,7 +130,7 @@ class ImmFit:
 
 
 @nb.njit(cache=True, parallel=True)
-def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas_pose, ll, cnt):
+def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas, ll, cnt):
     """Σ_k log Σ_j c̄_j N_j of each track b over its steps k in [skip[b], lengths[b]) (missed steps not counted).
 
     S0 (B, M, L), P0 (B, M, NP): each track's initial mode states and packed covariances; z (B, K, m), dts (B, K)
@@ -140,7 +141,7 @@ def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_
         S = S0[b].copy()
         Pp = P0[b].copy()
         mu = mu0.copy()
-        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas_pose)
+        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas)
         ll[b] = tot
         cnt[b] = n
 
@@ -188,7 +189,7 @@ class _Likelihood:
         ll = np.empty(tr.B)
         cnt = np.empty(tr.B, dtype=np.int64)
         imm_loglik_batch(s.models, self.S0, self.Pp0, s.mu0, PI, Q, s.r, tr.z, tr.dts, tr.lengths, tr.skip, s.same_group,
-                         s.meas_pose, ll, cnt)
+                         s.meas, ll, cnt)
         return float(np.sum(ll)), int(np.sum(cnt))
 
 
@@ -368,10 +369,12 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
 
 
 def _position_only(measurement: str) -> int:
-    """The measurement dimension; the fit starts every track from two positions (pose: not supported)."""
-    if measurement != "position":
-        raise ValueError(f"measurement: the IMM's likelihood fit supports position measurements only, got {measurement!r}")
-    return 2
+    """The measurement dimension; the fit starts every track from two positions, so it takes a measurement without an
+    angle (as its definition says: a position; a pose's heading would go unused)."""
+    meas = get_measurement(measurement)
+    if meas.angles:
+        raise ValueError(f"measurement: the IMM's likelihood fit supports position measurements only (no angle), got {measurement!r}")
+    return meas.dim
 
 
 def _logit(p: float) -> float:

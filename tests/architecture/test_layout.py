@@ -161,3 +161,46 @@ def test_no_branch_on_a_model_name(folder):
     hits = [f"{p.relative_to(ROOT)}:{i}: {line.strip()}" for p in files
             for i, line in enumerate(p.read_text(encoding="utf-8").splitlines(), 1) if pat.search(line)]
     assert not hits, "\n".join(hits)
+
+
+def _measurement_names() -> set:
+    """The registered measurements (generated/registry.py, plain data)."""
+    tree = ast.parse((ROOT / "generated" / "registry.py").read_text(encoding="utf-8"))
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and any(getattr(t, "id", None) == "MEASUREMENTS" for t in node.targets):
+            return set(ast.literal_eval(node.value))
+    raise AssertionError("generated/registry.py has no MEASUREMENTS")
+
+
+def _names_a_measurement(node, names: set) -> bool:
+    if isinstance(node, ast.Constant):
+        return node.value in names
+    if isinstance(node, (ast.Tuple, ast.List, ast.Set)):
+        return any(isinstance(e, ast.Constant) and e.value in names for e in node.elts)
+    return False
+
+
+def test_no_branch_on_a_measurement_name():
+    """No comparison against a measurement's name (``== "pose"``, ``!= "position"``, ``in ("pose", ...)``) in the
+    kernel code of ``derive/codegen/`` (its modules and its templates) and of ``lgekf/estimators/``: a per-measurement
+    loop is emitted from the measurement definitions (``derive/measurements/``, the only place that knows them), and the
+    runtime reaches it through ``ModelSpec.kernel`` / ``lgekf.core.registry.imm_kernel``. Scope: only these two
+    folders for now; ``lgekf/apps``, ``lgekf/cli`` and ``lgekf/experiments`` are being cleaned of their comparisons
+    separately (issue #26) and join this test when they are."""
+    names = _measurement_names()
+    assert {"pose", "position"} <= names
+    ops = (ast.Eq, ast.NotEq, ast.In, ast.NotIn, ast.Is, ast.IsNot)
+    hits = []
+    files = sorted((ROOT / "derive" / "codegen").rglob("*.py")) + sorted((ROOT / "lgekf" / "estimators").rglob("*.py"))
+    for path in files:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Compare) and any(isinstance(op, ops) for op in node.ops) and any(
+                    _names_a_measurement(o, names) for o in (node.left, *node.comparators)):
+                hits.append(f"{path.relative_to(ROOT)}:{node.lineno}: {ast.unparse(node)}")
+    quoted = "|".join(re.escape(n) for n in sorted(names))
+    pat = re.compile(rf"(==|!=|\bin|\bis)\s*[(\[{{]?\s*[\"']({quoted})[\"']|[\"']({quoted})[\"']\s*(==|!=)")
+    for path in sorted((ROOT / "derive" / "codegen" / "templates").glob("*.tmpl")):  # numba templates: not Python yet
+        for i, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+            if pat.search(line):
+                hits.append(f"{path.relative_to(ROOT)}:{i}: {line.strip()}")
+    assert not hits, "comparisons against a measurement name:\n" + "\n".join(hits)

@@ -121,9 +121,9 @@ def test_imm_step_equals_predict_then_update(case, meas):
         z = np.array([3 * t, 0.3 * t * t] + ([0.2 * t] if meas == "pose" else [])) + 0.3 * rng.normal(size=m)
         if k in (7, 30, 31):
             z[0] = np.nan
-        ll_a = imm_step(s.models, *A, s.PI, s.Q, s.r, z, 0.1, s.same_group, s.meas_pose, nis_a, wa)
+        ll_a = imm_step(s.models, *A, s.PI, s.Q, s.r, z, 0.1, s.same_group, s.meas, nis_a, wa)
         imm_predict(s.models, B[0], B[1], B[2], s.PI, s.Q, 0.1, s.same_group, wb)
-        ll_b = imm_update(s.models, *B, s.r, z, s.meas_pose, nis_b, wb)
+        ll_b = imm_update(s.models, *B, s.r, z, s.meas, nis_b, wb)
         if k in (7, 30, 31):
             assert np.isnan(ll_a) and np.isnan(ll_b) and np.isnan(nis_a).all()
         else:
@@ -150,10 +150,10 @@ def test_imm_loglik_one_sums_imm_step():
     dts = np.full(K, 0.1)
     S, Pp, mu = S0[0].copy(), P0[0].copy(), s.mu0.copy()
     ws, nis = workspace(s.M), np.empty(s.M)
-    steps = [imm_step(s.models, S, Pp, mu, s.PI, s.Q, s.r, z[k], 0.1, s.same_group, s.meas_pose, nis, ws) for k in range(30)]
+    steps = [imm_step(s.models, S, Pp, mu, s.PI, s.Q, s.r, z[k], 0.1, s.same_group, s.meas, nis, ws) for k in range(30)]
     want = sum(v for v in steps[3:] if not np.isnan(v))
     S2, P2, mu2 = S0[0].copy(), P0[0].copy(), s.mu0.copy()
-    tot, n = imm_loglik_one(s.models, S2, P2, mu2, s.PI, s.Q, s.r, z, dts, 3, 30, s.same_group, s.meas_pose)
+    tot, n = imm_loglik_one(s.models, S2, P2, mu2, s.PI, s.Q, s.r, z, dts, 3, 30, s.same_group, s.meas)
     assert n == 25  # steps 3..29 (27) without the missed steps 5 and 20
     np.testing.assert_allclose(tot, want, rtol=1e-13)
     for a, b in ((S, S2), (Pp, P2), (mu, mu2)):

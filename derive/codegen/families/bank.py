@@ -18,62 +18,14 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .blocks import arg_list
-from .printer import Kernel
+from ..blocks import arg_list
+from ..printer import Kernel
+from ..template import load
 
-__all__ = ["bank_measurement_kernels", "bank_model_kernels"]
+__all__ = ["bank_measurement_kernels", "bank_model_kernels", "kernels"]
 
-MEAS_BANK_TEMPLATE = '''
-@nb.njit(cache=True)
-def innovation_bank_{meas}(s, live, z, out):
-    """Innovation [log_G'(h(μ_i)⁻¹ Z_j)]^∨ of every live track i (rows of s, live[i] true) and every
-    {meas} detection j (rows of z, (M, {m})) into out (N, M, {m}); rows of dead tracks are not written."""
-    for i in range(s.shape[0]):
-        if live[i]:
-            si = s[i]
-            for j in range(z.shape[0]):
-                innovation_into_{meas}(si, {zargs}, out[i, j])
-
-
-@nb.njit(cache=True)
-def calH_bank_{meas}(s, live, out):
-    """ℋ (eq:calH) of every live track for {meas} measurements into out (N, {m}, {n})."""
-    for i in range(s.shape[0]):
-        if live[i]:
-            h = calH_{meas}(s[i])
-            for a in range({m}):
-                for b in range({n}):
-                    out[i, a, b] = h[a, b]
-'''
-
-MODEL_BANK_TEMPLATE = '''
-@nb.njit(cache=True)
-def predict_bank(s, p, live, dt, q):
-    """The fused prediction (eq:pred_mu, eq:pred_cov) of every live track (rows of s and p) by dt, in place;
-    q ({nq},) process-noise stds."""
-    for i in range(s.shape[0]):
-        if live[i]:
-            predict(s[i], p[i], dt, {qargs})
-
-
-@nb.njit(cache=True)
-def retract_bank(s, live, eps):
-    """μ_i ← μ_i·exp([ε_i]^∧) for every live track (eq:up_mu with the given corrections eps (N, {n}))."""
-    for i in range(s.shape[0]):
-        if live[i]:
-            retract(s[i], eps[i])
-
-
-@nb.njit(cache=True)
-def right_jacobian_bank(live, eps, out):
-    """Φ_G(ε_i) (eq:up_P) of every live track's correction eps (N, {n}) into out (N, {n}, {n})."""
-    for i in range(eps.shape[0]):
-        if live[i]:
-            f = right_jacobian(eps[i])
-            for a in range({n}):
-                for b in range({n}):
-                    out[i, a, b] = f[a, b]
-'''
+MEAS_BANK_TEMPLATE = load("bank_measurement.py.tmpl")
+MODEL_BANK_TEMPLATE = load("bank_model.py.tmpl")
 
 
 def bank_measurement_kernels(model, meas, sin_) -> list:
@@ -99,3 +51,11 @@ def bank_model_kernels(model) -> list:
     """``predict_bank``, ``retract_bank``, ``right_jacobian_bank`` of one model."""
     nq = len(model.noise_names)
     return [("predict_bank", MODEL_BANK_TEMPLATE.format(n=model.n, nq=nq, qargs=arg_list("q", nq)))]
+
+
+def kernels(model, measurements: dict, built) -> list:
+    """The family's entry (``derive.codegen.emitter``): (slot, kernel) pairs of one model module."""
+    out = []
+    for meas in measurements.values():
+        out += [(("bank", meas.name), k) for k in bank_measurement_kernels(model, meas, built.sin_)]
+    return out + [("bank_model", k) for k in bank_model_kernels(model)]

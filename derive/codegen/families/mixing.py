@@ -21,11 +21,11 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..algebra import packed_index
-from ..lie.special import ANGLE_FUNCTIONS, wrap
-from .printer import Kernel
+from ...algebra import packed_index
+from ...lie.special import ANGLE_FUNCTIONS, wrap
+from ..printer import Kernel
 
-__all__ = ["mixing_kernels", "common_kernels"]
+__all__ = ["mixing_kernels", "common_kernels", "kernels"]
 
 
 def _between(model):
@@ -148,7 +148,7 @@ def common_kernels(model) -> list:
     ``common_of_state`` runs with error_model="numpy" (a heading read off a zero velocity gives NaN/inf, not an
     exception, and the caller redoes that rare case).
     """
-    from ..models.base import COMMON
+    from ...models.base import COMMON
 
     n = model.n
     idx = packed_index(n)
@@ -194,3 +194,9 @@ def common_kernels(model) -> list:
         params=["c", "Pc", "s", "p"], inputs=cin + pc_in, stages=[phys_c, jdefs, vdefs], outputs=outs,
     )
     return [to_common, from_common]
+
+
+def kernels(model, measurements: dict, built) -> list:
+    """The family's entry (``derive.codegen.emitter``): the fused terms of mixing on the group and a mode's Gaussian to
+    and from the common coordinates (slot ``mixing``)."""
+    return [("mixing", k) for k in mixing_kernels(model) + common_kernels(model)]

@@ -52,8 +52,9 @@ from dataclasses import replace
 
 import sympy as sp
 
-from ..algebra import _changed, packed_index, sym_cov
-from .printer import Kernel
+from ...algebra import _changed, packed_index, sym_cov
+from ..printer import Kernel
+from ..template import load
 from .soa import SOA_BLOCK_LOOP
 
 __all__ = ["smooth_step_kernel", "store_step_kernel", "staged"]
@@ -127,7 +128,7 @@ def _one(defs: list, name: str, e):
 
 def smooth_step_kernel(model) -> Kernel:
     """The fused RTS backward step of ``model`` (module docstring)."""
-    from .blocks import vec_inputs
+    from ..blocks import vec_inputs
 
     n = model.n
     G = model.group
@@ -148,7 +149,7 @@ def smooth_step_kernel(model) -> Kernel:
     F = _named(model.F_of(Cc).applyfunc(sub), "ff", defs)
     C = _named(Pf * F.T, "cf", defs)
     # d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}) (between, with the Euclidean models' angles wrapped) and P̄ − P_{k+1|k}
-    from ..lie.special import wrap
+    from ...lie.special import wrap
 
     mu = model.mean().applyfunc(sub)
     mu_q = mu.subs(dict(zip(model.internal, qsyms)), simultaneous=True)
@@ -214,59 +215,7 @@ def store_step_kernel(model, step: Kernel) -> Kernel:
     )
 
 
-SOA_SMOOTH_TEMPLATE = '''
-@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
-    """smooth_batch with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), over a forward pass stored
-    in blocks by run_batch_store_soa_<meas>: Qb, Fb (nblk, K, {R}, {lanes}) hold the predicted / posterior internal
-    state and packed covariance of step k of trajectory blk·{lanes} + j in Qb[blk, k, :, j]; writes the smoothed ones
-    into Sb (same layout; pass Sb with no steps, (nblk, 0, {R}, {lanes}), to skip them) and the smoothed physical
-    states into out_x (B, K, {n}). Trajectory b starts at its last
-    step lengths[b] − 1 (smoothed = filtered there); entries past its length are left unset. Per block (prange) and
-    step, the rows are copied into one work array (rows × {lanes}) and lane_smooth runs vectorised over the lanes.
-    """
-    B = dts.shape[0]
-    nblk = Qb.shape[0]
-    keep = Sb.shape[1] > 0
-    for blk in nb.prange(nblk):
-        lo = blk * {lanes}
-        L = min({lanes}, B - lo)
-        W = np.zeros({rows} * {lanes})
-        Kmax = 0
-        for j in range(L):
-            Kmax = max(Kmax, lengths[lo + j])
-        for k in range(Kmax - 1, -1, -1):
-            for i in range({R}):
-                for j in range({lanes}):
-                    W[({SF} + i) * {lanes} + j] = Fb[blk, k, i, j]
-            for j in range(L):
-                Kb = lengths[lo + j]
-                W[{ACT} * {lanes} + j] = 1.0 if k < Kb - 1 else 0.0
-                W[{START} * {lanes} + j] = 1.0 if k == Kb - 1 else 0.0
-            if k < Kmax - 1:
-                for i in range({R}):
-                    for j in range({lanes}):
-                        W[({SQ} + i) * {lanes} + j] = Qb[blk, k + 1, i, j]
-                for j in range(L):
-                    W[{DT} * {lanes} + j] = dts[lo + j, k + 1]
-                for j in range(L):
-                    lane_smooth(W, j)
-                for i in range({R}):
-                    for j in range({lanes}):
-                        act = W[{ACT} * {lanes} + j] > 0.5
-                        W[({SS} + i) * {lanes} + j] = W[({SO} + i) * {lanes} + j] if act else W[({SS} + i) * {lanes} + j]
-            for i in range({R}):
-                for j in range({lanes}):
-                    start = W[{START} * {lanes} + j] > 0.5
-                    W[({SS} + i) * {lanes} + j] = W[({SF} + i) * {lanes} + j] if start else W[({SS} + i) * {lanes} + j]
-            if keep:
-                for i in range({R}):
-                    for j in range({lanes}):
-                        Sb[blk, k, i, j] = W[({SS} + i) * {lanes} + j]
-            for j in range(L):
-                if k < lengths[lo + j]:
-                    physical_smooth_lane(W, j, out_x, lo + j, k)
-'''
+SOA_SMOOTH_TEMPLATE = load("smooth_soa.py.tmpl")
 
 
 def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
@@ -275,7 +224,7 @@ def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
     a forward pass stored in blocks, as derive/codegen/soa.py runs the filter)."""
     import re
 
-    from .printer import render_kernel
+    from ..printer import render_kernel
     from .soa import _DECO, LANES, _vectorise
 
     ni, npk = len(model.internal), model.n * (model.n + 1) // 2
@@ -306,51 +255,7 @@ def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
     return [("lane_smooth", src), ("physical_smooth_lane", psrc), ("smooth_batch_soa", driver)]
 
 
-SOA_STORE_TEMPLATE = '''
-@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_store_soa_{meas}(z, dts, x0, p0, q, r, Qb, Fb, out_nis, out_logdet, out_x):
-    """run_batch_store_{meas} with trajectories in the SIMD lanes (derive/codegen/smooth_step.py), the same results
-    with the states stored in blocks: Qb, Fb (nblk, K, {R}, {lanes}), nblk = ⌈B / {lanes}⌉, get the predicted /
-    posterior internal state and packed covariance of step k of trajectory blk·{lanes} + j in Qb[blk, k, :, j]
-    (lanes past B: zeros). As run_batch_soa_{meas} (prange over blocks, lane_store_{meas} vectorised over the lanes,
-    a lane failing the LDLᵀ test or with a NaN row redone by the scalar predict / update_{meas})."""
-    B = z.shape[0]
-    K = z.shape[1]
-''' + SOA_BLOCK_LOOP.replace("{lane}", "lane_store_{meas}") + '''            for j in range(L):
-                b = lo + j
-                if W[{OK} * {lanes} + j] == 0.0:
-                    for i in range({ni}):
-                        s[i] = W[({S} + i) * {lanes} + j]
-                    for i in range({npk}):
-                        p[i] = W[({P} + i) * {lanes} + j]
-                    predict(s, p, dts[b, k], {qargs})
-                    for i in range({ni}):
-                        W[({SQ} + i) * {lanes} + j] = s[i]
-                    for i in range({npk}):
-                        W[({PQ} + i) * {lanes} + j] = p[i]
-                    if {nan_test}:
-                        W[{NIS} * {lanes} + j] = np.nan
-                        out_logdet[b, k] = np.nan
-                    else:
-                        out_logdet[b, k] = innovation_logdet_{meas}(s, p, {rargs})
-                        W[{NIS} * {lanes} + j] = update_{meas}(s, p, {zargs}, {rargs})
-                    for i in range({ni}):
-                        W[({SN} + i) * {lanes} + j] = s[i]
-                    for i in range({npk}):
-                        W[({PN} + i) * {lanes} + j] = p[i]
-                else:
-                    out_logdet[b, k] = -math.log(W[{LD} * {lanes} + j])
-            for j in range(L):
-                out_nis[lo + j, k] = W[{NIS} * {lanes} + j]
-                physical_lane(W, j, out_x, lo + j, k)
-            for i in range({ni} + {npk}):
-                for j in range({lanes}):
-                    Qb[blk, k, i, j] = W[({SQ} + i) * {lanes} + j]
-                    Fb[blk, k, i, j] = W[({SN} + i) * {lanes} + j]
-            for i in range({ni} + {npk}):
-                for j in range(L):
-                    W[({S} + i) * {lanes} + j] = W[({SN} + i) * {lanes} + j]
-'''
+SOA_STORE_TEMPLATE = load("store_soa.py.tmpl").replace("$block_loop\n", SOA_BLOCK_LOOP.replace("{lane}", "lane_store_{meas}"))
 
 
 def store_soa_kernels(model, meas, store: Kernel) -> list:
@@ -359,7 +264,7 @@ def store_soa_kernels(model, meas, store: Kernel) -> list:
     layout of derive/codegen/soa.py with rows for the prediction and 1/det S after its own."""
     import re
 
-    from .printer import render_kernel
+    from ..printer import render_kernel
     from .soa import _DECO, LANES, Layout, _soa_sources, _vectorise
 
     lay = Layout(model, meas.m)

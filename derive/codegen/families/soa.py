@@ -27,11 +27,12 @@ import re
 from dataclasses import replace
 
 
-from ..algebra import packed_index
-from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
-from .printer import render_kernel
+from ...algebra import packed_index
+from ...lie.special import ANGLE_FUNCTIONS, taylor_coefficients
+from ..printer import render_kernel
+from ..template import load
 
-__all__ = ["LANES", "vector_helpers_source", "VECTOR_NAMES", "soa_model_kernels", "soa_measurement_kernels"]
+__all__ = ["LANES", "vector_helpers_source", "VECTOR_NAMES", "soa_model_kernels", "soa_measurement_kernels", "kernels"]
 
 LANES = 64
 VECTOR_NAMES = ["sin_v", "cos_v", "atan2_v", "wrap_v", "wrap_sum_v", "gain_damping_v"] + [f"{f.__name__}_v" for f in ANGLE_FUNCTIONS]
@@ -46,101 +47,22 @@ def _horner(coeffs, var="x2"):
 
 
 def vector_helpers_source() -> str:
-    """numba source of the branch-free helpers (appended to generated/special.py)."""
+    """numba source of the branch-free helpers (appended to generated/special.py; templates soa_vector_helpers.py.tmpl
+    and soa_angle_v.py.tmpl)."""
     sin_c = [(-1) ** k / math.factorial(2 * k + 1) for k in range(1, 9)]
     cos_c = [(-1) ** k / math.factorial(2 * k) for k in range(1, 10)]
     atan_c = [(-1) ** k / (2 * k + 1) for k in range(0, 9)]
-    tans = [math.tan(k * math.pi / 16) for k in range(5)]
-    thr = [math.tan((2 * k + 1) * math.pi / 32) for k in range(4)]
-    out = [f'''
-
-# ---------------------------------------------------------------- branch-free helpers of the SIMD kernels
-# (derive/codegen/soa.py): both sides of every branch are evaluated and selected, so LLVM can vectorise a loop
-# whose body calls them (they are inlined by numba).
-
-{_DECO}
-def _sin_cos_r(x):
-    """(r, q): x = q·π/2 + r, |r| ≤ π/4 (Cody–Waite, π/2 in three parts), q mod 4 as a float."""
-    kf = math.floor(x * 0.6366197723675814 + 0.5)
-    r = ((x - kf * 1.5707963267341256) - kf * 6.077100506506192e-11) - kf * 2.0222662487959506e-21
-    return r, kf - 4.0 * math.floor(kf * 0.25)
-
-
-{_DECO}
-def sin_v(x):
-    """sin x without branches: degree-17/18 Taylor polynomials on the reduced argument (error bound: soa.py)."""
-    r, q = _sin_cos_r(x)
-    r2 = r * r
-    sp = r + r * r2 * ({_horner(sin_c, "r2")})
-    cp = 1.0 + r2 * ({_horner(cos_c, "r2")})
-    v = cp if (q == 1.0) | (q == 3.0) else sp
-    return -v if q >= 2.0 else v
-
-
-{_DECO}
-def cos_v(x):
-    """cos x without branches (as sin_v)."""
-    r, q = _sin_cos_r(x)
-    r2 = r * r
-    sp = r + r * r2 * ({_horner(sin_c, "r2")})
-    cp = 1.0 + r2 * ({_horner(cos_c, "r2")})
-    v = sp if (q == 1.0) | (q == 3.0) else cp
-    return -v if (q == 1.0) | (q == 2.0) else v
-
-
-{_DECO}
-def atan2_v(y, x):
-    """atan2(y, x) ∈ [-π, π] without branches: t = min/max(|x|, |y|) ∈ [0, 1] reduced by the nearest tan(kπ/16),
-    k = 0..4, to |t'| ≤ tan(π/32), Taylor polynomial of degree 17 (truncation < 1e-18)."""
-    ax = abs(x)
-    ay = abs(y)
-    mx = max(ax, ay)
-    t = min(ax, ay) / mx if mx > 0.0 else 0.0
-    k = (1.0 if t > {thr[0]!r} else 0.0) + (1.0 if t > {thr[1]!r} else 0.0) + (1.0 if t > {thr[2]!r} else 0.0) + (1.0 if t > {thr[3]!r} else 0.0)
-    c = {tans[1]!r} if k == 1.0 else ({tans[2]!r} if k == 2.0 else ({tans[3]!r} if k == 3.0 else (1.0 if k == 4.0 else 0.0)))
-    u = (t - c) / (1.0 + t * c)
-    u2 = u * u
-    a = k * 0.19634954084936207 + u * ({_horner(atan_c, "u2")})
-    a = 1.5707963267948966 - a if ay > ax else a
-    a = 3.141592653589793 - a if x < 0.0 else a
-    return -a if (y < 0.0) | ((y == 0.0) & (math.copysign(1.0, y) < 0.0)) else a
-
-
-{_DECO}
-def wrap_v(a):
-    """a wrapped to (-π, π] without branches (wrap_angle's formula, selected)."""
-    r = a - 6.283185307179586 * math.floor((a + 3.141592653589793) / 6.283185307179586)
-    r = r + 6.283185307179586 if r <= -3.141592653589793 else r
-    return a if (a > -3.141592653589793) & (a <= 3.141592653589793) else r
-
-
-{_DECO}
-def wrap_sum_v(a, y):
-    """wrap_angle_sum without branches: wrap(a), with the sign of y beyond ±π/2."""
-    w = wrap_v(a)
-    return math.copysign(abs(w), y) if abs(w) > 1.5707963267948966 else w
-
-
-{_DECO}
-def gain_damping_v(a, b):
-    """min(1, π / max(|a|, |b|)) without branches (gain_damping)."""
-    m = max(abs(a), abs(b))
-    return 1.0 if m <= 3.141592653589793 else 3.141592653589793 / m
-''']
+    tans = {f"tan{k}": repr(math.tan(k * math.pi / 16)) for k in range(5)}
+    thr = {f"thr{k}": repr(math.tan((2 * k + 1) * math.pi / 32)) for k in range(4)}
+    out = [load("soa_vector_helpers.py.tmpl").format(deco=_DECO, sin_poly=_horner(sin_c, "r2"), cos_poly=_horner(cos_c, "r2"),
+                                                       atan_poly=_horner(atan_c, "u2"), **tans, **thr)]
     for f in ANGLE_FUNCTIONS:
         coeffs = taylor_coefficients(f)
         if f.parity == 1:
             poly = _horner([coeffs[k] for k in range(0, len(coeffs), 2)])
         else:
             poly = f"x * ({_horner([coeffs[k] for k in range(1, len(coeffs), 2)])})"
-        out.append(f'''
-
-{_DECO}
-def {f.__name__}_v(x, s, c):
-    """{f.__name__} without branches: Taylor polynomial and closed form both evaluated, selected at |x| < {f.tau!r}."""
-    x2 = x * x
-    return ({poly}) if abs(x) < {f.tau!r} else ({f.stable})
-''')
+        out.append(load("soa_angle_v.py.tmpl").format(deco=_DECO, name=f.__name__, tau=repr(f.tau), poly=poly, stable=f.stable))
     return "".join(out)
 
 
@@ -216,68 +138,9 @@ def soa_model_kernels(model, physical_kernel) -> list:
 # the block loop of the SIMD drivers (run_batch_soa_<meas> here, run_batch_store_soa_<meas> in smooth_step.py): a
 # block's states into the work array W, then per step the lane kernel ``{lane}`` over the lanes and the LDLᵀ /
 # NaN verdict per lane in row OK; the driver's own code follows (it redoes the failed lanes and writes its outputs)
-SOA_BLOCK_LOOP = '''    nblk = (B + {lanes} - 1) // {lanes}
-    for blk in nb.prange(nblk):
-        lo = blk * {lanes}
-        L = min({lanes}, B - lo)
-        W = np.zeros({rows} * {lanes})
-        s = np.empty({ni})
-        p = np.empty({npk})
-        for j in range(L):
-            s0 = state_from_physical(x0[lo + j])
-            for i in range({ni}):
-                W[({S} + i) * {lanes} + j] = s0[i]
-            for i in range({npk}):
-                W[({P} + i) * {lanes} + j] = p0[lo + j, i]
-        for k in range(K):
-            for j in range(L):
-                W[{DT} * {lanes} + j] = dts[lo + j, k]
-{zload}
-            for j in range(L):
-                W[{NIS} * {lanes} + j] = {lane}(W, j, {qargs}, {rargs})
-                good = covariance_is_pd_lane(W, j) & (W[{NIS} * {lanes} + j] == W[{NIS} * {lanes} + j])
-                W[{OK} * {lanes} + j] = 1.0 if good else 0.0
-'''
+SOA_BLOCK_LOOP = load("soa_block_loop.py.tmpl")
 
-SOA_TEMPLATE = '''
-@nb.njit(cache=True, parallel=True, fastmath=FASTMATH, error_model="numpy")
-def run_batch_soa_{meas}(z, dts, x0, p0, q, r, out_x, out_p, out_nis):
-    """run_batch_{meas} with trajectories in the SIMD lanes (derive/codegen/soa.py): same arguments and results.
-
-    Blocks of {lanes} trajectories (prange over blocks); in a block every per-trajectory quantity is a row of one
-    work array (rows × {lanes}) and lane_{meas} runs vectorised over the lanes; a lane failing the LDLᵀ test or with
-    a NaN row (NaN NIS) is redone by the scalar predict / update_{meas}.
-    """
-    B = z.shape[0]
-    K = z.shape[1]
-    keep_p = out_p.shape[1] == K
-''' + SOA_BLOCK_LOOP.replace("{lane}", "lane_{meas}") + '''            for j in range(L):
-                if W[{OK} * {lanes} + j] == 0.0:
-                    b = lo + j
-                    for i in range({ni}):
-                        s[i] = W[({S} + i) * {lanes} + j]
-                    for i in range({npk}):
-                        p[i] = W[({P} + i) * {lanes} + j]
-                    predict(s, p, dts[b, k], {qargs})
-                    if {nan_test}:
-                        W[{NIS} * {lanes} + j] = np.nan
-                    else:
-                        W[{NIS} * {lanes} + j] = update_{meas}(s, p, {zargs}, {rargs})
-                    for i in range({ni}):
-                        W[({SN} + i) * {lanes} + j] = s[i]
-                    for i in range({npk}):
-                        W[({PN} + i) * {lanes} + j] = p[i]
-            for j in range(L):
-                out_nis[lo + j, k] = W[{NIS} * {lanes} + j]
-                physical_lane(W, j, out_x, lo + j, k)
-            if keep_p:
-                for j in range(L):
-                    for i in range({npk}):
-                        out_p[lo + j, k, i] = W[({PN} + i) * {lanes} + j]
-            for i in range({ni} + {npk}):
-                for j in range(L):
-                    W[({S} + i) * {lanes} + j] = W[({SN} + i) * {lanes} + j]
-'''
+SOA_TEMPLATE = load("soa_batch.py.tmpl").replace("$block_loop\n", SOA_BLOCK_LOOP.replace("{lane}", "lane_{meas}"))
 
 
 def soa_measurement_kernels(model, meas, step_kernel) -> list:
@@ -307,3 +170,12 @@ def soa_measurement_kernels(model, meas, step_kernel) -> list:
         nan_test=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
     )
     return [(f"lane_{meas.name}", src), (f"run_batch_soa_{meas.name}", driver)]
+
+
+def kernels(model, measurements: dict, built) -> list:
+    """The family's entry (``derive.codegen.emitter``): per measurement ``lane_<meas>`` and ``run_batch_soa_<meas>``
+    (slot ``soa``), and the model's ``covariance_is_pd_lane``, ``physical_lane`` (slot ``soa_model``)."""
+    out = []
+    for meas in measurements.values():
+        out += [(("soa", meas.name), k) for k in soa_measurement_kernels(model, meas, built.named(f"step_try_{meas.name}"))]
+    return out + [("soa_model", k) for k in soa_model_kernels(model, built.named("physical_into"))]

@@ -41,10 +41,11 @@ from __future__ import annotations
 
 import sympy as sp
 
-from ..algebra import LEGEND, lg_update, packed_index, sym_cov
-from .printer import Kernel, RawStage
+from ...algebra import LEGEND, lg_update, packed_index, sym_cov
+from ..printer import Kernel, RawStage
+from ..template import load
 
-__all__ = ["fused_step_kernel", "step_wrapper", "angle_cap_lines", "fallback_lines", "FALLBACK"]
+__all__ = ["fused_step_kernel", "step_wrapper", "angle_cap_lines", "fallback_lines", "FALLBACK", "kernels"]
 
 
 def angle_cap_lines(Pp: sp.Matrix, angles: tuple) -> list[str]:
@@ -63,17 +64,7 @@ def angle_cap_lines(Pp: sp.Matrix, angles: tuple) -> list[str]:
     return lines
 
 
-STEP_TEMPLATE = '''
-@nb.njit(cache=True)
-def step_{meas}({params}):
-    """One LG-EKF step with a {meas} measurement, in place; returns the NIS: ``step_try_{meas}``, and on the rare
-    step whose cheap covariance fails the LDLᵀ test, ``update_{meas}`` (Joseph form) from the prediction
-    (derive/codegen/fused.py)."""
-    nis = step_try_{meas}({params})
-    if nis < 0.0:
-        nis = update_{meas}({update_args})
-    return nis
-'''
+STEP_TEMPLATE = load("step.py.tmpl")
 
 #: what ``step_try_<meas>`` returns instead of the NIS (never negative) when the caller must redo the update
 FALLBACK = -1.0
@@ -143,3 +134,12 @@ def step_wrapper(model, meas) -> tuple[str, str]:
     return (f"step_{meas.name}", STEP_TEMPLATE.format(meas=meas.name, params=", ".join(params),
                                                       qargs=", ".join(model.noise_names),
                                                       update_args=", ".join(["s", "p", *z_params, *meas.noise_names])))
+
+
+def kernels(model, measurements: dict, built) -> list:
+    """The family's entry (``derive.codegen.emitter``): ``step_try_<meas>`` and ``step_<meas>`` of each measurement."""
+    out = []
+    for meas in measurements.values():
+        step = fused_step_kernel(model, meas, built.P, built.pin, built.sin_, built.predict_parts, sp.Symbol("dt", positive=True))
+        out += [(("step", meas.name), step), (("step", meas.name), step_wrapper(model, meas))]
+    return out

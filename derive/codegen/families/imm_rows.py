@@ -36,9 +36,10 @@ from __future__ import annotations
 import re
 from dataclasses import replace
 
-from .printer import Kernel, RawStage
+from ..printer import Kernel, RawStage
+from ..template import load
 
-__all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE"]
+__all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE", "kernels"]
 
 #: (kernel, name of the row variant, {array parameter: columns of its 2-D form, or None for a vector})
 ROW_KERNELS = (
@@ -80,47 +81,7 @@ def row_variant(k: Kernel, name: str, arrays: dict, ret: str | None = None, doc:
     )
 
 
-MIX_TEMPLATE = '''
-@nb.njit(cache=True, error_model="numpy")
-def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
-    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
-    covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
-    mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
-    |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the
-    iterations used (derive/codegen/imm_rows.py)."""
-    best = 0
-    for i in range(M):
-        if ws[rw, i] > ws[rw, best]:
-            best = i
-    for k in range({ni}):
-        ws[rs, k] = ws[rS + best, k]
-    it = 0
-    if M > 1:
-        for it in range(1, 51):
-            for k in range({n}):
-                ws[rd, k] = 0.0
-            for i in range(M):
-                w = ws[rw, i]
-                if w > 0.0 and not (i == best and it == 1):  # d_best = 0 in the first iteration
-                    between_add_at(ws, rs, rS + i, w, rd)
-            retract_at(ws, rs, rd)
-            nrm = 0.0
-            for k in range({n}):
-                nrm += ws[rd, k] * ws[rd, k]
-            if nrm < 1e-24:
-                break
-    if M == 1:
-        for k in range({npk}):
-            ws[rp, k] = ws[rPp, k]
-        return it
-    for k in range({npk}):
-        ws[rp, k] = 0.0
-    for i in range(M):
-        w = ws[rw, i]
-        if w > 0.0:
-            mix_transport_at(ws, rs, rS + i, rPp + i, w, rp)
-    return it
-'''
+MIX_TEMPLATE = load("mix_on_group.py.tmpl")
 
 
 def imm_row_kernels(model, kernels) -> list:
@@ -162,3 +123,8 @@ def dispatch_chains(chain, names: list, models: dict, fits: dict, measurements: 
             return f"{n}.step_ll_{mname}(ws, js, jp, dt, {q}, {z}, {r})"
         funcs.append(chain(f"step_ll_{mname}", "ws, js, jp, dt, jq, jz, jr", names, call, True))
     return funcs
+
+
+def kernels(model, measurements: dict, built) -> list:
+    """The family's entry (``derive.codegen.emitter``): the row variants of the model's kernels built so far."""
+    return [("imm_rows", k) for k in imm_row_kernels(model, built.ordered())]
