@@ -21,7 +21,7 @@ import numpy as np  # noqa: E402
 
 from lgekf import filter_batch  # noqa: E402
 from lgekf.core.common import covariance_from_common, state_from_common  # noqa: E402
-from lgekf.estimators.imm import imm_batch, parse_modes  # noqa: E402
+from lgekf.estimators.imm.estimator import imm_batch, parse_modes  # noqa: E402
 
 CASES = ["se2r3:calm,se2r3:manoeuvre", "cv,se2r3", "cv,ctrv,se2r3", "se2se2:calm,se2se2:manoeuvre"]
 

@@ -2515,7 +2515,7 @@ def between_add(s, t, w, acc):
 def mix_transport(s, t, pt, w, acc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
-    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    to first order; lgekf.estimators.imm.kernels). Straight line over the non-zero entries of Φ^-1.
     """
     x = s[0]
     y = s[1]
@@ -2734,7 +2734,7 @@ def between_add_at(ws, js, jt, w, jacc):
 def mix_transport_at(ws, js, jt, jpt, w, jacc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)
-    to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1.
+    to first order; lgekf.estimators.imm.kernels). Straight line over the non-zero entries of Φ^-1.
     On rows of ws: s = ws[js], t = ws[jt], pt = ws[jpt], acc = ws[jacc] (derive/codegen/imm_rows.py).
     """
     x = ws[js, 0]
@@ -3077,7 +3077,7 @@ def step_ll_position(ws, js, jp, dt, sigma_a, z_x, z_y, r):
 
 @nb.njit(cache=True, error_model="numpy")
 def mix_on_group_at(ws, M, rw, rs, rp, rS, rPp, rd):
-    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm_kernels): the sources' states ws[rS + i], packed
+    """Σ_i w_i N_G(μ_i, P_i) → N_G(μ, P) (lgekf.estimators.imm.kernels): the sources' states ws[rS + i], packed
     covariances ws[rPp + i], weights ws[rw, i] (i < M); μ into ws[rs], packed P into ws[rp]; ws[rd] scratch (the
     mean iteration's Σ w_i d_i). The mean: μ ← μ·exp(Σ w_i d_i) from the most probable source until
     |Σ w_i d_i| < 1e-12 (at most 50 iterations); P = Σ w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ]. Returns the

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.initiation import two_point
-from ..estimators.imm import Mode, imm_batch
+from ..estimators.imm.estimator import Mode, imm_batch
 from .divergence import Alarm, MonitorConfig
 
 __all__ = ["Segment", "ImmRun", "imm_monitored", "first_imm_alarm", "scaled_modes"]

@@ -412,7 +412,6 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
     m = spec.n * 2 + len(MOTION_COLUMNS) + (spec.n_packed if full_cov else 0) + 1
-    ncol = m + (2 if origin else 0) + 1 + (2 * spec.n if smooth else 0)
     col_digits, t_digits = output_digits(columns[2:], digits, meas.z, meas.t)  # digits None: positions to 0.1 mm, t to 1 µs
     col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
 

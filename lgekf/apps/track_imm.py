@@ -18,12 +18,12 @@ maximum likelihood on the file's own tracks (``lgekf.apps.smooth_track.tune_mode
 the learned noise × their level factor (0.2, 4; ``lgekf.estimators.imm.NOISE_LEVELS``), ``MODEL:a/b/c`` keeps
 its numbers. The measurement std is ``--meas-std`` when given (then held fixed in the fits), else the one
 learned by the fit with the highest log-likelihood. Then the IMM itself is fitted by its own likelihood
-(:func:`fit_imm`, ``lgekf.estimators.imm_tuning.learn_imm``): one factor per mode on that noise, and the
+(:func:`fit_imm`, ``lgekf.estimators.imm.tuning.learn_imm``): one factor per mode on that noise, and the
 switching probability unless ``--imm-switch`` is given. Without ``--imm-modes`` the mode sets of
 ``TUNE_MODE_SETS`` are fitted (the default; CV calm and manoeuvring; those two and a manoeuvring SE(2)×R³) and
 the one of lowest AIC is kept.
 
-``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm_smoother``) combined estimate
+``--smooth``: after ``flag``, the IMM smoother's (``lgekf.estimators.imm.smoother``) combined estimate
 ``smooth_<x|y|theta|vx|vy|omega>``, its stds ``smooth_std_<...>`` and the smoothed mode probabilities
 ``smooth_mu_<mode>``, over each monitored segment (split at re-initialisations; the rows of a start or
 re-initialisation repeat the filter columns, as for ``lgekf track --smooth``); the filter columns are the same
@@ -39,7 +39,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT
-from ..estimators.imm import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
+from ..estimators.imm.estimator import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes, output_digits
 from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
@@ -143,7 +143,7 @@ def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmT
     (uniform mode probabilities), rows >= 2 the IMM's posteriors (as ``lgekf.apps.track.track_arrays``).
     ``monitor``: the divergence monitor and recovery of ``lgekf.apps.imm_monitor`` (None: unmonitored).
     With ``smooth`` also the smoothed (c, stds, mode probabilities), a 6-tuple: the IMM smoother
-    (``lgekf.estimators.imm_smoother``) over each monitored segment (split at re-initialisations) from the same start
+    (``lgekf.estimators.imm.smoother``) over each monitored segment (split at re-initialisations) from the same start
     and noise as the filter; the filter's rows are never changed by it. A row the smoother leaves non-finite gets the
     filter's values (the object is named in ``failed``). ``full``: return ``ImmTracked`` (adds flags, alarms, the
     objects whose smoothing failed).
@@ -187,7 +187,7 @@ def _smooth_object(t, z, run, opts: ImmTrackOptions, meas_std: float, filt, out)
     """The smoothed columns of one object (``out`` = (c, sd, mu) views of its rows), segment by segment; rows outside
     the segments (the starts and re-initialisations) repeat the filter's. False when a smoothed row is implausible
     (``smooth_track.implausible_rows``: non-finite, or far off the filter's): then every row keeps the filter's values."""
-    from ..estimators.imm_smoother import imm_smooth_batch
+    from ..estimators.imm.smoother import imm_smooth_batch
 
     for dst, src in zip(out, filt):
         dst[:] = src
@@ -263,7 +263,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
 
 
 def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, learned: dict, seed: int = 0, say=None):
-    """The IMM fitted to ``tracks`` by its own likelihood (``lgekf.estimators.imm_tuning.learn_imm``), in place.
+    """The IMM fitted to ``tracks`` by its own likelihood (``lgekf.estimators.imm.tuning.learn_imm``), in place.
 
     Every candidate mode set (``opts.candidates()``) starts from its models' learned noise ``learned``
     ({model: accel_std}) times the named levels, and its modes' factors and the switching probability (unless
@@ -278,7 +278,7 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
     table : list of (str, ImmFit or str)
         Every candidate with its fit, or why it could not be fitted.
     """
-    from ..estimators.imm_tuning import learn_imm
+    from ..estimators.imm.tuning import learn_imm
 
     tracks = list(tracks)
     steps = np.array([max(len(t) - 2, 0) for t, _ in tracks])
@@ -371,7 +371,6 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     res = imm_track_classes(t, meas.z, starts, classes, omega_std, smooth, monitor)
     for b in res.smooth_failed:
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
-    ncol = 14 + M + (2 if origin else 0) + 1 + ((12 + M) if smooth else 0)
     col_digits, t_digits = output_digits(imm_columns(opts, origin, smooth)[2:], digits, meas.z, t)  # None: 0.1 mm, 1 µs
     v = common_world_velocity(res.c)
     parts = [res.c, res.sd, np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])]), res.mu]

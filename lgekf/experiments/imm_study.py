@@ -6,7 +6,7 @@ stds given in the mode (``se2r3:0.1/0.1/0.5``, used as given at every σ_ω); th
 estimate as every filter (common coordinates, covariance P0_phys); common random numbers as for the filters.
 
 The IMM's Markov chain (the transition matrix and the initial mode probabilities; nothing in the truth defines
-them) is, by default, **learned at each σ_ω** like the noise is matched: :func:`lgekf.estimators.imm_chain.learn_chain`
+them) is, by default, **learned at each σ_ω** like the noise is matched: :func:`lgekf.estimators.imm.chain.learn_chain`
 fits every transition probability by the IMM's own likelihood on ``train_trajectories`` independent training
 trajectories simulated with the study's protocol at that σ_ω (their own random numbers, from the seed sequence
 [seed, 1]; common to every σ_ω), each started like the study's filters; the IMM then starts from the fitted
@@ -23,11 +23,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..estimators.imm import NOISE_LEVELS, Mode, imm_batch, parse_modes
+from ..estimators.imm.estimator import NOISE_LEVELS, Mode, imm_batch, parse_modes
 from .metrics import position_rmse
 
 if TYPE_CHECKING:
-    from ..estimators.imm_chain import ChainFit
+    from ..estimators.imm.chain import ChainFit
 
 __all__ = ["IMM_FILTER", "ImmStudyOptions", "DEFAULT_STUDY_MODES", "DEFAULT_STUDY_SWITCH", "DEFAULT_TRAIN_TRAJECTORIES",
            "imm_options_record", "imm_study_rmse", "study_chain", "training_draws"]
@@ -72,7 +72,7 @@ class ImmStudyOptions:
         ValueError
             Bad modes or switch, fewer than 2 training trajectories, or training draws too few or too many.
         """
-        from ..estimators.imm import transition_matrix
+        from ..estimators.imm.estimator import transition_matrix
         from ..estimators.noise.tuning import MIN_UPDATES_PER_PARAMETER
 
         M = len(parse_modes(self.modes))
@@ -159,9 +159,9 @@ def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float) -> "ChainFit":
 
     Returns
     -------
-    lgekf.estimators.imm_chain.ChainFit
+    lgekf.estimators.imm.chain.ChainFit
     """
-    from ..estimators.imm_chain import learn_chain
+    from ..estimators.imm.chain import learn_chain
     from .simulate import simulate
 
     B = int(opts.train_trajectories)

@@ -1,4 +1,4 @@
-"""The IMM's row variants (derive/codegen/imm_rows.py) and its fused step path (lgekf.estimators.imm_kernels).
+"""The IMM's row variants (derive/codegen/imm_rows.py) and its fused step path (lgekf.estimators.imm.kernels).
 
 * every ``<kernel>_at`` equals its original kernel exactly when its arguments are rows of one workspace, and
   ``step_ll_<meas>`` equals ``step_try_<meas>`` with 1/det S equal to ``innovation_logdet_<meas>`` at the predicted
@@ -102,8 +102,8 @@ def test_step_ll_is_the_fused_step_with_its_innovation_determinant(model, meas):
 @pytest.mark.parametrize("case,meas", [("se2r3:calm,se2r3:manoeuvre", "position"), ("cv,ctrv,se2r3", "position"),
                                        ("se2se2:calm,se2se2:manoeuvre", "pose")])
 def test_imm_step_equals_predict_then_update(case, meas):
-    from lgekf.estimators.imm import _common_inputs, _Setup
-    from lgekf.estimators.imm_kernels import imm_predict, imm_step, imm_update, workspace
+    from lgekf.estimators.imm.estimator import _common_inputs, _Setup
+    from lgekf.estimators.imm.kernels import imm_predict, imm_step, imm_update, workspace
 
     r = [0.5, 0.5, 0.05] if meas == "pose" else 0.5
     s = _Setup(case, None, r, meas, None)
@@ -136,8 +136,8 @@ def test_imm_step_equals_predict_then_update(case, meas):
 
 def test_imm_loglik_one_sums_imm_step():
     """The log-likelihood runner on the workspace equals imm_step called step by step (missed steps not counted)."""
-    from lgekf.estimators.imm import _common_inputs, _Setup
-    from lgekf.estimators.imm_kernels import imm_loglik_one, imm_step, workspace
+    from lgekf.estimators.imm.estimator import _common_inputs, _Setup
+    from lgekf.estimators.imm.kernels import imm_loglik_one, imm_step, workspace
 
     s = _Setup("cv,se2r3", None, 0.5, "position", None)
     c, Pc = _common_inputs(np.array([[0.0, 0.0, 0.2, 3.0, 0.0, 0.1]]), np.diag([0.25, 0.25, 0.01, 0.25, 0.25, 0.01]))

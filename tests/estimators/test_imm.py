@@ -1,4 +1,4 @@
-"""IMM (lgekf.estimators.imm): mixing on the group against a dense Monte Carlo reference, the common-coordinate
+"""IMM (lgekf.estimators.imm.estimator): mixing on the group against a dense Monte Carlo reference, the common-coordinate
 read-out, reduction to the single filter with one mode, mode switching, bad options."""
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from lgekf import filter_batch
 from lgekf.core.common import covariance_from_common, state_from_common
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
-from lgekf.estimators.imm import IMM, imm_batch, parse_modes, transition_matrix
+from lgekf.estimators.imm.estimator import IMM, imm_batch, parse_modes, transition_matrix
 from lgekf.generated.dispatch import MODEL_NAMES
 
 LG_MODELS = [m for m in MODELS if get_model(m).periodic_tangent]
@@ -77,7 +77,7 @@ def test_group_mixing_matches_dense_monte_carlo(model):
     """Two concentrated Gaussians on the group, 0.5 rad apart: our reduction (iterated mean, Φ(dᵢ)⁻¹-transported
     covariances + dᵢdᵢᵀ) against the Monte Carlo mixture through dense expm/logm; the untransported covariance
     (Φ = I) is measurably further off, so the check can tell the Jacobian."""
-    from lgekf.estimators.imm_kernels import mix_on_group, workspace
+    from lgekf.estimators.imm.kernels import mix_on_group, workspace
 
     spec = get_model(model)
     k = spec.kernels

@@ -1,4 +1,4 @@
-"""The IMM's Markov chain learned by maximum likelihood (lgekf.estimators.imm_chain) and the study's IMM that uses
+"""The IMM's Markov chain learned by maximum likelihood (lgekf.estimators.imm.chain) and the study's IMM that uses
 it at each σ_ω (lgekf.experiments.imm_study)."""
 
 from __future__ import annotations
@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from _imm_numpy import numpy_cv_imm_loglik
 
-from lgekf.estimators.imm import Mode, imm_batch
-from lgekf.estimators.imm_chain import chain_log_likelihood, learn_chain, stationary_distribution
+from lgekf.estimators.imm.estimator import Mode, imm_batch
+from lgekf.estimators.imm.chain import chain_log_likelihood, learn_chain, stationary_distribution
 
 
 def test_stationary_distribution():

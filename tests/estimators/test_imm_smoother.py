@@ -1,4 +1,4 @@
-"""IMM smoother (lgekf.estimators.imm_smoother): one mode = the single-model RTS smoother; on calm → manoeuvre →
+"""IMM smoother (lgekf.estimators.imm.smoother): one mode = the single-model RTS smoother; on calm → manoeuvre →
 calm trajectories it beats the filtered IMM in position and its mode probabilities switch earlier and cleaner;
 ``lgekf track --model imm --tune --smooth`` end to end."""
 
@@ -10,8 +10,8 @@ import pytest
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
 from lgekf.core.rts import forward_store, smooth_stored
-from lgekf.estimators.imm import _Setup
-from lgekf.estimators.imm_smoother import imm_smooth_batch, imm_smooth_one, smoothed_mode_probabilities
+from lgekf.estimators.imm.estimator import _Setup
+from lgekf.estimators.imm.smoother import imm_smooth_batch, imm_smooth_one, smoothed_mode_probabilities
 
 LG = next(m for m in MODELS if get_model(m).periodic_tangent and len(get_model(m).internal_names) > get_model(m).n)
 

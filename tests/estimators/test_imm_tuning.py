@@ -1,4 +1,4 @@
-"""The IMM fitted by maximum likelihood (lgekf.estimators.imm_tuning): its likelihood against an independent
+"""The IMM fitted by maximum likelihood (lgekf.estimators.imm.tuning): its likelihood against an independent
 numpy Kalman filter, its reduction with identical modes, and recovery of known noise levels and switching."""
 
 import math
@@ -9,8 +9,8 @@ from _imm_numpy import numpy_cv_imm_loglik
 
 from lgekf.core.common import covariance_from_common, state_from_common
 from lgekf.core.initiation import DEFAULT_OMEGA_STD, two_point
-from lgekf.estimators.imm import Mode
-from lgekf.estimators.imm_tuning import imm_log_likelihood, learn_imm
+from lgekf.estimators.imm.estimator import Mode
+from lgekf.estimators.imm.tuning import imm_log_likelihood, learn_imm
 
 
 def _simulate_cv(rng, n_tracks, steps, dt, stds, switch, r):
@@ -161,8 +161,8 @@ def test_report_of_an_unbounded_interval_warns_nothing():
     warning on the user's terminal (lgekf evaluate printed one); a finite one with its bounds; given values as such."""
     import warnings
 
-    from lgekf.estimators.imm import Mode
-    from lgekf.estimators.imm_tuning import ImmFit
+    from lgekf.estimators.imm.estimator import Mode
+    from lgekf.estimators.imm.tuning import ImmFit
 
     fit = ImmFit([Mode("cv", (0.1,), "calm"), Mode("cv", (2.0,), "manoeuvre")], 0.02, np.array([0.01, 0.5]),
                  np.array([1e-300, 0.4, 0.02]), np.array([1e300, 0.6, 0.02]), -10.0, -12.0, 100, 3, [], 2, 50)

@@ -14,7 +14,7 @@ from lgekf.apps.divergence import Alarm, MonitorConfig
 from lgekf.apps.imm_monitor import first_imm_alarm, imm_monitored
 from lgekf.apps.track import TRACK_HEADING_CAP, REINIT_BASELINE, Tracked, initial_common
 from lgekf.cli import main
-from lgekf.estimators.imm import parse_modes
+from lgekf.estimators.imm.estimator import parse_modes
 
 CFG = MonitorConfig()
 

@@ -3,7 +3,7 @@ measurement definitions (no runtime code names a measurement).
 
 The model-independent part (``templates/imm_helpers.py.tmpl``: the workspace, mixing on the group and in the common
 coordinates, the mode probabilities, the combined estimate, ``imm_predict``, ``imm_step``, ``imm_loglik_one``,
-``imm_run_one``; the maths in ``lgekf.estimators.imm_kernels``) is emitted as it is; every model is reached through
+``imm_run_one``; the maths in ``lgekf.estimators.imm.kernels``) is emitted as it is; every model is reached through
 ``generated/dispatch.py``. Per measurement (``templates/imm_measurement.py.tmpl``): ``imm_update_<meas>`` (each
 mode's log det S and update), ``_modes_<meas>`` (each mode's fused step ``step_ll_<meas>``, with its fallback),
 ``_run_<meas>`` and ``imm_run_batch_<meas>`` (the loop over a trajectory, compiling only that measurement's

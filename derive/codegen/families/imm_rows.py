@@ -1,6 +1,6 @@
 """Row variants of the IMM's kernels: the same straight-line code reading and writing rows of one 2-D array.
 
-The IMM's loop (``lgekf.estimators.imm_kernels``) keeps every mode's state and covariance as rows of 2-D arrays
+The IMM's loop (``lgekf.estimators.imm.kernels``) keeps every mode's state and covariance as rows of 2-D arrays
 (and everything else its step touches) as rows of one 2-D workspace ``ws``. Passing a row as a view (``S[j]``), a
 tuple of scratch arrays, or one array as several arguments of an inlined call costs numba's reference counting
 (atomic ``NRT_incref``/``NRT_decref``; each array argument of the inlined dispatch chain is an alias, counted once
@@ -24,7 +24,7 @@ no counting either.
 
 ``mix_on_group_at`` (a template per model, ``MIX_TEMPLATE``): the whole reduction Σ w_i N_G(μ_i, P_i) → N_G(μ, P) of
 mixing on the group (the iterated mean, then the transported covariance terms; maths in
-``lgekf.estimators.imm_kernels``) as one loop calling the row variants above directly: a call through the inlined
+``lgekf.estimators.imm.kernels``) as one loop calling the row variants above directly: a call through the inlined
 dispatch chain counts ``ws`` once, a direct call does not, so the loop's 2–4 kernel calls per source and iteration
 count nothing.
 

@@ -1,6 +1,6 @@
 """Fused kernels for mixing Gaussians on a model's group (the IMM's interaction and combination steps).
 
-Mixing Σ w_i N_G(μ_i, P_i) into one N_G(μ, P) (derivation in ``lgekf.estimators.imm_kernels``) needs, per
+Mixing Σ w_i N_G(μ_i, P_i) into one N_G(μ, P) (derivation in ``lgekf.estimators.imm.kernels``) needs, per
 source i, d_i = [log(μ⁻¹μ_i)]^∨ (``between``) while the mean is iterated, and at the mean the transported
 term w_i [Φ(d_i)⁻¹ P_i Φ(d_i)⁻ᵀ + d_i d_iᵀ].  Done with the general kernels (``between_into``,
 ``right_jacobian_inv_into``, a dense n × n congruence) that costs: the angle of d_i is evaluated by atan2 and
@@ -102,7 +102,7 @@ def mixing_kernels(model) -> list:
         name="mix_transport",
         doc=("acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):\n"
              "one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)\n"
-             "to first order; lgekf.estimators.imm_kernels). Straight line over the non-zero entries of Φ^-1."),
+             "to first order; lgekf.estimators.imm.kernels). Straight line over the non-zero entries of Φ^-1."),
         params=["s", "t", "pt", "w", "acc"], inputs=st_in + p_in + [(w, "w")] + acc_in,
         stages=[list(zip(dsyms, d_expr)), tdefs, udefs], outputs=outputs, sincos_of_atan2=True,
     )
@@ -144,7 +144,7 @@ def common_kernels(model) -> list:
     ``common_of_state(s, p, c, Pc)``: c = ``physical_to_common``(physical(s)) (6,), Pc = A P Aᵀ (6 × 6, dense) with
     A = ∂c/∂ε (``physical_to_common_jacobian``) at that state; ``state_of_common(c, Pc, s, p)``: s =
     state_from_physical(``common_to_state``(c)), p = J P_c Jᵀ packed, J = ``common_jacobian``(c).  Both evaluate
-    the Jacobian where they are called: the caller handles speed 0 (``lgekf.estimators.imm_kernels.SPEED_FLOOR``);
+    the Jacobian where they are called: the caller handles speed 0 (``lgekf.estimators.imm.kernels.SPEED_FLOOR``);
     ``common_of_state`` runs with error_model="numpy" (a heading read off a zero velocity gives NaN/inf, not an
     exception, and the caller redoes that rare case).
     """

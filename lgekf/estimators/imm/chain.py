@@ -19,7 +19,7 @@ asymmetric PI lets the data say which mode is the rule and which the exception (
 quickly has a small stationary probability and starts small); the symmetric ``transition_matrix(M, p)`` has the
 uniform stationary law.
 
-Contrast :func:`lgekf.estimators.imm_tuning.learn_imm`, which fits one symmetric switching probability and the
+Contrast :func:`lgekf.estimators.imm.tuning.learn_imm`, which fits one symmetric switching probability and the
 modes' noise factors for tracks started from two measurements; here the modes' noise is given (e.g. matched to
 the simulated truth) and every track starts from a given initial estimate (x0, P0) with all its steps counted,
 as the Monte Carlo study runs its filters (``lgekf.experiments.imm_study``).
@@ -27,7 +27,7 @@ as the Monte Carlo study runs its filters (``lgekf.experiments.imm_study``).
 Optimiser: L-BFGS-B in θ_ij = logit PI[i, j] (bounded to ``CHAIN_BOUNDS``; each row's off-diagonal mass at
 most the upper bound), finite differences of 1e-3, two starts (every off-diagonal 0.002 and 0.05), the better
 kept. The likelihood of one θ is one IMM run over all the tracks in numba
-(:func:`lgekf.estimators.imm_tuning.imm_loglik_batch`).
+(:func:`lgekf.estimators.imm.tuning.imm_loglik_batch`).
 """
 
 from __future__ import annotations
@@ -38,9 +38,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .imm import _batch_inputs
-from .imm_tuning import imm_loglik_batch
-from .noise.tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
+from .estimator import _batch_inputs
+from .tuning import imm_loglik_batch
+from ..noise.tuning import MIN_UPDATES_PER_PARAMETER, PENALTY
 
 __all__ = ["ChainFit", "learn_chain", "stationary_distribution", "chain_log_likelihood", "CHAIN_BOUNDS"]
 

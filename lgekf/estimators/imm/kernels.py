@@ -63,8 +63,8 @@ class, the smoother's forward pass) keep the separate prediction, log det S and 
 
 from __future__ import annotations
 
-from ..core.registry import imm_kernel
-from ..generated.imm import (
+from ...core.registry import imm_kernel
+from ...generated.imm import (
     MEASUREMENT_NAMES,
     _mix,
     combined_common,

@@ -6,7 +6,7 @@ mixture of the mode-matched innovation densities (Blom and Bar-Shalom 1988):
     log L(θ) = Σ_tracks Σ_k log Σ_j c̄_j,k N(ν_j,k; 0, S_j,k),
 
 with c̄_j,k the predicted mode probabilities and ν_j,k, S_j,k = ℋ_j P_j,k|k-1 ℋ_jᵀ + R mode j's innovation and
-its covariance (eq:K), which :func:`lgekf.estimators.imm_kernels.imm_update` already returns each step.
+its covariance (eq:K), which :func:`lgekf.estimators.imm.kernels.imm_update` already returns each step.
 The parameters θ are the log of one factor a_j per mode (mode j runs with process-noise stds a_j · q_j, q_j
 its given ``accel_std``) and the logit of the switching probability p (the transition matrix
 ``transition_matrix(M, p)``); the measurement std is given (learned beforehand with the single models,
@@ -35,12 +35,12 @@ from dataclasses import dataclass, field
 import numba as nb
 import numpy as np
 
-from ..core.initiation import DEFAULT_OMEGA_STD, two_point
-from ..core.registry import get_measurement
-from .imm import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
-from .imm_kernels import imm_loglik_one
-from .noise.tracks import batch_tracks
-from .noise.tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
+from ...core.initiation import DEFAULT_OMEGA_STD, two_point
+from ...core.registry import get_measurement
+from .estimator import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
+from .kernels import imm_loglik_one
+from ..noise.tracks import batch_tracks
+from ..noise.tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
 
 __all__ = ["ImmFit", "learn_imm", "imm_log_likelihood"]
 

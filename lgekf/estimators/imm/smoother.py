@@ -1,4 +1,4 @@
-r"""Fixed-interval smoothing of the IMM (:mod:`lgekf.estimators.imm`): an approximate IMM-RTS smoother.
+r"""Fixed-interval smoothing of the IMM (:mod:`lgekf.estimators.imm.estimator`): an approximate IMM-RTS smoother.
 
 The exact smoother of a Markov-switching model is a mixture with M^K components; every practical IMM smoother
 is an approximation. This one has the structure of the smoother of Kim (C.-J. Kim, "Dynamic linear models with
@@ -7,7 +7,7 @@ Switching*, 1999, ch. 5): pairwise RTS steps conditioned on the modes at k and k
 mode probabilities, with the RTS step on the group of :mod:`lgekf.estimators.smoother` (generated
 ``smooth_one``: ``transition``, ``between``, ``retract``, ``right_jacobian(_inv)``).
 
-Forward: the IMM of :mod:`lgekf.estimators.imm_kernels`, keeping per step k and mode j the mixed estimate the
+Forward: the IMM of :mod:`lgekf.estimators.imm.kernels`, keeping per step k and mode j the mixed estimate the
 prediction started from (``S_mix``; kept for inspection), the prediction (μʲ_{k+1|k}, Pʲ_{k+1|k}), the
 posterior (μʲ_k, Pʲ_k) and the mode probabilities μ_k(j). Backward, from μˢ_{K-1} = μ_{K-1} and the last
 posteriors:
@@ -51,10 +51,10 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..core.registry import get_model
-from ..generated import dispatch as D
-from .imm import _Setup, _batch_inputs
-from .imm_kernels import _mix, combined_common, imm_update, workspace
+from ...core.registry import get_model
+from ...generated import dispatch as D
+from .estimator import _Setup, _batch_inputs
+from .kernels import _mix, combined_common, imm_update, workspace
 
 __all__ = ["ImmForward", "imm_forward_store", "smoothed_mode_probabilities", "imm_smooth_one", "imm_smooth_batch"]
 

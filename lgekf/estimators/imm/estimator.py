@@ -9,7 +9,7 @@ Two kinds (chosen automatically from the modes, never from a model's name):
   c = (x, y, θ, v_x, v_y, ω) through the generated conversions; components a model lacks (CV: ω) are
   taken from the receiving mode itself.
 
-The mathematics and the exact Jacobians are in :mod:`lgekf.estimators.imm_kernels` (the numba loop).
+The mathematics and the exact Jacobians are in :mod:`lgekf.estimators.imm.kernels` (the numba loop).
 The combined estimate ``x`` is always in the common coordinates, with its covariance ``P``; ``mu`` holds
 the mode probabilities. The cycle is the standard IMM (Blom and Bar-Shalom 1988): interaction (mixing),
 mode-matched filtering (the models' own fused LG-EKF kernels), mode probability update from the innovation
@@ -24,13 +24,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.batch import measurements_array, step_lengths
-from ..core.common import covariance_from_common, state_from_common
-from ..core.covariance import pack
-from ..core.filters import measurement_std
-from ..core.registry import MODELS, get_model
-from ..core.validate import as_float_array, positive_scalar, positive_vector, spd_matrix
-from ..generated.dispatch import MODEL_NAMES, N_INTERNAL, N_TANGENT
+from ...core.batch import measurements_array, step_lengths
+from ...core.common import covariance_from_common, state_from_common
+from ...core.covariance import pack
+from ...core.filters import measurement_std
+from ...core.registry import MODELS, get_model
+from ...core.validate import as_float_array, positive_scalar, positive_vector, spd_matrix
+from ...generated.dispatch import MODEL_NAMES, N_INTERNAL, N_TANGENT
 
 __all__ = [
     "Mode", "IMM", "imm_batch", "parse_modes", "transition_matrix", "NOISE_LEVELS", "DEFAULT_SWITCH",
@@ -162,7 +162,7 @@ class _Setup:
         for m in self.modes:
             get_model(m.model).measurement(measurement)
         self.r = np.ascontiguousarray(measurement_std(get_model(self.modes[0].model), measurement, meas_std), dtype=float)
-        from .imm_kernels import measurement_index
+        from .kernels import measurement_index
 
         self.meas = measurement_index(measurement)  # the generated IMM kernels' measurement argument
         nq = max(len(m.accel_std) for m in self.modes)
@@ -260,7 +260,7 @@ class IMM:
         self._m = get_model(self._set.modes[0].model).measurement(measurement).dim
         self.nis = np.full(self._set.M, np.nan)
         self.log_likelihood = float("nan")
-        from .imm_kernels import workspace
+        from .kernels import workspace
 
         self._ws = workspace(self._set.M)
 
@@ -276,7 +276,7 @@ class IMM:
 
     def predict(self, dt: float | None = None) -> None:
         """Interaction (mixing) and every mode's prediction by ``dt`` (default: the IMM's ``dt``)."""
-        from .imm_kernels import imm_predict
+        from .kernels import imm_predict
 
         step = self.dt if dt is None else positive_scalar("dt", dt)
         s = self._set
@@ -284,7 +284,7 @@ class IMM:
 
     def update(self, z: ArrayLike) -> float:
         """Every mode's update with z and the new mode probabilities; returns log p(z | past)."""
-        from .imm_kernels import imm_update
+        from .kernels import imm_update
 
         z = as_float_array("z", z, (self._m,))
         s = self._set
@@ -293,7 +293,7 @@ class IMM:
         return self.log_likelihood
 
     def _combined(self):
-        from .imm_kernels import combined_common
+        from .kernels import combined_common
 
         c = np.empty(6)
         P = np.empty((6, 6))
@@ -315,7 +315,7 @@ class IMM:
 
     def mode_state(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Mode j's (x, P) in its own model's physical state and tangent coordinates."""
-        from ..core.covariance import unpack
+        from ...core.covariance import unpack
 
         spec = get_model(self._set.modes[j].model)
         s = self._S[j, :len(spec.internal_names)].copy()
@@ -327,7 +327,7 @@ class IMM:
 
 
 def _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0):
-    """The checked inputs of a batch IMM run (``imm_batch``, ``lgekf.estimators.imm_smoother``): the set-up
+    """The checked inputs of a batch IMM run (``imm_batch``, ``lgekf.estimators.imm.smoother``): the set-up
     ``_Setup``, z (B, K, m), dts (B, K) and each trajectory's initial mode states and packed covariances."""
     s = _Setup(modes, transition, meas_std, measurement, mu0)
     z = measurements_array(z, get_model(s.modes[0].model).measurement(measurement).dim)
@@ -371,7 +371,7 @@ def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLi
     P : ndarray, (B, K, 6, 6)
         Only with ``return_cov``.
     """
-    from .imm_kernels import run_batch
+    from .kernels import run_batch
 
     s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]

@@ -1,0 +1,1 @@
+"""The interacting multiple model estimator: the estimator and its modes (``estimator``), the generated loops' Python side (``kernels``), the chain of an object's steps (``chain``), its likelihood and fit (``tuning``) and the IMM-RTS smoother (``smoother``)."""
