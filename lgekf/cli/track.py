@@ -17,19 +17,14 @@ from ..apps.track import (
 )
 from ..core.registry import BASE_MEASUREMENT, MODELS, get_measurement
 from ..io.files import AtomicFiles, check_output_path, is_stdio
-from ..io.geo import max_scale_error, to_latlon
-from ..io.grouping import grouped_consuming, objects_subset
-from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
-from ..io.readers import (
-    COLUMN_OPTIONS, named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning,
-)
-from ..io.units import heading_in_radians, object_warnings, to_seconds, unit_warnings
+from ..io.grouping import objects_subset
+from ..io.readers import COLUMN_OPTIONS
 from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_warnings, warn_misfit
 from .cluster import check_cluster_options, cluster_requested
-from .memory import single_heap
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_options import check_estimator_options, column_names, track_parser
-from .track_parquet import check_parquet_arguments, is_parquet, read_parquet
+from .track_pipeline import TrackEstimator, frame_note
+from .track_parquet import check_parquet_arguments, is_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
 
 __all__ = ["cmd_track", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
@@ -97,21 +92,12 @@ def check_track_arguments(a, models):
     return outs
 
 
-def _frame_note(meas) -> str:
-    """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
-    lat0, lon0 = meas.origin
-    lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
-    err = 100.0 * max_scale_error(lat, lat0)
-    return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
-            f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
-
-
-class ModelsTrack:
+class ModelsTrack(TrackEstimator):
     """The estimator of ``lgekf track --model MODEL|all`` in the pipeline of ``cmd_track``: one registry model (or every
     one) per output file, its noise from the data (per class of objects), ``--tune``, the divergence monitor, ``--smooth``."""
 
     def __init__(self, a, say):
-        self.a, self.say = a, say
+        super().__init__(a, say)
         self.models = list(MODELS) if a.model == "all" else [a.model]
 
     def check(self) -> None:
@@ -225,66 +211,36 @@ class ModelsTrack:
         return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
 
 
-def read_track_input(a):
-    """The measurements of ``lgekf track``'s input (CSV, pedestrian format or Parquet), grouped by object (objects of
-    at least 2 rows, t increasing: else one clear error; ``--sort`` and ``--skip-invalid``: ``lgekf.io.cleaning``), t in
-    seconds. Returns (meas, starts)."""
-    single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
-    heading = a.use_heading or bool(get_measurement(a.measure).angles)  # a measurement with an angle reads the column
-    with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
-        if is_parquet(a.input):
-            meas = read_parquet(a.input, heading)
-        else:
-            meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
-    if meas.time_iso and a.time_unit != "s":
-        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
-    note = unused_columns_warning(meas)
-    if note is not None:
-        print(f"lgekf track: warning: {note}", file=sys.stderr)
-    if a.sort:
-        meas, moved = sort_within_objects(meas)
-        print(f"lgekf track: warning: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)
-    if a.skip_invalid:
-        meas = drop_invalid(meas)
-        for line in skipped_summary(meas):
-            print(f"lgekf track: warning: {line}", file=sys.stderr)
-    meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
-    meas.t = to_seconds(meas.t, a.time_unit)
-    if meas.heading is not None:
-        meas.heading = heading_in_radians(meas.heading, a.heading_unit, meas.z, starts)
-    return meas, starts
-
-
 def cmd_track(argv) -> int:
-    """``lgekf track``: one pipeline for every estimator: check → read → plan the noise → estimate (with the monitor,
-    and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model MODEL|all``) or ``ImmTrack``
-    (``--model imm``, ``lgekf.cli.track_imm``); ``--multi`` (``lgekf.cli.track_multi``) has its own reading of
-    unlabelled detections. One parser for all (``lgekf.cli.track_options``)."""
+    """``lgekf track``: one pipeline for every estimator (``lgekf.cli.track_pipeline``): check → read → plan the noise →
+    estimate (with the monitor, and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model
+    MODEL|all``), ``ImmTrack`` (``--model imm``, ``lgekf.cli.track_imm``) or ``MultiTrack`` (``--multi``,
+    ``lgekf.cli.track_multi``); one parser for all (``lgekf.cli.track_options``)."""
     a = track_parser().parse_args(argv)
     check_estimator_options(a)
-    if a.multi:  # many objects from unlabelled detections: lgekf.cli.track_multi
-        from .track_multi import cmd_track_multi
-
-        return cmd_track_multi(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
-    if a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
+    if a.multi:  # the multi-target tracker's modules only then
+        from .track_multi import MultiTrack
+
+        est = MultiTrack(a, say)
+    elif a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
         from .track_imm import ImmTrack, check_imm_options
 
         check_imm_options(a)
-    est = ImmTrack(a, say) if a.model == "imm" else ModelsTrack(a, say)
+        est = ImmTrack(a, say)
+    else:
+        est = ModelsTrack(a, say)
     est.check()
     outs = est.outs = check_track_arguments(a, est.models)  # every estimator: format options, output paths, not the input
     t0 = time.perf_counter()
     status = est.run_on_cluster()
     if status is not None:
         return status
-    meas, starts = read_track_input(a)
+    meas, starts = est.read()
     t_read = time.perf_counter() - t0
     if meas.origin is not None:
-        say(_frame_note(meas))
-    for w in unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format):
-        print(f"lgekf track: warning: {w}", file=sys.stderr)
-    for w in object_warnings(meas.t, meas.z, starts, meas.labels, a.time_unit if a.format == "csv" else "s", meas.where):
+        say(frame_note(meas))
+    for w in est.data_warnings(meas, starts):
         print(f"lgekf track: warning: {w}", file=sys.stderr)
     monitor = None if a.no_monitor else MonitorConfig()
     total = meas.t.size * len(outs)
@@ -297,10 +253,8 @@ def cmd_track(argv) -> int:
             what = est.write(handles, meas, starts, monitor, bar)
         files.commit()
     if not a.quiet:
-        wall = time.perf_counter() - t0
         report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
-        for o, (w, extra) in zip(outs, what):
-            name = "<stdout>" if is_stdio(o) else o
-            print(f"{name}: {meas.t.size} rows, {meas.n_objects} object{'s' if meas.n_objects != 1 else ''} ({w}){extra}", file=report)
-        print(f"read {t_read:.2f} s, total {wall:.2f} s", file=sys.stderr)
+        for line in est.report(outs, what, meas):
+            print(line, file=report)
+        print(f"read {t_read:.2f} s, total {time.perf_counter() - t0:.2f} s", file=sys.stderr)
     return 0

@@ -9,6 +9,7 @@ from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm_classes, write
 from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_parquet import is_parquet
+from .track_pipeline import TrackEstimator
 
 __all__ = ["ImmTrack", "check_imm_options"]
 
@@ -23,13 +24,13 @@ def _modes(opts) -> str:
     return ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
 
 
-class ImmTrack:
+class ImmTrack(TrackEstimator):
     """The estimator of ``lgekf track --model imm`` in the pipeline of ``lgekf.cli.track.cmd_track``: an IMM of
     ``--imm-modes``, its modes' noise from the data per class of objects (or ``--tune``), the divergence monitor on the
     combined estimate, ``--smooth``."""
 
     def __init__(self, a, say):
-        self.a, self.say = a, say
+        super().__init__(a, say)
         self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch)
         self.models = ["imm"]  # one output file
 
@@ -45,15 +46,6 @@ class ImmTrack:
                 raise ValueError(f"--model imm: {name} is not supported")
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--model imm: Parquet input or output is not supported (yet); use CSV")
-
-    def run_on_cluster(self):
-        return None
-
-    def compile_seconds(self):
-        return None
-
-    def warm_up(self) -> None:
-        pass
 
     def plan(self, meas, starts, monitor) -> None:
         """The IMM's noise: from the data per class of objects, or ``--tune``'s fit."""

@@ -1,0 +1,103 @@
+"""The pipeline of `lgekf track` that every estimator plugs into (``lgekf.cli.track.cmd_track``):
+
+    check -> read -> (data warnings) -> plan the noise -> estimate with the monitor (and smoothing) -> write -> report
+
+``TrackEstimator`` holds the stages an estimator shares with the others (reading labelled objects, the data's unit and
+per-object warnings, the report line); ``ModelsTrack`` (``--model MODEL|all``, ``lgekf.cli.track``), ``ImmTrack``
+(``--model imm``, ``lgekf.cli.track_imm``) and ``MultiTrack`` (``--multi``, ``lgekf.cli.track_multi``) add their
+own ``check``, ``plan`` and ``write`` (and ``--multi`` its own reading of unlabelled detections).
+"""
+
+from __future__ import annotations
+
+import sys
+
+from ..core.registry import get_measurement
+from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
+from ..io.files import is_stdio
+from ..io.geo import max_scale_error, to_latlon
+from ..io.grouping import grouped_consuming
+from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning
+from ..io.units import heading_in_radians, object_warnings, to_seconds, unit_warnings
+from .memory import single_heap
+from .track_options import column_names
+from .track_parquet import is_parquet, read_parquet
+
+__all__ = ["TrackEstimator", "read_track_input", "frame_note"]
+
+
+class TrackEstimator:
+    """The stages of ``cmd_track`` an estimator shares (subclasses add ``check``, ``plan`` and ``write``).
+
+    ``models``: one name per output file. ``read()`` -> (meas, starts); ``data_warnings(meas, starts)`` -> lines;
+    ``run_on_cluster()`` -> an exit status when the work ran on Dask, else None; ``compile_seconds()`` and
+    ``warm_up()`` for the compile notice; ``report(outs, what, meas)`` -> the lines of the summary (stdout).
+    """
+
+    def __init__(self, a, say):
+        self.a, self.say = a, say
+
+    def read(self):
+        return read_track_input(self.a)
+
+    def data_warnings(self, meas, starts) -> list:
+        """The unit checks over the file and per object (``lgekf.io.units``)."""
+        a = self.a
+        return (unit_warnings(meas.t, meas.z, starts, a.time_unit, projected=meas.origin is not None, fmt=a.format)
+                + object_warnings(meas.t, meas.z, starts, meas.labels, a.time_unit if a.format == "csv" else "s", meas.where))
+
+    def run_on_cluster(self):
+        return None
+
+    def compile_seconds(self):
+        return None
+
+    def warm_up(self) -> None:
+        pass
+
+    def report(self, outs, what, meas) -> list:
+        """One line per output file: its rows and objects, and what the estimator adds (``write``'s (what, extra))."""
+        n = meas.n_objects
+        return [f"{'<stdout>' if is_stdio(o) else o}: {meas.t.size} rows, {n} object{'s' if n != 1 else ''} ({w}){extra}"
+                for o, (w, extra) in zip(outs, what)]
+
+
+def frame_note(meas) -> str:
+    """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
+    lat0, lon0 = meas.origin
+    lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
+    err = 100.0 * max_scale_error(lat, lat0)
+    return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
+            f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
+
+
+def read_track_input(a):
+    """The measurements of ``lgekf track``'s input (CSV, pedestrian format or Parquet), grouped by object (objects of
+    at least 2 rows, t increasing: else one clear error; ``--sort`` and ``--skip-invalid``: ``lgekf.io.cleaning``), t in
+    seconds. Returns (meas, starts)."""
+    single_heap()  # the threads' freed chunk buffers reused from one heap, not kept in an arena per thread
+    heading = a.use_heading or bool(get_measurement(a.measure).angles)  # a measurement with an angle reads the column
+    with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
+        if is_parquet(a.input):
+            meas = read_parquet(a.input, heading)
+        else:
+            meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
+    if meas.time_iso and a.time_unit != "s":
+        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    note = unused_columns_warning(meas)
+    if note is not None:
+        print(f"lgekf track: warning: {note}", file=sys.stderr)
+    if a.sort:
+        meas, moved = sort_within_objects(meas)
+        print(f"lgekf track: warning: --sort: {moved} row{'s' if moved != 1 else ''} moved into time order", file=sys.stderr)
+    if a.skip_invalid:
+        meas = drop_invalid(meas)
+        for line in skipped_summary(meas):
+            print(f"lgekf track: warning: {line}", file=sys.stderr)
+    meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
+    meas.t = to_seconds(meas.t, a.time_unit)
+    if meas.heading is not None:
+        meas.heading = heading_in_radians(meas.heading, a.heading_unit, meas.z, starts)
+    return meas, starts
+
+
