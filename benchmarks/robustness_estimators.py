@@ -13,6 +13,11 @@ Estimators: each model (cv, ctrv, se2r2, se2r3, se2se2) and `--model imm`, each 
 * the robustness set's simulated and real cases (``lgekf.apps.robustness``; real ones skipped, with the reason, when
   ../shared/data is absent).
 
+With ``--multi``: the same cases as unlabelled detections (ids dropped, rows sorted by time: ``--multi --sort``), each
+model through the multi-target tracker with no other option; per run the confirmed tracks against the objects,
+rows with a non-finite value, and runaway rows (speed above 3 × the fastest true speed of the case + 5 m/s) and how
+many of them carry flag 0.
+
 Per run: rows with a non-finite output value (NIS, empty by design on each object's first two rows, excepted);
 diverged rows (position error above 10 σ, σ the true noise of the row's object, and above 5 × the position std the
 filter reports: a gross error the filter does not know about) and how many of them carry flag 0; diverged objects;
@@ -109,12 +114,50 @@ def score(df, t, p, z, sigma, starts):
     return row
 
 
+def score_multi(df, t, p, starts):
+    """``--multi`` criteria (module docstring) of one output table."""
+    vals = df[[c for c in df.columns if c != "track"]].to_numpy(dtype=float)
+    fastest = 0.0
+    for a, b in zip(starts[:-1], starts[1:]):
+        if b - a >= 2:
+            fastest = max(fastest, float(np.max(np.hypot(*np.diff(p[a:b], axis=0).T) / np.diff(t[a:b]))))
+    runaway = df["speed"].to_numpy() > 3 * fastest + 5.0
+    flag = df["flag"].to_numpy().astype(int) if len(df) else np.zeros(0, int)
+    return {"tracks": int(df["track"].nunique()) if len(df) else 0, "nonfinite": int((~np.isfinite(vals)).any(axis=1).sum()),
+            "runaway": int(runaway.sum()), "unflagged": int((runaway & (flag == 0)).sum()), "flagged": int(flag.sum())}
+
+
+def main_multi(cases, estimators) -> tuple[list, int]:
+    """The ``--multi`` runs: one table row per case and model."""
+    import lgekf
+
+    lines = ["| case | model | objects | confirmed tracks | non-finite rows | runaway rows (flag 0) | flagged rows | s |",
+             "|---|---|---|---|---|---|---|---|"]
+    bad = 0
+    for name, desc, t, p, z, sigma, starts, ids in cases:
+        df_in = pd.DataFrame({"t": t, "x": z[:, 0], "y": z[:, 1]})
+        print(f"{name}: {desc}; {len(starts) - 1} objects, {t.size} rows (--multi)", file=sys.stderr)
+        for est in estimators:
+            if est == "imm":
+                continue  # the multi-target tracker runs the registry models
+            t0 = time.perf_counter()
+            with contextlib.redirect_stderr(io.StringIO()):
+                df = lgekf.track(df_in, model=est, multi=True, sort=True)
+            s = score_multi(df, t, p, starts)
+            bad += s["nonfinite"] + s["unflagged"]
+            lines.append(f"| {name} | {est} | {len(starts) - 1} | {s['tracks']} | {s['nonfinite']} | {s['runaway']} "
+                         f"({s['unflagged']}) | {s['flagged']} | {time.perf_counter() - t0:.1f} |")
+            print(lines[-1], file=sys.stderr)
+    return lines, bad
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--cases", default=None, help="comma-separated case names (default: the two synthetic ones and every "
                     "robustness case)")
     ap.add_argument("--estimators", default=",".join(ESTIMATORS))
     ap.add_argument("--out", default=None, help="also write the markdown table here")
+    ap.add_argument("--multi", action="store_true", help="the cases as unlabelled detections through --multi instead")
     a = ap.parse_args(argv)
     import lgekf
 
@@ -125,6 +168,9 @@ def main(argv=None) -> int:
     lines = ["| case | estimator | options | non-finite rows | diverged rows (flag 0) | diverged objects | flagged rows | "
              "RMSE m (raw) | smoothed RMSE m (failed rows) | s |", "|---|---|---|---|---|---|---|---|---|---|"]
     bad = 0
+    if a.multi:
+        lines, bad = main_multi(cases, a.estimators.split(","))
+        cases = []
     for name, desc, t, p, z, sigma, starts, ids in cases:
         df_in = pd.DataFrame({"id": ids, "t": t, "x": z[:, 0], "y": z[:, 1]})
         print(f"{name}: {desc}; {len(starts) - 1} objects, {t.size} rows", file=sys.stderr)
