@@ -234,8 +234,13 @@ class MotionModel:
         return Gp.vee(E).applyfunc(lambda v: sp.expand(sp.simplify(v)))
 
     def calH_for(self, meas) -> sp.Matrix:
-        """ℋ = ∂/∂ε [log_G'(h(μ)⁻¹ h(μ·exp ε))]^∨ at ε = 0 (eq:calH), through directional limits."""
-        return jacobian_at_zero(self.measurement_error_for(meas), self.EPS)
+        """ℋ = ∂/∂ε [log_G'(h(μ)⁻¹ h(μ·exp ε))]^∨ at ε = 0 (eq:calH), through directional limits; computed once per
+        measurement (the limits are most of a render's time, and several kernel families need ℋ)."""
+        cache = self.__dict__.setdefault("_calH_for", {})
+        key = meas.name or id(meas)  # a definition's name (a measurement made outside the loader: the object)
+        if key not in cache:
+            cache[key] = jacobian_at_zero(self.measurement_error_for(meas), self.EPS)
+        return cache[key].copy()
 
     @cached_property
     def measurement_error(self) -> sp.Matrix:
