@@ -16,7 +16,7 @@ import numpy as np
 from ..core.initiation import moving_backwards
 from ..core.registry import get_model
 from .divergence import MonitorConfig, speed_limits
-from ..io.units import MAX_PLAUSIBLE_DT
+from ..io.units import gap_rows
 from ..io.grouping import objects_subset
 from .noise import (
     K_GRID, MIN_MEAS_STD, SEARCH_ROWS, NoiseEstimate, measurement_std, object_measurement_stds, one_step_errors, subsample_objects, typical_speed,
@@ -27,13 +27,11 @@ from .track import (
     track_monitored,
 )
 
-__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "GAP_STEPS", "after_gaps", "gap_alarms", "NoiseClasses", "noise_classes", "plan_noise_by_class",
+__all__ = ["NoisePlan", "plan_noise", "BURN_IN", "after_gaps", "gap_alarms", "NoiseClasses", "noise_classes", "plan_noise_by_class",
            "data_starts"]
 
 BURN_IN = 3  # updates after each object's initialisation left out of the search's scores
 NOISE_FREE = 1e-6  # a measurement std from the data below this (m) reads noise-free positions (round-off), not km
-GAP_STEPS = 10.0  # a step longer than this many times its object's median step is a gap: it and the BURN_IN rows after
-# it are left out of the search's scores (``after_gaps``)
 # Classes of objects by measurement std: an object's own estimate from n ≈ 300 windows is within about ±20 % (2.5 σ),
 # so a class of one sensor spans a factor of about 1.5
 CLASS_GAP = 1.5  # objects whose (shrunk) measurement stds are separated by a gap of more than this factor: classes of their own
@@ -205,9 +203,9 @@ def plan_noise(t, z, starts, models, *, meas_std=None, accel_std=None, omega_std
     return plan
 
 
-def after_gaps(t, starts, factor: float = GAP_STEPS, burn_in: int = BURN_IN, min_gap: float = MAX_PLAUSIBLE_DT) -> np.ndarray:
-    """(N,) bool: the rows after a gap (a step longer than ``factor`` × the median step of its object and at least
-    ``min_gap`` seconds: the gap of ``lgekf.io.units.object_warnings``) and the ``burn_in`` rows after each, which the
+def after_gaps(t, starts, burn_in: int = BURN_IN) -> np.ndarray:
+    """(N,) bool: the rows that end a gap (``lgekf.io.units.gap_rows``: a step of at least 10 s and 10 times its
+    object's median step, the gap the per-object warnings name) and the ``burn_in`` rows after each, which the
     process-noise search leaves out of its score.
 
     The score is a mean of squared prediction errors: over a gap of an hour one object's error is kilometres, its
@@ -217,26 +215,12 @@ def after_gaps(t, starts, factor: float = GAP_STEPS, burn_in: int = BURN_IN, min
     Shorter gaps stay in the score: the filter predicts across them in every run, and its noise must allow for that
     (the robustness set's irregular car, 0.1 s steps with 2 s gaps: left out, they let the search choose a noise with
     which SE(2)×R² diverged after a gap)."""
-    t = np.asarray(t, dtype=float)
     starts = np.asarray(starts, dtype=np.int64)
-    out = np.zeros(t.size, bool)
-    lens = np.diff(starts)
-    if t.size < 2:
-        return out
-    d = np.diff(t)
-    inside = np.ones(d.size, bool)
-    inside[starts[1:-1] - 1] = False  # steps across two objects
-    obj = np.repeat(np.arange(lens.size), np.maximum(lens - 1, 0))  # the object of each step inside an object
-    d = d[inside]
-    order = np.lexsort((d, obj))
-    first = np.concatenate([[0], np.cumsum(np.maximum(lens - 1, 0))])
-    has = lens >= 2
-    med = np.full(lens.size, np.inf)
-    med[has] = d[order][first[:-1][has] + (lens[has] - 2) // 2]  # each object's (lower) median step
-    gap = np.flatnonzero((d > factor * med[obj]) & (d >= min_gap))
-    row = np.flatnonzero(inside)[gap] + 1  # the row after the gap
-    end = starts[1:][obj[gap]]
-    for j in range(burn_in + 1):
+    ends = gap_rows(t, starts)
+    out = ends.copy()
+    row = np.flatnonzero(ends)
+    end = starts[np.searchsorted(starts, row, side="right")]  # the end of each gap row's object
+    for j in range(1, burn_in + 1):
         r = row + j
         out[r[r < end]] = True
     return out

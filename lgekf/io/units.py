@@ -36,7 +36,7 @@ import numba as nb
 import numpy as np
 
 __all__ = ["TIME_UNITS", "MAX_PLAUSIBLE_DT", "MAX_PLAUSIBLE_SPEED", "MIN_DEGREE_LIKE_SPEED", "to_seconds", "unit_warnings",
-           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN", "object_warnings", "SCALE_RATIO", "GAP_RATIO",
+           "heading_in_radians", "heading_agreement", "DEGREES_MARGIN", "object_warnings", "gap_rows", "SCALE_RATIO", "GAP_RATIO",
            "MAX_OBJECT_LINES"]
 
 TIME_UNITS = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}
@@ -193,6 +193,27 @@ def _when(t, time_unit):
     return f"t = {t / TIME_UNITS[time_unit]:.15g}{'' if time_unit == 's' else ' ' + time_unit}"
 
 
+@nb.njit(cache=True, nogil=True)
+def _gap_rows(t, starts, min_gap, ratio, out):
+    for b in range(starts.shape[0] - 1):
+        a, e = starts[b], starts[b + 1]
+        if e - a < 2:
+            continue
+        d = t[a + 1:e] - t[a:e - 1]
+        med = np.median(d[np.isfinite(d)]) if np.isfinite(d).any() else np.nan
+        for k in range(d.shape[0]):
+            out[a + 1 + k] = d[k] >= min_gap and d[k] > ratio * med
+
+
+def gap_rows(t, starts) -> np.ndarray:
+    """(N,) bool: the rows that end a gap, a step of at least ``MAX_PLAUSIBLE_DT`` and ``GAP_RATIO`` times its object's
+    median step (rows sorted by object with ``starts``). The one definition of a gap: warned about per object
+    (``object_warnings``) and left out of the process-noise search's score (``lgekf.apps.defaults.after_gaps``)."""
+    out = np.zeros(len(t), dtype=np.bool_)
+    _gap_rows(np.ascontiguousarray(t, dtype=float), np.asarray(starts, dtype=np.int64), MAX_PLAUSIBLE_DT, GAP_RATIO, out)
+    return out
+
+
 def object_warnings(t, z, starts, labels, time_unit: str = "s", where=None) -> list[str]:
     """Lines (without a prefix) naming the objects whose scale, speed or steps are implausible beside the others
     (module docstring); empty when every object looks like the rest. ``labels`` (B,): the objects' ids as written;
@@ -257,12 +278,11 @@ def object_warnings(t, z, starts, labels, time_unit: str = "s", where=None) -> l
         out += capped(fast, "implausible speeds")
     if file_dt < MAX_PLAUSIBLE_DT:
         gaps = []
-        with np.errstate(invalid="ignore"):
-            has_gap = np.flatnonzero((long_b >= MAX_PLAUSIBLE_DT) & (long_b > GAP_RATIO * dt_b))
-        for b in has_gap:
+        ends = gap_rows(t, starts)
+        for b in np.unique(np.searchsorted(starts, np.flatnonzero(ends), side="right") - 1):
             a, e = starts[b], starts[b + 1]
             d = np.diff(t[a:e])
-            bad = (d >= MAX_PLAUSIBLE_DT) & (d > GAP_RATIO * dt_b[b])
+            bad = ends[a + 1:e]  # the pairs (k, k + 1) of the object whose step is a gap
             if bad.any():
                 gaps.append(f"object {labels[b]}: a gap of {float(d[bad].max()):.4g} s (its median step {dt_b[b]:.3g} s), "
                             f"the first ending at {first_row(b, bad)}: the filter predicts across it (split the object "
