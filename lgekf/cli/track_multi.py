@@ -18,13 +18,13 @@ from ..apps.track_multi import (
 )
 from ..core.registry import MODELS, get_measurement
 from ..core.validate import positive_scalar
-from ..io.files import check_output_path, is_stdio
+from ..io.files import is_stdio
 from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
 from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
 from ..io.units import to_seconds
 from .track_options import DEFAULT_MAX_SPEED, SPEED_WARN_FRACTION, column_names
 from .track_parquet import is_parquet
-from .track_pipeline import TrackEstimator
+from .track_pipeline import TrackEstimator, check_time_unit
 from .alarms import misfit_line  # the same rule and words as `lgekf track`
 
 __all__ = ["MultiTrack", "read_multi_input"]
@@ -47,9 +47,8 @@ def _accel_std(items, model):
 
 
 def _check_arguments(a):
-    """Every argument error before any reading (one line each, exit 2)."""
-    if a.precision is not None and not 1 <= a.precision <= 17:
-        raise ValueError(f"--precision: must be between 1 and 17, got {a.precision}")
+    """The multi-target options' errors before any reading (one line each, exit 2; --precision and the paths are
+    the pipeline's, ``lgekf.cli.track.check_track_arguments``)."""
     if a.meas_std is not None:
         positive_scalar("meas-std", a.meas_std)
     if a.max_speed is not None:
@@ -58,7 +57,6 @@ def _check_arguments(a):
         positive_scalar("scan-window", a.scan_window, allow_zero=True)
     q = _accel_std(a.accel_std, a.model)
     MODELS[a.model].measurement(a.measure)
-    check_output_path(a.output)
     return q
 
 
@@ -68,8 +66,7 @@ def read_multi_input(a):
     ``--skip-invalid`` (then dropped, one summary line): the rules of single-object tracking for a file of scans."""
     with skipping_nonfinite_rows(a.skip_invalid), named_columns(column_names(a)):
         meas = read_measurements(a.input, "csv", None, get_measurement(a.measure).has_angle, parse_delimiter(a.delimiter))
-    if meas.time_iso and a.time_unit != "s":
-        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    check_time_unit(meas, a.time_unit)
     if a.sort:
         meas, moved = sort_by_time(meas)
         _warn(f"--sort: {moved} row{'s' if moved != 1 else ''} moved into time order")

@@ -23,7 +23,7 @@ from .memory import single_heap
 from .track_options import column_names
 from .track_parquet import is_parquet, read_parquet
 
-__all__ = ["TrackEstimator", "read_track_input", "frame_note"]
+__all__ = ["TrackEstimator", "read_track_input", "frame_note", "check_time_unit"]
 
 
 class TrackEstimator:
@@ -71,6 +71,12 @@ def frame_note(meas) -> str:
             f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
 
+def check_time_unit(meas, time_unit: str) -> None:
+    """ISO-8601 stamps are read as seconds: a --time-unit beside them is an error (one line)."""
+    if meas.time_iso and time_unit != "s":
+        raise ValueError(f"--time-unit {time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+
+
 def read_track_input(a):
     """The measurements of ``lgekf track``'s input (CSV, pedestrian format or Parquet), grouped by object (objects of
     at least 2 rows, t increasing: else one clear error; ``--sort`` and ``--skip-invalid``: ``lgekf.io.cleaning``), t in
@@ -82,8 +88,7 @@ def read_track_input(a):
             meas = read_parquet(a.input, heading)
         else:
             meas = read_measurements(a.input, a.format, a.frame_dt, heading, parse_delimiter(a.delimiter))
-    if meas.time_iso and a.time_unit != "s":
-        raise ValueError(f"--time-unit {a.time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+    check_time_unit(meas, a.time_unit)
     note = unused_columns_warning(meas)
     if note is not None:
         print(f"lgekf track: warning: {note}", file=sys.stderr)
