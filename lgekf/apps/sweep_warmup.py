@@ -13,7 +13,7 @@ whichever process compiled it.
 
 So ``lgekf sweep`` (and ``run_sweep``) first runs one miniature study per filter and kernel path of the grid
 (``warmup_configs``: the cell's trajectories, a single σ_ω, as few steps as keep the same kernel) in child processes
-(``python -m lgekf.apps.sweep_warmup``); they compile into the cache (a cold cache) or only load (a warm one, about a
+(``lgekf.apps.warmup.compile_in_children``); they compile into the cache (a cold cache) or only load (a warm one, about a
 second), and the cells, on Dask workers or in this process, then load every kernel. A child that fails changes nothing
 but the guarantee (the cell compiles what is missing itself).
 
@@ -24,21 +24,14 @@ cells compile unless their cache is warm or shared (``NUMBA_CACHE_DIR`` on a sha
 
 from __future__ import annotations
 
-import importlib.util
-import os
-import pickle
-import subprocess
-import sys
-import threading
 from dataclasses import replace
+
+from .warmup import Job, compile_in_children, model_compile_seconds
 
 __all__ = ["warmup_configs", "warm_cache", "compile_seconds"]
 
 # the SIMD kernel's compilation per model and measurement (lgekf.core.batch: ~15 s), on top of the model's others
 SOA_COMPILE_SECONDS = 15.0
-# the model's other kernels: seconds per byte of its generated module (as lgekf.cli.warmup.SECONDS_PER_BYTE)
-SECONDS_PER_BYTE = 0.4e-4
-COMPILED = b"compiling\n"
 
 
 def _path(cfg) -> tuple:
@@ -74,116 +67,15 @@ def warmup_configs(configs) -> list:
     return out
 
 
-def _model_seconds(model: str) -> float:
-    try:
-        return SECONDS_PER_BYTE * os.path.getsize(importlib.util.find_spec(f"lgekf.generated.{model}").origin)
-    except (ImportError, AttributeError, OSError, TypeError, ValueError):
-        return 3.0  # not a generated model (imm): a guess
-
-
 def compile_seconds(configs) -> list:
-    """The estimated cold compile seconds of each warm-up config (from the size of the model's generated module, as
-    ``lgekf.cli.warmup.model_compile_seconds``, plus ``SOA_COMPILE_SECONDS`` when it runs the SIMD kernel)."""
-    return [_model_seconds(c.filters[0]) + (SOA_COMPILE_SECONDS if _path(c)[0] else 0.0) for c in configs]
-
-
-def _groups(items: list, costs: list, n: int) -> list:
-    n = max(1, min(n, len(items)))
-    groups, load = [[] for _ in range(n)], [0.0] * n
-    for item, cost in sorted(zip(items, costs), key=lambda p: -p[1]):
-        i = load.index(min(load))
-        groups[i].append(item)
-        load[i] += cost
-    return [g for g in groups if g]
+    """The estimated cold compile seconds of each warm-up config (``lgekf.apps.warmup.model_compile_seconds`` of its
+    filter, plus ``SOA_COMPILE_SECONDS`` when it runs the SIMD kernel)."""
+    return [model_compile_seconds(c.filters[0]) + (SOA_COMPILE_SECONDS if _path(c)[0] else 0.0) for c in configs]
 
 
 def warm_cache(configs, processes: int = 1, on_compile=None) -> int:
-    """Run the warm-up studies ``configs`` in ``processes`` child processes and wait for them.
-
-    Parameters
-    ----------
-    configs : list of StudyConfig
-        ``warmup_configs``.
-    processes : int
-        Child processes (the configs are split among them by their estimated compile time).
-    on_compile : callable, optional
-        Called once, with no argument, as soon as a child starts compiling (a cold cache): the compile notice.
-
-    Returns
-    -------
-    int
-        The number of children that compiled something (0: the cache was warm).
-    """
-    if not configs:
-        return 0
-    groups = _groups(list(configs), compile_seconds(configs), processes)
-    env = dict(os.environ, NUMBA_NUM_THREADS="1")  # as the Dask workers: the threads do not change the kernels' code
-    procs, compiled = [], []
-    lock = threading.Lock()
-
-    def watch(p):  # a child writes one line when it starts compiling, then nothing until it exits
-        line = p.stdout.readline()
-        if line == COMPILED:
-            with lock:
-                compiled.append(p)
-                if len(compiled) == 1 and on_compile is not None:
-                    on_compile()
-        p.stdout.read()
-
-    threads = []
-    try:
-        for g in groups:
-            p = subprocess.Popen([sys.executable, "-m", "lgekf.apps.sweep_warmup"], stdin=subprocess.PIPE,
-                                 stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, env=env)
-            procs.append(p)
-            try:
-                p.stdin.write(pickle.dumps(g))
-                p.stdin.close()
-            except OSError:
-                pass
-            threads.append(threading.Thread(target=watch, args=(p,), daemon=True))
-            threads[-1].start()
-        for p in procs:
-            p.wait()
-        for t in threads:
-            t.join()
-        return len(compiled)
-    finally:
-        for p in procs:
-            if p.poll() is None:
-                p.kill()
-                p.wait()
-
-
-def _child() -> int:
-    from numba.core import event
-
-    from ..experiments.study import run_study
-
-    configs = pickle.loads(sys.stdin.buffer.read())
-    out = sys.stdout.buffer
-
-    class Tell(event.Listener):
-        said = False
-
-        def on_start(self, ev):
-            if not self.said:
-                self.said = True
-                out.write(COMPILED)
-                out.flush()
-
-        def on_end(self, ev):
-            pass
-
-    failed = 0
-    with event.install_listener("numba:compile", Tell()):
-        for cfg in configs:
-            try:
-                run_study(cfg)
-            except Exception:  # noqa: BLE001 - the others still warm; the cell compiles what this one missed
-                failed += 1
-    return 1 if failed else 0
-
-
-if __name__ == "__main__":
-    sys.exit(_child())
+    """Run the warm-up studies ``configs`` (``warmup_configs``) in ``processes`` child processes and wait for them
+    (``lgekf.apps.warmup.compile_in_children``; ``on_compile``: called once when a child starts compiling). Returns
+    the number of children that compiled something (0: the cache was warm)."""
+    jobs = [Job("lgekf.experiments.study", "run_study", (cfg,), cost=c) for cfg, c in zip(configs, compile_seconds(configs))]
+    return compile_in_children(jobs, processes, on_compile)

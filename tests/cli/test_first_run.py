@@ -12,7 +12,7 @@ import pytest
 import lgekf.apps.divergence as divergence
 import lgekf.core.batch as batch
 from lgekf.cli.progress import compile_notice_text
-from lgekf.cli.warmup import Job, _groups, compile_estimate
+from lgekf.apps.warmup import Job, _groups, compile_estimate
 
 
 def test_groups_balance_the_cost_and_keep_every_job():
@@ -55,7 +55,7 @@ def run_second():
 _DRIVER = '''
 import sys
 from numba.core import event
-from lgekf.cli.warmup import Job, warm_up
+from lgekf.apps.warmup import Job, warm_up
 jobs = [Job("tiny_kernels", "run_first", cost=2.0), Job("tiny_kernels", "run_second", cost=1.0)]
 print(warm_up(jobs, workers=2))
 '''
@@ -130,7 +130,7 @@ def test_windowed_rerun_after_an_alarm_equals_one_rerun_to_the_end(monkeypatch):
 
 
 def test_worker_count_follows_free_cpus_and_the_variable(monkeypatch):
-    import lgekf.cli.warmup as warmup
+    import lgekf.apps.warmup as warmup
 
     monkeypatch.delenv("LGEKF_COMPILE_WORKERS", raising=False)
     monkeypatch.setattr(warmup.os, "sched_getaffinity", lambda pid: {0, 1, 2, 3}, raising=False)
