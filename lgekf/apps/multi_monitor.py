@@ -73,8 +73,9 @@ class MultiMonitor:
         for i, d in zip(hid.tolist(), np.minimum(trk.held_nis, self.clip).tolist()):
             w = self._nis.setdefault(i, deque(maxlen=cfg.window))
             w.append(d)
-            if len(w) >= cfg.short and sum(list(w)[-cfg.short:]) > self.short_limit:
-                alarmed[i] = (1, sum(list(w)[-cfg.short:]), self.short_limit)
+            recent = sum(list(w)[-cfg.short:])
+            if len(w) >= cfg.short and recent > self.short_limit:
+                alarmed[i] = (1, recent, self.short_limit)
             elif len(w) == cfg.window and sum(w) > self.long_limit:
                 alarmed[i] = (1, sum(w), self.long_limit)
         ids = report.ids.tolist()

@@ -280,6 +280,11 @@ def speed_course(model: str, x: np.ndarray) -> np.ndarray:
     physical states x (N, n), v the world velocity of the model's definition (``world_velocity``)."""
     v = np.empty((x.shape[0], 2))
     get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), v)
+    return speed_and_course(v)
+
+
+def speed_and_course(v: np.ndarray) -> np.ndarray:
+    """(N, 2): |v| and atan2(v_y, v_x) of world velocities v (N, 2)."""
     return np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])])
 
 

@@ -44,7 +44,7 @@ from ..io.formatting import format_rows, label_bytes, output_digits
 from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
-from .track import MOTION_COLUMNS, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
+from .track import MOTION_COLUMNS, speed_and_course, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
 __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
            "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
@@ -373,7 +373,7 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
     col_digits, t_digits = output_digits(imm_columns(opts, origin, smooth)[2:], digits, meas.z, t)  # None: 0.1 mm, 1 µs
     v = common_world_velocity(res.c)
-    parts = [res.c, res.sd, np.column_stack([np.hypot(v[:, 0], v[:, 1]), np.arctan2(v[:, 1], v[:, 0])]), res.mu]
+    parts = [res.c, res.sd, speed_and_course(v), res.mu]
     if origin:
         col_digits[14 + M:14 + M + 2] = 17
         parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
