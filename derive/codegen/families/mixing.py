@@ -70,15 +70,7 @@ def mixing_kernels(model) -> list:
     Tinv = model.group.right_jacobian_inv(list(eps))
     Tinv = Tinv.subs(dict(zip(eps, dsyms)), simultaneous=True)
     Tinv = Tinv.applyfunc(lambda e: _angle_args_to(e, dict(zip(dsyms, d_expr))))
-    tdefs, T = [], sp.zeros(n, n)
-    for i in range(n):
-        for j in range(n):
-            e = sp.sympify(Tinv[i, j])
-            if e.is_number:
-                T[i, j] = e
-            else:
-                T[i, j] = sp.Symbol(f"T{i}_{j}", real=True)
-                tdefs.append((T[i, j], e))
+    tdefs, T = _symbolic(Tinv, "T")
     psyms = {(i, j): sp.Symbol(f"pt{i}_{j}", real=True) for i in range(n) for j in range(i, n)}
     Pt = sp.Matrix(n, n, lambda i, j: psyms[(min(i, j), max(i, j))])
     p_in = [(psyms[(i, j)], f"pt[{idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
