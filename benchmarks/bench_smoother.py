@@ -27,6 +27,10 @@ Printed: ns per trajectory-step of each, and three ratios of smoothing (forward 
 * ``simd/simd`` = (fwd_simd + bwd_simd) / simd: filter_batch(smooth=True) against filter_batch from 1000
   trajectories on, both on their SIMD paths.
 
+``bound`` = ``flops.smoother_bound``: (filter step + ``smooth_step``) / filter step in flops counted from the
+generated source, what same/scalar would be at the filter's speed per flop; ``/bound`` = same/scalar over it (issue
+#26's goal: ≤ 1.2).
+
 The machine may be shared: absolute times are noisy, the ratios of one interleaved run much less so.
 """
 
@@ -38,6 +42,8 @@ import numpy as np
 from lgekf.core.covariance import pack
 from lgekf.core.registry import MODELS, get_model
 from lgekf.core.rts import forward_store, smooth_stored
+
+from flops import smoother_bound
 
 
 def _inputs(spec, B, K, rng):
@@ -53,7 +59,7 @@ def main(B=2000, K=200, repeats=5):
     print(f"{B} trajectories x {K} steps, position measurements; best of {repeats} interleaved rounds (ns per trajectory-step)")
     print(f"{'model':<8} {'scalar':>7} {'simd':>7} {'fwd':>7} {'fwd_simd':>8} {'bwd':>7} {'bwd_simd':>8}  {'same/scalar':>11}"
           f" {'simd/scalar':>11}"
-          f" {'simd/simd':>9}")
+          f" {'simd/simd':>9} {'bound':>6} {'/bound':>7}")
     worst = [0.0, 0.0, 0.0]
     for name in MODELS:
         spec = get_model(name)
@@ -91,10 +97,11 @@ def main(B=2000, K=200, repeats=5):
         simd_sum = best["fwd_simd"] + best["bwd_simd"]
         ratios = [(best["fwd"] + best["bwd"]) / best["scalar"], simd_sum / best["scalar"], simd_sum / best["simd"]]
         worst = [max(w, v) for w, v in zip(worst, ratios)]
+        bound = smoother_bound(name)
         ns = 1e9 / (B * K)
         print(f"{name:<8} " + " ".join(f"{best[k] * ns:{w}.0f}" for k, w in (("scalar", 7), ("simd", 7), ("fwd", 7), ("fwd_simd", 8),
                                                                              ("bwd", 7), ("bwd_simd", 8)))
-              + f"  {ratios[0]:11.2f} {ratios[1]:11.2f} {ratios[2]:9.2f}", flush=True)
+              + f"  {ratios[0]:11.2f} {ratios[1]:11.2f} {ratios[2]:9.2f} {bound:6.2f} {ratios[0] / bound:7.2f}", flush=True)
     print(f"largest same/scalar (the issue's ratio) {worst[0]:.2f}, simd/scalar {worst[1]:.2f}, simd/simd {worst[2]:.2f}")
 
 

@@ -23,7 +23,7 @@ import importlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-__all__ = ["Counts", "step_flops", "function_flops"]
+__all__ = ["Counts", "step_flops", "function_flops", "cost", "smoother_step_flops", "smoother_bound", "imm_step_flops", "imm_bound"]
 
 
 @dataclass
@@ -161,3 +161,70 @@ def step_flops(model: str, meas: str = "position") -> Counts:
 
     mod = get_model(model).kernels
     return function_flops(mod, step_names(mod, meas))
+
+
+# ---------------------------------------------------------------------------------------------------------------------
+# bounds of the smoother and the IMM, in filter steps (what the issue's goals are stated against)
+
+def cost(c: Counts) -> int:
+    """One number per code path: flops + 20 per sincos, sqrt or atan2 (``Counts.key``; the weight of a libm call)."""
+    return c.key()[0]
+
+
+def smoother_step_flops(model: str, meas: str = "position") -> Counts:
+    """One trajectory-step of RTS smoothing: the forward pass's fused filter step (storing the prediction adds no
+    arithmetic) plus the backward pass's ``smooth_step``."""
+    from lgekf.core.registry import get_model
+
+    mod = get_model(model).kernels
+    return step_flops(model, meas) + function_flops(mod, ["smooth_step"])
+
+
+def smoother_bound(model: str, meas: str = "position") -> float:
+    """(forward + backward) / filter step, in ``cost``: the time ratio smoothing would have at the filter's speed
+    per flop (what ``benchmarks/bench_smoother.py``'s same/scalar is compared with)."""
+    return cost(smoother_step_flops(model, meas)) / cost(step_flops(model, meas))
+
+
+# mixing in the common coordinates (6): per source and target, the mean's w·c (2 flops × 6) and the covariance's
+# w·(P + d dᵀ) (4 flops × 36)
+_COMMON_MIX = 2 * 6 + 4 * 36
+
+
+def imm_step_flops(models, meas: str = "position", iterations: int = 2) -> int:
+    """``cost`` of one IMM step of the modes' models (a list of registry names, one per mode), the rule of
+    ``lgekf.estimators.imm`` with its overheads left out:
+
+    * every mode's fused filter step (``step_ll_<meas>``, which also gives log det S) and its output conversion;
+    * modes of one group: the mixing on the group for each target mode and once more for the combined output, each
+      ``iterations`` mean iterations (M ``between_add`` and one ``retract`` each; two is typical) and M
+      ``mix_transport``;
+    * modes of different groups: every mode to the common coordinates (``common_of_state``), for each target mode
+      and for the combined output a mixture of M sources in them (``_COMMON_MIX``), each target back to its state
+      (``state_of_common``).
+    """
+    from lgekf.core.registry import get_model
+
+    M = len(models)
+    mods = [get_model(m).kernels for m in models]
+    f = {}
+
+    def c(mod, name):
+        if (mod, name) not in f:
+            f[mod, name] = cost(function_flops(mod, [name]))
+        return f[mod, name]
+
+    total = sum(c(mod, n) for mod in mods for n in step_names(mod, meas)[:-1]) + sum(c(mod, "physical_into") for mod in mods)
+    if len(set(models)) == 1:
+        mod = mods[0]
+        one_mix = iterations * (M * c(mod, "between_add") + c(mod, "retract")) + M * c(mod, "mix_transport")
+        return total + (M + 1) * one_mix
+    total += sum(c(mod, "common_of_state") for mod in mods) + sum(c(mod, "state_of_common") for mod in mods)
+    return total + (M + 1) * M * _COMMON_MIX
+
+
+def imm_bound(models, meas: str = "position") -> float:
+    """IMM step / (M × the modes' mean filter step), in ``cost``: the ratio ``benchmarks/bench_imm.py`` measures,
+    at the filters' speed per flop."""
+    mean_step = sum(cost(step_flops(m, meas)) for m in models) / len(models)
+    return imm_step_flops(models, meas) / (len(models) * mean_step)
