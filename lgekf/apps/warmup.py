@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 from ..io.cpus import usable_cpus
 
 __all__ = ["Job", "warm_up", "compile_in_children", "model_compile_seconds", "compile_estimate", "worker_count",
-           "SECONDS_PER_BYTE"]
+           "SECONDS_PER_BYTE", "IMM_COMPILE_SECONDS", "imm_compile_seconds"]
 
 COMPILED = b"compiling\n"  # a worker's one line on stdout when it starts compiling (a cache miss)
 
@@ -43,6 +43,11 @@ COMPILED = b"compiling\n"  # a worker's one line on stdout when it starts compil
 # study, but they grow with the module), measured on the 2-core x86-64 machine on 2026-11-24 (load < 1): the
 # first `lgekf study` took 12.8 s cold with two workers and 19.3 s with one (1.7 s warm), for 481 kB of modules
 SECONDS_PER_BYTE = 0.4e-4
+# compile seconds of ``lgekf track --model imm`` on a cold cache, and what --tune and --smooth add (the IMM's loop
+# reaches every registry model through generated/dispatch.py, so it compiles all of them whatever its modes):
+# CPU seconds of one process on the 2-core x86-64 machine, 2026-11-29 (a 1 000-row file; load about 1.5 from other
+# work, so a little high): 96 s alone, 129 s with --tune, 121 s with --smooth, 157 s with both
+IMM_COMPILE_SECONDS = {"imm": 96.0, "tune": 33.0, "smooth": 25.0}
 # numba's own start in a worker and the kernels every job shares (special functions, helpers)
 WORKER_OVERHEAD_SECONDS = 1.5
 
@@ -79,6 +84,14 @@ def model_compile_seconds(model: str) -> float:
         return SECONDS_PER_BYTE * os.path.getsize(spec.origin)
     except (ImportError, AttributeError, OSError, TypeError):
         return 3.0
+
+
+def imm_compile_seconds(tune: bool, smooth: bool) -> float:
+    """Estimated seconds to compile ``lgekf track --model imm`` cold, with ``--tune`` and/or ``--smooth``
+    (``IMM_COMPILE_SECONDS``, one process: the IMM's kernels share the models' leaves, so parallel processes would
+    compile the same leaves twice)."""
+    c = IMM_COMPILE_SECONDS
+    return c["imm"] + (c["tune"] if tune else 0.0) + (c["smooth"] if smooth else 0.0)
 
 
 def worker_count() -> int:

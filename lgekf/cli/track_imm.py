@@ -6,6 +6,7 @@ from __future__ import annotations
 import sys
 
 from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm_classes, write_imm
+from ..apps.warmup import imm_compile_seconds
 from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_parquet import is_parquet
@@ -46,6 +47,11 @@ class ImmTrack(TrackEstimator):
                 raise ValueError(f"--model imm: {name} is not supported")
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--model imm: Parquet input or output is not supported (yet); use CSV")
+
+    def compile_seconds(self):
+        """The compile notice's estimate (``lgekf.apps.warmup.imm_compile_seconds``): the IMM compiles much more
+        than one model does."""
+        return imm_compile_seconds(bool(getattr(self.a, "tune", False)), bool(getattr(self.a, "smooth", False)))
 
     def plan(self, meas, starts, monitor) -> None:
         """The IMM's noise: from the data per class of objects, or ``--tune``'s fit."""

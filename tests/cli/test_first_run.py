@@ -34,6 +34,25 @@ def test_estimate_and_notice_text():
     assert "10-60 s" in compile_notice_text(None)
 
 
+def test_imm_notice_counts_what_its_options_compile():
+    """`--model imm` compiles every registry model's leaves (about 100 s cold, issue #26): its notice must not
+    promise the single model's 10-60 s; --tune and --smooth each add their kernels."""
+    from argparse import Namespace
+
+    from lgekf.cli.track_imm import ImmTrack
+
+    def est(**kw):
+        a = Namespace(imm_modes=None, imm_switch=None, tune=False, smooth=False)
+        vars(a).update(kw)
+        return ImmTrack(a, print).compile_seconds()
+
+    plain, tune, smooth, both = est(), est(tune=True), est(smooth=True), est(tune=True, smooth=True)
+    assert plain > 60.0  # beyond the general notice's range
+    assert plain < tune < both and plain < smooth < both
+    assert both == pytest.approx(tune + smooth - plain)
+    assert "10-60 s" not in compile_notice_text(both)
+
+
 _KERNELS = '''
 import numba as nb
 
