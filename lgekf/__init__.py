@@ -5,6 +5,7 @@ Every model shares one interface (``predict()``, ``update(z)``, ``x``, ``P``): `
 ``CTRVFilter`` and ``CVFilter`` (baselines), one class per model definition in ``derive/models``.
 ``filter_batch`` runs any of them over many trajectories in numba; ``state_from_common`` and
 ``covariance_from_common`` build a model's initial state and P0 from common coordinates.
+``gospa`` scores a multi-target tracker's output against the truth (GOSPA per scan, its parts, track switches).
 ``track`` is the main job from Python: ``lgekf track`` on a file, a DataFrame or a dict of columns, its output as a
 DataFrame. The runtime never imports SymPy; the symbolic source of truth is ``lgekf.derive``.
 
@@ -28,6 +29,7 @@ _PUBLIC = {
     "get_model": "lgekf.core.registry",
     "track": "lgekf.cli.api",
     "plot_tracks": "lgekf.apps.plot_tracks",
+    "gospa": "lgekf.experiments.gospa:gospa_tracks",  # the public name: "module:attribute" when they differ
 }
 
 
@@ -39,7 +41,8 @@ def _filter_classes() -> list:
 
 def __getattr__(name):
     if name in _PUBLIC:
-        return getattr(importlib.import_module(_PUBLIC[name]), name)
+        module, _, attr = _PUBLIC[name].partition(":")
+        return getattr(importlib.import_module(module), attr or name)
     if name.endswith("Filter") and name in _filter_classes():
         return getattr(importlib.import_module("lgekf.core.filters"), name)
     raise AttributeError(f"module 'lgekf' has no attribute {name!r}")

@@ -17,7 +17,7 @@ import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
 from ..estimators.multitarget.tracker import MultiTargetTracker
-from .gospa import gospa, track_switches
+from .gospa import gospa_series
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario
 
@@ -80,23 +80,20 @@ class MultiCell:
 
 
 def run_tracker_on(scenario, step, c: float, p: float):
-    """Score a tracker (``step(t, Z) -> (ids, positions (K, 2))``) on a scenario: per-scan GOSPA parts and switches.
+    """Score a tracker (``step(t, Z) -> (ids, positions (K, 2))``) on a scenario: per-scan GOSPA parts and switches
+    (``gospa_series``).
 
     Returns (mean GOSPA, mean localisation, mean missed, mean false (the parts per scan, p-th powers),
     switches, wall seconds of the ``step`` calls)."""
-    G, L, Mi, F, assigned = [], [], [], [], []
+    tracks = []
     wall = 0.0
-    for t, Z, (ids, X) in zip(scenario.times, scenario.detections, scenario.truth):
+    for t, Z in zip(scenario.times, scenario.detections):
         t0 = time.perf_counter()
-        tid, pos = step(t, Z)
+        tracks.append(step(t, Z))
         wall += time.perf_counter() - t0
-        g = gospa(X[:, :2], pos, c=c, p=p)
-        G.append(g.distance)
-        L.append(g.localisation)
-        Mi.append(g.missed)
-        F.append(g.false)
-        assigned.append({int(ids[i]): int(tid[j]) for i, j in g.assignment})
-    return float(np.mean(G)), float(np.mean(L)), float(np.mean(Mi)), float(np.mean(F)), track_switches(assigned), wall
+    truth = [(ids, X[:, :2]) for ids, X in scenario.truth]
+    s = gospa_series(truth, tracks, c=c, p=p).summary()
+    return s["gospa"], s["localisation"], s["missed"], s["false"], s["switches"], wall
 
 
 def scenarios(cfg: MultiStudyConfig) -> list:
