@@ -6,8 +6,9 @@ For each IMM (M modes) the time of ``imm_batch`` over a batch, against ``filter_
 the same data; prints IMM / (M × one filter), "one filter" being the mean time of the modes' filters run alone,
 IMM / Σ (the modes run alone), the flop bound of IMM / (M × one filter) (``flops.imm_bound``: the IMM's arithmetic
 in filter steps, counted from the generated source) and the measured ratio over that bound (issue #26's goal:
-≤ 1.3). Both run numba prange over the batch, on one
-thread (NUMBA_NUM_THREADS=1 is set before numba loads, so other jobs on the machine matter less); best of 5.
+≤ 1.3). Both run on one thread (NUMBA_NUM_THREADS=1 is
+set before numba loads: the filters' prange and the IMM's threads, ``lgekf.estimators.threads``, obey it; other jobs on
+the machine then matter less); best of 5.
 Where an IMM step's time goes (mixing, likelihood, combined output): benchmarks/profile_imm.py.
 """
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from . import dispatch as D
 
-__all__ = ['MEASUREMENT_NAMES', 'unpack_into', 'pack_from', 'workspace', 'mix_on_group', 'mix_common', 'combined_common', 'imm_predict', 'imm_step', 'imm_loglik_one', 'imm_run_one', 'imm_update_pose', 'imm_run_batch_pose', 'imm_update_position', 'imm_run_batch_position', 'imm_update']
+__all__ = ['MEASUREMENT_NAMES', 'unpack_into', 'pack_from', 'workspace', 'mix_on_group', 'mix_common', 'combined_common', 'imm_predict', 'imm_step', 'imm_loglik_one', 'imm_run_one', 'imm_update_pose', 'imm_run_batch_pose', 'imm_loglik_batch_pose', 'imm_update_position', 'imm_run_batch_position', 'imm_loglik_batch_position', 'imm_update']
 
 #: the measurements, by index (the IMM's ``meas`` argument)
 MEASUREMENT_NAMES = ('pose', 'position')
@@ -710,15 +710,44 @@ def _run_pose(ws, M, z, dts, same_group, out_c, out_P, out_mu):
         _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
 
 
-@nb.njit(cache=True, parallel=True)
+@nb.njit(cache=True, nogil=True)
 def imm_run_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
-    """imm_run_one over B trajectories in parallel, pose measurements (compiles only its kernels): S0 (B, M, L),
-    P0 (B, M, N), z (B, K, m), dts (B, K)."""
+    """imm_run_one over B trajectories, pose measurements (compiles only its kernels): S0 (B, M, L), P0 (B, M, N),
+    z (B, K, m), dts (B, K). Serial and without the GIL: ``lgekf.estimators.imm.kernels.run_batch`` runs parts of
+    the batch on threads (numba's parallel loop would cost about 9 s more to compile)."""
     M = models.shape[0]
-    for b in nb.prange(z.shape[0]):
+    for b in range(z.shape[0]):
         ws = workspace(M)
         _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
         _run_pose(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def imm_loglik_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, ll, cnt):
+    """imm_loglik_one of each track b with pose measurements (only its kernels compile), over its steps k in
+    [skip[b], lengths[b]) from the initial mode states S0[b] (M, L), packed covariances P0[b] (M, N) and
+    probabilities mu0; z (B, K, m), dts (B, K) padded beyond lengths[b]. Writes ll (B,) (−inf once no mode explains
+    a measurement) and cnt (B,), the steps counted. Serial and without the GIL: a caller runs parts of the batch on
+    threads (numba's parallel loop would cost about 9 s more to compile)."""
+    M = models.shape[0]
+    m = z.shape[2]
+    for b in range(z.shape[0]):
+        ws = workspace(M)  # a fresh one per track, as imm_loglik_one
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        tot = 0.0
+        n = 0
+        for k in range(lengths[b]):
+            for i in range(m):
+                ws[_R_Z, i] = z[b, k, i]
+            if _mix_or_predict(ws, M, m, dts[b, k], same_group):
+                continue
+            _modes_pose(ws, M, m, dts[b, k])
+            v = _posterior(ws, M)
+            if k >= skip[b] and not np.isnan(v):
+                tot += v
+                n += 1
+        ll[b] = tot
+        cnt[b] = n
 
 
 @nb.njit(cache=True)
@@ -786,15 +815,44 @@ def _run_position(ws, M, z, dts, same_group, out_c, out_P, out_mu):
         _outputs(ws, M, k, same_group, out_c, out_P, out_mu)
 
 
-@nb.njit(cache=True, parallel=True)
+@nb.njit(cache=True, nogil=True)
 def imm_run_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, same_group, out_c, out_P, out_mu):
-    """imm_run_one over B trajectories in parallel, position measurements (compiles only its kernels): S0 (B, M, L),
-    P0 (B, M, N), z (B, K, m), dts (B, K)."""
+    """imm_run_one over B trajectories, position measurements (compiles only its kernels): S0 (B, M, L), P0 (B, M, N),
+    z (B, K, m), dts (B, K). Serial and without the GIL: ``lgekf.estimators.imm.kernels.run_batch`` runs parts of
+    the batch on threads (numba's parallel loop would cost about 9 s more to compile)."""
     M = models.shape[0]
-    for b in nb.prange(z.shape[0]):
+    for b in range(z.shape[0]):
         ws = workspace(M)
         _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
         _run_position(ws, M, z[b], dts[b], same_group, out_c[b], out_P[b], out_mu[b])
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def imm_loglik_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, ll, cnt):
+    """imm_loglik_one of each track b with position measurements (only its kernels compile), over its steps k in
+    [skip[b], lengths[b]) from the initial mode states S0[b] (M, L), packed covariances P0[b] (M, N) and
+    probabilities mu0; z (B, K, m), dts (B, K) padded beyond lengths[b]. Writes ll (B,) (−inf once no mode explains
+    a measurement) and cnt (B,), the steps counted. Serial and without the GIL: a caller runs parts of the batch on
+    threads (numba's parallel loop would cost about 9 s more to compile)."""
+    M = models.shape[0]
+    m = z.shape[2]
+    for b in range(z.shape[0]):
+        ws = workspace(M)  # a fresh one per track, as imm_loglik_one
+        _load(ws, models, S0[b], P0[b], mu0, PI, Q, r)
+        tot = 0.0
+        n = 0
+        for k in range(lengths[b]):
+            for i in range(m):
+                ws[_R_Z, i] = z[b, k, i]
+            if _mix_or_predict(ws, M, m, dts[b, k], same_group):
+                continue
+            _modes_position(ws, M, m, dts[b, k])
+            v = _posterior(ws, M)
+            if k >= skip[b] and not np.isnan(v):
+                tot += v
+                n += 1
+        ll[b] = tot
+        cnt[b] = n
 
 
 @nb.njit(cache=True, inline="always")

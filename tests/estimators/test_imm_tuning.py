@@ -170,3 +170,36 @@ def test_report_of_an_unbounded_interval_warns_nothing():
         warnings.simplefilter("error")
         text = fit.report()
     assert "cv:calm ×0.01 [no interval]" in text and "cv:manoeuvre ×0.5 [0.4, 0.6]" in text and "switch 0.02 (given)" in text
+
+
+@pytest.mark.parametrize("modes", ["cv,se2r3:calm,se2r3:manoeuvre", "se2r3:calm,se2r3:manoeuvre", "cv,ctrv,se2se2"])
+def test_likelihood_batch_on_threads_equals_the_generic_loop(modes, monkeypatch):
+    """The fit's batch (the generated imm_loglik_batch_position, parts of the batch on threads) gives each track
+    bit for bit the sum of imm_loglik_one (the generic loop, the measurement as an argument), missed steps and the
+    skipped start included, whatever the number of threads."""
+    from lgekf.estimators import threads
+    from lgekf.estimators.imm import tuning
+    from lgekf.estimators.imm.estimator import parse_modes
+    from lgekf.estimators.imm.kernels import imm_loglik_one
+
+    rng = np.random.default_rng(3)
+    tracks = []
+    for b in range(40):
+        K = 30 + b
+        t = 0.1 * np.arange(K) + 0.01 * rng.random(K)
+        th = 0.3 * b + 0.2 * np.sin(t)
+        z = np.stack([np.cumsum(4 * np.cos(th)), np.cumsum(4 * np.sin(th))], 1) * 0.1 + 0.3 * rng.standard_normal((K, 2))
+        z[5 + b % 7] = np.nan
+        tracks.append((t, z))
+    tr = tuning._Tracks(tracks, 2, 0.3, 0.5, 0.5)
+    L = tuning._Likelihood(parse_modes(modes), 0.3, tr, "position")
+    s = L.setup
+    want = [imm_loglik_one(s.models, L.S0[b].copy(), L.Pp0[b].copy(), s.mu0.copy(), s.PI, s.Q, s.r, tr.z[b], tr.dts[b],
+                           tr.skip[b], tr.lengths[b], s.same_group, s.meas) for b in range(tr.B)]
+    for cpus in (1, 3):
+        monkeypatch.setattr(threads, "usable_cpus", lambda: cpus)
+        ll, cnt = np.full(tr.B, np.nan), np.zeros(tr.B, dtype=np.int64)
+        tuning.imm_loglik_batch(s.models, L.S0, L.Pp0, s.mu0, s.PI, s.Q, s.r, tr.z, tr.dts, tr.lengths, tr.skip,
+                                s.same_group, s.meas, ll, cnt)
+        assert ll.tolist() == [w[0] for w in want] and cnt.tolist() == [w[1] for w in want]
+    assert tr.skip.max() > 0 and np.isnan(tr.z).any()  # the case covers the skipped start and missed steps

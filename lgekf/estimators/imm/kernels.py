@@ -64,6 +64,7 @@ class, the smoother's forward pass) keep the separate prediction, log det S and 
 from __future__ import annotations
 
 from ...core.registry import imm_kernel
+from ..threads import run_on_threads
 from ...generated.imm import (
     MEASUREMENT_NAMES,
     _mix,
@@ -91,7 +92,13 @@ def measurement_index(measurement: str) -> int:
 
 
 def run_batch(measurement: str):
-    """The generated ``imm_run_batch_<measurement>``: ``imm_run_one`` over B trajectories in parallel, compiling only
-    that measurement's kernels (arguments: models, S0 (B, M, L), P0 (B, M, N), mu0, PI, Q, r, z (B, K, m), dts (B, K),
-    same_group, out_c, out_P, out_mu)."""
-    return imm_kernel("imm_run_batch", measurement)
+    """``imm_run_one`` over B trajectories, compiling only that measurement's kernels: the generated
+    ``imm_run_batch_<measurement>`` (serial, without the GIL) on parts of the batch in threads
+    (``lgekf.estimators.threads``). The returned function takes models, S0 (B, M, L), P0 (B, M, N), mu0, PI, Q, r,
+    z (B, K, m), dts (B, K), same_group, out_c, out_P, out_mu."""
+    kernel = imm_kernel("imm_run_batch", measurement)
+
+    def run(*args):
+        run_on_threads(kernel, args, (1, 2, 7, 8, 10, 11, 12), args[7].shape[0])
+
+    return run

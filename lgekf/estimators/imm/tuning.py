@@ -32,13 +32,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numba as nb
 import numpy as np
 
 from ...core.initiation import DEFAULT_OMEGA_STD, two_point
-from ...core.registry import get_measurement
+from ...core.registry import get_measurement, imm_kernel
+from ..threads import run_on_threads
 from .estimator import DEFAULT_SWITCH, Mode, _common_inputs, _modes, _Setup, transition_matrix
-from .kernels import imm_loglik_one
+from .kernels import MEASUREMENT_NAMES
 from ..noise.tracks import batch_tracks
 from ..noise.tuning import FLAT_LIKELIHOOD, MIN_UPDATES_PER_PARAMETER, PENALTY, WIDE_FACTOR, _standard_errors
 
@@ -129,21 +129,18 @@ class ImmFit:
         return head
 
 
-@nb.njit(cache=True, parallel=True)
-def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas, ll, cnt):
+def imm_loglik_batch(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, meas, ll, cnt) -> None:
     """Σ_k log Σ_j c̄_j N_j of each track b over its steps k in [skip[b], lengths[b]) (missed steps not counted).
 
     S0 (B, M, L), P0 (B, M, NP): each track's initial mode states and packed covariances; z (B, K, m), dts (B, K)
-    padded beyond lengths[b]. Writes ll (B,) (−inf once every mode's likelihood vanished) and cnt (B,) the steps
-    counted.
+    padded beyond lengths[b]; ``meas`` the measurement's index (``MEASUREMENT_NAMES``). Writes ll (B,) (−inf once
+    every mode's likelihood vanished) and cnt (B,) the steps counted. Runs the generated
+    ``imm_loglik_batch_<measurement>`` (only that measurement's kernels compile; serial, without the GIL) on parts
+    of the batch in threads (``lgekf.estimators.threads``); each track's sum is the same whatever the split.
     """
-    for b in nb.prange(z.shape[0]):
-        S = S0[b].copy()
-        Pp = P0[b].copy()
-        mu = mu0.copy()
-        tot, n = imm_loglik_one(models, S, Pp, mu, PI, Q, r, z[b], dts[b], skip[b], lengths[b], same_group, meas)
-        ll[b] = tot
-        cnt[b] = n
+    kernel = imm_kernel("imm_loglik_batch", MEASUREMENT_NAMES[meas])
+    run_on_threads(kernel, (models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, same_group, ll, cnt),
+                   (1, 2, 7, 8, 9, 10, 12, 13), z.shape[0])
 
 
 class _Tracks:
