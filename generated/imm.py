@@ -11,7 +11,7 @@ import numpy as np
 
 from . import dispatch as D
 
-__all__ = ['MEASUREMENT_NAMES', 'unpack_into', 'pack_from', 'workspace', 'mix_on_group', 'mix_common', 'combined_common', 'imm_predict', 'imm_step', 'imm_loglik_one', 'imm_run_one', 'imm_update_pose', 'imm_run_batch_pose', 'imm_loglik_batch_pose', 'imm_update_position', 'imm_run_batch_position', 'imm_loglik_batch_position', 'imm_update']
+__all__ = ['MEASUREMENT_NAMES', 'unpack_into', 'pack_from', 'workspace', 'mix_on_group', 'mix_common', 'combined_common', 'imm_predict', 'imm_step', 'imm_loglik_one', 'imm_run_one', 'imm_update_pose', 'imm_run_batch_pose', 'imm_loglik_batch_pose', 'imm_forward_store_pose', 'imm_update_position', 'imm_run_batch_position', 'imm_loglik_batch_position', 'imm_forward_store_position', 'imm_update']
 
 #: the measurements, by index (the IMM's ``meas`` argument)
 MEASUREMENT_NAMES = ('pose', 'position')
@@ -751,6 +751,34 @@ def imm_loglik_batch_pose(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, skip, 
 
 
 @nb.njit(cache=True)
+def imm_forward_store_pose(models, S, Pp, mu, PI, Q, r, z, dts, same_group, S_mix, P_mix, S_pred, P_pred, S_filt,
+                      P_filt, mu_pred, mu_filt):
+    """The IMM over one trajectory z (K, m) of pose measurements, from (S, Pp, mu) (modified), keeping every step
+    (the smoother's forward pass, lgekf.estimators.imm.smoother): S_mix/P_mix (K, M, ·) the mixed estimates the
+    prediction to step k started from (at step k-1), S_pred/P_pred the predictions, S_filt/P_filt the posteriors,
+    mu_pred/mu_filt (K, M) the predicted and posterior mode probabilities."""
+    K = z.shape[0]
+    M = models.shape[0]
+    ws = workspace(M)
+    nis = np.empty(M)
+    cbar = np.empty(M)
+    for k in range(K):
+        _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
+        S_mix[k] = S
+        P_mix[k] = Pp
+        for j in range(M):
+            D.predict(models[j], S[j], Pp[j], dts[k], Q[j])
+            mu[j] = cbar[j]
+        S_pred[k] = S
+        P_pred[k] = Pp
+        mu_pred[k] = mu
+        imm_update_pose(models, S, Pp, mu, r, z[k], nis, ws)
+        S_filt[k] = S
+        P_filt[k] = Pp
+        mu_filt[k] = mu
+
+
+@nb.njit(cache=True)
 def imm_update_position(models, S, Pp, mu, r, z, nis_out, ws):
     """Every mode's update with z, in place, and μ_j ∝ μ_j N(ν_j; 0, S_j); a NaN in z: nothing changes.
 
@@ -853,6 +881,34 @@ def imm_loglik_batch_position(models, S0, P0, mu0, PI, Q, r, z, dts, lengths, sk
                 n += 1
         ll[b] = tot
         cnt[b] = n
+
+
+@nb.njit(cache=True)
+def imm_forward_store_position(models, S, Pp, mu, PI, Q, r, z, dts, same_group, S_mix, P_mix, S_pred, P_pred, S_filt,
+                      P_filt, mu_pred, mu_filt):
+    """The IMM over one trajectory z (K, m) of position measurements, from (S, Pp, mu) (modified), keeping every step
+    (the smoother's forward pass, lgekf.estimators.imm.smoother): S_mix/P_mix (K, M, ·) the mixed estimates the
+    prediction to step k started from (at step k-1), S_pred/P_pred the predictions, S_filt/P_filt the posteriors,
+    mu_pred/mu_filt (K, M) the predicted and posterior mode probabilities."""
+    K = z.shape[0]
+    M = models.shape[0]
+    ws = workspace(M)
+    nis = np.empty(M)
+    cbar = np.empty(M)
+    for k in range(K):
+        _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
+        S_mix[k] = S
+        P_mix[k] = Pp
+        for j in range(M):
+            D.predict(models[j], S[j], Pp[j], dts[k], Q[j])
+            mu[j] = cbar[j]
+        S_pred[k] = S
+        P_pred[k] = Pp
+        mu_pred[k] = mu
+        imm_update_position(models, S, Pp, mu, r, z[k], nis, ws)
+        S_filt[k] = S
+        P_filt[k] = Pp
+        mu_filt[k] = mu
 
 
 @nb.njit(cache=True, inline="always")

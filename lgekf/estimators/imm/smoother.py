@@ -51,39 +51,21 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ...core.registry import get_model
+from ...core.registry import get_model, imm_kernel
 from ...generated import dispatch as D
 from .estimator import _Setup, _batch_inputs
-from .kernels import _mix, combined_common, imm_update, workspace
+from .kernels import _mix, combined_common, workspace
 
 __all__ = ["ImmForward", "imm_forward_store", "smoothed_mode_probabilities", "imm_smooth_one", "imm_smooth_batch"]
 
 
-@nb.njit(cache=True)
-def imm_forward_store(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas, S_mix, P_mix, S_pred, P_pred, S_filt,
-                      P_filt, mu_pred, mu_filt):
-    """The IMM over one trajectory z (K, m), from (S, Pp, mu) (modified), keeping every step: S_mix/P_mix (K, M, ·)
-    the mixed estimates the prediction to step k started from (at step k-1), S_pred/P_pred the predictions,
-    S_filt/P_filt the posteriors, mu_pred/mu_filt (K, M) the predicted and posterior mode probabilities."""
-    K = z.shape[0]
-    M = models.shape[0]
-    ws = workspace(M)
-    nis = np.empty(M)
-    cbar = np.empty(M)
-    for k in range(K):
-        _mix(models, S, Pp, mu, PI, same_group, cbar, ws)
-        S_mix[k] = S
-        P_mix[k] = Pp
-        for j in range(M):
-            D.predict(models[j], S[j], Pp[j], dts[k], Q[j])
-            mu[j] = cbar[j]
-        S_pred[k] = S
-        P_pred[k] = Pp
-        mu_pred[k] = mu
-        imm_update(models, S, Pp, mu, r, z[k], meas, nis, ws)
-        S_filt[k] = S
-        P_filt[k] = Pp
-        mu_filt[k] = mu
+def imm_forward_store(measurement: str):
+    """The generated ``imm_forward_store_<measurement>`` (only that measurement's kernels compile): the IMM over one
+    trajectory z (K, m), from (S, Pp, mu) (modified), keeping every step: S_mix/P_mix (K, M, ·) the mixed estimates
+    the prediction to step k started from (at step k-1), S_pred/P_pred the predictions, S_filt/P_filt the
+    posteriors, mu_pred/mu_filt (K, M) the predicted and posterior mode probabilities. Arguments: models, S, Pp, mu,
+    PI, Q, r, z, dts, same_group, S_mix, P_mix, S_pred, P_pred, S_filt, P_filt, mu_pred, mu_filt."""
+    return imm_kernel("imm_forward_store", measurement)
 
 
 def smoothed_mode_probabilities(mu_filt: np.ndarray, PI: np.ndarray) -> np.ndarray:
@@ -131,9 +113,9 @@ def _forward(s: _Setup, S0, P0, z, dts) -> ImmForward:
     M = s.M
     f = ImmForward(np.empty((K, M, s.L)), np.empty((K, M, s.NP)), np.empty((K, M, s.L)), np.empty((K, M, s.NP)),
                    np.empty((K, M, s.L)), np.empty((K, M, s.NP)), np.empty((K, M)), np.empty((K, M)))
-    imm_forward_store(s.models, S0.copy(), P0.copy(), s.mu0.copy(), s.PI, s.Q, s.r, np.ascontiguousarray(z),
-                      np.ascontiguousarray(dts, dtype=float), s.same_group, s.meas, f.S_mix, f.P_mix, f.S_pred, f.P_pred,
-                      f.S_filt, f.P_filt, f.mu_pred, f.mu_filt)
+    imm_forward_store(s.measurement)(s.models, S0.copy(), P0.copy(), s.mu0.copy(), s.PI, s.Q, s.r, np.ascontiguousarray(z),
+                                     np.ascontiguousarray(dts, dtype=float), s.same_group, f.S_mix, f.P_mix, f.S_pred,
+                                     f.P_pred, f.S_filt, f.P_filt, f.mu_pred, f.mu_filt)
     return f
 
 
