@@ -1,8 +1,10 @@
-"""SE(2), R^n and their direct products as matrix Lie groups, symbolically (SymPy).
+"""SE(2), R^n and their direct products as matrix Lie groups, symbolically (SymPy); SO(3) and SE(3) live in
+``derive.lie.so3`` and ``derive.lie.se3`` and are re-exported here.
 
 Conventions (used everywhere in lgekf):
 
-* SE(2) tangent vectors are ordered ``(x, y, θ)``: translational part first, angle last.
+* SE(2) tangent vectors are ordered ``(x, y, θ)``: translational part first, angle last; SE(3)'s
+  ``(x, y, z, φx, φy, φz)``: translation ρ first, then the rotation vector φ.
 * ``hat``/``vee`` are the paper's ``[·]^∧_G`` and ``[·]^∨_G``.
 * Perturbations act on the right: ``X = μ · exp(ε^∧)`` (the paper's concentrated Gaussian).
 * ``right_jacobian`` is the paper's Φ_G(v) = Σ_m (-1)^m/(m+1)! ad_G(v)^m, i.e. the Jacobian with
@@ -20,9 +22,11 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .se3 import SE3
+from .so3 import SO3
 from .special import cosc, cosc2, halfcot, halfcot1, sinc, sinc2
 
-__all__ = ["SE2", "Rn", "Product", "so2_log"]
+__all__ = ["SE2", "SO3", "SE3", "Rn", "Product", "so2_log"]
 
 
 def so2_log(R: sp.Matrix):
@@ -210,21 +214,31 @@ class Rn:
         return sp.eye(self.dim)
 
 
-class _SE2Instance:
-    """SE2 with the instance interface of Rn (so that Product can hold either)."""
+class _GroupInstance:
+    """A group given as a class of static/class methods (SE2, SO3, SE3) with the instance interface of Rn, so that
+    Product can hold either."""
 
-    dim = 3
-    matrix_size = 3
+    def __init__(self, cls):
+        self._cls = cls
+        self.dim = cls.dim
+        self.matrix_size = cls.matrix_size
 
     def __getattr__(self, name):
-        return getattr(SE2, name)
+        return getattr(self._cls, name)
 
 
 class Product:
-    """Direct product G_1 × G_2: block-diagonal hat, exp, log, Ad, ad, Φ (paper, SE(2)^2 section)."""
+    """Direct product G_1 × G_2 × ...: block-diagonal hat, exp, log, Ad, ad, Φ (paper, SE(2)^2 section).
+
+    Factors: SE2, SO3, SE3 (the classes), Rn(k) instances, or other Products (nested products are flattened).
+    The tangent is the concatenation of the factors' tangents, in order.
+    """
 
     def __init__(self, *factors):
-        self.factors = [(_SE2Instance() if f is SE2 else f) for f in factors]
+        flat = []
+        for f in factors:
+            flat.extend(f.factors if isinstance(f, Product) else [f])
+        self.factors = [(_GroupInstance(f) if isinstance(f, type) else f) for f in flat]
         self.dim = sum(f.dim for f in self.factors)
 
     @property

@@ -1,0 +1,194 @@
+"""SO(3), the rotations of space, as a matrix Lie group, symbolically (SymPy).
+
+Conventions (the same as SE(2)'s in ``derive.lie.groups`` and SE(3)'s in ``derive.lie.se3``):
+
+* the tangent vector is the rotation vector φ = (φx, φy, φz), with angle t = |φ| and hat
+  φ^ = [[0, -φz, φy], [φz, 0, -φx], [-φy, φx, 0]] (φ^ v = φ × v);
+* perturbations act on the right, R = μ · exp(ε^);
+* ``right_jacobian`` is J_r(φ) = Σ_m (-1)^m/(m+1)! ad(φ)^m = ∫_0^1 exp(-s φ^) ds, i.e. the Jacobian with
+  log(exp(-φ) exp(φ + δ)) = J_r(φ) δ + O(|δ|²); it equals Barfoot's left Jacobian of -φ.
+
+Closed forms (Barfoot, *State Estimation for Robotics*, §7.1; Solà et al., *A micro Lie theory*, App. B), with
+the angle functions of ``derive.lie.special`` evaluated at t = |φ| (Taylor branches near 0):
+
+* exp(φ) = I + sinc(t) φ^ + cosc2(t) φ^²                 (Rodrigues),
+* J_r(φ) = I - cosc2(t) φ^ + sinc3(t) φ^²,   J_r(φ)^-1 = I + φ^/2 + halfcot2(t) φ^²,
+* J_l(φ) = J_r(-φ) = I + cosc2(t) φ^ + sinc3(t) φ^²  (the V of exp_SE(3)),  J_l(φ)^-1 = I - φ^/2 + halfcot2(t) φ^².
+
+log: the angle t = atan2(|a|, (tr R - 1)/2) from the antisymmetric part a = [(R - R^T)/2]^∨ = sin t · u (accurate
+for every t, unlike acos of the trace), then
+
+* cos t >= 0: φ = a / sinc(t) (the antisymmetric part holds the axis with full relative accuracy);
+* cos t < 0: the symmetric part S = (R + R^T)/2 - cos t · I = (1 - cos t) u u^T gives the axis: its column k of
+  largest diagonal entry, u = sign(a_k) S[:, k] / √(S_kk (1 - cos t)), φ = t u.  Near t = π the antisymmetric
+  part is ~ sin t and has lost the axis to rounding; the symmetric part has not.  At t = π exactly (a = 0) the
+  sign is +, one of the two logs ±π u.
+
+The ``derived_*`` functions obtain the same quantities from first principles (the matrix exponential series, Ad
+by conjugation, ad by the bracket, Φ by its series); the exp/Φ series take numeric tangents (exact rationals or
+high-precision Floats). ``tests/derive/test_lie3.py`` compares them with the closed forms.
+"""
+
+from __future__ import annotations
+
+import sympy as sp
+
+from .special import cosc2, halfcot2, sinc, sinc3
+
+__all__ = ["SO3", "skew", "angle_of_norm", "matrix_series", "so3_angle", "so3_log_with_angle"]
+
+
+def skew(v) -> sp.Matrix:
+    """v^ = [[0, -v3, v2], [v3, 0, -v1], [-v2, v1, 0]] (v^ w = v × w)."""
+    x, y, z = v
+    return sp.Matrix([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+
+
+def angle_of_norm(v):
+    """t = |v| = √(v·v), the rotation angle of the rotation vector v."""
+    return sp.sqrt(sum(e**2 for e in v))
+
+
+def matrix_series(M: sp.Matrix, coefficient, tol_digits: int = 60, max_terms: int = 400) -> sp.Matrix:
+    """Σ_m coefficient(m) M^m for a numeric M, summed until a term is below 10^-tol_digits (first principles)."""
+    out = sp.zeros(*M.shape)
+    P = sp.eye(M.shape[0])
+    tol = sp.Float(10) ** (-tol_digits)
+    for m in range(max_terms):
+        term = coefficient(m) * P
+        out += term
+        if m > 4 and max(abs(e) for e in term) < tol:
+            return out
+        P = (P * M).evalf(tol_digits + 20) if not all(e.is_Rational for e in M) else P * M
+    raise ValueError("matrix series did not converge")
+
+
+def so3_angle(R: sp.Matrix):
+    """t = atan2(|a|, (tr R - 1)/2) ∈ [0, π], a = [(R - R^T)/2]^∨: the rotation angle, accurate for every t."""
+    a = SO3.vee((R - R.T) / 2)
+    c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+    return sp.atan2(angle_of_norm(a), c)
+
+
+def so3_log_with_angle(R: sp.Matrix, t) -> sp.Matrix:
+    """[log_SO(3)(R)]^∨ given its angle t = so3_angle(R) (a symbol in generated kernels): a Piecewise of the
+    antisymmetric-part method (cos t >= 0) and the symmetric-part method (cos t < 0, near π); see the module."""
+    a = SO3.vee((R - R.T) / 2)
+    c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+    S = (R + R.T) / 2 - c * sp.eye(3)
+    near_zero = a / sinc(t)
+
+    def axis(k):
+        sign = sp.Piecewise((1, a[k] >= 0), (-1, True))
+        return t * sign * S[:, k] / sp.sqrt(S[k, k] * (1 - c))
+
+    ax = [axis(k) for k in range(3)]
+    first = sp.And(S[0, 0] >= S[1, 1], S[0, 0] >= S[2, 2])
+    return sp.Matrix([
+        sp.Piecewise((near_zero[i], c >= 0), (ax[0][i], first), (ax[1][i], S[1, 1] >= S[2, 2]), (ax[2][i], True))
+        for i in range(3)
+    ])
+
+
+class SO3:
+    """The rotation group SO(3) = {R : R^T R = I, det R = 1}, tangent the rotation vector φ = (φx, φy, φz)."""
+
+    dim = 3
+    matrix_size = 3
+
+    @staticmethod
+    def periodic_coordinates():
+        """The rotation-vector coordinates (0, 1, 2): exp is periodic along φ (period 2π in |φ|), not per coordinate."""
+        return (0, 1, 2)
+
+    # --- definitions ------------------------------------------------------------------------------
+    @staticmethod
+    def hat(phi) -> sp.Matrix:
+        """[φx φy φz]^ = [[0, -φz, φy], [φz, 0, -φx], [-φy, φx, 0]]."""
+        return skew(phi)
+
+    @staticmethod
+    def vee(M: sp.Matrix) -> sp.Matrix:
+        """[M]^∨ = (M[2, 1], M[0, 2], M[1, 0])."""
+        return sp.Matrix([M[2, 1], M[0, 2], M[1, 0]])
+
+    @staticmethod
+    def inverse(R: sp.Matrix) -> sp.Matrix:
+        """R^-1 = R^T."""
+        return R.T
+
+    # --- closed forms (emitted by the code generator) ---------------------------------------------
+    @staticmethod
+    def exp(phi) -> sp.Matrix:
+        """exp(φ^) = I + sinc(t) φ^ + cosc2(t) φ^², t = |φ| (Rodrigues)."""
+        t = angle_of_norm(phi)
+        K = skew(phi)
+        return sp.eye(3) + sinc(t) * K + cosc2(t) * K * K
+
+    @staticmethod
+    def log(R: sp.Matrix, t=None) -> sp.Matrix:
+        """[log_SO(3)(R)]^∨ ∈ {|φ| <= π}: angle from atan2, axis from the antisymmetric or (near π) symmetric part."""
+        return so3_log_with_angle(R, so3_angle(R) if t is None else t)
+
+    @staticmethod
+    def Ad(R: sp.Matrix) -> sp.Matrix:
+        """Ad_SO(3)(R) = R."""
+        return sp.Matrix(R)
+
+    @staticmethod
+    def ad(phi) -> sp.Matrix:
+        """ad_SO(3)(φ) = φ^."""
+        return skew(phi)
+
+    @staticmethod
+    def left_jacobian(phi) -> sp.Matrix:
+        """J_l(φ) = I + cosc2(t) φ^ + sinc3(t) φ^² = J_r(-φ): the V of exp_SE(3), translation V(φ) ρ."""
+        t = angle_of_norm(phi)
+        K = skew(phi)
+        return sp.eye(3) + cosc2(t) * K + sinc3(t) * K * K
+
+    @staticmethod
+    def left_jacobian_inv(phi, t=None) -> sp.Matrix:
+        """J_l(φ)^-1 = I - φ^/2 + halfcot2(t) φ^² (t = |φ|, or the angle of log given as a symbol)."""
+        t = angle_of_norm(phi) if t is None else t
+        K = skew(phi)
+        return sp.eye(3) - K / 2 + halfcot2(t) * K * K
+
+    @staticmethod
+    def right_jacobian(phi) -> sp.Matrix:
+        """J_r(φ) = I - cosc2(t) φ^ + sinc3(t) φ^², log(exp(-φ) exp(φ + δ)) ≈ J_r(φ) δ."""
+        t = angle_of_norm(phi)
+        K = skew(phi)
+        return sp.eye(3) - cosc2(t) * K + sinc3(t) * K * K
+
+    @staticmethod
+    def right_jacobian_inv(phi) -> sp.Matrix:
+        """J_r(φ)^-1 = I + φ^/2 + halfcot2(t) φ^² (singular at |φ| = 2π)."""
+        t = angle_of_norm(phi)
+        K = skew(phi)
+        return sp.eye(3) + K / 2 + halfcot2(t) * K * K
+
+    # --- first-principles derivations (checked against the closed forms) --------------------------
+    @classmethod
+    def derived_exp(cls, phi, digits: int = 60) -> sp.Matrix:
+        """Σ_m (φ^)^m / m! for a numeric φ (the matrix exponential by its series)."""
+        return matrix_series(cls.hat(phi), lambda m: sp.Rational(1, sp.factorial(m)), digits)
+
+    @classmethod
+    def derived_Ad(cls, R: sp.Matrix) -> sp.Matrix:
+        """Ad(R) from its definition Ad(R) v = [R v^ R^-1]^∨."""
+        v = sp.Matrix(sp.symbols("_v0:3", real=True))
+        w = cls.vee(R * cls.hat(v) * cls.inverse(R))
+        return w.jacobian(v).applyfunc(sp.expand)
+
+    @classmethod
+    def derived_ad(cls, phi) -> sp.Matrix:
+        """ad(a) b = [a^ b^ - b^ a^]^∨ (the Lie bracket)."""
+        b = sp.Matrix(sp.symbols("_b0:3", real=True))
+        A, B = cls.hat(phi), cls.hat(b)
+        return cls.vee(A * B - B * A).jacobian(b).applyfunc(sp.expand)
+
+    @classmethod
+    def derived_right_jacobian(cls, phi, digits: int = 60) -> sp.Matrix:
+        """Σ_m (-1)^m/(m+1)! ad(φ)^m for a numeric φ (the series of ∫_0^1 exp(-s ad) ds)."""
+        return matrix_series(cls.derived_ad(phi), lambda m: sp.Rational((-1) ** m, sp.factorial(m + 1)), digits)
