@@ -13,7 +13,7 @@ Conventions (as for SE(2) in ``derive.lie.groups``):
 
   A = sinc3(t) = (t - sin t)/t³, B = cosc4(t) = (t²/2 + cos t - 1)/t⁴, C = sincos5(t) = (2t - 3 sin t + t cos t)/(2t⁵),
   t = |φ| (Barfoot eq. 7.86). Φ^-1 = [[J_r^-1, -J_r^-1 Q_r J_r^-1], [0, J_r^-1]].
-  (Solà's and manif's ρ/φ order and right Jacobian are the same; Sophus and GTSAM's Pose3 put φ first.)
+  (Solà's and manif's ρ/φ order and right Jacobian are the same, Sophus's order too; GTSAM's Pose3 puts φ first.)
 
 Closed forms: exp(ξ) = [[exp_SO(3)(φ), V(φ) ρ], [0, 1]], V = J_l(φ) = I + cosc2(t) φ^ + sinc3(t) φ^²;
 log(T) = (V(φ)^-1 t, φ) with φ = log_SO(3)(R) (accurate up to |φ| = π, see ``derive.lie.so3``) and
