@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .first_principles import FirstPrinciples
 from .se3 import SE3
 from .so3 import SO3
 from .special import cosc, cosc2, halfcot, halfcot1, sinc, sinc2
@@ -38,7 +39,7 @@ def _rot(c, s) -> sp.Matrix:
     return sp.Matrix([[c, -s], [s, c]])
 
 
-class SE2:
+class SE2(FirstPrinciples):
     """The rigid-body motion group SE(2) = {[[R, t], [0, 1]]}, tangent order (x, y, θ)."""
 
     dim = 3
@@ -135,20 +136,6 @@ class SE2:
         """The matrix exponential of ξ^∧, computed by SymPy (Jordan form), simplified."""
         M = cls.hat(xi).exp()
         return M.applyfunc(lambda e: sp.simplify(sp.expand_complex(e)))
-
-    @classmethod
-    def derived_Ad(cls, T: sp.Matrix) -> sp.Matrix:
-        """Ad(T) from its definition Ad(T) v = [T v^∧ T^-1]^∨."""
-        v = sp.Matrix(sp.symbols("_v0:3", real=True))
-        w = cls.vee(T * cls.hat(v) * cls.inverse(T))
-        return w.jacobian(v).applyfunc(sp.expand)
-
-    @classmethod
-    def derived_ad(cls, xi) -> sp.Matrix:
-        """ad(a) b = [a^∧ b^∧ - b^∧ a^∧]^∨ (the Lie bracket)."""
-        b = sp.Matrix(sp.symbols("_b0:3", real=True))
-        A, B = cls.hat(xi), cls.hat(b)
-        return cls.vee(A * B - B * A).jacobian(b).applyfunc(sp.expand)
 
     @classmethod
     def derived_right_jacobian(cls, xi) -> sp.Matrix:

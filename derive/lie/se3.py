@@ -24,7 +24,8 @@ from __future__ import annotations
 
 import sympy as sp
 
-from .so3 import SO3, angle_of_norm, matrix_series, skew, so3_angle
+from .first_principles import SeriesDerivations
+from .so3 import SO3, angle_of_norm, skew, so3_angle
 from .special import cosc4, sinc3, sincos5
 
 __all__ = ["SE3", "q_left"]
@@ -44,7 +45,7 @@ def _blocks(A, B, C) -> sp.Matrix:
     return sp.Matrix(sp.BlockMatrix([[A, B], [sp.zeros(3), C]]))
 
 
-class SE3:
+class SE3(SeriesDerivations):
     """The rigid-body motion group SE(3) = {[[R, t], [0, 1]]}, tangent order (x, y, z, φx, φy, φz)."""
 
     dim = 6
@@ -143,28 +144,3 @@ class SE3:
         _, phi = cls.split(xi)
         Ji = SO3.right_jacobian_inv(phi)
         return _blocks(Ji, -Ji * cls.q_right(xi) * Ji, Ji)
-
-    # --- first-principles derivations (checked against the closed forms) --------------------------
-    @classmethod
-    def derived_exp(cls, xi, digits: int = 60) -> sp.Matrix:
-        """Σ_m (ξ^)^m / m! for a numeric ξ (the matrix exponential by its series)."""
-        return matrix_series(cls.hat(xi), lambda m: sp.Rational(1, sp.factorial(m)), digits)
-
-    @classmethod
-    def derived_Ad(cls, T: sp.Matrix) -> sp.Matrix:
-        """Ad(T) from its definition Ad(T) v = [T v^ T^-1]^∨."""
-        v = sp.Matrix(sp.symbols("_v0:6", real=True))
-        w = cls.vee(T * cls.hat(v) * cls.inverse(T))
-        return w.jacobian(v).applyfunc(sp.expand)
-
-    @classmethod
-    def derived_ad(cls, xi) -> sp.Matrix:
-        """ad(a) b = [a^ b^ - b^ a^]^∨ (the Lie bracket)."""
-        b = sp.Matrix(sp.symbols("_b0:6", real=True))
-        A, B = cls.hat(xi), cls.hat(b)
-        return cls.vee(A * B - B * A).jacobian(b).applyfunc(sp.expand)
-
-    @classmethod
-    def derived_right_jacobian(cls, xi, digits: int = 60) -> sp.Matrix:
-        """Σ_m (-1)^m/(m+1)! ad(ξ)^m for a numeric ξ (the series of ∫_0^1 exp(-s ad) ds)."""
-        return matrix_series(cls.derived_ad(xi), lambda m: sp.Rational((-1) ** m, sp.factorial(m + 1)), digits)

@@ -24,18 +24,19 @@ for every t, unlike acos of the trace), then
   part is ~ sin t and has lost the axis to rounding; the symmetric part has not.  At t = π exactly (a = 0) the
   sign is +, one of the two logs ±π u.
 
-The ``derived_*`` functions obtain the same quantities from first principles (the matrix exponential series, Ad
-by conjugation, ad by the bracket, Φ by its series); the exp/Φ series take numeric tangents (exact rationals or
-high-precision Floats). ``tests/derive/test_lie3.py`` compares them with the closed forms.
+The ``derived_*`` functions (``derive.lie.first_principles``) obtain the same quantities from first principles (the
+matrix exponential series, Ad by conjugation, ad by the bracket, Φ by its series); the exp/Φ series take numeric
+tangents (exact rationals or high-precision Floats). ``tests/derive/test_lie3.py`` compares them with the closed forms.
 """
 
 from __future__ import annotations
 
 import sympy as sp
 
+from .first_principles import SeriesDerivations
 from .special import cosc2, halfcot2, sinc, sinc3
 
-__all__ = ["SO3", "skew", "angle_of_norm", "matrix_series", "so3_angle", "so3_log_with_angle"]
+__all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "so3_angle", "so3_log_with_angle"]
 
 
 def skew(v) -> sp.Matrix:
@@ -49,18 +50,10 @@ def angle_of_norm(v):
     return sp.sqrt(sum(e**2 for e in v))
 
 
-def matrix_series(M: sp.Matrix, coefficient, tol_digits: int = 60, max_terms: int = 400) -> sp.Matrix:
-    """Σ_m coefficient(m) M^m for a numeric M, summed until a term is below 10^-tol_digits (first principles)."""
-    out = sp.zeros(*M.shape)
-    P = sp.eye(M.shape[0])
-    tol = sp.Float(10) ** (-tol_digits)
-    for m in range(max_terms):
-        term = coefficient(m) * P
-        out += term
-        if m > 4 and max(abs(e) for e in term) < tol:
-            return out
-        P = (P * M).evalf(tol_digits + 20) if not all(e.is_Rational for e in M) else P * M
-    raise ValueError("matrix series did not converge")
+def quadratic_in_hat(phi, first, second) -> sp.Matrix:
+    """I + first · φ^ + second · φ^²: the shape of exp, J_l, J_r and their inverses (coefficients in t = |φ|)."""
+    K = skew(phi)
+    return sp.eye(3) + first * K + second * K * K
 
 
 def so3_angle(R: sp.Matrix):
@@ -90,7 +83,7 @@ def so3_log_with_angle(R: sp.Matrix, t) -> sp.Matrix:
     ])
 
 
-class SO3:
+class SO3(SeriesDerivations):
     """The rotation group SO(3) = {R : R^T R = I, det R = 1}, tangent the rotation vector φ = (φx, φy, φz)."""
 
     dim = 3
@@ -122,8 +115,7 @@ class SO3:
     def exp(phi) -> sp.Matrix:
         """exp(φ^) = I + sinc(t) φ^ + cosc2(t) φ^², t = |φ| (Rodrigues)."""
         t = angle_of_norm(phi)
-        K = skew(phi)
-        return sp.eye(3) + sinc(t) * K + cosc2(t) * K * K
+        return quadratic_in_hat(phi, sinc(t), cosc2(t))
 
     @staticmethod
     def log(R: sp.Matrix, t=None) -> sp.Matrix:
@@ -144,51 +136,20 @@ class SO3:
     def left_jacobian(phi) -> sp.Matrix:
         """J_l(φ) = I + cosc2(t) φ^ + sinc3(t) φ^² = J_r(-φ): the V of exp_SE(3), translation V(φ) ρ."""
         t = angle_of_norm(phi)
-        K = skew(phi)
-        return sp.eye(3) + cosc2(t) * K + sinc3(t) * K * K
+        return quadratic_in_hat(phi, cosc2(t), sinc3(t))
 
     @staticmethod
     def left_jacobian_inv(phi, t=None) -> sp.Matrix:
         """J_l(φ)^-1 = I - φ^/2 + halfcot2(t) φ^² (t = |φ|, or the angle of log given as a symbol)."""
         t = angle_of_norm(phi) if t is None else t
-        K = skew(phi)
-        return sp.eye(3) - K / 2 + halfcot2(t) * K * K
-
-    @staticmethod
-    def right_jacobian(phi) -> sp.Matrix:
-        """J_r(φ) = I - cosc2(t) φ^ + sinc3(t) φ^², log(exp(-φ) exp(φ + δ)) ≈ J_r(φ) δ."""
-        t = angle_of_norm(phi)
-        K = skew(phi)
-        return sp.eye(3) - cosc2(t) * K + sinc3(t) * K * K
-
-    @staticmethod
-    def right_jacobian_inv(phi) -> sp.Matrix:
-        """J_r(φ)^-1 = I + φ^/2 + halfcot2(t) φ^² (singular at |φ| = 2π)."""
-        t = angle_of_norm(phi)
-        K = skew(phi)
-        return sp.eye(3) + K / 2 + halfcot2(t) * K * K
-
-    # --- first-principles derivations (checked against the closed forms) --------------------------
-    @classmethod
-    def derived_exp(cls, phi, digits: int = 60) -> sp.Matrix:
-        """Σ_m (φ^)^m / m! for a numeric φ (the matrix exponential by its series)."""
-        return matrix_series(cls.hat(phi), lambda m: sp.Rational(1, sp.factorial(m)), digits)
+        return quadratic_in_hat(phi, -sp.Rational(1, 2), halfcot2(t))
 
     @classmethod
-    def derived_Ad(cls, R: sp.Matrix) -> sp.Matrix:
-        """Ad(R) from its definition Ad(R) v = [R v^ R^-1]^∨."""
-        v = sp.Matrix(sp.symbols("_v0:3", real=True))
-        w = cls.vee(R * cls.hat(v) * cls.inverse(R))
-        return w.jacobian(v).applyfunc(sp.expand)
+    def right_jacobian(cls, phi) -> sp.Matrix:
+        """J_r(φ) = J_l(-φ) = I - cosc2(t) φ^ + sinc3(t) φ^², log(exp(-φ) exp(φ + δ)) ≈ J_r(φ) δ."""
+        return cls.left_jacobian([-e for e in phi])
 
     @classmethod
-    def derived_ad(cls, phi) -> sp.Matrix:
-        """ad(a) b = [a^ b^ - b^ a^]^∨ (the Lie bracket)."""
-        b = sp.Matrix(sp.symbols("_b0:3", real=True))
-        A, B = cls.hat(phi), cls.hat(b)
-        return cls.vee(A * B - B * A).jacobian(b).applyfunc(sp.expand)
-
-    @classmethod
-    def derived_right_jacobian(cls, phi, digits: int = 60) -> sp.Matrix:
-        """Σ_m (-1)^m/(m+1)! ad(φ)^m for a numeric φ (the series of ∫_0^1 exp(-s ad) ds)."""
-        return matrix_series(cls.derived_ad(phi), lambda m: sp.Rational((-1) ** m, sp.factorial(m + 1)), digits)
+    def right_jacobian_inv(cls, phi) -> sp.Matrix:
+        """J_r(φ)^-1 = J_l(-φ)^-1 = I + φ^/2 + halfcot2(t) φ^² (singular at |φ| = 2π)."""
+        return cls.left_jacobian_inv([-e for e in phi])
