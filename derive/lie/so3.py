@@ -36,7 +36,7 @@ import sympy as sp
 from .first_principles import SeriesDerivations
 from .special import cosc2, halfcot2, sinc, sinc3
 
-__all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "so3_angle", "so3_log_with_angle"]
+__all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "sin_axis_and_cos", "so3_angle", "so3_log_with_angle"]
 
 
 def skew(v) -> sp.Matrix:
@@ -56,18 +56,21 @@ def quadratic_in_hat(phi, first, second) -> sp.Matrix:
     return sp.eye(3) + first * K + second * K * K
 
 
+def sin_axis_and_cos(R: sp.Matrix):
+    """(a, cos t): a = [(R - R^T)/2]^∨ = sin t · u (u the axis) and cos t = (tr R - 1)/2."""
+    return SO3.vee((R - R.T) / 2), (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+
+
 def so3_angle(R: sp.Matrix):
     """t = atan2(|a|, (tr R - 1)/2) ∈ [0, π], a = [(R - R^T)/2]^∨: the rotation angle, accurate for every t."""
-    a = SO3.vee((R - R.T) / 2)
-    c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+    a, c = sin_axis_and_cos(R)
     return sp.atan2(angle_of_norm(a), c)
 
 
 def so3_log_with_angle(R: sp.Matrix, t) -> sp.Matrix:
     """[log_SO(3)(R)]^∨ given its angle t = so3_angle(R) (a symbol in generated kernels): a Piecewise of the
     antisymmetric-part method (cos t >= 0) and the symmetric-part method (cos t < 0, near π); see the module."""
-    a = SO3.vee((R - R.T) / 2)
-    c = (R[0, 0] + R[1, 1] + R[2, 2] - 1) / 2
+    a, c = sin_axis_and_cos(R)
     S = (R + R.T) / 2 - c * sp.eye(3)
     near_zero = a / sinc(t)
 
