@@ -1,4 +1,4 @@
-"""Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.
+"""Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) and SE(3) blocks, the model table.
 
 GENERATED FILE: DO NOT EDIT.
 Source: derive/codegen/build.py

@@ -10,7 +10,7 @@ import numba as nb
 
 SCALAR_ERRORS = "numpy"
 
-__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'sinc_family', 'wrap_angle', 'wrap_angle_sum', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'wrap_sum_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v']
+__all__ = ['sinc', 'cosc', 'sinc2', 'cosc2', 'dsinc', 'halfcot', 'halfcot1', 'sinc3', 'cosc4', 'sincos5', 'halfcot2', 'sinc_family', 'wrap_angle', 'wrap_angle_sum', 'gain_damping', 'sin_v', 'cos_v', 'atan2_v', 'wrap_v', 'wrap_sum_v', 'gain_damping_v', 'sinc_v', 'cosc_v', 'sinc2_v', 'cosc2_v', 'dsinc_v', 'halfcot_v', 'halfcot1_v', 'sinc3_v', 'cosc4_v', 'sincos5_v', 'halfcot2_v']
 
 
 @nb.njit(cache=True, error_model=SCALAR_ERRORS)
@@ -102,6 +102,58 @@ def halfcot1(x, s, c):
         x2 = x * x
         return x * (0.08333333333333333 + x2 * (0.001388888888888889 + x2 * (3.306878306878307e-05 + x2 * (8.267195767195768e-07 + x2 * (2.08767569878681e-08 + x2 * (5.284190138687493e-10 + x2 * (1.3382536530684679e-11 + x2 * (3.3896802963225827e-13 + x2 * (8.586062056277845e-15 + x2 * (2.174868698558062e-16 + x2 * (5.5090028283602295e-18 + x2 * (1.3954464685812522e-19 + x2 * (3.534707039629467e-21 + x2 * (8.953517427037546e-23 + x2 * (2.267952452337683e-24)))))))))))))))
     return (1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / x
+
+
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
+def sinc3(x, s, c):
+    """sinc3(x) = (x - sin(x))/x**3; s = sin x, c = cos x.
+
+    |x| < 0.75: Taylor polynomial of degree 14 (coefficients from SymPy);
+    otherwise the cancellation-free closed form `(x - s) / (x * x * x)`.
+    """
+    if abs(x) < 0.75:
+        x2 = x * x
+        return 0.16666666666666666 + x2 * (-0.008333333333333333 + x2 * (0.0001984126984126984 + x2 * (-2.7557319223985893e-06 + x2 * (2.505210838544172e-08 + x2 * (-1.6059043836821613e-10 + x2 * (7.647163731819816e-13 + x2 * (-2.8114572543455206e-15)))))))
+    return (x - s) / (x * x * x)
+
+
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
+def cosc4(x, s, c):
+    """cosc4(x) = (x**2/2 + cos(x) - 1)/x**4; s = sin x, c = cos x.
+
+    |x| < 1.6: Taylor polynomial of degree 18 (coefficients from SymPy);
+    otherwise the cancellation-free closed form `(0.5 * x * x - (s * s / (1.0 + c) if c > 0.0 else 1.0 - c)) / (x * x * x * x)`.
+    """
+    if abs(x) < 1.6:
+        x2 = x * x
+        return 0.041666666666666664 + x2 * (-0.001388888888888889 + x2 * (2.48015873015873e-05 + x2 * (-2.755731922398589e-07 + x2 * (2.08767569878681e-09 + x2 * (-1.1470745597729725e-11 + x2 * (4.779477332387385e-14 + x2 * (-1.5619206968586225e-16 + x2 * (4.110317623312165e-19 + x2 * (-8.896791392450574e-22)))))))))
+    return (0.5 * x * x - (s * s / (1.0 + c) if c > 0.0 else 1.0 - c)) / (x * x * x * x)
+
+
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
+def sincos5(x, s, c):
+    """sincos5(x) = (x*cos(x) + 2*x - 3*sin(x))/(2*x**5); s = sin x, c = cos x.
+
+    |x| < 2.1: Taylor polynomial of degree 20 (coefficients from SymPy);
+    otherwise the cancellation-free closed form `(2.0 * x - 3.0 * s + x * c) / (2.0 * x * x * x * x * x)`.
+    """
+    if abs(x) < 2.1:
+        x2 = x * x
+        return 0.008333333333333333 + x2 * (-0.0003968253968253968 + x2 * (8.267195767195768e-06 + x2 * (-1.0020843354176688e-07 + x2 * (8.029521918410807e-10 + x2 * (-4.58829823909189e-12 + x2 * (1.9680200780418645e-14 + x2 * (-6.576508197299464e-17 + x2 * (1.7615646957052136e-19 + x2 * (-3.868170170630684e-22 + x2 * (7.091645312822921e-25))))))))))
+    return (2.0 * x - 3.0 * s + x * c) / (2.0 * x * x * x * x * x)
+
+
+@nb.njit(cache=True, error_model=SCALAR_ERRORS)
+def halfcot2(x, s, c):
+    """halfcot2(x) = (-x*sin(x)/(2 - 2*cos(x)) + 1)/x**2; s = sin x, c = cos x.
+
+    |x| < 1.5: Taylor polynomial of degree 26 (coefficients from SymPy);
+    otherwise the cancellation-free closed form `(1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / (x * x)`.
+    """
+    if abs(x) < 1.5:
+        x2 = x * x
+        return 0.08333333333333333 + x2 * (0.001388888888888889 + x2 * (3.306878306878307e-05 + x2 * (8.267195767195768e-07 + x2 * (2.08767569878681e-08 + x2 * (5.284190138687493e-10 + x2 * (1.3382536530684679e-11 + x2 * (3.3896802963225827e-13 + x2 * (8.586062056277845e-15 + x2 * (2.174868698558062e-16 + x2 * (5.5090028283602295e-18 + x2 * (1.3954464685812522e-19 + x2 * (3.534707039629467e-21 + x2 * (8.953517427037546e-23)))))))))))))
+    return (1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / (x * x)
 
 
 @nb.njit(cache=True, inline="always", error_model=SCALAR_ERRORS)
@@ -279,3 +331,31 @@ def halfcot1_v(x, s, c):
     """halfcot1 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 1.5."""
     x2 = x * x
     return (x * (0.08333333333333333 + x2 * (0.001388888888888889 + x2 * (3.306878306878307e-05 + x2 * (8.267195767195768e-07 + x2 * (2.08767569878681e-08 + x2 * (5.284190138687493e-10 + x2 * (1.3382536530684679e-11 + x2 * (3.3896802963225827e-13 + x2 * (8.586062056277845e-15 + x2 * (2.174868698558062e-16 + x2 * (5.5090028283602295e-18 + x2 * (1.3954464685812522e-19 + x2 * (3.534707039629467e-21 + x2 * (8.953517427037546e-23 + x2 * (2.267952452337683e-24)))))))))))))))) if abs(x) < 1.5 else ((1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / x)
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def sinc3_v(x, s, c):
+    """sinc3 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 0.75."""
+    x2 = x * x
+    return (0.16666666666666666 + x2 * (-0.008333333333333333 + x2 * (0.0001984126984126984 + x2 * (-2.7557319223985893e-06 + x2 * (2.505210838544172e-08 + x2 * (-1.6059043836821613e-10 + x2 * (7.647163731819816e-13 + x2 * (-2.8114572543455206e-15)))))))) if abs(x) < 0.75 else ((x - s) / (x * x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def cosc4_v(x, s, c):
+    """cosc4 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 1.6."""
+    x2 = x * x
+    return (0.041666666666666664 + x2 * (-0.001388888888888889 + x2 * (2.48015873015873e-05 + x2 * (-2.755731922398589e-07 + x2 * (2.08767569878681e-09 + x2 * (-1.1470745597729725e-11 + x2 * (4.779477332387385e-14 + x2 * (-1.5619206968586225e-16 + x2 * (4.110317623312165e-19 + x2 * (-8.896791392450574e-22)))))))))) if abs(x) < 1.6 else ((0.5 * x * x - (s * s / (1.0 + c) if c > 0.0 else 1.0 - c)) / (x * x * x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def sincos5_v(x, s, c):
+    """sincos5 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 2.1."""
+    x2 = x * x
+    return (0.008333333333333333 + x2 * (-0.0003968253968253968 + x2 * (8.267195767195768e-06 + x2 * (-1.0020843354176688e-07 + x2 * (8.029521918410807e-10 + x2 * (-4.58829823909189e-12 + x2 * (1.9680200780418645e-14 + x2 * (-6.576508197299464e-17 + x2 * (1.7615646957052136e-19 + x2 * (-3.868170170630684e-22 + x2 * (7.091645312822921e-25))))))))))) if abs(x) < 2.1 else ((2.0 * x - 3.0 * s + x * c) / (2.0 * x * x * x * x * x))
+
+
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+def halfcot2_v(x, s, c):
+    """halfcot2 without branches: Taylor polynomial and closed form both evaluated, selected at |x| < 1.5."""
+    x2 = x * x
+    return (0.08333333333333333 + x2 * (0.001388888888888889 + x2 * (3.306878306878307e-05 + x2 * (8.267195767195768e-07 + x2 * (2.08767569878681e-08 + x2 * (5.284190138687493e-10 + x2 * (1.3382536530684679e-11 + x2 * (3.3896802963225827e-13 + x2 * (8.586062056277845e-15 + x2 * (2.174868698558062e-16 + x2 * (5.5090028283602295e-18 + x2 * (1.3954464685812522e-19 + x2 * (3.534707039629467e-21 + x2 * (8.953517427037546e-23)))))))))))))) if abs(x) < 1.5 else ((1.0 - (0.5 * x * (1.0 + c) / s if c > 0.0 else 0.5 * x * s / (1.0 - c))) / (x * x))

@@ -13,7 +13,7 @@ import sympy as sp
 from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
-from .emitter import model_kernels, registry_entry, se2_kernels
+from .emitter import model_kernels, registry_entry, se2_kernels, se3_kernels
 from .families.imm import render_imm
 from .families.monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
 from .printer import HEADER, SINC_FAMILY, render_module
@@ -193,6 +193,10 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     files["se2.py"] = render_module(
         "SE(2) building blocks: hat, vee, exp, log, inverse, Ad, ad, right Jacobian Φ and Φ^-1.",
         "derive/lie/groups.py through derive/codegen/emitter.py", se2_kernels(), IMPORTS, PREAMBLE)
+    files["se3.py"] = render_module(
+        "SO(3) and SE(3) building blocks: hat, vee, exp, log (also near |φ| = π), inverse, Ad, ad, right Jacobian Φ and Φ^-1;\n"
+        "tangent order (x, y, z, φx, φy, φz), T = μ·exp(ε), log(exp(-ξ) exp(ξ + δ)) ≈ Φ(ξ) δ.",
+        "derive/lie/so3.py, derive/lie/se3.py through derive/codegen/families/group.py", se3_kernels(), IMPORTS, PREAMBLE)
     jobs_args = [(n, models_dir, meas_dir) for n in sorted(models)]
     bar = _bar(len(jobs_args))
     if jobs > 1 and len(jobs_args) > 1:
@@ -212,7 +216,7 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     files["dispatch.py"] = render_dispatch(models, {n: _fitting(m, measurements)[0] for n, m in models.items()}, measurements)
     files["imm.py"] = render_imm(measurements)  # the IMM's loop, per measurement from its definition (families/imm.py)
     files["__init__.py"] = HEADER.format(
-        title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) blocks, the model table.",
+        title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) and SE(3) blocks, the model table.",
         source="derive/codegen/build.py",
     )
     return dict(sorted(files.items()))

@@ -38,10 +38,10 @@ from ..algebra import sym_cov
 from .blocks import vec_inputs
 from .families import bank, filter as filter_family, fused, group, imm_rows, mixing, model as model_family, monitor, readout
 from .families import smoother, soa
-from .families.group import se2_kernels
+from .families.group import se2_kernels, se3_kernels
 from .families.model import PD_TOL
 
-__all__ = ["se2_kernels", "model_kernels", "registry_entry", "PD_TOL", "FAMILIES", "LAYOUT"]
+__all__ = ["se2_kernels", "se3_kernels", "model_kernels", "registry_entry", "PD_TOL", "FAMILIES", "LAYOUT"]
 
 #: the kernel families, in the order they are built (a family may read the kernels of those before it)
 FAMILIES = (model_family, group, fused, filter_family, bank, monitor, soa, smoother, readout, mixing, imm_rows)

@@ -40,7 +40,8 @@ Regenerate with: lgekf derive      (check freshness with: lgekf derive --check)
 
 
 class Printer:
-    """A deliberately small printer: Add, Mul, Pow, numbers, symbols, a few math functions."""
+    """A deliberately small printer: Add, Mul, Pow, numbers, symbols, a few math functions, and Piecewise as a
+    conditional expression (relations, And, Or in its conditions)."""
 
     FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.atan2: "math.atan2", sp.Abs: "abs", sp.Max: "max"}
 
@@ -117,6 +118,20 @@ class Printer:
                     return "*".join([bs] * k), 1
                 return f"{self._wrap(b, 3)}**{k}", 1
             raise ValueError(f"unsupported power {e}")
+        if isinstance(e, sp.Piecewise):
+            # (a if c1 else (b if c2 else ...)): only the chosen branch runs (log_SO(3)'s near-π branches)
+            *branches, (last, cond) = e.args
+            if cond != sp.true:
+                raise ValueError(f"Piecewise without a final True branch: {e}")
+            out = self.p(last)
+            for val, c in reversed(branches):
+                out = f"({self.p(val)} if {self.p(c)} else {out})"
+            return out, 3
+        if isinstance(e, sp.core.relational.Relational):
+            return f"{self._wrap(e.lhs, 0)} {e.rel_op} {self._wrap(e.rhs, 0)}", -1
+        if isinstance(e, (sp.And, sp.Or)):
+            op = " and " if isinstance(e, sp.And) else " or "
+            return op.join(f"({self.p(a)})" for a in sorted(e.args, key=sp.default_sort_key)), -1
         if isinstance(e, (sp.Function, sp.Max)) and type(e) in self.FUNCS:  # Max is no sp.Function
             return f"{self.FUNCS[type(e)]}({', '.join(self.p(a) for a in e.args)})", 3
         if isinstance(e, RUNTIME_FUNCTIONS):

@@ -1,8 +1,10 @@
-"""SE(2), R^n and their direct products as matrix Lie groups, symbolically (SymPy).
+"""SE(2), R^n and their direct products as matrix Lie groups, symbolically (SymPy); SO(3) and SE(3) live in
+``derive.lie.so3`` and ``derive.lie.se3`` and are re-exported here.
 
 Conventions (used everywhere in lgekf):
 
-* SE(2) tangent vectors are ordered ``(x, y, θ)``: translational part first, angle last.
+* SE(2) tangent vectors are ordered ``(x, y, θ)``: translational part first, angle last; SE(3)'s
+  ``(x, y, z, φx, φy, φz)``: translation ρ first, then the rotation vector φ.
 * ``hat``/``vee`` are the paper's ``[·]^∧_G`` and ``[·]^∨_G``.
 * Perturbations act on the right: ``X = μ · exp(ε^∧)`` (the paper's concentrated Gaussian).
 * ``right_jacobian`` is the paper's Φ_G(v) = Σ_m (-1)^m/(m+1)! ad_G(v)^m, i.e. the Jacobian with
@@ -20,9 +22,12 @@ from __future__ import annotations
 
 import sympy as sp
 
+from .first_principles import FirstPrinciples
+from .se3 import SE3
+from .so3 import SO3
 from .special import cosc, cosc2, halfcot, halfcot1, sinc, sinc2
 
-__all__ = ["SE2", "Rn", "Product", "so2_log"]
+__all__ = ["SE2", "SO3", "SE3", "Rn", "Product", "so2_log"]
 
 
 def so2_log(R: sp.Matrix):
@@ -34,7 +39,7 @@ def _rot(c, s) -> sp.Matrix:
     return sp.Matrix([[c, -s], [s, c]])
 
 
-class SE2:
+class SE2(FirstPrinciples):
     """The rigid-body motion group SE(2) = {[[R, t], [0, 1]]}, tangent order (x, y, θ)."""
 
     dim = 3
@@ -133,20 +138,6 @@ class SE2:
         return M.applyfunc(lambda e: sp.simplify(sp.expand_complex(e)))
 
     @classmethod
-    def derived_Ad(cls, T: sp.Matrix) -> sp.Matrix:
-        """Ad(T) from its definition Ad(T) v = [T v^∧ T^-1]^∨."""
-        v = sp.Matrix(sp.symbols("_v0:3", real=True))
-        w = cls.vee(T * cls.hat(v) * cls.inverse(T))
-        return w.jacobian(v).applyfunc(sp.expand)
-
-    @classmethod
-    def derived_ad(cls, xi) -> sp.Matrix:
-        """ad(a) b = [a^∧ b^∧ - b^∧ a^∧]^∨ (the Lie bracket)."""
-        b = sp.Matrix(sp.symbols("_b0:3", real=True))
-        A, B = cls.hat(xi), cls.hat(b)
-        return cls.vee(A * B - B * A).jacobian(b).applyfunc(sp.expand)
-
-    @classmethod
     def derived_right_jacobian(cls, xi) -> sp.Matrix:
         """Σ_m (-1)^m/(m+1)! ad^m = ∫_0^1 exp(-s ad) ds, integrated by SymPy."""
         s = sp.Symbol("_s", real=True)
@@ -210,21 +201,31 @@ class Rn:
         return sp.eye(self.dim)
 
 
-class _SE2Instance:
-    """SE2 with the instance interface of Rn (so that Product can hold either)."""
+class _GroupInstance:
+    """A group given as a class of static/class methods (SE2, SO3, SE3) with the instance interface of Rn, so that
+    Product can hold either."""
 
-    dim = 3
-    matrix_size = 3
+    def __init__(self, cls):
+        self._cls = cls
+        self.dim = cls.dim
+        self.matrix_size = cls.matrix_size
 
     def __getattr__(self, name):
-        return getattr(SE2, name)
+        return getattr(self._cls, name)
 
 
 class Product:
-    """Direct product G_1 × G_2: block-diagonal hat, exp, log, Ad, ad, Φ (paper, SE(2)^2 section)."""
+    """Direct product G_1 × G_2 × ...: block-diagonal hat, exp, log, Ad, ad, Φ (paper, SE(2)^2 section).
+
+    Factors: SE2, SO3, SE3 (the classes), Rn(k) instances, or other Products (nested products are flattened).
+    The tangent is the concatenation of the factors' tangents, in order.
+    """
 
     def __init__(self, *factors):
-        self.factors = [(_SE2Instance() if f is SE2 else f) for f in factors]
+        flat = []
+        for f in factors:
+            flat.extend(f.factors if isinstance(f, Product) else [f])
+        self.factors = [(_GroupInstance(f) if isinstance(f, type) else f) for f in flat]
         self.dim = sum(f.dim for f in self.factors)
 
     @property

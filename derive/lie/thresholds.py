@@ -1,12 +1,14 @@
 """Measure where each angle function's closed form is accurate: `python -m lgekf.derive.lie.thresholds`.
 
-For every function of derive.special, on a log-spaced grid of angles in [1e-6, 3] (both signs), the
+For every function of derive.special, on a log-spaced grid of angles in [1e-6, π) (both signs), the
 float64 closed form (its ``stable`` source, with math.sin/cos) is compared with the definition evaluated
 in 50-digit mpmath.  Reported per function:
 
 * ``tau``: the smallest grid angle above which the closed form stays within ``ulps`` ulp;
 * ``order``: the smallest Taylor degree whose truncation error at that tau is below 1e-17 relative
-  (measured, by evaluating the polynomial in mpmath against the definition).
+  (measured, by evaluating the polynomial in mpmath against the definition);
+* on a uniform 300-point grid of [0.5, π] (``fine_scan``): the last angle where the closed form is above 4 ulp,
+  and the closed form's worst error (ulp) at or above the recorded tau.
 
 The values recorded in derive/lie/special.py were chosen from this output (rounded up to simple numbers);
 tests/derive/test_special_accuracy.py checks both sides of every threshold.
@@ -43,7 +45,7 @@ def taylor_error(func, x: float, order: int) -> float:
 
 def measure(func, ulps: float = 4.0, grid: int = 240):
     xs = [10 ** (-6 + 6.5 * i / (grid - 1)) for i in range(grid)]
-    xs = [x for x in xs if x < 3.0]
+    xs = [x for x in xs if x < math.pi]
     errs = [max(closed_form_error(func, x), closed_form_error(func, -x)) for x in xs]
     limit = ulps * 2.220446049250313e-16
     tau = xs[-1]
@@ -57,11 +59,26 @@ def measure(func, ulps: float = 4.0, grid: int = 240):
     return tau, order, max(errs[xs.index(tau):])
 
 
+def fine_scan(func, ulps: float = 4.0, lo: float = 0.5, hi: float = math.pi, points: int = 300):
+    """On a uniform grid of [lo, hi]: (the last angle where the closed form is above ``ulps`` ulp, the worst ulp of the
+    closed form at or above the recorded ``func.tau``).
+
+    The log grid of :func:`measure` has ~6 % steps near 1, where the closed forms of SO(3)/SE(3) switch.
+    """
+    xs = [lo + (hi - lo) * k / points for k in range(points + 1)]
+    errs = [max(closed_form_error(func, x), closed_form_error(func, -x)) / 2.220446049250313e-16 for x in xs]
+    over = [x for x, e in zip(xs, errs) if e > ulps]
+    above = [e for x, e in zip(xs, errs) if x >= func.tau]
+    return (over[-1] if over else lo), (max(above) if above else 0.0)
+
+
 def main():
-    print(f"{'function':10} {'tau (<= 4 ulp above)':>22} {'Taylor order at tau':>20} {'max err above tau':>18}   recorded tau / order")
+    print(f"{'function':10} {'tau (<= 4 ulp above)':>22} {'Taylor order at tau':>20} {'max err above tau':>18}"
+          f" {'fine: last > 4 ulp':>19} {'ulp above tau':>16}   recorded tau / order")
     for f in ANGLE_FUNCTIONS:
         tau, order, err = measure(f)
-        print(f"{f.__name__:10} {tau:22.3g} {order:20d} {err:18.2e}   {f.tau} / {f.order}")
+        last, worst = fine_scan(f)
+        print(f"{f.__name__:10} {tau:22.3g} {order:20d} {err:18.2e} {last:19.3g} {worst:16.1f}   {f.tau} / {f.order}")
 
 
 if __name__ == "__main__":

@@ -262,6 +262,10 @@ def _mp_definition(name):
         "dsinc": lambda t: (mp.sin(t) - t * mp.cos(t)) / t**2,
         "halfcot": lambda t: t * mp.sin(t) / (2 * (1 - mp.cos(t))),
         "halfcot1": lambda t: (1 - t * mp.sin(t) / (2 * (1 - mp.cos(t)))) / t,
+        "sinc3": lambda t: (t - mp.sin(t)) / t**3,
+        "cosc4": lambda t: (t**2 / 2 + mp.cos(t) - 1) / t**4,
+        "sincos5": lambda t: (2 * t - 3 * mp.sin(t) + t * mp.cos(t)) / (2 * t**5),
+        "halfcot2": lambda t: (1 - t * mp.sin(t) / (2 * (1 - mp.cos(t)))) / t**2,
     }[name]
 
 
