@@ -101,6 +101,7 @@ class MultiTrack(TrackEstimator):
         self.heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
         self.args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=a.measure,
                          gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
+                         initiation=a.initiation, birth_density=a.birth_density,
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
                          max_speed=self.max_speed, omega_std=a.omega_std,
                          clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
