@@ -277,6 +277,12 @@ class MultiRun:
         """Number of confirmed tracks (tracks in the output)."""
         return int(np.unique(self.ids).size)
 
+    @property
+    def fragments_only(self) -> bool:
+        """Confirmed tracks, but none that held ``MIN_HELD`` detections (e.g. one-point tracks confirmed from two
+        detections of a file whose scans each hold one detection)."""
+        return self.n_confirmed > 0 and self.held_starts.size < 2
+
 
 def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, **tracker_args) -> MultiRun:
     """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m)),
@@ -504,14 +510,18 @@ def _round_up(v: float) -> str:
 
 def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, meas_std: float, confirm: float,
                     wider: tuple | None = None) -> str:
-    """Why no track was confirmed, and what to try (one line): the scans (count, period, detections per scan,
-    window), then the first that applies of: tracks confirmed only at a wider noise (``wider``:
-    ``NoiseFit.wider``; with their speed against ``max_speed``), no track started (no pair of detections of
-    consecutive scans within reach), tracks started but the largest existence reached below ``confirm``."""
+    """Why no track was confirmed (or, ``MultiRun.fragments_only``, none that held ``MIN_HELD`` detections), and what
+    to try (one line): the scans (count, period, detections per scan, window), then the first that applies of:
+    tracks confirmed only at a wider noise (``wider``: ``NoiseFit.wider``; with their speed against ``max_speed``),
+    no track started (two-point: no pair of detections of consecutive scans within reach), tracks started but the
+    largest existence reached below ``confirm`` (or only fragments confirmed)."""
     trk = run.tracker
     per_scan = n_rows / max(sc.count, 1)
     period = sc.period
-    text = (f"no track confirmed: {sc.count} scan{'s' if sc.count != 1 else ''} ("
+    n = run.n_confirmed
+    head = ("no track confirmed" if n == 0 else
+            f"no track confirmed that held {MIN_HELD} detections ({n} confirmed, each holding fewer)")
+    text = (f"{head}: {sc.count} scan{'s' if sc.count != 1 else ''} ("
             + ("" if not math.isfinite(period) else f"period {period:.3g} s, ")
             + f"{per_scan:.3g} detection{'s' if f'{per_scan:.3g}' != '1' else ''} per scan"
             + ("" if sc.window == 0 else f", scan window {sc.window:.3g} s") + "); ")
@@ -526,6 +536,8 @@ def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, mea
     elif trk.next_id == 0:
         text += (f"no track started: no two detections of consecutive scans within --max-speed x dt + 3*sqrt(2) x "
                  f"meas-std ({max_speed:g} m/s, {meas_std:.3g} m)")
+    elif n:
+        text += f"{trk.next_id} track{'s' if trk.next_id != 1 else ''} started"
     else:
         text += (f"{trk.next_id} track{'s' if trk.next_id != 1 else ''} started, the largest existence reached "
                  f"{trk.max_existence:.2f} (confirmed at {confirm:g})")

@@ -154,14 +154,14 @@ class MultiTrack(TrackEstimator):
         confirmed tracks' rows."""
         a, run = self.a, self.run
         n_conf = run.n_confirmed
-        if n_conf == 0:
+        if n_conf == 0 or run.fragments_only:
             _warn(no_track_reason(run, self.sc, meas.t.size, self.max_speed, self.fit.meas_std, a.confirm_existence,
                                   self.fit.wider))
         elif a.max_speed is None:
             v = fastest_track_speed(run)
             if v >= SPEED_WARN_FRACTION * self.max_speed:
                 _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > self.max_speed else 'near'} --max-speed "
-                      f"{self.max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a "
+                      f"{self.max_speed:g} m/s (the speed scale of new tracks): faster objects may have no track; give a "
                       "larger --max-speed if there are any")
         if run.alarms:
             _warn(multi_alarm_line(run))
