@@ -39,7 +39,9 @@ Measured on simulated scenes (0.3 and 1 m noise, 4-8 targets, 2-4 false alarms p
 the truth (2-30x), e is within 20 % of the truth after one pass (a wide gate holds every own detection);
 started *below*, e is biased towards s (the narrow gate cuts the residuals: s = 0.3 m gives e ≈ 0.48 m for
 1 m noise) and the tracks fragment; far above (7 m for 0.3 m noise at 10 Hz: the two-point start's
-velocity std √2·s/Δt is then 100 m/s) no track is confirmed at all. Hence:
+velocity std √2·s/Δt is then 100 m/s) the two-point start confirms no track at all (the one-point start, whose
+velocity std is max_speed/3 whatever s, confirms the objects' tracks among many false ones, and e from their held
+detections is near the truth). Hence:
 
 1. s starts at an over-estimate from the data (``provisional_meas_std``): the lower quartile of the
    distance from a detection to the nearest one of the previous scan, over 1.07 (the lower quartile of that
