@@ -29,11 +29,12 @@ One call ``step(t, detections)`` per scan (all detections of one time):
        (``lgekf.core.initiation.initial_estimates``). Its existence is r₀ = β/(β + λ)
        (``one_point_existence``) for a density β of new objects' first detections (``birth_density``, per
        m² per scan) against the clutter density λ, or ``birth_existence`` (default 0.02) without β. The
-       existence recursion of step 4 then confirms or deletes it. At the first detection the track *holds*
-       (β_ij ≥ 0.5, ``held``) its state is started again by the two-point rule from its first detection and
-       that one (its existence kept): the zero-velocity prior has no heading, and a model whose heading is its
-       direction of motion (CTRV, SE(2)×R²) cannot turn its heading from it by the linearised update, while
-       SE(2)×SE(2) and SE(2)×R³ would keep an arbitrary body heading θ (measured: docs/multi_target.md);
+       existence recursion of step 4 then confirms or deletes it. At the first detection it *holds* (β_ij ≥
+       0.5, ``held``) after the one that started it, its state is started again by the two-point rule from
+       those two detections (id, existence and confirmation kept): the zero-velocity prior has no heading, and
+       a model whose heading is its direction of motion (CTRV, SE(2)×R²) cannot turn its heading from it by
+       the linearised update, while SE(2)×SE(2) and SE(2)×R³ would keep an arbitrary body heading θ
+       (measured: docs/multi_target.md);
      - **two-point** (the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): each unused
        detection of this scan is paired with the nearest unused detection of the previous ``seed_scans``
        scans (default 1: the previous scan only) within ``max_speed``·Δt + 3√2 r (each used once, nearest
@@ -241,7 +242,13 @@ class MultiTargetTracker:
         After each ``step``: the normalised innovation squared d² = eᵀS⁻¹e of each held detection against its
         track's prediction (the order of ``held``; what a divergence monitor tests).
     max_existence : float
-        The largest existence probability any track has had after an update.
+        The largest existence probability any track has had after an update (or at its start).
+    initiation : str
+        The initiation in use ("one-point" or "two-point").
+    r_birth : float
+        The existence probability r₀ of a new track.
+    speed_std : float
+        One-point: the std σ_v (m/s) of each velocity component of a new track's prior.
     next_id : int
         The number of tracks started so far (the next track's id).
 
