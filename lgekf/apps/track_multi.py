@@ -39,7 +39,9 @@ Measured on simulated scenes (0.3 and 1 m noise, 4-8 targets, 2-4 false alarms p
 the truth (2-30x), e is within 20 % of the truth after one pass (a wide gate holds every own detection);
 started *below*, e is biased towards s (the narrow gate cuts the residuals: s = 0.3 m gives e ≈ 0.48 m for
 1 m noise) and the tracks fragment; far above (7 m for 0.3 m noise at 10 Hz: the two-point start's
-velocity std √2·s/Δt is then 100 m/s) no track is confirmed at all. Hence:
+velocity std √2·s/Δt is then 100 m/s) the two-point start confirms no track at all (the one-point start, whose
+velocity std is max_speed/3 whatever s, confirms the objects' tracks among many false ones, and e from their held
+detections is near the truth). Hence:
 
 1. s starts at an over-estimate from the data (``provisional_meas_std``): the lower quartile of the
    distance from a detection to the nearest one of the previous scan, over 1.07 (the lower quartile of that
@@ -277,6 +279,12 @@ class MultiRun:
         """Number of confirmed tracks (tracks in the output)."""
         return int(np.unique(self.ids).size)
 
+    @property
+    def fragments_only(self) -> bool:
+        """Confirmed tracks, but none that held ``MIN_HELD`` detections (e.g. one-point tracks confirmed from two
+        detections of a file whose scans each hold one detection)."""
+        return self.n_confirmed > 0 and self.held_starts.size < 2
+
 
 def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, **tracker_args) -> MultiRun:
     """Run a ``MultiTargetTracker(**tracker_args)`` over the scans ``sc`` of the detections (t (N,), Z (N, m)),
@@ -504,14 +512,18 @@ def _round_up(v: float) -> str:
 
 def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, meas_std: float, confirm: float,
                     wider: tuple | None = None) -> str:
-    """Why no track was confirmed, and what to try (one line): the scans (count, period, detections per scan,
-    window), then the first that applies of: tracks confirmed only at a wider noise (``wider``:
-    ``NoiseFit.wider``; with their speed against ``max_speed``), no track started (no pair of detections of
-    consecutive scans within reach), tracks started but the largest existence reached below ``confirm``."""
+    """Why no track was confirmed (or, ``MultiRun.fragments_only``, none that held ``MIN_HELD`` detections), and what
+    to try (one line): the scans (count, period, detections per scan, window), then the first that applies of:
+    tracks confirmed only at a wider noise (``wider``: ``NoiseFit.wider``; with their speed against ``max_speed``),
+    no track started (two-point: no pair of detections of consecutive scans within reach), tracks started but the
+    largest existence reached below ``confirm`` (or only fragments confirmed)."""
     trk = run.tracker
     per_scan = n_rows / max(sc.count, 1)
     period = sc.period
-    text = (f"no track confirmed: {sc.count} scan{'s' if sc.count != 1 else ''} ("
+    n = run.n_confirmed
+    head = ("no track confirmed" if n == 0 else
+            f"no track confirmed that held {MIN_HELD} detections ({n} confirmed, each holding fewer)")
+    text = (f"{head}: {sc.count} scan{'s' if sc.count != 1 else ''} ("
             + ("" if not math.isfinite(period) else f"period {period:.3g} s, ")
             + f"{per_scan:.3g} detection{'s' if f'{per_scan:.3g}' != '1' else ''} per scan"
             + ("" if sc.window == 0 else f", scan window {sc.window:.3g} s") + "); ")
@@ -526,6 +538,8 @@ def no_track_reason(run: MultiRun, sc: Scans, n_rows: int, max_speed: float, mea
     elif trk.next_id == 0:
         text += (f"no track started: no two detections of consecutive scans within --max-speed x dt + 3*sqrt(2) x "
                  f"meas-std ({max_speed:g} m/s, {meas_std:.3g} m)")
+    elif n:
+        text += f"{trk.next_id} track{'s' if trk.next_id != 1 else ''} started"
     else:
         text += (f"{trk.next_id} track{'s' if trk.next_id != 1 else ''} started, the largest existence reached "
                  f"{trk.max_existence:.2f} (confirmed at {confirm:g})")

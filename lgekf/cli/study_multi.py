@@ -25,6 +25,9 @@ def study_multi_parser():
     ap.add_argument("--out", type=Path, default=Path("results"), help="results folder (default results/): multi_gospa.csv")
     ap.add_argument("--models", default=",".join(MODELS), metavar="LIST", help=f"models (default all: {','.join(MODELS)})")
     ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help="associations (default jpda,pda,gnn)")
+    ap.add_argument("--initiation", default=None, metavar="LIST",
+                    help="track initiations to compare, one-point,two-point (default: the tracker's default for each "
+                         "association, one-point with jpda and gnn, two-point with pda)")
     ap.add_argument("--runs", type=int, default=5, help="Monte Carlo runs (default 5)")
     ap.add_argument("--seed", type=int, default=2016, help="seed of the first run (default 2016)")
     ap.add_argument("--detection-prob", type=float, default=0.9, help="P_D (default 0.9)")
@@ -57,23 +60,26 @@ def _names(option, text, allowed):
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
     from ..estimators.multitarget.association import ASSOCIATIONS
+    from ..estimators.multitarget.tracker import INITIATIONS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 
     a = study_multi_parser().parse_args(argv)
     cfg = MultiStudyConfig(models=_names("--models", a.models, list(MODELS)),
                            associations=_names("--association", a.association, list(ASSOCIATIONS)),
+                           initiations=(None,) if a.initiation is None else _names("--initiation", a.initiation,
+                                                                                   list(INITIATIONS)),
                            runs=a.runs, seed=a.seed, dt=a.dt, duration=a.duration, detection_prob=a.detection_prob,
                            clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
                            dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed,
                            measurement=a.measure, heading_std=a.heading_std).validate()
     say = (lambda s: None) if a.quiet else (lambda s: print(s, file=sys.stderr))
     with compile_notice("lgekf study", enabled=not a.quiet):
-        cells = run_multi_study(cfg, progress=lambda c: say(f"  {c.model} {c.association}: GOSPA {c.gospa:.3f}"))
+        cells = run_multi_study(cfg, progress=lambda c: say(f"  {c.model} {c.association} {c.initiation}: GOSPA {c.gospa:.3f}"))
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(MULTI_COLUMNS)
     for c in cells:
-        w.writerow([c.model, c.association, f"{c.gospa:.6g}", f"{c.localisation:.6g}", f"{c.missed:.6g}", f"{c.false:.6g}",
+        w.writerow([c.model, c.association, c.initiation, f"{c.gospa:.6g}", f"{c.localisation:.6g}", f"{c.missed:.6g}", f"{c.false:.6g}",
                     c.switches, f"{c.scans_per_s:.4g}"])
     a.out.mkdir(parents=True, exist_ok=True)
     path = a.out / "multi_gospa.csv"

@@ -101,6 +101,7 @@ class MultiTrack(TrackEstimator):
         self.heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
         self.args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=a.measure,
                          gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
+                         initiation=a.initiation, birth_density=a.birth_density,
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
                          max_speed=self.max_speed, omega_std=a.omega_std,
                          clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
@@ -153,14 +154,14 @@ class MultiTrack(TrackEstimator):
         confirmed tracks' rows."""
         a, run = self.a, self.run
         n_conf = run.n_confirmed
-        if n_conf == 0:
+        if n_conf == 0 or run.fragments_only:
             _warn(no_track_reason(run, self.sc, meas.t.size, self.max_speed, self.fit.meas_std, a.confirm_existence,
                                   self.fit.wider))
         elif a.max_speed is None:
             v = fastest_track_speed(run)
             if v >= SPEED_WARN_FRACTION * self.max_speed:
                 _warn(f"a confirmed track moves at {v:.3g} m/s, {'above' if v > self.max_speed else 'near'} --max-speed "
-                      f"{self.max_speed:g} m/s (the fastest start of a track): faster objects may have no track; give a "
+                      f"{self.max_speed:g} m/s (the speed scale of new tracks): faster objects may have no track; give a "
                       "larger --max-speed if there are any")
         if run.alarms:
             _warn(multi_alarm_line(run))

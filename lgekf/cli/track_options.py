@@ -11,6 +11,7 @@ from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS
 from ..estimators.multitarget.association import ASSOCIATIONS
+from ..estimators.multitarget.tracker import BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS, SPEED_STD_FRACTION
 from ..io.readers import COLUMN_OPTIONS
 from ..io.units import TIME_UNITS
 from . import ArgumentParser
@@ -22,10 +23,12 @@ __all__ = ["track_parser", "add_column_options", "column_names", "check_estimato
 SPEED_WARN_FRACTION = 0.8  # --multi: a confirmed track this close to the default --max-speed is warned about
 DEFAULT_MAX_SPEED = 30.0  # m/s
 # the multi-target options (their parser default is None, so that "given" can be told from "default")
+# (--initiation and --birth-existence stay None when not given: their defaults depend on --association and
+# --initiation, and the tracker fills them in)
 MULTI_DEFAULTS = {"association": "jpda", "detection_prob": 0.9, "gate_prob": 0.99, "survival_prob": 0.99,
-                  "birth_existence": 0.1, "confirm_existence": 0.9, "delete_existence": 0.01}
-MULTI_ONLY = ("association", "detection_prob", "clutter_density", "gate_prob", "survival_prob", "birth_existence",
-              "confirm_existence", "delete_existence", "max_speed", "scan_window")
+                  "confirm_existence": 0.9, "delete_existence": 0.01}
+MULTI_ONLY = ("association", "initiation", "detection_prob", "clutter_density", "gate_prob", "survival_prob",
+              "birth_existence", "birth_density", "confirm_existence", "delete_existence", "max_speed", "scan_window")
 # options of the labelled-object estimators that --multi does not take: (attribute, its default, the option's name)
 SINGLE_ONLY = (("format", "csv", "--format"), ("frame_dt", None, "--frame-dt"), ("id_column", None, "--id-column"),
                ("use_heading", False, "--use-heading"), ("heading_unit", None, "--heading-unit"),
@@ -122,6 +125,12 @@ def track_parser():
     g.add_argument("--association", default=None, choices=list(ASSOCIATIONS),
                    help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), pda or gnn "
                         f"(default {MULTI_DEFAULTS['association']})")
+    g.add_argument("--initiation", default=None, choices=list(INITIATIONS),
+                   help="how tracks start: one-point = a tentative track from every detection no track claims, velocity "
+                        "0 +- --max-speed/3 per axis, confirmed by its existence probability; two-point = from two "
+                        "detections of consecutive scans within --max-speed (default: "
+                        + "; ".join(f"{i} with {', '.join(k for k, v in DEFAULT_INITIATION.items() if v == i)}"
+                                    for i in INITIATIONS) + ", as measured in docs/multi_target.md)")
     g.add_argument("--detection-prob", type=float, default=None,
                    help=f"probability of detecting an object in a scan (default {MULTI_DEFAULTS['detection_prob']})")
     g.add_argument("--clutter-density", type=float, default=None,
@@ -130,14 +139,19 @@ def track_parser():
     g.add_argument("--survival-prob", type=float, default=None,
                    help=f"probability that an object survives one scan (default {MULTI_DEFAULTS['survival_prob']})")
     g.add_argument("--birth-existence", type=float, default=None,
-                   help=f"existence probability of a new track (default {MULTI_DEFAULTS['birth_existence']})")
+                   help="existence probability of a new track (default "
+                        + ", ".join(f"{v:g} {k}" for k, v in BIRTH_EXISTENCE.items()) + ")")
+    g.add_argument("--birth-density", type=float, default=None, metavar="BETA",
+                   help="one-point: new objects' first detections per m² per scan; a new track's existence is then "
+                        "BETA/(BETA + clutter density) instead of --birth-existence")
     g.add_argument("--confirm-existence", type=float, default=None,
                    help=f"existence that confirms a track (default {MULTI_DEFAULTS['confirm_existence']})")
     g.add_argument("--delete-existence", type=float, default=None,
                    help=f"existence below which a track is deleted (default {MULTI_DEFAULTS['delete_existence']})")
     g.add_argument("--max-speed", type=float, default=None,
-                   help=f"largest speed of a new track's two detections in m/s (default {DEFAULT_MAX_SPEED:g}; a confirmed "
-                        f"track faster than {SPEED_WARN_FRACTION:g}x that is warned about)")
+                   help=f"speed scale of new tracks in m/s (default {DEFAULT_MAX_SPEED:g}): one-point, a new track's velocity "
+                        f"std per axis is {SPEED_STD_FRACTION:.3g}x it; two-point, the largest speed of its two detections; a "
+                        f"confirmed track faster than {SPEED_WARN_FRACTION:g}x the default is warned about")
     g.add_argument("--scan-window", type=float, default=None, metavar="SECONDS",
                    help="one scan = the detections at most SECONDS after the scan's first; its time the midpoint of its "
                         "first and last (default: from the gaps between the distinct times)")

@@ -10,20 +10,22 @@ misses + clutter) instead of the base scenario.
 
 from __future__ import annotations
 
+import itertools
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
-from ..estimators.multitarget.tracker import MultiTargetTracker
+from ..estimators.multitarget.tracker import INITIATIONS, MultiTargetTracker
 from .gospa import gospa_series
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario
 
 __all__ = ["MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
 
-MULTI_COLUMNS = ("model", "association", "gospa", "localisation", "missed", "false", "switches", "scans_per_s")
+MULTI_COLUMNS = ("model", "association", "initiation", "gospa", "localisation", "missed", "false", "switches",
+                 "scans_per_s")
 
 
 @dataclass
@@ -32,6 +34,7 @@ class MultiStudyConfig:
 
     models: tuple = ("se2se2", "se2r3", "se2r2", "ctrv", "cv")
     associations: tuple = ("jpda", "pda", "gnn")
+    initiations: tuple = (None,)  # None: the tracker's default for the association (DEFAULT_INITIATION)
     runs: int = 5
     seed: int = 2016
     dt: float = 0.1
@@ -50,6 +53,9 @@ class MultiStudyConfig:
     def validate(self):
         for m in self.models:
             get_model(m)
+        bad = [i for i in self.initiations if i is not None and i not in INITIATIONS]
+        if bad or not self.initiations:
+            raise ValueError(f"--initiation: unknown name {bad[0] if bad else ''!r}; choose from {', '.join(INITIATIONS)}")
         if self.runs < 1:
             raise ValueError(f"--runs: must be at least 1, got {self.runs}")
         for name, v in (("--dt", self.dt), ("--duration", self.duration), ("--clutter-density", self.clutter_density),
@@ -67,10 +73,11 @@ class MultiStudyConfig:
 
 @dataclass
 class MultiCell:
-    """One model × association: per-scan GOSPA means over all runs and scans, switches summed over runs."""
+    """One model × association × initiation: per-scan GOSPA means over all runs and scans, switches summed over runs."""
 
     model: str
     association: str
+    initiation: str
     gospa: float
     localisation: float
     missed: float
@@ -117,32 +124,34 @@ def measures_heading(cfg: MultiStudyConfig) -> bool:
 
 
 def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
-    """Every model × association of ``cfg`` on ``cfg.runs`` scenarios; a list of ``MultiCell``."""
+    """Every model × association × initiation of ``cfg`` on ``cfg.runs`` scenarios (the same detections for
+    every cell); a list of ``MultiCell``."""
     cfg.validate()
     scen = scenarios(cfg)
     cells = []
-    for model in cfg.models:
-        for assoc in cfg.associations:
-            parts, sw, wall, scans = [], 0, 0.0, 0
-            meas = get_measurement(get_model(model).measurement_or_base(cfg.measurement))
-            for sc in scen:
-                trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
-                                         clutter_density=cfg.clutter_density, max_speed=cfg.max_speed,
-                                         measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std))
+    for model, assoc, init in itertools.product(cfg.models, cfg.associations, cfg.initiations):
+        parts, sw, wall, scans = [], 0, 0.0, 0
+        meas = get_measurement(get_model(model).measurement_or_base(cfg.measurement))
+        for sc in scen:
+            trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
+                                     clutter_density=cfg.clutter_density, max_speed=cfg.max_speed,
+                                     measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std),
+                                     initiation=init)
 
-                def step(t, Z, trk=trk, m=meas.dim):
-                    rep = trk.step(t, Z[:, :m])
-                    return rep.ids, rep.states[:, :2]
+            def step(t, Z, trk=trk, m=meas.dim):
+                rep = trk.step(t, Z[:, :m])
+                return rep.ids, rep.states[:, :2]
 
-                g, lo, mi, fa, s, w = run_tracker_on(sc, step, cfg.c, cfg.p)
-                parts.append((g, lo, mi, fa))
-                sw += s
-                wall += w
-                scans += len(sc.times)
-            a = np.mean(parts, axis=0)
-            cells.append(MultiCell(model, assoc, *map(float, a), sw, scans / wall if wall > 0 else float("inf")))
-            if progress is not None:
-                progress(cells[-1])
+            g, lo, mi, fa, s, w = run_tracker_on(sc, step, cfg.c, cfg.p)
+            parts.append((g, lo, mi, fa))
+            sw += s
+            wall += w
+            scans += len(sc.times)
+        a = np.mean(parts, axis=0)
+        cells.append(MultiCell(model, assoc, trk.initiation, *map(float, a), sw,
+                               scans / wall if wall > 0 else float("inf")))
+        if progress is not None:
+            progress(cells[-1])
     return cells
 
 
@@ -152,8 +161,9 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
             f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
             + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else ""))
-    lines = [head, f"{'model':<8} {'assoc':<5} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} {'switches':>8} {'scans/s':>8}"]
+    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} "
+                   f"{'switches':>8} {'scans/s':>8}"]
     for c in cells:
-        lines.append(f"{c.model:<8} {c.association:<5} {c.gospa:7.3f} {c.localisation:7.3f} {c.missed:7.3f} {c.false:7.3f} "
-                     f"{c.switches:8d} {c.scans_per_s:8.0f}")
+        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.gospa:7.3f} {c.localisation:7.3f} "
+                     f"{c.missed:7.3f} {c.false:7.3f} {c.switches:8d} {c.scans_per_s:8.0f}")
     return "\n".join(lines)

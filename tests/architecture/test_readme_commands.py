@@ -73,6 +73,8 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
 README_TO_RUN = {
     "lgekf track detections.csv --multi --model se2se2 -o tracks.csv --clutter-density 1e-4 --detection-prob 0.9 --association jpda": None,
     "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
+    "lgekf study --multi --initiation one-point,two-point":
+        ["lgekf study --multi --initiation one-point,two-point --runs 1 --duration 2 --models cv --out results_init"],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,

@@ -63,6 +63,8 @@ BAD_CASES = {
     "abbreviated_option": (GOOD, ["--meas", "0.3"], "unrecognized arguments: --meas"),
     "multi_option_without_multi": (GOOD, ["--association", "gnn", "--max-speed", "9"],
                                    "--association, --max-speed: only with --multi"),
+    "initiation_without_multi": (GOOD, ["--initiation", "one-point", "--birth-density", "1e-6"],
+                                 "--initiation, --birth-density: only with --multi"),
 }
 
 

@@ -14,6 +14,7 @@ import pytest
 from _cli import cli_command
 
 from lgekf.apps import track_multi as tm
+from lgekf.estimators.multitarget.tracker import BIRTH_EXISTENCE
 from lgekf.experiments.multi_scenarios import BASE_TARGETS, base_scenario, detection_stream, truth_trajectories
 
 # id: (birth s, death s, x0, y0, heading deg, speed m/s, turn rate rad/s): two cars, two pedestrians
@@ -138,8 +139,10 @@ def test_both_noises_given_print_no_noise_line(tmp_path):
 
 @pytest.mark.parametrize("factor", [30.0, 1 / 15])
 def test_the_passes_recover_from_a_provisional_std_far_off(monkeypatch, factor):
-    """The search of ``fit_noise`` from a first std 30x the truth (no track is confirmed there: the two-point
-    velocity std √2·9 m/0.1 s) and 1/15 of it (fragments) ends within 25 % of the true 0.3 m, with the 4 tracks."""
+    """The search of ``fit_noise`` from a first std 30x the truth and 1/15 of it (fragments) ends within 25 % of the
+    true 0.3 m, with a track on each of the 4 targets for nearly all of the 61 scans. (With two-point initiation
+    and main's GNN there were exactly 4 confirmed tracks; one-point, and the second GNN pass, confirm the odd false
+    track for a few scans: 2 and 8 rows at 30x, 2 rows at 1/15.)"""
     sc0 = base_scenario(seed=0, targets=BASE_TARGETS[:4], duration=6.0)
     t = np.concatenate([np.full(len(Z), tt) for tt, Z in zip(sc0.times, sc0.detections)])
     Z = np.vstack(sc0.detections)
@@ -149,7 +152,8 @@ def test_the_passes_recover_from_a_provisional_std_far_off(monkeypatch, factor):
                              omega_std=0.5)
     assert fit.meas_source == "data" and fit.converged
     assert 0.3 / 1.25 <= fit.meas_std <= 0.3 * 1.25, fit.passes
-    assert run_.n_confirmed == 4
+    ids, rows = np.unique(run_.ids, return_counts=True)
+    assert np.sum(rows >= 50) == 4 and np.all(rows[rows < 50] <= 10), dict(zip(ids.tolist(), rows.tolist()))
     assert len(fit.passes) <= tm.MAX_PASSES
 
 
@@ -188,17 +192,26 @@ def test_scan_window_ignores_pauses_and_irregular_scans():
     assert tm.scan_window_from_data(t, np.column_stack([t, np.zeros_like(t)])) == 0.0
 
 
-def test_per_detection_times_with_scan_window_0_say_why_nothing_is_confirmed(tmp_path):
-    """Main's behaviour forced (--scan-window 0: each detection its own scan): no track, one warning line that
-    says why and names --scan-window; exit 0, the output is the header only."""
+@pytest.mark.parametrize("initiation", ["one-point", "two-point"])
+def test_per_detection_times_with_scan_window_0_say_why_nothing_is_confirmed(tmp_path, initiation):
+    """Main's behaviour forced (--scan-window 0: each detection its own scan): one warning line that says why and
+    names --scan-window; exit 0. Two-point: no track, the output is the header only. One-point: tracks confirmed
+    from two detections (the clutter density estimated from one detection per scan is tiny) that hold fewer than
+    4 detections each: the line says so."""
     scene(tmp_path / "d.csv", seed=1, jitter=0.002)
     out = tmp_path / "o.csv"
-    r = run(tmp_path / "d.csv", "--multi", "-o", out, "--scan-window", "0", "--meas-std", "1", "--quiet")
+    r = run(tmp_path / "d.csv", "--multi", "-o", out, "--scan-window", "0", "--meas-std", "1", "--quiet",
+            "--initiation", initiation)
     assert r.returncode == 0, r.stderr
     lines = [ln for ln in r.stderr.splitlines() if "no track confirmed" in ln]
     assert len(lines) == 1, r.stderr
     assert "1 detection per scan" in lines[0] and "--scan-window SECONDS" in lines[0], lines[0]
-    assert out.read_text().count("\n") == 1
+    if initiation == "two-point":
+        assert out.read_text().count("\n") == 1
+    else:
+        assert "no track confirmed that held 4 detections (" in lines[0], lines[0]
+        held = np.unique(read_tracks(out)[:, 0], return_counts=True)[1]
+        assert held.size and held.max() <= 10  # fragments: each reported in a few of the 614 scans
 
 
 # ------------------------------------------------------------------------------------------ nothing confirmed
@@ -225,11 +238,16 @@ def test_objects_faster_than_max_speed_get_a_why_line_that_names_it(tmp_path):
     assert np.unique(read_tracks(out)[:, 0]).size == 3
 
 
-def test_a_single_detection_says_why(tmp_path):
+@pytest.mark.parametrize("initiation, why", [
+    ("two-point", "no track started"),
+    ("one-point", f"1 track started, the largest existence reached {BIRTH_EXISTENCE['one-point']:.2f} (confirmed at 0.9)"),
+])
+def test_a_single_detection_says_why(tmp_path, initiation, why):
+    """Two-point: no pair, no track; one-point: the detection starts a tentative track at its birth existence."""
     (tmp_path / "d.csv").write_text("t,x,y\n0,0,0\n")
-    r = run(tmp_path / "d.csv", "--multi", "-o", tmp_path / "o.csv")
+    r = run(tmp_path / "d.csv", "--multi", "-o", tmp_path / "o.csv", "--initiation", initiation)
     assert r.returncode == 0
-    assert "warning: no track confirmed: 1 scan (1 detection per scan); no track started" in r.stderr, r.stderr
+    assert f"warning: no track confirmed: 1 scan (1 detection per scan); {why}" in r.stderr, r.stderr
 
 
 # ------------------------------------------------------------------------------------------ bad options

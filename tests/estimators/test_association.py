@@ -1,5 +1,6 @@
 """Data association: PDA weights against the textbook formula, JPDA against brute-force enumeration,
-loopy belief propagation against exact marginals, GNN against brute force, the PDA update on the group
+loopy belief propagation against exact marginals, GNN against brute force (and its second pass on a hand-built
+case), the PDA update on the group
 against the generated LG-EKF update, and the gating quantities against dense linear algebra."""
 
 from __future__ import annotations
@@ -180,6 +181,28 @@ def test_gnn_is_the_best_joint_assignment():
         for i, j in enumerate(arg):  # a PDA with the one assigned detection
             if j >= 0:
                 assert P[i, j] == pytest.approx(W[i, j] / (w0[i] + W[i, j]), rel=1e-12)
+
+
+def test_gnn_second_pass_gives_a_new_track_a_free_detection():
+    """A confirmed track A (r = 0.99) and a new one B (r = 0.02), P_D P_G = 0.9·0.99: the most probable joint event
+    gives A its detection 0 and leaves B out (W_B1 < w0_B: B "not there"); the second pass, given that B exists
+    (ψ = (W_B1/r_B)/(1 − P_D P_G) > 1), gives it detection 1, not A's detection 0 (also in its gate), with the
+    one-detection PDA weight W/(w0 + W). Without the existences: the first pass only."""
+    pdpg, r = 0.9 * 0.99, np.array([0.99, 0.02])
+    w0 = 1.0 - r * pdpg
+    W = np.array([[50.0, 0.0], [0.3, 0.5]])
+    gated = np.array([[True, False], [True, True]])
+    live = np.ones(2, dtype=bool)
+    assert W[1, 1] < w0[1] and (W[1, 1] / r[1]) / (1 - pdpg) > 1
+    p0, P, _ = association_marginals("gnn", w0, W, gated, live)
+    assert P[0, 0] == pytest.approx(50.0 / (w0[0] + 50.0)) and not P[1].any() and p0[1] == 1.0
+    p0, P, _ = association_marginals("gnn", w0, W, gated, live, existence=r)
+    assert P[0, 0] == pytest.approx(50.0 / (w0[0] + 50.0)) and P[0, 1] == 0.0
+    assert P[1, 0] == 0.0 and P[1, 1] == pytest.approx(0.5 / (w0[1] + 0.5), rel=1e-12)
+    assert p0[1] == pytest.approx(w0[1] / (w0[1] + 0.5), rel=1e-12)
+    gated[1, 1] = False  # B's only gated detection is A's: nothing left for it
+    p0, P, _ = association_marginals("gnn", w0, W, gated, live, existence=r)
+    assert not P[1].any() and p0[1] == 1.0
 
 
 def _bank_with_one_track(model, meas, rng):

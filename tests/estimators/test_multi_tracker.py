@@ -135,6 +135,12 @@ BAD = {
     "empty_file": ("", [], "empty file"),
     "header_only": ("t,x,y\n", [], "no measurements"),
     "bad_association": ("t,x,y\n0,0,0\n", ["--association", "mht"], "invalid choice: 'mht'"),
+    "bad_initiation": ("t,x,y\n0,0,0\n", ["--initiation", "three-point"], "invalid choice: 'three-point'"),
+    "birth_density_two_point": ("t,x,y\n0,0,0\n", ["--initiation", "two-point", "--birth-density", "1e-6"],
+                                "birth-density: only with one-point initiation"),
+    "birth_density_and_existence": ("t,x,y\n0,0,0\n", ["--birth-density", "1e-6", "--birth-existence", "0.1"],
+                                    "birth-density: not with birth-existence"),
+    "bad_birth_density": ("t,x,y\n0,0,0\n", ["--birth-density", "0"], "birth-density: must be a positive number"),
     "bad_pd": ("t,x,y\n0,0,0\n", ["--detection-prob", "1.2"], "detection-prob: must be a probability"),
     "bad_clutter": ("t,x,y\n0,0,0\n", ["--clutter-density", "-1"], "clutter-density: must be a positive number"),
     "pose_without_heading": ("t,x,y\n0,0,0\n", ["--measure", "pose"], "heading"),
@@ -207,19 +213,23 @@ class CountingBank:
         return self.inner.live
 
 
-def test_tracker_runs_on_any_bank_with_the_interface():
+@pytest.mark.parametrize("initiation, first", [("one-point", 1), ("two-point", 2)])
+def test_tracker_runs_on_any_bank_with_the_interface(initiation, first):
+    """The same tracks through a bank that only has the interface (also the one-point restart, by remove/add);
+    gating and updates from the first scan with a track: scan 1 with one-point initiation (tracks from the first
+    detections), scan 2 with two-point (from two scans' detections)."""
     from lgekf.estimators.multitarget.bank import ModelBank
 
     sc = base_scenario(seed=0, targets=CROSSING, duration=3.0)
-    ref = MultiTargetTracker(model="cv", clutter_density=1e-4)
+    ref = MultiTargetTracker(model="cv", clutter_density=1e-4, initiation=initiation)
     bank = CountingBank(ModelBank("cv", "position", (0.5,), (0.3,)))
-    trk = MultiTargetTracker(model="cv", clutter_density=1e-4, bank=bank)
+    trk = MultiTargetTracker(model="cv", clutter_density=1e-4, bank=bank, initiation=initiation)
     for t, Z in zip(sc.times, sc.detections):
         a, b = ref.step(t, Z), trk.step(t, Z)
         np.testing.assert_array_equal(a.ids, b.ids)
         np.testing.assert_allclose(a.states, b.states, rtol=1e-12)
     assert set(bank.calls) <= {"add", "remove", "predict", "gate", "update", "physical", "stds"}
-    assert bank.calls["gate"] == bank.calls["update"] == len(sc.times) - 2  # the first tracks start at scan 2
+    assert bank.calls["gate"] == bank.calls["update"] == len(sc.times) - first
 
 
 def test_docs_python_example_runs(capsys):
@@ -241,11 +251,14 @@ def test_seed_scans_tolerates_a_missed_detection_at_the_start():
     scans = {0: [[0.0, 0.0]], 1: [], 2: [[0.2, 0.0]], 3: [[0.3, 0.0]], 4: [[0.4, 0.0]]}
     born = {}
     for window in (1, 2):
-        trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.05, seed_scans=window)
+        trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.05, seed_scans=window,
+                                 initiation="two-point")
         for k, z in scans.items():
             trk.step(0.1 * k, np.array(z).reshape(-1, 2))
             if trk.n_tracks and window not in born:
                 born[window] = k
     assert born == {1: 3, 2: 2}
-    with pytest.raises(ValueError, match="seed-scans"):
-        MultiTargetTracker(model="cv", seed_scans=0)
+    with pytest.raises(ValueError, match="seed-scans: must be at least 1"):
+        MultiTargetTracker(model="cv", seed_scans=0, initiation="two-point")
+    with pytest.raises(ValueError, match="seed-scans: only with two-point initiation"):
+        MultiTargetTracker(model="cv", seed_scans=2, initiation="one-point")

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from lgekf.experiments.multi_scenarios import BASE_TARGETS, base_scenario, dataset_scenario
+from lgekf.estimators.multitarget.tracker import DEFAULT_INITIATION
 from lgekf.experiments.multi_study import MultiStudyConfig, format_multi_table, run_multi_study
 from lgekf.io.datasets import Dataset, data_root, load_dataset
 
@@ -44,11 +45,24 @@ def test_dataset_scenario_from_synthetic_tracks():
 def test_study_cells_and_table():
     cfg = MultiStudyConfig(models=("cv",), associations=("jpda", "gnn"), runs=1, duration=3.0)
     cells = run_multi_study(cfg)
-    assert [(c.model, c.association) for c in cells] == [("cv", "jpda"), ("cv", "gnn")]
+    assert [(c.model, c.association, c.initiation) for c in cells] == [("cv", "jpda", DEFAULT_INITIATION["jpda"]),
+                                                                       ("cv", "gnn", DEFAULT_INITIATION["gnn"])]
     for c in cells:
         assert c.gospa > 0 and c.localisation >= 0 and c.missed >= 0 and c.false >= 0
     text = format_multi_table(cells, cfg)
     assert "GOSPA (c = 5 m, p = 2" in text and text.count("\ncv ") == 2
+
+
+def test_study_compares_initiations_on_the_same_detections():
+    """--initiation one-point,two-point: one cell each, in that order, on the same detections (a cell of its own run
+    gives the same numbers)."""
+    cfg = MultiStudyConfig(models=("cv",), associations=("jpda",), initiations=("one-point", "two-point"), runs=1,
+                           duration=2.0)
+    cells = run_multi_study(cfg)
+    assert [c.initiation for c in cells] == ["one-point", "two-point"]
+    alone = run_multi_study(MultiStudyConfig(models=("cv",), associations=("jpda",), initiations=("two-point",), runs=1,
+                                             duration=2.0))
+    assert (cells[1].gospa, cells[1].missed, cells[1].switches) == (alone[0].gospa, alone[0].missed, alone[0].switches)
 
 
 def test_real_trajectories_as_detection_streams():
@@ -67,6 +81,7 @@ def test_real_trajectories_as_detection_streams():
     (["--runs", "0"], "--runs: must be at least 1"),
     (["--detection-prob", "0"], "--detection-prob: must be a probability"),
     (["--gospa-p", "0.5"], "--gospa-p: must be at least 1"),
+    (["--initiation", "three-point"], "--initiation: unknown name 'three-point'"),
 ])
 def test_study_multi_errors_are_one_line(args, msg, capsys, tmp_path):
     from lgekf.cli import main

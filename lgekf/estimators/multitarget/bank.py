@@ -119,8 +119,9 @@ class ModelBank:
             self._grow(self.live.size + B - free.size)
             free = np.flatnonzero(~self.live)
         rows = free[:B]
-        for b, i in enumerate(rows):
-            self.s[i] = self.kern.state_from_physical(x0[b])
+        s = np.empty((B, self.s.shape[1]))
+        self.kern.states_from_physical(np.ascontiguousarray(x0), s)
+        self.s[rows] = s
         self.p[rows] = pack(np.asarray(P0, dtype=float).reshape(B, self.n, self.n))
         self.live[rows] = True
         return rows

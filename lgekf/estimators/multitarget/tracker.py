@@ -17,12 +17,29 @@ One call ``step(t, detections)`` per scan (all detections of one time):
    * a track is *confirmed* the first time r ≥ ``confirm_existence`` (default 0.9) and from then on
      *reported* in every scan with r ≥ ``report_existence`` (default 0.5);
    * a track is *deleted* when r < ``delete_existence`` (default 0.01);
-   * *initiation* (two-point, the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): a
-     detection is *unused* when Σ_i p_ij < 0.5 (no track claims it); each unused detection of this scan is
-     paired with the nearest unused detection of the previous ``seed_scans`` scans (default 1: the previous
-     scan only) within ``max_speed``·Δt + 3√2 r (each used once, nearest pairs first) and starts a track
-     with existence ``birth_existence`` (default 0.1), position from this detection and velocity from the
-     pair; unpaired unused detections wait up to ``seed_scans`` scans.
+   * *initiation* from the *unused* detections, those no track claims (Σ_i p_ij < 0.5), by one of two rules
+     (``initiation``; default one-point with JPDA and GNN, two-point with PDA: what measured better,
+     docs/multi_target.md):
+
+     - **one-point**: every unused detection starts a track at once (``one_point_prior``): position the
+       detection's (variance r² per axis), velocity zero with std σ_v = ``speed_std`` per axis (default
+       ``max_speed``/3: an object moving at ``max_speed`` lands 3σ_v away at its second detection, at the edge
+       of the default 99 % gate), the direction of motion unknown, ω = 0 with std ``omega_std``; any model's x0
+       and P0 from these through its own ``common_to_state`` / ``common_jacobian``
+       (``lgekf.core.initiation.initial_estimates``). Its existence is r₀ = β/(β + λ)
+       (``one_point_existence``) for a density β of new objects' first detections (``birth_density``, per
+       m² per scan) against the clutter density λ, or ``birth_existence`` (default 0.02) without β. The
+       existence recursion of step 4 then confirms or deletes it. At the first detection it *holds* (β_ij ≥
+       0.5, ``held``) after the one that started it, its state is started again by the two-point rule from
+       those two detections (id, existence and confirmation kept): the zero-velocity prior has no heading, and
+       a model whose heading is its direction of motion (CTRV, SE(2)×R²) cannot turn its heading from it by
+       the linearised update, while SE(2)×SE(2) and SE(2)×R³ would keep an arbitrary body heading θ
+       (measured: docs/multi_target.md);
+     - **two-point** (the rule of ``lgekf track``, ``lgekf.core.initiation.two_point``): each unused
+       detection of this scan is paired with the nearest unused detection of the previous ``seed_scans``
+       scans (default 1: the previous scan only) within ``max_speed``·Δt + 3√2 r (each used once, nearest
+       pairs first) and starts a track with existence ``birth_existence`` (default 0.1), position from this
+       detection and velocity from the pair; unpaired unused detections wait up to ``seed_scans`` scans.
 
    Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
 
@@ -40,7 +57,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ...core.initiation import DEFAULT_OMEGA_STD, initial_estimates, two_point
+from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
 from ...core.registry import get_model
 from ...core.validate import positive_scalar
 from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
@@ -48,9 +65,14 @@ from .bank import ModelBank, TrackFilterBank
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
 
-__all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP"]
+__all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
+           "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
 
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
+INITIATIONS = ("one-point", "two-point")
+DEFAULT_INITIATION = {"jpda": "one-point", "gnn": "one-point", "pda": "two-point"}  # per association: measured
+BIRTH_EXISTENCE = {"one-point": 0.02, "two-point": 0.1}  # a new track's existence without birth_density
+SPEED_STD_FRACTION = 1.0 / 3.0  # one-point: the velocity prior's std per axis is max_speed/3
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
 HELD_FROM = 0.5  # a track holds detection j when β_ij (the probability that j is its, given that it exists) ≥ this
 
@@ -88,6 +110,49 @@ def nearest_pairs(new, old, reach):
             out[n, 1] = j
             n += 1
     return out[:n]
+
+
+def one_point_prior(Z: np.ndarray, pos_std: float, speed_std: float, omega_std: float, heading_std: float):
+    """The one-point prior of a track started by each detection of Z (B, m) (rows (x, y) or (x, y, θ)), in the common
+    coordinates c = (x, y, θ, v_x, v_y, ω) (body-frame velocity) with diagonal variances:
+
+    * (x, y) the detection's, variance r² each (r = ``pos_std``);
+    * (v_x, v_y) = 0, variance σ_v² each (σ_v = ``speed_std``): an isotropic velocity, the direction of motion
+      unknown;
+    * ω = 0, variance σ_ω² (``omega_std``);
+    * θ: a pose detection's heading (wrapped to (−π, π]) with variance ``heading_std``²; from a position
+      detection θ = 0 with variance ``HEADING_CAP``². With zero speed θ is no direction of motion: a model
+      whose heading is its direction of motion (``ModelSpec.forward_speed``: CTRV's ψ, SE(2)×R²'s θ) gets
+      heading variance π² from the isotropic velocity (``initial_estimates`` takes the Jacobian just off
+      speed 0 and caps an angle's variance at π²), and SE(2)×SE(2) / SE(2)×R³, whose body velocity (v_x, v_y)
+      is free in direction, carry the unknown direction in it, θ being the orientation of the body frame.
+
+    Returns c (B, 6) and var (B, 6) (``lgekf.core.initiation.initial_estimates`` makes any model's x0, P0 of them).
+    """
+    Z = np.asarray(Z, dtype=float)
+    B = Z.shape[0]
+    c = np.zeros((B, 6))
+    c[:, :2] = Z[:, :2]
+    var = np.empty((B, 6))
+    var[:, :2] = pos_std**2
+    var[:, 3:5] = speed_std**2
+    var[:, 5] = omega_std**2
+    if Z.shape[1] > 2:
+        c[:, 2] = np.arctan2(np.sin(Z[:, 2]), np.cos(Z[:, 2]))
+        var[:, 2] = heading_std**2
+    else:
+        var[:, 2] = HEADING_CAP**2
+    return c, var
+
+
+def one_point_existence(birth_density: float, clutter_density: float) -> float:
+    """The existence of a one-point track: r₀ = β/(β + λ).
+
+    A detection that no track claims is either a new object's first detection or a false alarm; with both
+    independent Poisson processes, of densities β (``birth_density``) and λ (``clutter_density``, per m² per
+    scan), it is a new object's with probability β/(β + λ). (With pose detections both are spread uniformly in
+    heading: the 2π cancels.)"""
+    return birth_density / (birth_density + clutter_density)
 
 
 @dataclass
@@ -139,17 +204,30 @@ class MultiTargetTracker:
         P_G: the gate is d² ≤ the χ²_m quantile of P_G.
     survival_prob : float
         Probability that a target survives one scan.
-    birth_existence, confirm_existence, report_existence, delete_existence : float
-        Existence probability of a new track, of confirmation, of reporting a confirmed track, of deletion.
+    birth_existence : float, optional
+        Existence probability r₀ of a new track (default ``BIRTH_EXISTENCE`` of the initiation: 0.02 one-point,
+        0.1 two-point); not with ``birth_density``.
+    confirm_existence, report_existence, delete_existence : float
+        Existence probability of confirmation, of reporting a confirmed track, of deletion.
     max_speed : float
-        Largest speed (m/s) of a two-point initiation.
+        Speed scale of new tracks (m/s): two-point, the largest speed of the two detections that start a track;
+        one-point, 3× the default ``speed_std``.
+    initiation : {"one-point", "two-point"}, optional
+        How tracks start (module docstring); default ``DEFAULT_INITIATION[association]`` (one-point with JPDA and
+        GNN, two-point with PDA).
+    speed_std : float, optional
+        One-point: the std σ_v (m/s) of each velocity component of a new track's prior (default
+        ``max_speed``/3).
+    birth_density : float, optional
+        One-point: β, new objects' first detections per m² per scan; a new track's existence is then
+        r₀ = β/(β + λ) (``one_point_existence``) instead of ``birth_existence``.
     omega_std : float
         Initial turn-rate std (rad/s) of a new track.
     max_events : int
         JPDA: clusters with more joint events use loopy belief propagation.
     seed_scans : int
-        How many scans an unused detection waits for a partner of a two-point initiation (1: consecutive
-        detections only; 2 tolerates one missed detection at the start, at the price of more false tracks).
+        Two-point: how many scans an unused detection waits for a partner (1: consecutive detections only; 2
+        tolerates one missed detection at the start, at the price of more false tracks).
     bank : TrackFilterBank, optional
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
 
@@ -164,7 +242,13 @@ class MultiTargetTracker:
         After each ``step``: the normalised innovation squared d² = eᵀS⁻¹e of each held detection against its
         track's prediction (the order of ``held``; what a divergence monitor tests).
     max_existence : float
-        The largest existence probability any track has had after an update.
+        The largest existence probability any track has had after an update (or at its start).
+    initiation : str
+        The initiation in use ("one-point" or "two-point").
+    r_birth : float
+        The existence probability r₀ of a new track.
+    speed_std : float
+        One-point: the std σ_v (m/s) of each velocity component of a new track's prior.
     next_id : int
         The number of tracks started so far (the next track's id).
 
@@ -179,14 +263,29 @@ class MultiTargetTracker:
 
     def __init__(self, model: str, association: str = "jpda", detection_prob: float = 0.9,
                  clutter_density: float = 1e-4, meas_std=0.3, accel_std=None, measurement: str = "position",
-                 gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float = 0.1,
+                 gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float | None = None,
                  confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
-                 seed_scans: int = 1, bank: TrackFilterBank | None = None):
+                 seed_scans: int = 1, bank: TrackFilterBank | None = None, initiation: str | None = None,
+                 speed_std: float | None = None, birth_density: float | None = None):
         spec = get_model(model)
         meas = spec.measurement(measurement)
         if association not in ASSOCIATIONS:
             raise ValueError(f"association: unknown method {association!r}; choose one of {', '.join(ASSOCIATIONS)}")
+        initiation = DEFAULT_INITIATION[association] if initiation is None else initiation
+        if initiation not in INITIATIONS:
+            raise ValueError(f"initiation: unknown method {initiation!r}; choose one of {', '.join(INITIATIONS)}")
+        one_point = initiation == "one-point"
+        if not one_point:
+            for name, v in (("birth-density", birth_density), ("speed-std", speed_std)):
+                if v is not None:
+                    raise ValueError(f"{name}: only with one-point initiation (initiation is {initiation})")
+        elif seed_scans != 1:
+            raise ValueError(f"seed-scans: only with two-point initiation (initiation is {initiation})")
+        if birth_density is not None and birth_existence is not None:
+            raise ValueError("birth-density: not with birth-existence (β sets a new track's existence, β/(β + λ))")
+        if birth_existence is None:
+            birth_existence = BIRTH_EXISTENCE[initiation]
         for name, v in (("detection-prob", detection_prob), ("gate-prob", gate_prob), ("survival-prob", survival_prob),
                         ("birth-existence", birth_existence), ("confirm-existence", confirm_existence),
                         ("report-existence", report_existence), ("delete-existence", delete_existence)):
@@ -196,6 +295,12 @@ class MultiTargetTracker:
         self.clutter_density = positive_scalar("clutter-density", clutter_density)
         self.max_speed = positive_scalar("max-speed", max_speed)
         self.omega_std = positive_scalar("omega-std", omega_std)
+        self.initiation = initiation
+        self.speed_std = (SPEED_STD_FRACTION * self.max_speed if speed_std is None
+                          else positive_scalar("speed-std", speed_std))
+        if birth_density is not None:
+            birth_existence = one_point_existence(positive_scalar("birth-density", birth_density), self.clutter_density)
+        self.birth_density = birth_density
         r = np.atleast_1d(np.asarray(meas_std, dtype=float))
         if r.size == 1:
             r = np.full(len(meas.noise_names), r[0])
@@ -222,6 +327,9 @@ class MultiTargetTracker:
         self.r = np.zeros(cap)
         self.ids = np.full(cap, -1, dtype=np.int64)
         self.confirmed = np.zeros(cap, dtype=bool)
+        self.first_t = np.zeros(cap)  # one-point: the time and detection that started a track still on its prior
+        self.first_z = np.zeros((cap, meas.dim))
+        self.on_prior = np.zeros(cap, dtype=bool)
         self.next_id = 0
         self.t = None
         self.seeds = np.zeros((0, meas.dim))
@@ -268,6 +376,7 @@ class MultiTargetTracker:
         live = bank.live
         M = Z.shape[0]
         claimed = np.zeros(M)
+        restart = (np.zeros(0, dtype=np.int64), Z[:0])
         self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
         self.held_nis = np.zeros(0)
         if live.any():
@@ -278,7 +387,7 @@ class MultiTargetTracker:
             w0 = np.empty(N)
             W = np.empty((N, M))
             association_weights(ll, gated, live, self.r, self.pd, self.pg, self.kappa, w0, W)
-            p0, P, exact = association_marginals(self.association, w0, W, gated, live, self.max_events)
+            p0, P, exact = association_marginals(self.association, w0, W, gated, live, self.max_events, self.r)
             self.last_exact = bool(exact[live].all())
             beta0 = np.ones(N)
             beta = np.zeros((N, M))
@@ -293,6 +402,8 @@ class MultiTargetTracker:
                 ok = beta[rows, best] >= HELD_FROM
                 self.held = (self.ids[rows[ok]].copy(), best[ok])
                 self.held_nis = bank.d2[rows[ok], best[ok]].copy()
+                fresh = ok & self.on_prior[rows]
+                restart = (rows[fresh], Z[best[fresh]])
             claimed = P[live].sum(axis=0)
             self.confirmed |= live & (self.r >= self.r_confirm)
             dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
@@ -300,7 +411,11 @@ class MultiTargetTracker:
                 bank.remove(dead)
                 self.ids[dead] = -1
                 self.confirmed[dead] = False
+                self.on_prior[dead] = False
                 self.r[dead] = 0.0
+            still = bank.live[restart[0]]
+            if still.any():
+                self._restart(restart[0][still], restart[1][still], t)  # after all that is indexed by this scan's rows
         unused = Z[claimed < UNUSED_BELOW]
         self._initiate(t, dt, unused)
         self.t = t
@@ -314,8 +429,69 @@ class MultiTargetTracker:
             self.r = np.concatenate([self.r, np.zeros(k)])
             self.ids = np.concatenate([self.ids, np.full(k, -1, dtype=np.int64)])
             self.confirmed = np.concatenate([self.confirmed, np.zeros(k, dtype=bool)])
+            self.first_t = np.concatenate([self.first_t, np.zeros(k)])
+            self.first_z = np.vstack([self.first_z, np.zeros((k, self.first_z.shape[1]))])
+            self.on_prior = np.concatenate([self.on_prior, np.zeros(k, dtype=bool)])
 
     def _initiate(self, t, dt, unused):
+        """New tracks from this scan's unused detections (Z rows (U, m)) by the tracker's ``initiation``."""
+        if self.initiation == "one-point":
+            self._one_point(t, unused)
+        else:
+            self._two_point(t, dt, unused)
+
+    def _start(self, x0, P0):
+        """Tracks at x0 (B, n), P0 (B, n, n): tentative, existence ``r_birth``, the next ids; returns their rows."""
+        B = x0.shape[0]
+        rows = self.bank.add(x0, P0)
+        self._sync()
+        self.r[rows] = self.r_birth
+        self.ids[rows] = np.arange(self.next_id, self.next_id + B)
+        self.next_id += B
+        self.confirmed[rows] = False
+        self.on_prior[rows] = False
+        return rows
+
+    def _pair_estimates(self, t0, z0, t1, z1):
+        """x0, P0 (B, n), (B, n, n) of the two-point rule from detections z0 (B, m) at times t0 (B,) to z1 at t1:
+        position z1's, velocity (z1 − z0)/(t1 − t0), variances of ``lgekf.core.initiation.two_point`` (heading std
+        capped at ``HEADING_CAP``; a pose detection's heading from z1)."""
+        B = z0.shape[0]
+        tt = np.concatenate([t0, t1])
+        zz = np.concatenate([z0, z1])
+        heading = zz[:, 2] if self.meas.angles else None
+        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
+        c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
+                           heading, hstd, HEADING_CAP, first=np.arange(B))
+        return initial_estimates(self.model, c, var)
+
+    def _one_point(self, t, unused):
+        """A track from each unused detection (U, m): ``one_point_prior``, existence ``r_birth``; the detection and
+        t are kept for the restart at its first held detection."""
+        if unused.shape[0] == 0:
+            return
+        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
+        c, var = one_point_prior(unused, self.pos_std, self.speed_std, self.omega_std, hstd)
+        rows = self._start(*initial_estimates(self.model, c, var))
+        self.max_existence = max(self.max_existence, self.r_birth)
+        self.first_t[rows] = t
+        self.first_z[rows] = unused
+        self.on_prior[rows] = True
+
+    def _restart(self, rows, z, t):
+        """One-point tracks (``rows``) holding their first detection since the one that started them: their states
+        started again by the two-point rule from that detection to z (B, m) at t; id, existence and confirmation
+        kept. Through the bank's ``remove`` / ``add`` (its interface), which may give other rows."""
+        x0, P0 = self._pair_estimates(self.first_t[rows], self.first_z[rows], np.full(rows.size, t), z)
+        kept = (self.r[rows].copy(), self.ids[rows].copy(), self.confirmed[rows].copy())
+        self.bank.remove(rows)
+        self.r[rows], self.ids[rows], self.confirmed[rows], self.on_prior[rows] = 0.0, -1, False, False
+        new = self.bank.add(x0, P0)
+        self._sync()
+        self.r[new], self.ids[new], self.confirmed[new] = kept
+        self.on_prior[new] = False
+
+    def _two_point(self, t, dt, unused):
         """Two-point initiation from this scan's unused detections and those of the previous ``seed_scans`` scans
         (module docstring)."""
         self._scan_times = (self._scan_times + [t])[-(self.seed_scans + 1):]
@@ -338,19 +514,7 @@ class MultiTargetTracker:
         B = pairs.shape[0]
         if B == 0:
             return
-        tt = np.concatenate([st[pairs[:, 1]], np.full(B, t)])
-        zz = np.concatenate([seeds[pairs[:, 1]], unused[pairs[:, 0]]])
-        heading = zz[:, 2] if self.meas.angles else None
-        hstd = float(self.meas_std[2]) if self.meas.angles else 0.1
-        c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
-                           heading, hstd, HEADING_CAP, first=np.arange(B))
-        x0, P0 = initial_estimates(self.model, c, var)
-        rows = self.bank.add(x0, P0)
-        self._sync()
-        self.r[rows] = self.r_birth
-        self.ids[rows] = np.arange(self.next_id, self.next_id + B)
-        self.next_id += B
-        self.confirmed[rows] = False
+        self._start(*self._pair_estimates(st[pairs[:, 1]], seeds[pairs[:, 1]], np.full(B, t), unused[pairs[:, 0]]))
 
     def drop(self, ids) -> None:
         """Delete the tracks with these ids now (e.g. a divergence monitor's verdict); their detections are gone,
@@ -360,6 +524,7 @@ class MultiTargetTracker:
             self.bank.remove(rows)
             self.ids[rows] = -1
             self.confirmed[rows] = False
+            self.on_prior[rows] = False
             self.r[rows] = 0.0
 
     # ------------------------------------------------------------------ reading out
