@@ -45,9 +45,9 @@ COMPILED = b"compiling\n"  # a worker's one line on stdout when it starts compil
 SECONDS_PER_BYTE = 0.4e-4
 # compile seconds of ``lgekf track --model imm`` on a cold cache, and what --tune and --smooth add (the IMM's loop
 # reaches every registry model through generated/dispatch.py, so it compiles all of them whatever its modes):
-# CPU seconds of one process on the 2-core x86-64 machine, 2026-11-29 (a 1 000-row file; load about 1.5 from other
-# work, so a little high): 96 s alone, 129 s with --tune, 121 s with --smooth, 157 s with both
-IMM_COMPILE_SECONDS = {"imm": 96.0, "tune": 33.0, "smooth": 25.0}
+# CPU seconds of one process on the 2-core x86-64 machine, 2026-11-29 12:19 UTC (load 1.0, a 1 000-row file):
+# 88 s alone, 98 s with --tune, 105 s with --smooth, 115 s with both (wall 90, 104, 108, 121 s)
+IMM_COMPILE_SECONDS = {"imm": 88.0, "tune": 10.0, "smooth": 17.0}
 # numba's own start in a worker and the kernels every job shares (special functions, helpers)
 WORKER_OVERHEAD_SECONDS = 1.5
 
