@@ -243,6 +243,8 @@ def test_docs_python_example_runs(capsys):
     rep = ns["rep"]
     assert rep.ids.size == 2 and np.all(rep.existence > 0.9)
     np.testing.assert_allclose(np.sort(rep.states[:, 0]), [5.8, 50.0], atol=0.5)
+    tracks = ns["trk"].tracks()  # the histories end on the last report
+    assert sorted(t.id for t in tracks) == sorted(rep.ids.tolist()) and all(t.t[-1] == 0.1 * 29 for t in tracks)
 
 
 def test_seed_scans_tolerates_a_missed_detection_at_the_start():
@@ -262,3 +264,44 @@ def test_seed_scans_tolerates_a_missed_detection_at_the_start():
         MultiTargetTracker(model="cv", seed_scans=0, initiation="two-point")
     with pytest.raises(ValueError, match="seed-scans: only with two-point initiation"):
         MultiTargetTracker(model="cv", seed_scans=2, initiation="one-point")
+
+
+@pytest.mark.parametrize("model", ["se2r3", "cv"])
+def test_track_histories_follow_the_reports(model):
+    """history=True: every reported track's history holds, scan by scan, what the reports said (times, states,
+    existence), with its tangent covariance, whose diagonal gives the reported stds; a track id reported in no scan
+    has no history; and each history follows a true target (the crossing scene, after its first second)."""
+    sc = base_scenario(seed=2, targets=CROSSING, duration=6.0)
+    trk = MultiTargetTracker(model=model, association="jpda", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9,
+                             history=True)
+    seen = {}
+    for t, Z in zip(sc.times, sc.detections):
+        rep = trk.step(t, Z)
+        for k, i in enumerate(rep.ids.tolist()):
+            seen.setdefault(i, []).append((t, rep.states[k], rep.stds[k], rep.existence[k]))
+    tracks = trk.tracks()
+    assert [tr.id for tr in tracks] == sorted(seen) and len(tracks) >= 4
+    n = trk.spec.n
+    for tr in tracks:
+        rows = seen[tr.id]
+        assert tr.t.tolist() == [r[0] for r in rows]
+        assert np.array_equal(tr.states, np.array([r[1] for r in rows]))
+        assert np.array_equal(tr.existence, np.array([r[3] for r in rows]))
+        assert tr.covariances.shape == (len(rows), n, n)
+        assert np.allclose(np.sqrt(np.diagonal(tr.covariances, axis1=1, axis2=2)), np.array([r[2] for r in rows]))
+        assert np.array_equal(tr.covariances, np.swapaxes(tr.covariances, 1, 2))
+        assert np.all(np.linalg.eigvalsh(tr.covariances) > 0)
+    # the four long tracks lie on the four targets
+    long = [tr for tr in tracks if tr.t.size > 40]
+    assert len(long) == 4
+    for tr in long:
+        k = int(np.searchsorted(sc.times, tr.t[-1]))
+        ids, X = sc.truth[k]
+        assert np.min(np.hypot(*(X[:, :2] - tr.states[-1, :2]).T)) < 1.5
+
+
+def test_tracks_need_the_history_option():
+    trk = MultiTargetTracker(model="cv", clutter_density=1e-4, meas_std=0.3)
+    trk.step(0.0, np.array([[0.0, 0.0]]))
+    with pytest.raises(ValueError, match="history=True"):
+        trk.tracks()

@@ -24,7 +24,7 @@ from typing import Protocol
 
 import numpy as np
 
-from ...core.covariance import pack, packed_diagonal
+from ...core.covariance import pack, packed_diagonal, unpack
 from ...core.registry import get_model
 from .gating import gate_scores, innovation_covariances
 from .pda import pda_corrections, transport_covariances
@@ -49,6 +49,8 @@ class TrackFilterBank(Protocol):
     def update(self, beta0: np.ndarray, beta: np.ndarray) -> None: ...
 
     def physical(self, rows: np.ndarray) -> np.ndarray: ...
+
+    def covariances(self, rows: np.ndarray) -> np.ndarray: ...
 
     def stds(self) -> np.ndarray: ...
 
@@ -177,6 +179,11 @@ class ModelBank:
         for k, i in enumerate(rows):
             self.kern.physical_into(self.s[i], out[k])
         return out
+
+    def covariances(self, rows: np.ndarray) -> np.ndarray:
+        """The covariances P (len(rows), n, n) of the given live rows, in the tangent of each track's mean (right
+        perturbation X = μ·exp(ε), the model's tangent order)."""
+        return unpack(self.p[np.asarray(rows, dtype=np.int64)], self.n)
 
     def stds(self) -> np.ndarray:
         """Square roots of P's diagonal (N, n): the std of each tangent coordinate."""

@@ -65,7 +65,7 @@ from .bank import ModelBank, TrackFilterBank
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
 
-__all__ = ["MultiTargetTracker", "ScanReport", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
+__all__ = ["MultiTargetTracker", "ScanReport", "Track", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
            "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
 
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
@@ -180,6 +180,32 @@ class ScanReport:
     existence: np.ndarray
 
 
+@dataclass
+class Track:
+    """One track's history: the scans at which it was reported (confirmed, existence ≥ ``report_existence``).
+
+    Attributes
+    ----------
+    id : int
+        The track id (as in ``ScanReport.ids`` and the ``id`` column of ``lgekf track --multi``).
+    t : ndarray, (K,)
+        Scan times.
+    states : ndarray, (K, n)
+        Physical states (the model's ``state_names``).
+    covariances : ndarray, (K, n, n)
+        Covariances in the tangent of each scan's mean (right perturbation X = μ·exp(ε), the model's tangent order;
+        the square roots of their diagonals are ``ScanReport.stds``).
+    existence : ndarray, (K,)
+        Existence probabilities.
+    """
+
+    id: int
+    t: np.ndarray
+    states: np.ndarray
+    covariances: np.ndarray
+    existence: np.ndarray
+
+
 class MultiTargetTracker:
     """Track many objects from unlabelled detections with clutter and misses (module docstring).
 
@@ -230,6 +256,8 @@ class MultiTargetTracker:
         tolerates one missed detection at the start, at the price of more false tracks).
     bank : TrackFilterBank, optional
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
+    history : bool
+        Keep every reported track's states, covariances and existence scan by scan (``tracks()``).
 
     Attributes
     ----------
@@ -267,7 +295,7 @@ class MultiTargetTracker:
                  confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
                  seed_scans: int = 1, bank: TrackFilterBank | None = None, initiation: str | None = None,
-                 speed_std: float | None = None, birth_density: float | None = None):
+                 speed_std: float | None = None, birth_density: float | None = None, history: bool = False):
         spec = get_model(model)
         meas = spec.measurement(measurement)
         if association not in ASSOCIATIONS:
@@ -327,6 +355,8 @@ class MultiTargetTracker:
         self.r = np.zeros(cap)
         self.ids = np.full(cap, -1, dtype=np.int64)
         self.confirmed = np.zeros(cap, dtype=bool)
+        self.history = {} if history else None  # id -> [(t, state, covariance, existence), ...]
+        self._recorded = None  # the last scan time recorded (report() may be called more than once per scan)
         self.first_t = np.zeros(cap)  # one-point: the time and detection that started a track still on its prior
         self.first_z = np.zeros((cap, meas.dim))
         self.on_prior = np.zeros(cap, dtype=bool)
@@ -534,7 +564,23 @@ class MultiTargetTracker:
         sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
         sel = sel[np.argsort(self.ids[sel], kind="stable")]
         X = self.bank.physical(sel)
-        return ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
+        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
+        if self.history is not None and self.t is not None and self._recorded != self.t:
+            self._recorded = self.t
+            for k, P in enumerate(self.bank.covariances(sel)):
+                self.history.setdefault(int(rep.ids[k]), []).append((self.t, X[k], P, rep.existence[k]))
+        return rep
+
+    def tracks(self) -> list:
+        """Every track reported so far with its history (``history=True``), sorted by id: a list of ``Track``."""
+        if self.history is None:
+            raise ValueError("tracks(): the tracker keeps no history; create it with history=True")
+        out = []
+        for i in sorted(self.history):
+            rows = self.history[i]
+            out.append(Track(i, np.array([r[0] for r in rows], dtype=float), np.array([r[1] for r in rows]),
+                             np.array([r[2] for r in rows]), np.array([r[3] for r in rows], dtype=float)))
+        return out
 
     @property
     def n_tracks(self) -> int:
