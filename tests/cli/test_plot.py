@@ -150,3 +150,15 @@ def test_plot_html_without_plotly_says_which_extra(example_tracks, tmp_path, cap
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and 'pip install "lgekf[html]"' in err[0], err
     assert list(tmp_path.iterdir()) == []
+
+
+def test_plot_draws_a_multi_target_output(tmp_path, capsys):
+    """`lgekf track --multi`'s output (the tracks' ids in a `track` column, existence and flag) is drawn like any track
+    file: one line per confirmed track (issue #29 item 5)."""
+    out, fig = tmp_path / "multi.csv", tmp_path / "multi.png"
+    assert main(["track", str(EXAMPLE), "--multi", "--sort", "-o", str(out), "--quiet"]) == 0
+    n_tracks = pd.read_csv(out)["track"].nunique()
+    assert n_tracks == 3  # the three objects of the example (tests/cli/test_track_multi_defaults.py)
+    assert main(["plot", str(out), "-o", str(fig)]) == 0
+    assert _png(fig)
+    assert f"{n_tracks} of {n_tracks} objects drawn" in capsys.readouterr().err
