@@ -15,7 +15,7 @@ from .monitor import maximum, minimum, two_point_into, jacobian_point, initial_c
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_from_pose', 'rerun_pose', 'recover_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_from_position', 'rerun_position', 'recover_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'reinit_into', 'speed_std_at', 'speed_stds', 'first_alarm', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_from_pose', 'rerun_pose', 'recover_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_from_position', 'rerun_position', 'recover_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'reinit_into', 'speed_std_at', 'speed_stds', 'first_alarm', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'smooth_step_at', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'physical_at', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -4887,6 +4887,326 @@ def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
     so[5] = de4_0 + omega
 
 
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+def smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dt):
+    """One Rauch–Tung–Striebel backward step on the group (lgekf.estimators.smoother), straight-line:
+    from the posterior (sf, pf) at k, the prediction (sq, pq) at k+1 and the smoothed (ss, ps) at k+1, with
+    F = transition(μ_k, dt): d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), G = P_k Fᵀ P_{k+1|k}⁻¹ (LDLᵀ), δ = G d,
+    P̃ = P_k + G (Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ − P_{k+1|k}) Gᵀ; writes μˢ_k = μ_k·exp(δ) into so and
+    Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ (packed) into po (derive/codegen/smooth_step.py).
+    legend: cc = 𝒞, ff = F, cf = P_k Fᵀ, dd = d, ji = Φ(d)⁻¹, jp = Φ(d)⁻¹Pˢ, dm = P̄ − P_{k+1|k},
+    ld/ll/lr = LDLᵀ pivots, factor and reciprocal pivots, ly/gg = the solves for G, de = δ, gd = G·dm,
+    pt = P̃, ph = Φ(δ), tp = Φ(δ)P̃.
+    On the rows of the stored passes at step k: sf = s_filt[k], pf = p_filt[k], sq = s_pred[k + 1],
+    pq = p_pred[k + 1], ss = s_sm[k + 1], ps = p_sm[k + 1], so = s_sm[k], po = p_sm[k] (derive/codegen/families/smoother.py).
+    """
+    x = s_filt[k, 0]
+    y = s_filt[k, 1]
+    c_theta = s_filt[k, 2]
+    s_theta = s_filt[k, 3]
+    v = s_filt[k, 4]
+    omega = s_filt[k, 5]
+    pf00 = p_filt[k, 0]
+    pf01 = p_filt[k, 1]
+    pf02 = p_filt[k, 2]
+    pf03 = p_filt[k, 3]
+    pf04 = p_filt[k, 4]
+    pf11 = p_filt[k, 5]
+    pf12 = p_filt[k, 6]
+    pf13 = p_filt[k, 7]
+    pf14 = p_filt[k, 8]
+    pf22 = p_filt[k, 9]
+    pf23 = p_filt[k, 10]
+    pf24 = p_filt[k, 11]
+    pf33 = p_filt[k, 12]
+    pf34 = p_filt[k, 13]
+    pf44 = p_filt[k, 14]
+    q_x = s_pred[k + 1, 0]
+    q_y = s_pred[k + 1, 1]
+    q_c_theta = s_pred[k + 1, 2]
+    q_s_theta = s_pred[k + 1, 3]
+    q_v = s_pred[k + 1, 4]
+    q_omega = s_pred[k + 1, 5]
+    pq00 = p_pred[k + 1, 0]
+    pq01 = p_pred[k + 1, 1]
+    pq02 = p_pred[k + 1, 2]
+    pq03 = p_pred[k + 1, 3]
+    pq04 = p_pred[k + 1, 4]
+    pq11 = p_pred[k + 1, 5]
+    pq12 = p_pred[k + 1, 6]
+    pq13 = p_pred[k + 1, 7]
+    pq14 = p_pred[k + 1, 8]
+    pq22 = p_pred[k + 1, 9]
+    pq23 = p_pred[k + 1, 10]
+    pq24 = p_pred[k + 1, 11]
+    pq33 = p_pred[k + 1, 12]
+    pq34 = p_pred[k + 1, 13]
+    pq44 = p_pred[k + 1, 14]
+    t_x = s_sm[k + 1, 0]
+    t_y = s_sm[k + 1, 1]
+    t_c_theta = s_sm[k + 1, 2]
+    t_s_theta = s_sm[k + 1, 3]
+    t_v = s_sm[k + 1, 4]
+    t_omega = s_sm[k + 1, 5]
+    ps00 = p_sm[k + 1, 0]
+    ps01 = p_sm[k + 1, 1]
+    ps02 = p_sm[k + 1, 2]
+    ps03 = p_sm[k + 1, 3]
+    ps04 = p_sm[k + 1, 4]
+    ps11 = p_sm[k + 1, 5]
+    ps12 = p_sm[k + 1, 6]
+    ps13 = p_sm[k + 1, 7]
+    ps14 = p_sm[k + 1, 8]
+    ps22 = p_sm[k + 1, 9]
+    ps23 = p_sm[k + 1, 10]
+    ps24 = p_sm[k + 1, 11]
+    ps33 = p_sm[k + 1, 12]
+    ps34 = p_sm[k + 1, 13]
+    ps44 = p_sm[k + 1, 14]
+    _a0 = dt*omega
+    _sin__a0 = math.sin(_a0)
+    _cos__a0 = math.cos(_a0)
+    _sinc__a0, _cosc__a0, _sinc2__a0, _cosc2__a0 = sinc_family(_a0, _sin__a0, _cos__a0)
+    _a1 = math.atan2(q_c_theta*t_s_theta - q_s_theta*t_c_theta, q_c_theta*t_c_theta + q_s_theta*t_s_theta)
+    _sin__a1 = math.sin(_a1)
+    _cos__a1 = math.cos(_a1)
+    _halfcot__a1 = halfcot(_a1, _sin__a1, _cos__a1)
+    _t0 = _cosc__a0*dt
+    _t1 = _sinc__a0*dt
+    _t2 = (dt*dt)*v
+    _t3 = -(q_c_theta*q_x) + q_c_theta*t_x - q_s_theta*q_y + q_s_theta*t_y
+    _t4 = -(q_c_theta*q_y) + q_c_theta*t_y + q_s_theta*q_x - q_s_theta*t_x
+    _t5 = _a1/2.0
+    ff0_0 = _cos__a0
+    ff0_1 = _sin__a0
+    ff0_2 = _t0*v
+    ff0_3 = _t1
+    ff0_4 = _sinc2__a0*_t2
+    ff1_0 = -_sin__a0
+    ff1_1 = _cos__a0
+    ff1_2 = _t1*v
+    ff1_3 = -_t0
+    ff1_4 = _cosc2__a0*_t2
+    cf0_2 = dt*pf04 + pf02
+    cf1_2 = dt*pf14 + pf12
+    cf2_2 = dt*pf24 + pf22
+    cf3_2 = dt*pf34 + pf23
+    cf4_2 = dt*pf44 + pf24
+    dd0_0 = _halfcot__a1*_t3 + _t4*_t5
+    dd0_1 = _halfcot__a1*_t4 - _t3*_t5
+    dd0_2 = _a1
+    dd0_3 = -q_v + t_v
+    dd0_4 = -q_omega + t_omega
+    dm2_2 = -pq22 + ps22
+    dm2_3 = -pq23 + ps23
+    dm2_4 = -pq24 + ps24
+    dm3_3 = -pq33 + ps33
+    dm3_4 = -pq34 + ps34
+    dm4_4 = -pq44 + ps44
+    lr0 = 1.0/max(1e-300, pq00)
+    _sin_dd0_2 = math.sin(dd0_2)
+    _cos_dd0_2 = math.cos(dd0_2)
+    _halfcot_dd0_2 = halfcot(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _halfcot1_dd0_2 = halfcot1(dd0_2, _sin_dd0_2, _cos_dd0_2)
+    _t6 = dd0_2/2.0
+    cf0_0 = ff0_0*pf00 + ff0_1*pf01 + ff0_2*pf02 + ff0_3*pf03 + ff0_4*pf04
+    cf0_1 = ff1_0*pf00 + ff1_1*pf01 + ff1_2*pf02 + ff1_3*pf03 + ff1_4*pf04
+    cf1_0 = ff0_0*pf01 + ff0_1*pf11 + ff0_2*pf12 + ff0_3*pf13 + ff0_4*pf14
+    cf1_1 = ff1_0*pf01 + ff1_1*pf11 + ff1_2*pf12 + ff1_3*pf13 + ff1_4*pf14
+    cf2_0 = ff0_0*pf02 + ff0_1*pf12 + ff0_2*pf22 + ff0_3*pf23 + ff0_4*pf24
+    cf2_1 = ff1_0*pf02 + ff1_1*pf12 + ff1_2*pf22 + ff1_3*pf23 + ff1_4*pf24
+    cf3_0 = ff0_0*pf03 + ff0_1*pf13 + ff0_2*pf23 + ff0_3*pf33 + ff0_4*pf34
+    cf3_1 = ff1_0*pf03 + ff1_1*pf13 + ff1_2*pf23 + ff1_3*pf33 + ff1_4*pf34
+    cf4_0 = ff0_0*pf04 + ff0_1*pf14 + ff0_2*pf24 + ff0_3*pf34 + ff0_4*pf44
+    cf4_1 = ff1_0*pf04 + ff1_1*pf14 + ff1_2*pf24 + ff1_3*pf34 + ff1_4*pf44
+    ji0_0 = _halfcot_dd0_2
+    ji0_1 = -_t6
+    ji0_2 = _halfcot1_dd0_2*dd0_0 + dd0_1/2.0
+    ji1_0 = _t6
+    ji1_1 = _halfcot_dd0_2
+    ji1_2 = _halfcot1_dd0_2*dd0_1 - dd0_0/2.0
+    ll1_0 = lr0*pq01
+    ll2_0 = lr0*pq02
+    ll3_0 = lr0*pq03
+    ll4_0 = lr0*pq04
+    jp0_0 = ji0_0*ps00 + ji0_1*ps01 + ji0_2*ps02
+    jp0_1 = ji0_0*ps01 + ji0_1*ps11 + ji0_2*ps12
+    jp0_2 = ji0_0*ps02 + ji0_1*ps12 + ji0_2*ps22
+    jp0_3 = ji0_0*ps03 + ji0_1*ps13 + ji0_2*ps23
+    jp0_4 = ji0_0*ps04 + ji0_1*ps14 + ji0_2*ps24
+    jp1_0 = ji1_0*ps00 + ji1_1*ps01 + ji1_2*ps02
+    jp1_1 = ji1_0*ps01 + ji1_1*ps11 + ji1_2*ps12
+    jp1_2 = ji1_0*ps02 + ji1_1*ps12 + ji1_2*ps22
+    jp1_3 = ji1_0*ps03 + ji1_1*ps13 + ji1_2*ps23
+    jp1_4 = ji1_0*ps04 + ji1_1*ps14 + ji1_2*ps24
+    lw1_0 = ll1_0*pq00
+    lw2_0 = ll2_0*pq00
+    lw3_0 = ll3_0*pq00
+    lw4_0 = ll4_0*pq00
+    ly0_1 = -(cf0_0*ll1_0) + cf0_1
+    ly1_1 = -(cf1_0*ll1_0) + cf1_1
+    ly2_1 = -(cf2_0*ll1_0) + cf2_1
+    ly3_1 = -(cf3_0*ll1_0) + cf3_1
+    ly4_1 = -(cf4_0*ll1_0) + cf4_1
+    _t7 = -pq11
+    dm0_0 = ji0_0*jp0_0 + ji0_1*jp0_1 + ji0_2*jp0_2 - pq00
+    dm0_1 = ji1_0*jp0_0 + ji1_1*jp0_1 + ji1_2*jp0_2 - pq01
+    dm0_2 = jp0_2 - pq02
+    dm0_3 = jp0_3 - pq03
+    dm0_4 = jp0_4 - pq04
+    dm1_1 = _t7 + ji1_0*jp1_0 + ji1_1*jp1_1 + ji1_2*jp1_2
+    dm1_2 = jp1_2 - pq12
+    dm1_3 = jp1_3 - pq13
+    dm1_4 = jp1_4 - pq14
+    ld1 = -_t7 - ll1_0*lw1_0
+    lr1 = 1.0/max(1e-300, ld1)
+    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
+    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
+    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
+    lw2_1 = ld1*ll2_1
+    lw3_1 = ld1*ll3_1
+    lw4_1 = ld1*ll4_1
+    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
+    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
+    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
+    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
+    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
+    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
+    lr2 = 1.0/max(1e-300, ld2)
+    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
+    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
+    lw3_2 = ld2*ll3_2
+    lw4_2 = ld2*ll4_2
+    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
+    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
+    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
+    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
+    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
+    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
+    lr3 = 1.0/max(1e-300, ld3)
+    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
+    lw4_3 = ld3*ll4_3
+    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
+    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
+    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
+    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
+    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
+    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
+    lr4 = 1.0/max(1e-300, ld4)
+    gg0_4 = lr4*ly0_4
+    gg1_4 = lr4*ly1_4
+    gg2_4 = lr4*ly2_4
+    gg3_4 = lr4*ly3_4
+    gg4_4 = lr4*ly4_4
+    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
+    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
+    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
+    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
+    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
+    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
+    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
+    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
+    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
+    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
+    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
+    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
+    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
+    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
+    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
+    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
+    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
+    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
+    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
+    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
+    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
+    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
+    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
+    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
+    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
+    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
+    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
+    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
+    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
+    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
+    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
+    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
+    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
+    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
+    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
+    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
+    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
+    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
+    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
+    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
+    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
+    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
+    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
+    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
+    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
+    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
+    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
+    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
+    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
+    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
+    _sin_de2_0 = math.sin(de2_0)
+    _cos_de2_0 = math.cos(de2_0)
+    _sinc_de2_0, _cosc_de2_0, _sinc2_de2_0, _cosc2_de2_0 = sinc_family(de2_0, _sin_de2_0, _cos_de2_0)
+    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
+    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
+    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
+    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
+    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
+    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
+    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
+    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
+    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
+    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
+    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
+    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
+    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
+    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
+    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
+    ph0_0 = _sinc_de2_0
+    ph0_1 = _cosc_de2_0
+    ph0_2 = -(_cosc2_de2_0*de1_0) + _sinc2_de2_0*de0_0
+    ph1_0 = -_cosc_de2_0
+    ph1_1 = _sinc_de2_0
+    ph1_2 = _cosc2_de2_0*de0_0 + _sinc2_de2_0*de1_0
+    tp0_0 = ph0_0*pt0_0 + ph0_1*pt0_1 + ph0_2*pt0_2
+    tp0_1 = ph0_0*pt0_1 + ph0_1*pt1_1 + ph0_2*pt1_2
+    tp0_2 = ph0_0*pt0_2 + ph0_1*pt1_2 + ph0_2*pt2_2
+    tp0_3 = ph0_0*pt0_3 + ph0_1*pt1_3 + ph0_2*pt2_3
+    tp0_4 = ph0_0*pt0_4 + ph0_1*pt1_4 + ph0_2*pt2_4
+    tp1_0 = ph1_0*pt0_0 + ph1_1*pt0_1 + ph1_2*pt0_2
+    tp1_1 = ph1_0*pt0_1 + ph1_1*pt1_1 + ph1_2*pt1_2
+    tp1_2 = ph1_0*pt0_2 + ph1_1*pt1_2 + ph1_2*pt2_2
+    tp1_3 = ph1_0*pt0_3 + ph1_1*pt1_3 + ph1_2*pt2_3
+    tp1_4 = ph1_0*pt0_4 + ph1_1*pt1_4 + ph1_2*pt2_4
+    _t8 = -(_cosc_de2_0*de1_0) + _sinc_de2_0*de0_0
+    _t9 = _cosc_de2_0*de0_0 + _sinc_de2_0*de1_0
+    p_sm[k, 0] = ph0_0*tp0_0 + ph0_1*tp0_1 + ph0_2*tp0_2
+    p_sm[k, 1] = ph1_0*tp0_0 + ph1_1*tp0_1 + ph1_2*tp0_2
+    p_sm[k, 2] = tp0_2
+    p_sm[k, 3] = tp0_3
+    p_sm[k, 4] = tp0_4
+    p_sm[k, 5] = ph1_0*tp1_0 + ph1_1*tp1_1 + ph1_2*tp1_2
+    p_sm[k, 6] = tp1_2
+    p_sm[k, 7] = tp1_3
+    p_sm[k, 8] = tp1_4
+    p_sm[k, 9] = pt2_2
+    p_sm[k, 10] = pt2_3
+    p_sm[k, 11] = pt2_4
+    p_sm[k, 12] = pt3_3
+    p_sm[k, 13] = pt3_4
+    p_sm[k, 14] = pt4_4
+    s_sm[k, 0] = _t8*c_theta - _t9*s_theta + x
+    s_sm[k, 1] = _t8*s_theta + _t9*c_theta + y
+    s_sm[k, 2] = _cos_de2_0*c_theta - _sin_de2_0*s_theta
+    s_sm[k, 3] = _cos_de2_0*s_theta + _sin_de2_0*c_theta
+    s_sm[k, 4] = de3_0 + v
+    s_sm[k, 5] = de4_0 + omega
+
+
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_smooth(W, j):
     """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
@@ -5269,6 +5589,24 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
                     physical_smooth_lane(W, j, out_x, lo + j, k)
 
 
+@nb.njit(cache=True, error_model="numpy")
+def physical_at(s, out, k):
+    """Physical [x, y, theta, v, omega] from the internal state, written into ``out`` (no allocation).
+    Row k of s (K, ·) into row k of out (K, n) (no views; derive/codegen/families/smoother.py).
+    """
+    x = s[k, 0]
+    y = s[k, 1]
+    c_theta = s[k, 2]
+    s_theta = s[k, 3]
+    v = s[k, 4]
+    omega = s[k, 5]
+    out[k, 0] = x
+    out[k, 1] = y
+    out[k, 2] = wrap_angle(math.atan2(s_theta, c_theta))
+    out[k, 3] = v
+    out[k, 4] = omega
+
+
 @nb.njit(cache=True)
 def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     """Rauch–Tung–Striebel backward pass on the group over the first K steps (derivation:
@@ -5282,8 +5620,7 @@ def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     for i in range(15):
         p_sm[K - 1, i] = p_filt[K - 1, i]
     for k in range(K - 2, -1, -1):
-        smooth_step(s_filt[k], p_filt[k], s_pred[k + 1], p_pred[k + 1], s_sm[k + 1], p_sm[k + 1], dts[k + 1], s_sm[k],
-                    p_sm[k])
+        smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dts[k + 1])  # smooth_step on the rows k, k + 1
 
 
 @nb.njit(cache=True, parallel=True)
@@ -5293,9 +5630,10 @@ def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x
     for b in nb.prange(dts.shape[0]):
         Kb = lengths[b]
         if Kb > 0:
-            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
+            sb, xb = s_sm[b], out_x[b]
+            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, sb, p_sm[b])
             for k in range(Kb):
-                physical_into(s_sm[b, k], out_x[b, k])
+                physical_at(sb, xb, k)
 
 
 @nb.njit(cache=True)

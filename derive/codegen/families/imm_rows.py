@@ -33,10 +33,8 @@ count nothing.
 
 from __future__ import annotations
 
-import re
-from dataclasses import replace
-
-from ..printer import Kernel, RawStage
+from ..blocks import rows_variant
+from ..printer import Kernel
 from ..template import load
 
 __all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE", "kernels"]
@@ -51,34 +49,16 @@ ROW_KERNELS = (
 )
 
 
-def _rewrite(code: str, arrays: dict) -> str:
-    for x, ncols in arrays.items():
-        if ncols is not None:
-            code = re.sub(rf"\b{x}\[(\d+), (\d+)\]", lambda m, x=x, nc=ncols: f"ws[j{x}, {int(m[1]) * nc + int(m[2])}]", code)
-        code = re.sub(rf"\b{x}\[", f"ws[j{x}, ", code)
-    return code
-
-
 def row_variant(k: Kernel, name: str, arrays: dict, ret: str | None = None, doc: str | None = None) -> Kernel:
     """``k`` on rows of one 2-D array ``ws``: each parameter x of ``arrays`` becomes a row index jx, x[i] → ws[jx, i]
     (x[a, b] → ws[jx, a·ncols + b] for a 2-D parameter of ncols columns); error_model="numpy" (module docstring)."""
     if "ws" in k.params:
         raise ValueError(f"{k.name}: a parameter is already called ws")
-    for x, ncols in arrays.items():
-        if ncols is None and any(re.search(rf"\b{x}\[\d+, ", s) for _, s in k.inputs):
-            raise ValueError(f"{k.name}: {x} is 2-D")
-    params = ["ws"] + [f"j{p}" if p in arrays else p for p in k.params]
-    return replace(
-        k, name=name, params=params,
-        doc=doc or f"{k.doc.rstrip()}\nOn rows of ws: {', '.join(f'{x} = ws[j{x}]' for x in arrays)} (derive/codegen/imm_rows.py).",
-        inputs=[(s, _rewrite(src, arrays)) for s, src in k.inputs],
-        outputs=[(_rewrite(t, arrays), e) for t, e in k.outputs],
-        prologue=[_rewrite(line, arrays) for line in k.prologue],
-        epilogue=[_rewrite(line, arrays) for line in k.epilogue],
-        stages=[RawStage([_rewrite(line, arrays) for line in st.lines], st.uses) if isinstance(st, RawStage) else st
-                for st in k.stages],
-        ret=ret if ret is not None else k.ret, error_model="numpy",
-    )
+    return rows_variant(
+        k, name, ["ws"] + [f"j{p}" if p in arrays else p for p in k.params],
+        {x: ("ws", f"j{x}", ncols) for x, ncols in arrays.items()},
+        doc or f"{k.doc.rstrip()}\nOn rows of ws: {', '.join(f'{x} = ws[j{x}]' for x in arrays)} (derive/codegen/imm_rows.py).",
+        ret=ret)
 
 
 MIX_TEMPLATE = load("mix_on_group.py.tmpl")
