@@ -12,7 +12,7 @@ For every registry model, position measurements, B trajectories × K steps (defa
 * ``fwd``: the smoother's storing forward pass ``run_batch_store_<meas>`` (the fused filter step, also writing
   the predicted state and covariance; ``lgekf.core.rts.forward_store``);
 * ``fwd_simd``: the same in the SIMD lanes, ``run_batch_store_soa_<meas>`` (the states kept in blocks of lanes);
-* ``bwd``: the backward pass ``smooth_batch`` (``smooth_step`` per step, prange over trajectories);
+* ``bwd``: the backward pass ``smooth_batch`` (``smooth_step_at`` per step, prange over trajectories);
 * ``bwd_simd``: the backward pass ``smooth_batch_soa`` (``smooth_step`` in the SIMD lanes) over the blocks that
   fwd_simd stored, what ``filter_batch(smooth=True)`` runs from SOA_SMOOTH_MIN_BATCH trajectories on.
 
@@ -27,7 +27,7 @@ Printed: ns per trajectory-step of each, and three ratios of smoothing (forward 
 * ``simd/simd`` = (fwd_simd + bwd_simd) / simd: filter_batch(smooth=True) against filter_batch from 1000
   trajectories on, both on their SIMD paths.
 
-``bound`` = ``flops.smoother_bound``: (filter step + ``smooth_step``) / filter step in flops counted from the
+``bound`` = ``flops.smoother_bound``: (filter step + ``smooth_step_at``) / filter step in flops counted from the
 generated source, what same/scalar would be at the filter's speed per flop; ``/bound`` = same/scalar over it (issue
 #26's goal: ≤ 1.2).
 

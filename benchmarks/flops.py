@@ -173,11 +173,11 @@ def cost(c: Counts) -> int:
 
 def smoother_step_flops(model: str, meas: str = "position") -> Counts:
     """One trajectory-step of RTS smoothing: the forward pass's fused filter step (storing the prediction adds no
-    arithmetic) plus the backward pass's ``smooth_step``."""
+    arithmetic) plus the backward pass's ``smooth_step_at``."""
     from lgekf.core.registry import get_model
 
     mod = get_model(model).kernels
-    return step_flops(model, meas) + function_flops(mod, ["smooth_step"])
+    return step_flops(model, meas) + function_flops(mod, ["smooth_step_at"])
 
 
 def smoother_bound(model: str, meas: str = "position") -> float:

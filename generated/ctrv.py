@@ -15,7 +15,7 @@ from .monitor import maximum, minimum, two_point_into, jacobian_point, initial_c
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_from_pose', 'rerun_pose', 'recover_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_from_position', 'rerun_position', 'recover_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'reinit_into', 'speed_std_at', 'speed_stds', 'first_alarm', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step', 'smooth_step_at', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'physical_at', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_pose', 'update_pose', 'step_try_pose', 'step_pose', 'measure_pose', 'run_one_pose', 'run_segments_pose', 'run_one_from_pose', 'run_segments_from_pose', 'run_batch_pose', 'measure_batch_pose', 'innovation_into_pose', 'innovation_bank_pose', 'calH_bank_pose', 'run_segments_noise_from_pose', 'rerun_pose', 'recover_pose', 'lane_pose', 'run_batch_soa_pose', 'calH_position', 'update_position', 'step_try_position', 'step_position', 'measure_position', 'run_one_position', 'run_segments_position', 'run_one_from_position', 'run_segments_from_position', 'run_batch_position', 'measure_batch_position', 'innovation_into_position', 'innovation_bank_position', 'calH_bank_position', 'run_segments_noise_from_position', 'rerun_position', 'recover_position', 'lane_position', 'run_batch_soa_position', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'reinit_into', 'speed_std_at', 'speed_stds', 'first_alarm', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_pose', 'step_store_pose', 'lane_store_pose', 'run_batch_store_soa_pose', 'run_one_store_pose', 'run_batch_store_pose', 'loglik_batch_pose', 'innovation_logdet_position', 'step_store_position', 'lane_store_position', 'run_batch_store_soa_position', 'run_one_store_position', 'run_batch_store_position', 'loglik_batch_position', 'smooth_step_at', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_pose_into', 'calH_position_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_pose', 'step_ll_position', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -4019,272 +4019,6 @@ def loglik_batch_position(z, dts, x0, p0, q, r, lengths, out_ll, out_count):
         out_count[b] = cnt
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
-def smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po):
-    """One Rauch–Tung–Striebel backward step on the group (lgekf.estimators.smoother), straight-line:
-    from the posterior (sf, pf) at k, the prediction (sq, pq) at k+1 and the smoothed (ss, ps) at k+1, with
-    F = transition(μ_k, dt): d = log(μ_{k+1|k}⁻¹ μˢ_{k+1}), G = P_k Fᵀ P_{k+1|k}⁻¹ (LDLᵀ), δ = G d,
-    P̃ = P_k + G (Φ(d)⁻¹ Pˢ_{k+1} Φ(d)⁻ᵀ − P_{k+1|k}) Gᵀ; writes μˢ_k = μ_k·exp(δ) into so and
-    Pˢ_k = Φ(δ) P̃ Φ(δ)ᵀ (packed) into po (derive/codegen/smooth_step.py).
-    legend: cc = 𝒞, ff = F, cf = P_k Fᵀ, dd = d, ji = Φ(d)⁻¹, jp = Φ(d)⁻¹Pˢ, dm = P̄ − P_{k+1|k},
-    ld/ll/lr = LDLᵀ pivots, factor and reciprocal pivots, ly/gg = the solves for G, de = δ, gd = G·dm,
-    pt = P̃, ph = Φ(δ), tp = Φ(δ)P̃.
-    """
-    x = sf[0]
-    y = sf[1]
-    psi = sf[2]
-    v = sf[3]
-    omega = sf[4]
-    pf00 = pf[0]
-    pf01 = pf[1]
-    pf02 = pf[2]
-    pf03 = pf[3]
-    pf04 = pf[4]
-    pf11 = pf[5]
-    pf12 = pf[6]
-    pf13 = pf[7]
-    pf14 = pf[8]
-    pf22 = pf[9]
-    pf23 = pf[10]
-    pf24 = pf[11]
-    pf33 = pf[12]
-    pf34 = pf[13]
-    pf44 = pf[14]
-    q_x = sq[0]
-    q_y = sq[1]
-    q_psi = sq[2]
-    q_v = sq[3]
-    q_omega = sq[4]
-    pq00 = pq[0]
-    pq01 = pq[1]
-    pq02 = pq[2]
-    pq03 = pq[3]
-    pq04 = pq[4]
-    pq11 = pq[5]
-    pq12 = pq[6]
-    pq13 = pq[7]
-    pq14 = pq[8]
-    pq22 = pq[9]
-    pq23 = pq[10]
-    pq24 = pq[11]
-    pq33 = pq[12]
-    pq34 = pq[13]
-    pq44 = pq[14]
-    t_x = ss[0]
-    t_y = ss[1]
-    t_psi = ss[2]
-    t_v = ss[3]
-    t_omega = ss[4]
-    ps00 = ps[0]
-    ps01 = ps[1]
-    ps02 = ps[2]
-    ps03 = ps[3]
-    ps04 = ps[4]
-    ps11 = ps[5]
-    ps12 = ps[6]
-    ps13 = ps[7]
-    ps14 = ps[8]
-    ps22 = ps[9]
-    ps23 = ps[10]
-    ps24 = ps[11]
-    ps33 = ps[12]
-    ps34 = ps[13]
-    ps44 = ps[14]
-    _a0 = dt*omega/2.0
-    _sin__a0 = math.sin(_a0)
-    _cos__a0 = math.cos(_a0)
-    _dsinc__a0 = dsinc(_a0, _sin__a0, _cos__a0)
-    _sinc__a0 = sinc(_a0, _sin__a0, _cos__a0)
-    _a1 = dt*omega/2.0 + psi
-    _sin__a1 = math.sin(_a1)
-    _cos__a1 = math.cos(_a1)
-    _t0 = _sin__a1*_sinc__a0
-    _t1 = _t0*dt
-    _t2 = _cos__a1*_sinc__a0
-    _t3 = _t2*dt
-    _t4 = (dt*dt)*v/2.0
-    cc0_2 = -(_t1*v)
-    cc0_3 = _t3
-    cc0_4 = -(_t4*(_cos__a1*_dsinc__a0 + _t0))
-    cc1_2 = _t3*v
-    cc1_3 = _t1
-    cc1_4 = _t4*(-(_dsinc__a0*_sin__a1) + _t2)
-    cf0_2 = dt*pf04 + pf02
-    cf1_2 = dt*pf14 + pf12
-    cf2_2 = dt*pf24 + pf22
-    cf3_2 = dt*pf34 + pf23
-    cf4_2 = dt*pf44 + pf24
-    dd0_0 = -q_x + t_x
-    dd0_1 = -q_y + t_y
-    dd0_2 = wrap_angle(-q_psi + t_psi)
-    dd0_3 = -q_v + t_v
-    dd0_4 = -q_omega + t_omega
-    dm0_0 = -pq00 + ps00
-    dm0_1 = -pq01 + ps01
-    dm0_2 = -pq02 + ps02
-    dm0_3 = -pq03 + ps03
-    dm0_4 = -pq04 + ps04
-    dm1_1 = -pq11 + ps11
-    dm1_2 = -pq12 + ps12
-    dm1_3 = -pq13 + ps13
-    dm1_4 = -pq14 + ps14
-    dm2_2 = -pq22 + ps22
-    dm2_3 = -pq23 + ps23
-    dm2_4 = -pq24 + ps24
-    dm3_3 = -pq33 + ps33
-    dm3_4 = -pq34 + ps34
-    dm4_4 = -pq44 + ps44
-    lr0 = 1.0/max(1e-300, pq00)
-    cf0_0 = cc0_2*pf02 + cc0_3*pf03 + cc0_4*pf04 + pf00
-    cf0_1 = cc1_2*pf02 + cc1_3*pf03 + cc1_4*pf04 + pf01
-    cf1_0 = cc0_2*pf12 + cc0_3*pf13 + cc0_4*pf14 + pf01
-    cf1_1 = cc1_2*pf12 + cc1_3*pf13 + cc1_4*pf14 + pf11
-    cf2_0 = cc0_2*pf22 + cc0_3*pf23 + cc0_4*pf24 + pf02
-    cf2_1 = cc1_2*pf22 + cc1_3*pf23 + cc1_4*pf24 + pf12
-    cf3_0 = cc0_2*pf23 + cc0_3*pf33 + cc0_4*pf34 + pf03
-    cf3_1 = cc1_2*pf23 + cc1_3*pf33 + cc1_4*pf34 + pf13
-    cf4_0 = cc0_2*pf24 + cc0_3*pf34 + cc0_4*pf44 + pf04
-    cf4_1 = cc1_2*pf24 + cc1_3*pf34 + cc1_4*pf44 + pf14
-    ll1_0 = lr0*pq01
-    ll2_0 = lr0*pq02
-    ll3_0 = lr0*pq03
-    ll4_0 = lr0*pq04
-    lw1_0 = ll1_0*pq00
-    lw2_0 = ll2_0*pq00
-    lw3_0 = ll3_0*pq00
-    lw4_0 = ll4_0*pq00
-    ly0_1 = -(cf0_0*ll1_0) + cf0_1
-    ly1_1 = -(cf1_0*ll1_0) + cf1_1
-    ly2_1 = -(cf2_0*ll1_0) + cf2_1
-    ly3_1 = -(cf3_0*ll1_0) + cf3_1
-    ly4_1 = -(cf4_0*ll1_0) + cf4_1
-    ld1 = -(ll1_0*lw1_0) + pq11
-    lr1 = 1.0/max(1e-300, ld1)
-    ll2_1 = lr1*(-(ll2_0*lw1_0) + pq12)
-    ll3_1 = lr1*(-(ll3_0*lw1_0) + pq13)
-    ll4_1 = lr1*(-(ll4_0*lw1_0) + pq14)
-    lw2_1 = ld1*ll2_1
-    lw3_1 = ld1*ll3_1
-    lw4_1 = ld1*ll4_1
-    ly0_2 = -(cf0_0*ll2_0) + cf0_2 - ll2_1*ly0_1
-    ly1_2 = -(cf1_0*ll2_0) + cf1_2 - ll2_1*ly1_1
-    ly2_2 = -(cf2_0*ll2_0) + cf2_2 - ll2_1*ly2_1
-    ly3_2 = -(cf3_0*ll2_0) + cf3_2 - ll2_1*ly3_1
-    ly4_2 = -(cf4_0*ll2_0) + cf4_2 - ll2_1*ly4_1
-    ld2 = -(ll2_0*lw2_0) - ll2_1*lw2_1 + pq22
-    lr2 = 1.0/max(1e-300, ld2)
-    ll3_2 = lr2*(-(ll3_0*lw2_0) - ll3_1*lw2_1 + pq23)
-    ll4_2 = lr2*(-(ll4_0*lw2_0) - ll4_1*lw2_1 + pq24)
-    lw3_2 = ld2*ll3_2
-    lw4_2 = ld2*ll4_2
-    ly0_3 = -(cf0_0*ll3_0) - ll3_1*ly0_1 - ll3_2*ly0_2 + pf03
-    ly1_3 = -(cf1_0*ll3_0) - ll3_1*ly1_1 - ll3_2*ly1_2 + pf13
-    ly2_3 = -(cf2_0*ll3_0) - ll3_1*ly2_1 - ll3_2*ly2_2 + pf23
-    ly3_3 = -(cf3_0*ll3_0) - ll3_1*ly3_1 - ll3_2*ly3_2 + pf33
-    ly4_3 = -(cf4_0*ll3_0) - ll3_1*ly4_1 - ll3_2*ly4_2 + pf34
-    ld3 = -(ll3_0*lw3_0) - ll3_1*lw3_1 - ll3_2*lw3_2 + pq33
-    lr3 = 1.0/max(1e-300, ld3)
-    ll4_3 = lr3*(-(ll4_0*lw3_0) - ll4_1*lw3_1 - ll4_2*lw3_2 + pq34)
-    lw4_3 = ld3*ll4_3
-    ly0_4 = -(cf0_0*ll4_0) - ll4_1*ly0_1 - ll4_2*ly0_2 - ll4_3*ly0_3 + pf04
-    ly1_4 = -(cf1_0*ll4_0) - ll4_1*ly1_1 - ll4_2*ly1_2 - ll4_3*ly1_3 + pf14
-    ly2_4 = -(cf2_0*ll4_0) - ll4_1*ly2_1 - ll4_2*ly2_2 - ll4_3*ly2_3 + pf24
-    ly3_4 = -(cf3_0*ll4_0) - ll4_1*ly3_1 - ll4_2*ly3_2 - ll4_3*ly3_3 + pf34
-    ly4_4 = -(cf4_0*ll4_0) - ll4_1*ly4_1 - ll4_2*ly4_2 - ll4_3*ly4_3 + pf44
-    ld4 = -(ll4_0*lw4_0) - ll4_1*lw4_1 - ll4_2*lw4_2 - ll4_3*lw4_3 + pq44
-    lr4 = 1.0/max(1e-300, ld4)
-    gg0_4 = lr4*ly0_4
-    gg1_4 = lr4*ly1_4
-    gg2_4 = lr4*ly2_4
-    gg3_4 = lr4*ly3_4
-    gg4_4 = lr4*ly4_4
-    gg0_3 = -(gg0_4*ll4_3) + lr3*ly0_3
-    gg1_3 = -(gg1_4*ll4_3) + lr3*ly1_3
-    gg2_3 = -(gg2_4*ll4_3) + lr3*ly2_3
-    gg3_3 = -(gg3_4*ll4_3) + lr3*ly3_3
-    gg4_3 = -(gg4_4*ll4_3) + lr3*ly4_3
-    gg0_2 = -(gg0_3*ll3_2) - gg0_4*ll4_2 + lr2*ly0_2
-    gg1_2 = -(gg1_3*ll3_2) - gg1_4*ll4_2 + lr2*ly1_2
-    gg2_2 = -(gg2_3*ll3_2) - gg2_4*ll4_2 + lr2*ly2_2
-    gg3_2 = -(gg3_3*ll3_2) - gg3_4*ll4_2 + lr2*ly3_2
-    gg4_2 = -(gg4_3*ll3_2) - gg4_4*ll4_2 + lr2*ly4_2
-    gg0_1 = -(gg0_2*ll2_1) - gg0_3*ll3_1 - gg0_4*ll4_1 + lr1*ly0_1
-    gg1_1 = -(gg1_2*ll2_1) - gg1_3*ll3_1 - gg1_4*ll4_1 + lr1*ly1_1
-    gg2_1 = -(gg2_2*ll2_1) - gg2_3*ll3_1 - gg2_4*ll4_1 + lr1*ly2_1
-    gg3_1 = -(gg3_2*ll2_1) - gg3_3*ll3_1 - gg3_4*ll4_1 + lr1*ly3_1
-    gg4_1 = -(gg4_2*ll2_1) - gg4_3*ll3_1 - gg4_4*ll4_1 + lr1*ly4_1
-    gg0_0 = cf0_0*lr0 - gg0_1*ll1_0 - gg0_2*ll2_0 - gg0_3*ll3_0 - gg0_4*ll4_0
-    gg1_0 = cf1_0*lr0 - gg1_1*ll1_0 - gg1_2*ll2_0 - gg1_3*ll3_0 - gg1_4*ll4_0
-    gg2_0 = cf2_0*lr0 - gg2_1*ll1_0 - gg2_2*ll2_0 - gg2_3*ll3_0 - gg2_4*ll4_0
-    gg3_0 = cf3_0*lr0 - gg3_1*ll1_0 - gg3_2*ll2_0 - gg3_3*ll3_0 - gg3_4*ll4_0
-    gg4_0 = cf4_0*lr0 - gg4_1*ll1_0 - gg4_2*ll2_0 - gg4_3*ll3_0 - gg4_4*ll4_0
-    de0_0 = dd0_0*gg0_0 + dd0_1*gg0_1 + dd0_2*gg0_2 + dd0_3*gg0_3 + dd0_4*gg0_4
-    de1_0 = dd0_0*gg1_0 + dd0_1*gg1_1 + dd0_2*gg1_2 + dd0_3*gg1_3 + dd0_4*gg1_4
-    de2_0 = dd0_0*gg2_0 + dd0_1*gg2_1 + dd0_2*gg2_2 + dd0_3*gg2_3 + dd0_4*gg2_4
-    de3_0 = dd0_0*gg3_0 + dd0_1*gg3_1 + dd0_2*gg3_2 + dd0_3*gg3_3 + dd0_4*gg3_4
-    de4_0 = dd0_0*gg4_0 + dd0_1*gg4_1 + dd0_2*gg4_2 + dd0_3*gg4_3 + dd0_4*gg4_4
-    gd0_0 = dm0_0*gg0_0 + dm0_1*gg0_1 + dm0_2*gg0_2 + dm0_3*gg0_3 + dm0_4*gg0_4
-    gd0_1 = dm0_1*gg0_0 + dm1_1*gg0_1 + dm1_2*gg0_2 + dm1_3*gg0_3 + dm1_4*gg0_4
-    gd0_2 = dm0_2*gg0_0 + dm1_2*gg0_1 + dm2_2*gg0_2 + dm2_3*gg0_3 + dm2_4*gg0_4
-    gd0_3 = dm0_3*gg0_0 + dm1_3*gg0_1 + dm2_3*gg0_2 + dm3_3*gg0_3 + dm3_4*gg0_4
-    gd0_4 = dm0_4*gg0_0 + dm1_4*gg0_1 + dm2_4*gg0_2 + dm3_4*gg0_3 + dm4_4*gg0_4
-    gd1_0 = dm0_0*gg1_0 + dm0_1*gg1_1 + dm0_2*gg1_2 + dm0_3*gg1_3 + dm0_4*gg1_4
-    gd1_1 = dm0_1*gg1_0 + dm1_1*gg1_1 + dm1_2*gg1_2 + dm1_3*gg1_3 + dm1_4*gg1_4
-    gd1_2 = dm0_2*gg1_0 + dm1_2*gg1_1 + dm2_2*gg1_2 + dm2_3*gg1_3 + dm2_4*gg1_4
-    gd1_3 = dm0_3*gg1_0 + dm1_3*gg1_1 + dm2_3*gg1_2 + dm3_3*gg1_3 + dm3_4*gg1_4
-    gd1_4 = dm0_4*gg1_0 + dm1_4*gg1_1 + dm2_4*gg1_2 + dm3_4*gg1_3 + dm4_4*gg1_4
-    gd2_0 = dm0_0*gg2_0 + dm0_1*gg2_1 + dm0_2*gg2_2 + dm0_3*gg2_3 + dm0_4*gg2_4
-    gd2_1 = dm0_1*gg2_0 + dm1_1*gg2_1 + dm1_2*gg2_2 + dm1_3*gg2_3 + dm1_4*gg2_4
-    gd2_2 = dm0_2*gg2_0 + dm1_2*gg2_1 + dm2_2*gg2_2 + dm2_3*gg2_3 + dm2_4*gg2_4
-    gd2_3 = dm0_3*gg2_0 + dm1_3*gg2_1 + dm2_3*gg2_2 + dm3_3*gg2_3 + dm3_4*gg2_4
-    gd2_4 = dm0_4*gg2_0 + dm1_4*gg2_1 + dm2_4*gg2_2 + dm3_4*gg2_3 + dm4_4*gg2_4
-    gd3_0 = dm0_0*gg3_0 + dm0_1*gg3_1 + dm0_2*gg3_2 + dm0_3*gg3_3 + dm0_4*gg3_4
-    gd3_1 = dm0_1*gg3_0 + dm1_1*gg3_1 + dm1_2*gg3_2 + dm1_3*gg3_3 + dm1_4*gg3_4
-    gd3_2 = dm0_2*gg3_0 + dm1_2*gg3_1 + dm2_2*gg3_2 + dm2_3*gg3_3 + dm2_4*gg3_4
-    gd3_3 = dm0_3*gg3_0 + dm1_3*gg3_1 + dm2_3*gg3_2 + dm3_3*gg3_3 + dm3_4*gg3_4
-    gd3_4 = dm0_4*gg3_0 + dm1_4*gg3_1 + dm2_4*gg3_2 + dm3_4*gg3_3 + dm4_4*gg3_4
-    gd4_0 = dm0_0*gg4_0 + dm0_1*gg4_1 + dm0_2*gg4_2 + dm0_3*gg4_3 + dm0_4*gg4_4
-    gd4_1 = dm0_1*gg4_0 + dm1_1*gg4_1 + dm1_2*gg4_2 + dm1_3*gg4_3 + dm1_4*gg4_4
-    gd4_2 = dm0_2*gg4_0 + dm1_2*gg4_1 + dm2_2*gg4_2 + dm2_3*gg4_3 + dm2_4*gg4_4
-    gd4_3 = dm0_3*gg4_0 + dm1_3*gg4_1 + dm2_3*gg4_2 + dm3_3*gg4_3 + dm3_4*gg4_4
-    gd4_4 = dm0_4*gg4_0 + dm1_4*gg4_1 + dm2_4*gg4_2 + dm3_4*gg4_3 + dm4_4*gg4_4
-    pt0_0 = gd0_0*gg0_0 + gd0_1*gg0_1 + gd0_2*gg0_2 + gd0_3*gg0_3 + gd0_4*gg0_4 + pf00
-    pt0_1 = gd0_0*gg1_0 + gd0_1*gg1_1 + gd0_2*gg1_2 + gd0_3*gg1_3 + gd0_4*gg1_4 + pf01
-    pt0_2 = gd0_0*gg2_0 + gd0_1*gg2_1 + gd0_2*gg2_2 + gd0_3*gg2_3 + gd0_4*gg2_4 + pf02
-    pt0_3 = gd0_0*gg3_0 + gd0_1*gg3_1 + gd0_2*gg3_2 + gd0_3*gg3_3 + gd0_4*gg3_4 + pf03
-    pt0_4 = gd0_0*gg4_0 + gd0_1*gg4_1 + gd0_2*gg4_2 + gd0_3*gg4_3 + gd0_4*gg4_4 + pf04
-    pt1_1 = gd1_0*gg1_0 + gd1_1*gg1_1 + gd1_2*gg1_2 + gd1_3*gg1_3 + gd1_4*gg1_4 + pf11
-    pt1_2 = gd1_0*gg2_0 + gd1_1*gg2_1 + gd1_2*gg2_2 + gd1_3*gg2_3 + gd1_4*gg2_4 + pf12
-    pt1_3 = gd1_0*gg3_0 + gd1_1*gg3_1 + gd1_2*gg3_2 + gd1_3*gg3_3 + gd1_4*gg3_4 + pf13
-    pt1_4 = gd1_0*gg4_0 + gd1_1*gg4_1 + gd1_2*gg4_2 + gd1_3*gg4_3 + gd1_4*gg4_4 + pf14
-    pt2_2 = gd2_0*gg2_0 + gd2_1*gg2_1 + gd2_2*gg2_2 + gd2_3*gg2_3 + gd2_4*gg2_4 + pf22
-    pt2_3 = gd2_0*gg3_0 + gd2_1*gg3_1 + gd2_2*gg3_2 + gd2_3*gg3_3 + gd2_4*gg3_4 + pf23
-    pt2_4 = gd2_0*gg4_0 + gd2_1*gg4_1 + gd2_2*gg4_2 + gd2_3*gg4_3 + gd2_4*gg4_4 + pf24
-    pt3_3 = gd3_0*gg3_0 + gd3_1*gg3_1 + gd3_2*gg3_2 + gd3_3*gg3_3 + gd3_4*gg3_4 + pf33
-    pt3_4 = gd3_0*gg4_0 + gd3_1*gg4_1 + gd3_2*gg4_2 + gd3_3*gg4_3 + gd3_4*gg4_4 + pf34
-    pt4_4 = gd4_0*gg4_0 + gd4_1*gg4_1 + gd4_2*gg4_2 + gd4_3*gg4_3 + gd4_4*gg4_4 + pf44
-    po[0] = pt0_0
-    po[1] = pt0_1
-    po[2] = pt0_2
-    po[3] = pt0_3
-    po[4] = pt0_4
-    po[5] = pt1_1
-    po[6] = pt1_2
-    po[7] = pt1_3
-    po[8] = pt1_4
-    po[9] = pt2_2
-    po[10] = pt2_3
-    po[11] = pt2_4
-    po[12] = pt3_3
-    po[13] = pt3_4
-    po[14] = pt4_4
-    so[0] = de0_0 + x
-    so[1] = de1_0 + y
-    so[2] = de2_0 + psi
-    so[3] = de3_0 + v
-    so[4] = de4_0 + omega
-
-
 @nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dt):
     """One Rauch–Tung–Striebel backward step on the group (lgekf.estimators.smoother), straight-line:
@@ -4882,23 +4616,6 @@ def smooth_batch_soa(dts, Qb, Fb, lengths, Sb, out_x):
                     physical_smooth_lane(W, j, out_x, lo + j, k)
 
 
-@nb.njit(cache=True, error_model="numpy")
-def physical_at(s, out, k):
-    """Physical [x, y, psi, v, omega] from the internal state, written into ``out`` (no allocation).
-    Row k of s (K, ·) into row k of out (K, n) (no views; derive/codegen/families/smoother.py).
-    """
-    x = s[k, 0]
-    y = s[k, 1]
-    psi = s[k, 2]
-    v = s[k, 3]
-    omega = s[k, 4]
-    out[k, 0] = x
-    out[k, 1] = y
-    out[k, 2] = wrap_angle(psi)
-    out[k, 3] = v
-    out[k, 4] = omega
-
-
 @nb.njit(cache=True)
 def smooth_one(dts, s_pred, p_pred, s_filt, p_filt, K, s_sm, p_sm):
     """Rauch–Tung–Striebel backward pass on the group over the first K steps (derivation:
@@ -4922,10 +4639,9 @@ def smooth_batch(dts, s_pred, p_pred, s_filt, p_filt, lengths, s_sm, p_sm, out_x
     for b in nb.prange(dts.shape[0]):
         Kb = lengths[b]
         if Kb > 0:
-            sb, xb = s_sm[b], out_x[b]
-            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, sb, p_sm[b])
+            smooth_one(dts[b], s_pred[b], p_pred[b], s_filt[b], p_filt[b], Kb, s_sm[b], p_sm[b])
             for k in range(Kb):
-                physical_at(sb, xb, k)
+                physical_into(s_sm[b, k], out_x[b, k])
 
 
 @nb.njit(cache=True)

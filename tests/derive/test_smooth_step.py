@@ -1,6 +1,6 @@
 """The fused kernels of the smoother (derive/codegen/smooth_step.py) against independent computations.
 
-* ``smooth_step`` (the straight-line backward step) against the derivation of ``lgekf.estimators.smoother``
+* ``smooth_step_at`` (the straight-line backward step, on rows of the stored passes) against the derivation of ``lgekf.estimators.smoother``
   written here in dense numpy (np.linalg.solve), fed by the separately generated ``transition``, ``between``,
   ``right_jacobian(_inv)`` and ``retract``, at arbitrary smoothed inputs (not only the filter's own);
 * ``step_store_<meas>`` (the storing forward step) against ``predict`` then ``step_<meas>`` and
@@ -65,8 +65,11 @@ def test_smooth_step_equals_the_dense_derivation(model):
         k.retract(ss, 0.3 * rng.standard_normal(n))
         A = rng.standard_normal((n, n))
         Ps = 0.5 * Pq + 0.05 * A @ A.T
-        so, po = np.empty_like(sf), np.empty(spec.n_packed)
-        k.smooth_step(sf, fp.p_filt[b, i], sq, fp.p_pred[b, i + 1], ss, pack(Ps), DT, so, po)
+        # smooth_step_at on rows 0 (k) and 1 (k + 1) of two-row arrays: writes the smoothed row 0
+        S_sm, P_sm = np.stack([np.empty_like(sf), ss]), np.stack([np.empty(spec.n_packed), pack(Ps)])
+        k.smooth_step_at(np.stack([sf, sf]), np.stack([fp.p_filt[b, i]] * 2), np.stack([sq, sq]),
+                         np.stack([fp.p_pred[b, i + 1]] * 2), S_sm, P_sm, 0, DT)
+        so, po = S_sm[0], P_sm[0]
         so_ref, Po_ref = _dense_step(k, sf, Pf, sq, Pq, ss, Ps, DT)
         assert np.allclose(k.state_to_physical(so), k.state_to_physical(so_ref), rtol=1e-11, atol=1e-12)
         assert np.allclose(unpack(po, n), Po_ref, rtol=1e-11, atol=1e-12 * np.abs(Po_ref).max())

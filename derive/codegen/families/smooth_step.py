@@ -2,7 +2,8 @@
 
 ``smooth_step(sf, pf, sq, pq, ss, ps, dt, so, po)`` is one step of the Rauch–Tung–Striebel backward pass on the
 group (derivation: ``lgekf.estimators.smoother``) as a single straight-line kernel, generated from the model
-definition like the fused filter step (no model is known here):
+definition like the fused filter step (no model is known here). It is emitted on the rows of the stored passes
+(``smooth_step_at``, ``derive/codegen/families/smoother.py``) and in SIMD lanes (``lane_smooth``), not as itself:
 
 * F = transition(μ_k, dt) and Φ(d)⁻¹, Φ(δ) are symbolic, so their structural zeros never reach the code
   (F of SE(2)×R³ has 17 non-zeros of 36, Φ of a Euclidean model is I and disappears);

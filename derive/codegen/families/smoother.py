@@ -74,14 +74,10 @@ def estimator_kernels(model, measurements: dict, P, pin, sin_, kernels=()) -> li
             nan_test=" or ".join(f"np.isnan(z[k, {i}])" for i in range(m)),
             nan_test_b=" or ".join(f"np.isnan(z[b, k, {i}])" for i in range(m)),
         )))
-    step = smooth_step_kernel(model)
-    ks.append(step)
+    step = smooth_step_kernel(model)  # emitted on rows (smooth_step_at) and in SIMD lanes (lane_smooth), not as itself
     ks.append(smooth_step_at_kernel(step))
     physical = next(k for k in kernels if getattr(k, "name", None) == "physical_into")
     ks.extend(smooth_soa_kernels(model, step, physical))  # smooth_batch_soa: the backward pass in SIMD lanes
-    ks.append(rows_variant(physical, "physical_at", ["s", "out", "k"], {"s": ("s", "k", None), "out": ("out", "k", None)},
-                           physical.doc.rstrip() + "\nRow k of s (K, ·) into row k of out (K, n) (no views; "
-                           "derive/codegen/families/smoother.py)."))
     ks.append(("smooth_one", SMOOTH_TEMPLATE.format(n=n, ni=ni, npk=npk)))
     return ks
 
@@ -104,7 +100,7 @@ def kernels(model, measurements: dict, built) -> list:
     """The family's entry (``derive.codegen.emitter``): per measurement the likelihood and the storing forward pass
     (slot ``likelihood``), then the RTS smoother (slot ``smoother``)."""
     out = []
-    smooth = {"smooth_step", "smooth_step_at", "physical_at", "lane_smooth", "physical_smooth_lane", "smooth_batch_soa", "smooth_one"}
+    smooth = {"smooth_step_at", "lane_smooth", "physical_smooth_lane", "smooth_batch_soa", "smooth_one"}
     for k in estimator_kernels(model, measurements, built.P, built.pin, built.sin_, built.ordered()):
         name = k.name if hasattr(k, "name") else k[0]
         if name in smooth:
