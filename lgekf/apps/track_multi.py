@@ -61,9 +61,11 @@ A given ``--meas-std`` is kept fixed (the passes then estimate q only; e checks 
 ``--accel-std`` too. With no confirmed track holding 4 detections in any pass nothing can be estimated: the
 last pass is the output and the noise is the provisional one (said so).
 
-The clutter density, when not given, is the mean number of detections per scan over the area of the
-detections' bounding box (an over-estimate: the targets' own detections count too, which errs on the safe
-side of a wide clutter model).
+The clutter density, when not given, is estimated by the tracker (``lgekf.estimators.multitarget.clutter``):
+``--clutter map`` (the default) a spatial clutter map times the per-scan level, ``--clutter scan`` the per-scan
+moment estimate (detections minus those the tracks are expected to explain), both over the area of the
+detections' bounding box; ``--clutter file`` the mean number of detections per scan over that area (an
+over-estimate: the targets' own detections count too). ``clutter_line`` says what was used.
 """
 
 from __future__ import annotations
@@ -75,6 +77,7 @@ import numba as nb
 import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
+from ..estimators.multitarget.clutter import ClutterMap, bounding_box_density
 from ..estimators.multitarget.tracker import HEADING_CAP, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
@@ -85,7 +88,8 @@ from .track import MOTION_COLUMNS, speed_course
 
 __all__ = [
     "Scans", "scans", "scan_window_from_data", "estimated_clutter_density", "provisional_meas_std", "MultiRun",
-    "track_scans", "NoiseFit", "fit_noise", "no_track_reason", "fastest_track_speed", "multi_alarm_line", "multi_output_columns",
+    "track_scans", "NoiseFit", "fit_noise", "no_track_reason", "fastest_track_speed", "multi_alarm_line", "clutter_line",
+    "multi_output_columns",
     "write_multi", "SCAN_GAP_RATIO", "MAX_PASSES", "AGREE", "RESTART", "MIN_HELD",
 ]
 
@@ -212,10 +216,9 @@ def scan_window_from_data(t: np.ndarray, z: np.ndarray) -> float:
 
 
 def estimated_clutter_density(sc: Scans, z: np.ndarray) -> float:
-    """Mean detections per scan / area of the detections' bounding box (per m² per scan, module docstring)."""
-    span = np.ptp(z[:, :2], axis=0) if z.shape[0] else np.zeros(2)
-    area = max(float(span[0]) * float(span[1]), 1.0)
-    return max((z.shape[0] / max(sc.count, 1)) / area, 1e-12)
+    """Mean detections per scan / area of the detections' bounding box (per m² per scan, module docstring;
+    ``lgekf.estimators.multitarget.clutter.bounding_box_density``)."""
+    return bounding_box_density(z, sc.count)
 
 
 def provisional_meas_std(sc: Scans, z: np.ndarray) -> float | None:
@@ -262,6 +265,8 @@ class MultiRun:
         1 on the rows of a divergence alarm (``lgekf.apps.multi_monitor``), else 0.
     alarms : list of MultiAlarm
         The monitor's alarms (each one deleted its track).
+    clutter : ndarray, (K,)
+        The mean clutter density of every scan (``MultiTargetTracker.clutter_density``; per m² per scan).
     """
 
     ids: np.ndarray
@@ -273,6 +278,7 @@ class MultiRun:
     held_starts: np.ndarray
     flags: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.uint8))
     alarms: list = field(default_factory=list)
+    clutter: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def n_confirmed(self) -> int:
@@ -294,10 +300,12 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, *
     mon = MultiMonitor(trk.model, trk.meas.dim, trk.max_speed) if monitor else None
     order, starts = sc.order, sc.starts
     ids, times, vals, held_id, held_row, flagged = [], [], [], [], [], []
+    clutter = np.empty(sc.count)
     written = 0
     for k in range(sc.count):
         rows = order[starts[k]:starts[k + 1]]
         rep = trk.step(float(sc.times[k]), Z[rows])
+        clutter[k] = trk.clutter_density
         hid, hj = trk.held
         if hid.size:
             held_id.append(hid)
@@ -329,7 +337,7 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, *
     counts = count[count >= MIN_HELD]
     hstarts = np.zeros(counts.size + 1, dtype=np.int64)
     np.cumsum(counts, out=hstarts[1:])
-    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts, flags, [] if mon is None else mon.alarms)
+    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts, flags, [] if mon is None else mon.alarms, clutter)
 
 
 @dataclass
@@ -573,6 +581,17 @@ def multi_alarm_line(run: MultiRun, shown: int = 5) -> str:
     return (f"possible divergence: {len(run.alarms)} track{'s' if len(run.alarms) != 1 else ''} deleted by the monitor "
             f"({', '.join(KIND_NAMES[k] for k in kinds)}): {first}{more}; their last rows have flag 1 and new tracks start "
             f"from the next detections (--no-monitor turns it off)")
+
+
+def clutter_line(run: MultiRun) -> str:
+    """One line about the clutter density a run estimated (``MultiRun.clutter``, the tracker's ``ScanClutter`` or
+    ``ClutterMap``): what it is, the median and range of the per-scan level, a map's densest cell, how to fix it."""
+    est, lam = run.tracker.clutter, run.clutter
+    level = (f"median {np.median(lam):.3g} per m² per scan (range {lam.min():.3g} to {lam.max():.3g} over {lam.size} "
+             f"scan{'s' if lam.size != 1 else ''})") if lam.size else "no scan"
+    peak = f", the densest cell {est.peak():.3g}x the mean" if isinstance(est, ClutterMap) and lam.size else ""
+    return (f"clutter density from the data: {est.describe()} over the detections' bounding box "
+            f"({est.surveillance_area:.3g} m²), {level}{peak}; --clutter-density fixes it")
 
 
 def multi_output_columns(model: str) -> list:

@@ -1,7 +1,7 @@
 """`lgekf track DETECTIONS.csv --multi`: many objects from unlabelled detections in clutter, the estimator
 ``MultiTrack`` of `lgekf track`'s pipeline (``lgekf.cli.track_pipeline``: one clear error line per bad input,
 all-or-nothing output). The tracking, the scans and the noise from the data are
-``lgekf.apps.track_multi``; on stderr: the scan window and the noise when they come from the data (not with
+``lgekf.apps.track_multi``; on stderr: the scan window, the noise and the clutter density when they come from the data (not with
 --quiet), and, also with --quiet, warnings: a given --meas-std 2x or more off the data's estimate, no
 confirmed track (one line saying why), a confirmed track near the default --max-speed."""
 
@@ -13,11 +13,12 @@ import numpy as np
 
 from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD
 from ..apps.track_multi import (
-    AGREE, estimated_clutter_density, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason,
-    scan_window_from_data, scans, write_multi,
+    AGREE, clutter_line, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason, scan_window_from_data, scans,
+    write_multi,
 )
 from ..core.registry import MODELS, get_measurement
 from ..core.validate import positive_scalar
+from ..estimators.multitarget.clutter import DEFAULT_CLUTTER_SOURCE, clutter_from_data
 from ..io.files import is_stdio
 from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
 from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
@@ -55,6 +56,8 @@ def _check_arguments(a):
         positive_scalar("max-speed", a.max_speed)
     if a.scan_window is not None:
         positive_scalar("scan-window", a.scan_window, allow_zero=True)
+    if a.clutter is not None and a.clutter_density is not None:
+        raise ValueError("--clutter: not with --clutter-density (a given density is used as it is)")
     q = _accel_std(a.accel_std, a.model)
     MODELS[a.model].measurement(a.measure)
     return q
@@ -130,8 +133,10 @@ class MultiTrack(TrackEstimator):
         if a.scan_window is None and window > 0:
             say(f"scans: the detections within {window:.3g} s of a scan's first grouped into one (from the data: "
                 f"{np.unique(t).size} distinct times, {sc.count} scans, period {sc.period:.3g} s); --scan-window sets it")
-        if a.clutter_density is None:
-            args["clutter_density"] = estimated_clutter_density(sc, meas.z)
+        source = None if a.clutter_density is not None else a.clutter or DEFAULT_CLUTTER_SOURCE
+        if source is not None:
+            args["clutter_density"] = clutter_from_data(source, meas.z, sc.count)
+        if source == "file":
             say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
                 "bounding-box area; give --clutter-density to set it)")
         fit_args = dict(heading_std=self.heading_std, omega_std=a.omega_std, monitor=monitor is not None)
@@ -139,6 +144,8 @@ class MultiTrack(TrackEstimator):
         if a.meas_std is None or q is None:
             say(fit.describe(a.model, q is not None, self.heading_std if get_measurement(a.measure).has_angle else None,
                              a.heading_std is not None))
+        if source in ("scan", "map"):
+            say(clutter_line(self.run))
         if a.meas_std is not None:
             e = fit.check
             if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate

@@ -11,6 +11,7 @@ from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS
 from ..estimators.multitarget.association import ASSOCIATIONS
+from ..estimators.multitarget.clutter import CLUTTER_SOURCES, DEFAULT_CLUTTER_SOURCE
 from ..estimators.multitarget.tracker import BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS, SPEED_STD_FRACTION
 from ..io.readers import COLUMN_OPTIONS
 from ..io.units import TIME_UNITS
@@ -27,7 +28,7 @@ DEFAULT_MAX_SPEED = 30.0  # m/s
 # --initiation, and the tracker fills them in)
 MULTI_DEFAULTS = {"association": "jpda", "detection_prob": 0.9, "gate_prob": 0.99, "survival_prob": 0.99,
                   "confirm_existence": 0.9, "delete_existence": 0.01}
-MULTI_ONLY = ("association", "initiation", "detection_prob", "clutter_density", "gate_prob", "survival_prob",
+MULTI_ONLY = ("association", "initiation", "detection_prob", "clutter_density", "clutter", "gate_prob", "survival_prob",
               "birth_existence", "birth_density", "confirm_existence", "delete_existence", "max_speed", "scan_window")
 # options of the labelled-object estimators that --multi does not take: (attribute, its default, the option's name)
 SINGLE_ONLY = (("format", "csv", "--format"), ("frame_dt", None, "--frame-dt"), ("id_column", None, "--id-column"),
@@ -134,7 +135,13 @@ def track_parser():
     g.add_argument("--detection-prob", type=float, default=None,
                    help=f"probability of detecting an object in a scan (default {MULTI_DEFAULTS['detection_prob']})")
     g.add_argument("--clutter-density", type=float, default=None,
-                   help="expected false alarms per m² per scan (default: detections per scan / bounding-box area of the data)")
+                   help="expected false alarms per m² per scan, the same everywhere and always (default: estimated from "
+                        "the data, --clutter)")
+    g.add_argument("--clutter", default=None, choices=list(CLUTTER_SOURCES),
+                   help="without --clutter-density, how the tracker estimates it: map = a spatial clutter map times the "
+                        "per-scan level, scan = per scan (detections minus those the tracks explain, over the data's "
+                        "bounding box), file = all detections per scan over the bounding box (an over-estimate: targets "
+                        f"count too) (default {DEFAULT_CLUTTER_SOURCE}; see docs/track_multi.md)")
     g.add_argument("--gate-prob", type=float, default=None, help=f"gate probability P_G (default {MULTI_DEFAULTS['gate_prob']})")
     g.add_argument("--survival-prob", type=float, default=None,
                    help=f"probability that an object survives one scan (default {MULTI_DEFAULTS['survival_prob']})")

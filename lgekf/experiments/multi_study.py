@@ -5,7 +5,10 @@ switches and the wall time of the tracker.
 
 Every cell sees the same detections (one stream per run seed). With ``dataset`` the streams are the real
 trajectories of ``lgekf evaluate`` (``lgekf.experiments.multi_scenarios.dataset_scenario``: truth + noise +
-misses + clutter) instead of the base scenario.
+misses + clutter) instead of the base scenario; with ``scenario`` "burst" or "patch" the base scenario's targets
+with clutter varying in time or concentrated in space (``lgekf.experiments.clutter_scenarios``). ``clutters``
+chooses the clutter densities the tracker is given or estimates (``clutter_scenarios.study_clutter``: the true
+constant, the per-file estimate, the per-scan estimate, the clutter map, the true λ(t, z)), one cell each.
 """
 
 from __future__ import annotations
@@ -18,13 +21,14 @@ import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
 from ..estimators.multitarget.tracker import INITIATIONS, MultiTargetTracker
+from .clutter_scenarios import CLUTTER_SCENARIOS, STUDY_CLUTTERS, clutter_scenario, study_clutter
 from .gospa import gospa_series
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario
 
 __all__ = ["MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
 
-MULTI_COLUMNS = ("model", "association", "initiation", "gospa", "localisation", "missed", "false", "switches",
+MULTI_COLUMNS = ("model", "association", "initiation", "clutter", "gospa", "localisation", "missed", "false", "switches",
                  "scans_per_s")
 
 
@@ -49,6 +53,8 @@ class MultiStudyConfig:
     max_speed: float = 30.0
     measurement: str = "position"  # or "pose" (models without a heading get the position part)
     heading_std: float = 0.05
+    scenario: str = "base"  # or "burst", "patch" (clutter_scenarios; clutter_density is then the background λ₀)
+    clutters: tuple = ("true",)  # the clutter densities compared (clutter_scenarios.STUDY_CLUTTERS)
 
     def validate(self):
         for m in self.models:
@@ -58,6 +64,13 @@ class MultiStudyConfig:
             raise ValueError(f"--initiation: unknown name {bad[0] if bad else ''!r}; choose from {', '.join(INITIATIONS)}")
         if self.runs < 1:
             raise ValueError(f"--runs: must be at least 1, got {self.runs}")
+        if self.scenario not in CLUTTER_SCENARIOS:
+            raise ValueError(f"--scenario: one of {', '.join(CLUTTER_SCENARIOS)}, got {self.scenario!r}")
+        if self.dataset and self.scenario != "base":
+            raise ValueError("--scenario: not with --dataset (the real trajectories have their own scenes)")
+        bad = [c for c in self.clutters if c not in STUDY_CLUTTERS]
+        if bad or not self.clutters:
+            raise ValueError(f"--clutter: unknown name {bad[0] if bad else ''!r}; choose from {', '.join(STUDY_CLUTTERS)}")
         for name, v in (("--dt", self.dt), ("--duration", self.duration), ("--clutter-density", self.clutter_density),
                         ("--meas-std", self.meas_std), ("--gospa-c", self.c)):
             if not v > 0:
@@ -73,7 +86,8 @@ class MultiStudyConfig:
 
 @dataclass
 class MultiCell:
-    """One model × association × initiation: per-scan GOSPA means over all runs and scans, switches summed over runs."""
+    """One model × association × initiation × clutter: per-scan GOSPA means over all runs and scans, switches summed
+    over runs."""
 
     model: str
     association: str
@@ -84,6 +98,7 @@ class MultiCell:
     false: float
     switches: int
     scans_per_s: float
+    clutter: str = "true"
 
 
 def run_tracker_on(scenario, step, c: float, p: float):
@@ -106,6 +121,11 @@ def run_tracker_on(scenario, step, c: float, p: float):
 def scenarios(cfg: MultiStudyConfig) -> list:
     """The detection streams of the study: ``cfg.runs`` seeds of the base scenario, or of the real
     trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent)."""
+    if cfg.scenario != "base":
+        r = (cfg.meas_std, cfg.heading_std) if measures_heading(cfg) else cfg.meas_std
+        return [clutter_scenario(cfg.scenario, seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration,
+                                 detection_prob=cfg.detection_prob, background=cfg.clutter_density, meas_std=r,
+                                 measurement=cfg.measurement) for k in range(cfg.runs)]
     if cfg.dataset:
         ds = load_dataset(cfg.dataset, root=cfg.data_root)
         if measures_heading(cfg):
@@ -124,17 +144,18 @@ def measures_heading(cfg: MultiStudyConfig) -> bool:
 
 
 def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
-    """Every model × association × initiation of ``cfg`` on ``cfg.runs`` scenarios (the same detections for
-    every cell); a list of ``MultiCell``."""
+    """Every model × association × initiation × clutter of ``cfg`` on ``cfg.runs`` scenarios (the same detections
+    for every cell); a list of ``MultiCell``."""
     cfg.validate()
     scen = scenarios(cfg)
     cells = []
-    for model, assoc, init in itertools.product(cfg.models, cfg.associations, cfg.initiations):
+    for model, assoc, init, clutter in itertools.product(cfg.models, cfg.associations, cfg.initiations, cfg.clutters):
         parts, sw, wall, scans = [], 0, 0.0, 0
         meas = get_measurement(get_model(model).measurement_or_base(cfg.measurement))
         for sc in scen:
             trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
-                                     clutter_density=cfg.clutter_density, max_speed=cfg.max_speed,
+                                     clutter_density=study_clutter(clutter, sc, cfg.clutter_density),
+                                     max_speed=cfg.max_speed,
                                      measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std),
                                      initiation=init)
 
@@ -149,7 +170,7 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
             scans += len(sc.times)
         a = np.mean(parts, axis=0)
         cells.append(MultiCell(model, assoc, trk.initiation, *map(float, a), sw,
-                               scans / wall if wall > 0 else float("inf")))
+                               scans / wall if wall > 0 else float("inf"), clutter=clutter))
         if progress is not None:
             progress(cells[-1])
     return cells
@@ -158,12 +179,15 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
 def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     """The GOSPA table as text (mean per scan over all runs; parts in m^p)."""
     what = f"the {cfg.dataset} trajectories" if cfg.dataset else f"{int(round(cfg.duration / cfg.dt)) + 1} scans"
+    if cfg.scenario != "base":
+        what += f" of the {cfg.scenario} scenario"
+    lam = "λ" if cfg.scenario == "base" else "background λ"
     head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
-            f"P_D = {cfg.detection_prob:g}, λ = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
+            f"P_D = {cfg.detection_prob:g}, {lam} = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
             + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else ""))
-    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'GOSPA':>7} {'loc.':>7} {'missed':>7} {'false':>7} "
-                   f"{'switches':>8} {'scans/s':>8}"]
+    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'clutter':<7} {'GOSPA':>7} {'loc.':>7} {'missed':>7} "
+                   f"{'false':>7} {'switches':>8} {'scans/s':>8}"]
     for c in cells:
-        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.gospa:7.3f} {c.localisation:7.3f} "
+        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.clutter:<7} {c.gospa:7.3f} {c.localisation:7.3f} "
                      f"{c.missed:7.3f} {c.false:7.3f} {c.switches:8d} {c.scans_per_s:8.0f}")
     return "\n".join(lines)

@@ -7,8 +7,11 @@ One call ``step(t, detections)`` per scan (all detections of one time):
 2. **gate** every track × detection with the model's innovation covariance S = ℋPℋᵀ + R
    (``lgekf.estimators.multitarget.gating``: d² ≤ γ, γ the χ²_m quantile of ``gate_prob``);
 3. **associate** (``lgekf.estimators.multitarget.association``): PDA, JPDA (JIPDA: joint events with existence) or
-   GNN marginals from the weights w0_i = 1 − r_i P_D P_G and W_ij = r_i P_D N(e_ij; 0, S_i)/κ, κ the
-   clutter density (λ per m² per scan for position; λ/(2π) per m²·rad for pose);
+   GNN marginals from the weights w0_i = 1 − r_i P_D P_G and W_ij = r_i P_D N(e_ij; 0, S_i)/κ_j, κ_j the
+   clutter density at detection j (λ per m² per scan for position; λ/(2π) per m²·rad for pose), from the
+   tracker's clutter component (``lgekf.estimators.multitarget.clutter``: a given constant, or estimated per scan
+   from Σ_i P_D P_G r_i of the predicted tracks, or a spatial map; after the association it gets each detection's
+   probability of not being a confirmed track's);
 4. **update** the existence r_i⁺ = Σ_j p_ij + p_i0 r_i(1 − P_D P_G)/w0_i (integrated track existence,
    IPDA/JIPDA) and the state by the PDA correction on the group (``lgekf.estimators.multitarget.pda``:
    μ ← μ·exp(ν), P ← Φ(ν) P_c Φ(ν)ᵀ);
@@ -62,6 +65,7 @@ from ...core.registry import get_model
 from ...core.validate import positive_scalar
 from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
+from .clutter import ClutterEstimator, ConstantClutter, clutter_estimator
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
 
@@ -218,8 +222,10 @@ class MultiTargetTracker:
         PDA per track, or global nearest neighbour.
     detection_prob : float
         P_D in (0, 1].
-    clutter_density : float
-        λ > 0, expected false alarms per m² per scan.
+    clutter_density : float, str or ClutterEstimator
+        λ > 0, expected false alarms per m² per scan, the same in every scan and place; or "scan" (estimated per
+        scan), "map" (a spatial clutter map times the per-scan level), or an estimator of
+        ``lgekf.estimators.multitarget.clutter`` (the tracker uses an unused copy of it: ``fresh``).
     meas_std : float or tuple
         Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements.
     accel_std : tuple, optional
@@ -274,7 +280,12 @@ class MultiTargetTracker:
     initiation : str
         The initiation in use ("one-point" or "two-point").
     r_birth : float
-        The existence probability r₀ of a new track.
+        The existence probability r₀ of a new track (with ``birth_density`` and an estimated clutter density:
+        β/(β + λ) at the last scan's mean level λ; each new track gets β/(β + λ(z)) at its detection z).
+    clutter : ClutterEstimator
+        The clutter component (``lgekf.estimators.multitarget.clutter``).
+    clutter_density : float
+        The mean clutter density of the last scan (``clutter.level``; the given one when constant).
     speed_std : float
         One-point: the std σ_v (m/s) of each velocity component of a new track's prior.
     next_id : int
@@ -290,7 +301,8 @@ class MultiTargetTracker:
     """
 
     def __init__(self, model: str, association: str = "jpda", detection_prob: float = 0.9,
-                 clutter_density: float = 1e-4, meas_std=0.3, accel_std=None, measurement: str = "position",
+                 clutter_density: float | str | ClutterEstimator = 1e-4, meas_std=0.3, accel_std=None,
+                 measurement: str = "position",
                  gate_prob: float = 0.99, survival_prob: float = 0.99, birth_existence: float | None = None,
                  confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
@@ -320,15 +332,20 @@ class MultiTargetTracker:
             positive_scalar(name, v)
             if v > 1:
                 raise ValueError(f"{name}: must be a probability in (0, 1], got {v}")
-        self.clutter_density = positive_scalar("clutter-density", clutter_density)
+        self.clutter = clutter_estimator(clutter_density)
+        self.clutter_density = self.clutter.level
+        constant = isinstance(self.clutter, ConstantClutter)
         self.max_speed = positive_scalar("max-speed", max_speed)
         self.omega_std = positive_scalar("omega-std", omega_std)
         self.initiation = initiation
         self.speed_std = (SPEED_STD_FRACTION * self.max_speed if speed_std is None
                           else positive_scalar("speed-std", speed_std))
         if birth_density is not None:
-            birth_existence = one_point_existence(positive_scalar("birth-density", birth_density), self.clutter_density)
+            birth_density = positive_scalar("birth-density", birth_density)
+            if constant:
+                birth_existence = one_point_existence(birth_density, self.clutter_density)
         self.birth_density = birth_density
+        self._birth_per_detection = birth_density is not None and not constant  # r₀ = β/(β + λ(z)) at each start
         r = np.atleast_1d(np.asarray(meas_std, dtype=float))
         if r.size == 1:
             r = np.full(len(meas.noise_names), r[0])
@@ -348,8 +365,10 @@ class MultiTargetTracker:
         self.meas_std = r
         self.pos_std = float(np.sqrt(np.mean(r[:2] ** 2))) if r.size > 1 else float(r[0])
         self.max_events = int(max_events)
-        self.kappa = self.clutter_density / (2.0 * math.pi) ** len(meas.angles)
+        self.angle_volume = (2.0 * math.pi) ** len(meas.angles)  # κ = λ / (2π) per angle (clutter heading uniform)
+        self.kappa = self.clutter_density / self.angle_volume
         self.gamma = gate_threshold(self.pg, meas.dim)
+        self.clutter.configure(math.sqrt(2.0 * self.gamma) * self.pos_std)  # a held track's gate radius: S ≈ 2R
         self.bank = bank if bank is not None else ModelBank(model, measurement, q, r)
         cap = self.bank.live.size
         self.r = np.zeros(cap)
@@ -412,11 +431,16 @@ class MultiTargetTracker:
         if live.any():
             bank.predict(dt)
             self.r[live] *= self.ps
+        lam = self._clutter_at(t, Z, float(self.r[live].sum()) * self.pd * self.pg)
+        not_confirmed = np.ones(M)  # each detection's probability of not being a confirmed track's
+        if live.any():
             ll, gated = bank.gate(Z, self.gamma)
             N = live.size
             w0 = np.empty(N)
             W = np.empty((N, M))
             association_weights(ll, gated, live, self.r, self.pd, self.pg, self.kappa, w0, W)
+            if np.ndim(lam):  # λ(z_j): W_ij ∝ 1/λ(z_j), computed above with the scan's mean level
+                W *= self.clutter_density / lam[None, :]
             p0, P, exact = association_marginals(self.association, w0, W, gated, live, self.max_events, self.r)
             self.last_exact = bool(exact[live].all())
             beta0 = np.ones(N)
@@ -436,6 +460,7 @@ class MultiTargetTracker:
                 restart = (rows[fresh], Z[best[fresh]])
             claimed = P[live].sum(axis=0)
             self.confirmed |= live & (self.r >= self.r_confirm)
+            not_confirmed -= P[live & self.confirmed].sum(axis=0)
             dead = np.flatnonzero(live & ((self.r < self.r_delete) | ~np.isfinite(self.r)))
             if dead.size:
                 bank.remove(dead)
@@ -446,10 +471,27 @@ class MultiTargetTracker:
             still = bank.live[restart[0]]
             if still.any():
                 self._restart(restart[0][still], restart[1][still], t)  # after all that is indexed by this scan's rows
-        unused = Z[claimed < UNUSED_BELOW]
-        self._initiate(t, dt, unused)
+        self.clutter.update(Z, not_confirmed)
+        unused = claimed < UNUSED_BELOW
+        r0 = None
+        if self._birth_per_detection:  # β/(β + λ(z)) at each new track's detection
+            self.r_birth = one_point_existence(self.birth_density, self.clutter_density)
+            r0 = one_point_existence(self.birth_density, lam[unused] if np.ndim(lam) else np.full(int(unused.sum()), lam))
+        self._initiate(t, dt, Z[unused], r0)
         self.t = t
         return self.report()
+
+    def _clutter_at(self, t, Z, expected):
+        """λ of this scan at its detections Z (a float or (M,)) from the clutter component, given the expected
+        number of track detections; the tracker's ``clutter_density`` and ``kappa`` (the mean level)."""
+        lam = self.clutter.density(t, Z, expected)
+        level = self.clutter.level
+        if not (np.all(np.isfinite(lam)) and np.all(np.asarray(lam) > 0) and math.isfinite(level) and level > 0):
+            raise ValueError(f"clutter density at t = {t}: the {self.clutter.name} estimate is not a positive number "
+                             f"({level}); give a clutter density")
+        self.clutter_density = level
+        self.kappa = level / self.angle_volume
+        return lam
 
     def _sync(self):
         """Grow the per-track arrays when the bank has grown."""
@@ -463,19 +505,21 @@ class MultiTargetTracker:
             self.first_z = np.vstack([self.first_z, np.zeros((k, self.first_z.shape[1]))])
             self.on_prior = np.concatenate([self.on_prior, np.zeros(k, dtype=bool)])
 
-    def _initiate(self, t, dt, unused):
-        """New tracks from this scan's unused detections (Z rows (U, m)) by the tracker's ``initiation``."""
+    def _initiate(self, t, dt, unused, r0=None):
+        """New tracks from this scan's unused detections (Z rows (U, m)) by the tracker's ``initiation``; r0 (U,):
+        one-point, their existences (default ``r_birth``)."""
         if self.initiation == "one-point":
-            self._one_point(t, unused)
+            self._one_point(t, unused, r0)
         else:
             self._two_point(t, dt, unused)
 
-    def _start(self, x0, P0):
-        """Tracks at x0 (B, n), P0 (B, n, n): tentative, existence ``r_birth``, the next ids; returns their rows."""
+    def _start(self, x0, P0, r0=None):
+        """Tracks at x0 (B, n), P0 (B, n, n): tentative, existence r0 (B,) (default ``r_birth``), the next ids;
+        returns their rows."""
         B = x0.shape[0]
         rows = self.bank.add(x0, P0)
         self._sync()
-        self.r[rows] = self.r_birth
+        self.r[rows] = self.r_birth if r0 is None else r0
         self.ids[rows] = np.arange(self.next_id, self.next_id + B)
         self.next_id += B
         self.confirmed[rows] = False
@@ -495,15 +539,15 @@ class MultiTargetTracker:
                            heading, hstd, HEADING_CAP, first=np.arange(B))
         return initial_estimates(self.model, c, var)
 
-    def _one_point(self, t, unused):
-        """A track from each unused detection (U, m): ``one_point_prior``, existence ``r_birth``; the detection and
-        t are kept for the restart at its first held detection."""
+    def _one_point(self, t, unused, r0=None):
+        """A track from each unused detection (U, m): ``one_point_prior``, existence r0 (U,) (default ``r_birth``);
+        the detection and t are kept for the restart at its first held detection."""
         if unused.shape[0] == 0:
             return
         hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
         c, var = one_point_prior(unused, self.pos_std, self.speed_std, self.omega_std, hstd)
-        rows = self._start(*initial_estimates(self.model, c, var))
-        self.max_existence = max(self.max_existence, self.r_birth)
+        rows = self._start(*initial_estimates(self.model, c, var), r0)
+        self.max_existence = max(self.max_existence, self.r_birth if r0 is None else float(np.max(r0)))
         self.first_t[rows] = t
         self.first_z[rows] = unused
         self.on_prior[rows] = True
