@@ -14,6 +14,7 @@ from _cli import cli_command
 from lgekf.estimators.multitarget import clutter as cl
 from lgekf.estimators.multitarget.clutter import (
     ClutterEstimator, ClutterMap, ConstantClutter, ScanClutter, bounding_box_density, clutter_estimator, clutter_from_data,
+    map_cell_from_counts,
 )
 from lgekf.estimators.multitarget.tracker import MultiTargetTracker, one_point_existence
 from lgekf.experiments.clutter_scenarios import PATCH, clutter_scenario, study_clutter
@@ -118,11 +119,12 @@ def test_map_finds_a_dense_patch():
 
 
 def test_map_in_the_tracker_on_the_patch_scenario():
-    """The tracker's map on the patch scenario (targets and clutter, weights from the association; cells of 20.6 m,
-    about half the patch): its densest cell is at the patch, and the density it gives the last scan's detections in
-    the patch is more than 5x the density it gives those more than a cell away from it."""
+    """The tracker's map on the patch scenario (targets and clutter, weights from the association; the tracker's own
+    cell side, 8 gate diameters: 20.6 m, about half the patch): its densest cell is at the patch, and the density it
+    gives the last scan's detections in the patch is more than 5x the density it gives those more than a cell away
+    from it."""
     sc = clutter_scenario("patch", seed=1)
-    trk = MultiTargetTracker(model="se2r3", clutter_density=study_clutter("map", sc, 1e-4), meas_std=0.3)
+    trk = MultiTargetTracker(model="se2r3", clutter_density="map", meas_std=0.3)
     for t, Z in zip(sc.times, sc.detections):
         trk.step(t, Z)
     m = trk.clutter
@@ -257,6 +259,10 @@ def test_clutter_estimator_and_clutter_from_data():
     assert clutter_from_data("file", z, 2) == pytest.approx(2.0 / 200.0)
     est = clutter_from_data("map", z, 2)
     assert isinstance(est, ClutterMap) and est.surveillance_area == pytest.approx(200.0)
+    # 2 detections per scan, 200 per memory of 100 scans, 30 per cell: 6.67 cells of 200/6.67 = 30 m² each
+    assert est.cell == pytest.approx(map_cell_from_counts(z, 2)) == pytest.approx(math.sqrt(30.0))
+    sc = clutter_scenario("patch", seed=0)
+    assert 18 < study_clutter("map", sc, 1e-4).cell < 22  # about 31 detections per scan over 200 m x 200 m
     assert clutter_from_data("scan", z[:1], 1).surveillance_area == cl.MIN_AREA  # a point: at least 1 m²
 
 

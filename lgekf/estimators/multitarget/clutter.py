@@ -37,11 +37,13 @@ The estimators:
 
   the share of the clutter in cell c against the uniform share 1/K, with m₀ = ``prior`` (default 1) counts of
   uniform clutter per cell (Laplace smoothing): a cell that has seen few detections stays near the mean level,
-  and the mean of ρ over the area is 1, so the map's mean density is the per-scan level. The default cell side
-  is ``CELL_GATES`` = 8 gate diameters, the gate radius √(2γ)·r of a held track (S ≈ 2R): cells of a few gates
-  hold too few counts and their noise costs on uniform clutter, much larger ones blur a patch (4, 6, 8 and 12 gate
-  diameters measured: docs/multi_target.md). The grid grows with the detections; beyond ``MAX_CELLS`` cells
-  its cells are doubled (2 × 2 summed).
+  and the mean of ρ over the area is 1, so the map's mean density is the per-scan level. The cell side: for a
+  file (``clutter_from_data``, ``lgekf track --multi``) from its counts, the side at which each cell would hold
+  ``MAP_COUNTS`` = 30 counts over the map's memory if all detections were clutter spread evenly
+  (``map_cell_from_counts``: a cell's Poisson noise then about 1/√30 = 18 %; smaller cells are noisier, larger
+  ones blur a patch); for the tracker alone, which has not seen the data, ``CELL_GATES`` = 8 gate diameters, the
+  gate radius √(2γ)·r of a held track (S ≈ 2R) (4, 6, 8 and 12 gate diameters measured: docs/multi_target.md).
+  The grid grows with the detections; beyond ``MAX_CELLS`` cells its cells are doubled (2 × 2 summed).
 * ``bounding_box_density(z, scans)``: the per-file estimate of ``lgekf track --multi`` before the estimators
   (``--clutter file``): all detections per scan over the data's bounding-box area (an over-estimate: the targets'
   detections count too).
@@ -63,12 +65,13 @@ import numpy as np
 from ...core.validate import positive_scalar
 
 __all__ = ["ClutterEstimator", "ConstantClutter", "ScanClutter", "ClutterMap", "CLUTTER_ESTIMATORS", "clutter_estimator",
-           "bounding_box_density", "bounding_box_area", "clutter_from_data", "CLUTTER_SOURCES", "DEFAULT_CLUTTER_SOURCE",
-           "CELL_GATES", "MAX_CELLS", "MIN_AREA"]
+           "bounding_box_density", "bounding_box_area", "clutter_from_data", "map_cell_from_counts", "CLUTTER_SOURCES",
+           "DEFAULT_CLUTTER_SOURCE", "CELL_GATES", "MAP_COUNTS", "MAX_CELLS", "MIN_AREA"]
 
 CELL_GATES = 8.0  # ClutterMap: default cell side, in gate diameters (measured: docs/multi_target.md)
 MAX_CELLS = 1_000_000  # ClutterMap: the grid's size at most (8 MB); beyond, the cells are doubled
 MIN_AREA = 1.0  # m²: the surveillance area at least (detections on a line or a point)
+MAP_COUNTS = 30.0  # clutter_from_data: a map's cells hold this many counts per memory if the detections were even
 
 
 def bounding_box_area(z: np.ndarray) -> float:
@@ -208,7 +211,8 @@ class ClutterMap(ClutterEstimator):
     Parameters
     ----------
     cell : float, optional
-        The cell side h (m); default ``CELL_GATES`` gate diameters (``configure``).
+        The cell side h (m); default ``CELL_GATES`` gate diameters (``configure``; ``clutter_from_data`` gives
+        ``map_cell_from_counts``).
     forgetting : float
         a_m in [0, 1): the cells' recursive average.
     prior : float
@@ -368,10 +372,33 @@ CLUTTER_SOURCES = ("file", "scan", "map")  # what `lgekf track --multi --clutter
 DEFAULT_CLUTTER_SOURCE = "map"  # without --clutter-density and --clutter (measured: docs/multi_target.md)
 
 
+def map_cell_from_counts(z: np.ndarray, scans: int, forgetting: float = 0.99) -> float:
+    """The cell side h (m) at which a clutter map of a file would hold ``MAP_COUNTS`` counts per cell over its memory
+    if all the file's detections were clutter spread evenly over their bounding box: h = √(V·n/(M̄/(1 − a))), M̄
+    detections per scan, a the map's forgetting factor.
+
+    Parameters
+    ----------
+    z : ndarray, (N, ≥2)
+        Every detection of the file.
+    scans : int
+        The number of scans.
+    forgetting : float
+        The map's forgetting factor.
+
+    Returns
+    -------
+    float
+    """
+    per_memory = z.shape[0] / max(scans, 1) / (1.0 - forgetting)
+    return math.sqrt(bounding_box_area(z) * MAP_COUNTS / max(per_memory, 1e-12))
+
+
 def clutter_from_data(source: str, z: np.ndarray, scans: int):
     """The tracker's ``clutter_density`` argument for a file of detections without a given density: "file" the
-    per-file ``bounding_box_density`` (a float), "scan" a ``ScanClutter`` and "map" a ``ClutterMap``, both over the
-    area V of the file's bounding box (the surveillance area as the data show it).
+    per-file ``bounding_box_density`` (a float), "scan" a ``ScanClutter`` and "map" a ``ClutterMap`` (cells of
+    ``map_cell_from_counts``), both over the area V of the file's bounding box (the surveillance area as the data
+    show it).
 
     Parameters
     ----------
@@ -389,4 +416,6 @@ def clutter_from_data(source: str, z: np.ndarray, scans: int):
         return bounding_box_density(z, scans)
     if source not in CLUTTER_ESTIMATORS:
         raise ValueError(f"clutter: one of {', '.join(CLUTTER_SOURCES)}, got {source!r}")
-    return CLUTTER_ESTIMATORS[source](area=bounding_box_area(z))
+    if source == "map":
+        return ClutterMap(cell=map_cell_from_counts(z, scans), area=bounding_box_area(z))
+    return ScanClutter(area=bounding_box_area(z))
