@@ -75,6 +75,15 @@ README_TO_RUN = {
     "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
     "lgekf study --multi --initiation one-point,two-point":
         ["lgekf study --multi --initiation one-point,two-point --runs 1 --duration 2 --models cv --out results_init"],
+    "lgekf study --multi --scenario patch --models se2r3,cv --association jpda --clutter true,file,scan,map,oracle":
+        ["lgekf study --multi --scenario patch --models cv --association jpda --clutter true,file,scan,map,oracle --runs 1 "
+         "--duration 2 --out results_clutter"],
+    "lgekf study --multi --scenario base|burst|patch --clutter true,file,scan,map,oracle":
+        [f"lgekf study --multi --scenario {s} --models cv --association jpda --clutter true,file,scan,map,oracle --runs 1 "
+         f"--duration 2 --out results_clutter_{s}" for s in ("base", "burst")],
+    "lgekf track detections.csv --multi -o tracks.csv --clutter scan": None,
+    "lgekf track DETECTIONS.csv --multi -o OUT.csv --clutter file|scan|map":
+        [f"lgekf track detections.csv --multi -o out_clutter_{c}.csv --clutter {c}" for c in ("file", "scan", "map")],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,
