@@ -19,11 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.common import COMMON_NAMES
 from ..core.registry import MODELS, get_measurement, get_model
 
 __all__ = ["Simulation", "simulate", "truth_models", "COMMON_NAMES"]
-
-COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
 
 
 def truth_models() -> tuple:
