@@ -111,8 +111,12 @@ class MultiTrack(TrackEstimator):
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
                          max_speed=self.max_speed, omega_std=a.omega_std,
                          clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
+        self.noise_fixed = self.q is not None  # the process noise is not for the data to set
         if a.model == IMM_MODEL:
+            from ..apps.track_imm import ImmTrackOptions
+
             self.args.update(imm_modes=a.imm_modes, imm_switch=a.imm_switch)
+            self.noise_fixed = not ImmTrackOptions(a.imm_modes, a.imm_switch).tunable_models()  # every mode's in numbers
         from ..estimators.multitarget.tracker import MultiTargetTracker
 
         r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
@@ -152,7 +156,7 @@ class MultiTrack(TrackEstimator):
                 "bounding-box area; give --clutter-density to set it)")
         fit_args = dict(heading_std=self.heading_std, omega_std=a.omega_std, monitor=monitor is not None)
         self.run, fit = fit_noise(t, self.Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
-        if a.meas_std is None or q is None:
+        if a.meas_std is None or not self.noise_fixed:
             say(fit.describe(a.model, q is not None, self.heading_std if get_measurement(a.measure).has_angle else None,
                              a.heading_std is not None))
         if a.model == IMM_MODEL:

@@ -275,3 +275,26 @@ def test_cli_imm_modes_without_the_imm(tmp_path, capsys):
     src.write_text("t,x,y\n0,0,0\n0.1,1,0\n")
     code = main(["track", str(src), "--multi", "--model", "cv", "--imm-modes", MIXED, "-o", str(tmp_path / "o.csv")])
     assert code == 2 and "only with --model imm" in capsys.readouterr().err
+
+
+def test_cli_multi_imm_modes_in_numbers_with_meas_std_estimate_nothing(tmp_path, capsys):
+    """Every mode's noise given as numbers and --meas-std: nothing comes from the data, no noise line; the modes line
+    says what runs."""
+    from lgekf.cli import main
+
+    _detections_csv(tmp_path / "d.csv", duration=3.0)
+    code = main(["track", str(tmp_path / "d.csv"), "--multi", "--model", "imm", "--imm-modes", "cv:0.5,se2r3:0.1/0.1/0.2",
+                 "--meas-std", "0.3", "--clutter-density", "1e-4", "-o", str(tmp_path / "o.csv")])
+    err = capsys.readouterr().err
+    assert code == 0 and "noise from the data" not in err, err
+    assert "imm: modes cv:0.5 (0.5), se2r3:0.1/0.1/0.2 (0.1,0.1,0.2); switch 0.05 per scan" in err, err
+
+
+def test_multi_study_has_the_imm():
+    """``lgekf study --multi --models ...,imm``: the IMM's cell beside the models' on the same detections."""
+    from lgekf.experiments.multi_study import MultiStudyConfig, run_multi_study
+
+    cells = run_multi_study(MultiStudyConfig(models=("cv", "imm"), associations=("jpda",), runs=1, duration=2.0))
+    assert [c.model for c in cells] == ["cv", "imm"] and all(np.isfinite(c.gospa) for c in cells)
+    with pytest.raises(ValueError, match="only with the model imm"):
+        MultiStudyConfig(models=("cv",), imm_modes=MIXED).validate()

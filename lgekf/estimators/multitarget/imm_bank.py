@@ -138,7 +138,7 @@ class IMMBank:
         s = _Setup(modes, transition, meas_std, measurement, mu0)
         if s.M < 2:
             raise ValueError(f"imm-modes: an IMM needs at least two modes, got {s.M} ({s.modes[0].name}); to track "
-                             f"with one model give that model (--model {s.modes[0].model})")
+                             f"with one model, use that model ({s.modes[0].model}) instead of the IMM")
         if mode_weights not in MODE_WEIGHTS:
             raise ValueError(f"mode_weights: one of {', '.join(MODE_WEIGHTS)}, got {mode_weights!r}")
         self.setup = s
@@ -151,7 +151,8 @@ class IMMBank:
         self.mu = np.zeros((capacity, s.M))
         self._work(capacity)
         self.d2 = np.zeros((0, 0))
-        self._ll = None  # after gate: each mode's log N_kij (M, N, D) and the mixed log N̄_ij (N, D)
+        self._pairs = None  # after gate: the gated pairs (i, j) and log N_kij / N̄_ij (M, G) on them
+        self._bk = np.zeros((0, 0))
         self._cache = None  # (rows, C, PC) of the last combined estimate
 
     def _work(self, cap):
@@ -216,53 +217,57 @@ class IMMBank:
 
     def gate(self, Z: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]:
         """The mode-mixed log-likelihoods log Σ_k c̄_k N(e_kij; 0, S_ki) (N, D) of detections Z (D, m) and the gate
-        (N, D): in the gate of any mode (module docstring); −inf outside it."""
-        d2 = []
-        for bank in self.banks:
-            bank.gate(Z, gamma)
-            d2.append(bank.d2)
-        d2 = np.stack(d2)  # (M, N, D)
+        (N, D): in the gate of any mode (module docstring); −inf outside it. The mixture is formed on the gated pairs
+        only (the others get no weight in the association)."""
         live = self.live
-        logdet = np.stack([b.logdet for b in self.banks])  # (M, N)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ll = -0.5 * d2 - 0.5 * logdet[:, :, None] - self._c0
-            ll[:, ~live] = -np.inf
-            logw = np.log(self.mu.T)[:, :, None]  # log c̄_k (M, N, 1)
-            a = logw + ll
-            top = a.max(axis=0)
-            mixed = top + np.log(np.exp(a - np.where(np.isfinite(top), top, 0.0)).sum(axis=0))
-        mixed[~np.isfinite(top)] = -np.inf
-        self.d2 = d2.min(axis=0)
+        for k, bank in enumerate(self.banks):
+            bank.gate(Z, gamma)
+            self.d2 = bank.d2.copy() if k == 0 else np.minimum(self.d2, bank.d2)
         gated = (self.d2 <= gamma) & live[:, None]
-        self._ll = (ll, mixed)
-        return np.where(gated, mixed, -np.inf), gated
+        ii, jj = np.nonzero(gated)
+        with np.errstate(divide="ignore"):
+            a = np.stack([-0.5 * b.d2[ii, jj] - 0.5 * b.logdet[ii] - self._c0 for b in self.banks])  # log N_kij (M, G)
+            w = a + np.log(self.mu[ii].T)  # log c̄_k N_kij
+        top = w.max(axis=0)
+        mixed = top + np.log(np.exp(w - top).sum(axis=0))  # finite: every gated pair has a mode with d² ≤ γ
+        ll = np.full(gated.shape, -np.inf)
+        ll[ii, jj] = mixed
+        self._pairs = (ii, jj, a - mixed)  # log N_kij / N̄_ij on the gated pairs
+        return ll, gated
 
     def update(self, beta0: np.ndarray, beta: np.ndarray) -> None:
         """The IMM-PDA correction with β_i0 (N,) and β_ij (N, D) of the last ``gate`` (module docstring): the mode
-        probabilities, then each mode bank's PDA correction with its mode-conditioned (or the shared) weights."""
-        ll, mixed = self._ll
-        beta0 = np.asarray(beta0, dtype=float)
-        beta = np.asarray(beta, dtype=float)
-        pos = beta > 0.0
-        with np.errstate(over="ignore", invalid="ignore"):
-            ratio = np.where(pos, np.exp(np.where(pos, ll - mixed, 0.0)), 0.0)  # N_kij / N̄_ij where β_ij > 0 (M, N, D)
-        D = beta0 + (beta * ratio).sum(axis=2)  # (M, N)
-        live = self.live
+        probabilities, then each mode bank's PDA correction with its mode-conditioned (or the shared) weights. β is 0
+        outside the gate (the association gives no weight there)."""
+        ii, jj, log_ratio = self._pairs
+        beta0 = np.ascontiguousarray(beta0, dtype=float)
+        beta = np.ascontiguousarray(beta, dtype=float)
+        N = beta0.size
+        b = beta[ii, jj]
+        terms = b * np.exp(log_ratio)  # β_ij N_kij / N̄_ij (M, G)
+        D = beta0 + np.stack([np.bincount(ii, weights=t, minlength=N) for t in terms])  # μ_ik / c̄_ik (M, N)
         mu = self.mu.T * D
         tot = mu.sum(axis=0)
-        ok = live & (tot > 0) & np.isfinite(tot)
+        ok = self.live & (tot > 0) & np.isfinite(tot)
         self.mu[ok] = (mu[:, ok] / tot[ok]).T
         for k, bank in enumerate(self.banks):
-            if self.conditioned:
-                Dk = D[k]
-                good = Dk > 0.0
-                inv = np.where(good, 1.0 / np.where(good, Dk, 1.0), 0.0)
-                b0 = np.where(good, beta0 * inv, 1.0)
-                bk = beta * ratio[k] * inv[:, None]
-                bank.update(np.ascontiguousarray(b0), np.ascontiguousarray(bk))
-            else:
+            if not self.conditioned:
                 bank.update(beta0, beta)
+                continue
+            good = D[k] > 0.0
+            inv = np.where(good, 1.0 / np.where(good, D[k], 1.0), 0.0)
+            bk = self._weights(beta.shape)
+            bk[ii, jj] = terms[k] * inv[ii]
+            bank.update(np.where(good, beta0 * inv, 1.0), bk)
+            bk[ii, jj] = 0.0  # zero again for the next mode and scan
         self._cache = None
+
+    def _weights(self, shape):
+        """A zero (N, D) array for a mode's weights, kept between calls (zeroing a fresh one per mode and scan cost a
+        tenth of the scan in dense clutter)."""
+        if self._bk.shape != shape:
+            self._bk = np.zeros(shape)
+        return self._bk
 
     def _combined(self, rows: np.ndarray):
         rows = np.asarray(rows, dtype=np.int64)

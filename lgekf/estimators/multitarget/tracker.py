@@ -170,9 +170,9 @@ class ScanReport:
     ids : ndarray of int, (K,)
         Track ids.
     states : ndarray, (K, n)
-        Physical states (the model's ``state_names``).
+        Physical states (the model's ``state_names``; the IMM: its combined estimate in the common coordinates).
     stds : ndarray, (K, n)
-        Std of each tangent coordinate (square roots of P's diagonal).
+        Std of each tangent coordinate (square roots of P's diagonal; the IMM: of the common coordinates).
     existence : ndarray, (K,)
         Existence probabilities.
     mu : ndarray, (K, M) or None
@@ -201,7 +201,8 @@ class Track:
         Physical states (the model's ``state_names``).
     covariances : ndarray, (K, n, n)
         Covariances in the tangent of each scan's mean (right perturbation X = μ·exp(ε), the model's tangent order;
-        the square roots of their diagonals are ``ScanReport.stds``).
+        the IMM: the combined covariance in the common coordinates; the square roots of their diagonals are
+        ``ScanReport.stds``).
     existence : ndarray, (K,)
         Existence probabilities.
     """
