@@ -31,12 +31,14 @@ row i of every mode bank), and the mode probabilities ``mu`` (N, M). Per scan, f
 
   and mode k's association probabilities (conditioned on the mode) are β_ikj = β_ij N_ikj / (N̄_ij D_ik),
   β_ik0 = β_i0 / D_ik, D_ik = μ_ik / c̄_ik. Each mode bank then makes its PDA correction on the group
-  (``pda.py``) with its own β_ik. This is the IMM-PDAF of Houles & Bar-Shalom (1989) and Bar-Shalom, Li &
-  Kirubarajan, *Estimation with Applications to Tracking and Navigation* (2001), §11.7 (for PDA the formula
-  is μ_k ∝ c̄_k [(1 − P_D P_G) + (P_D/λ) Σ_j N_kj], the same), and the IMM-JPDA of Blom & Bloem, *Probabilistic
-  data association avoiding track coalescence*, IEEE TAC 45(2), 2000 (mode-conditioned association
-  probabilities from the joint marginals). ``mode_weights="shared"`` gives every mode the same β_ij instead
-  (an approximation some implementations use; the mode probabilities are the same formula);
+  (``pda.py``) with its own β_ik. With PDA weights this is the IMM-PDAF (Houles & Bar-Shalom, *Multisensor
+  tracking of a maneuvering target in clutter*, IEEE TAES 25(2), 1989; the IMM as in Bar-Shalom, Li &
+  Kirubarajan, *Estimation with Applications to Tracking and Navigation*, 2001): the formula above becomes
+  μ_k ∝ c̄_k [(1 − P_D P_G) + (P_D/λ) Σ_j N_kj] (a test checks it); with JPDA marginals it is the IMM-JPDA of
+  Blom & Bloem, *Combining IMM and JPDA for tracking multiple maneuvering targets in clutter*, FUSION 2002
+  (the joint association probabilities from the mode-mixed likelihoods, then conditioned on each mode).
+  ``mode_weights="shared"`` gives every mode the same β_ij instead (the mode probabilities by the same
+  formula; on the base scenario of ``lgekf study --multi`` both gave the same GOSPA to 1e-4, docs/multi_target.md);
 * ``physical(rows)`` / ``covariances(rows)`` / ``stds(rows)``: the combined estimate (the single-target IMM's,
   ``combined_common``: the modes' moment-matched mixture, on the group when every mode is the same model) in
   the common coordinates c and its covariance there: what ``lgekf track --model imm`` reports (the state
@@ -206,7 +208,10 @@ class IMMBank:
             b.p[:] = self.Pp[:, k, :b.p.shape[1]]
 
     def predict(self, dt: float) -> None:
-        """The interaction (mixing) of every live track, μ ← c̄, then every mode's prediction by dt."""
+        """The interaction (mixing) of every live track, μ ← c̄, then every mode's prediction by dt (nothing when
+        dt ≤ 0: no step)."""
+        if not dt > 0:
+            return
         s = self.setup
         self._gather()
         mix_rows(s.models, self.S, self.Pp, self.mu, s.PI, s.same_group, self.live)
