@@ -8,10 +8,13 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .registry import SPACES, get_model
+from .registry import DEFAULT_SPACE, SPACES, get_model
 from .validate import as_float_array
 
-__all__ = ["state_from_common", "covariance_from_common"]
+__all__ = ["state_from_common", "covariance_from_common", "common_world_velocity", "COMMON_NAMES"]
+
+#: the names of the common coordinates (the physical state of SE(2)×SE(2) and SE(2)×R³)
+COMMON_NAMES = SPACES[DEFAULT_SPACE]["common_names"]  # the plane's: ("x", "y", "theta", "vx", "vy", "omega")
 
 
 def state_from_common(model: str, c: ArrayLike) -> np.ndarray:
@@ -81,3 +84,9 @@ def covariance_from_common(model: str, c: ArrayLike, P_common: ArrayLike) -> np.
     J = np.array([spec.kernels.common_jacobian(ci) for ci in c.reshape(-1, nc)]).reshape(c.shape[:-1] + (spec.n, nc))
     P = J @ Pc @ np.swapaxes(J, -1, -2)
     return 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def common_world_velocity(c: np.ndarray) -> np.ndarray:
+    """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
+    ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
+    return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)

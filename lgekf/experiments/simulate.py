@@ -19,11 +19,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..core.common import COMMON_NAMES
 from ..core.registry import DEFAULT_SPACE, SPACES, get_measurement, get_model, models_of
 
 __all__ = ["Simulation", "simulate", "truth_models", "COMMON_NAMES"]
-
-COMMON_NAMES = SPACES[DEFAULT_SPACE]["common_names"]  # ("x", "y", "theta", "vx", "vy", "omega")
 
 
 def truth_models(space: str = DEFAULT_SPACE) -> tuple:

@@ -73,6 +73,10 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
 README_TO_RUN = {
     "lgekf track detections.csv --multi --model se2se2 -o tracks.csv --clutter-density 1e-4 --detection-prob 0.9 --association jpda": None,
     "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
+    "lgekf track detections.csv --multi --model imm -o tracks.csv": None,
+    "lgekf track detections.csv --multi --model imm --imm-modes cv,se2r3:manoeuvre --imm-switch 0.02 -o tracks.csv": None,
+    "lgekf study --multi --models se2r3,cv,imm --association jpda":
+        ["lgekf study --multi --models cv,imm --association jpda --runs 1 --duration 2 --out results_imm"],
     "lgekf study --multi --initiation one-point,two-point":
         ["lgekf study --multi --initiation one-point,two-point --runs 1 --duration 2 --models cv --out results_init"],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
