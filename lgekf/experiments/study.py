@@ -42,6 +42,7 @@ __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS",
 
 FILTERS = tuple(MODELS)  # every registry model, the default filter set
 PAPER_FILTERS = ("se2se2", "se2r3", "ctrv", "cv")  # the filters of the paper's Fig. 4 (its claims name them)
+PAPER_LG, PAPER_BASELINES = PAPER_FILTERS[:2], PAPER_FILTERS[2:]  # its two LG filters, its two baselines
 
 
 @dataclass
@@ -284,8 +285,8 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     σ_ω range, "large σ_ω" = the highest sixth.
     """
     names = paper_names(res.filters)
-    lgs = [names[k] for k in ("se2se2", "se2r3") if k in names]
-    if not lgs or not {"ctrv", "cv"} <= set(names):
+    lgs = [names[k] for k in PAPER_LG if k in names]
+    if not lgs or not set(PAPER_BASELINES) <= set(names):
         return []  # the claims compare the paper's filters (or, in 3-D, the models that lift them)
     s = res.sigmas
     m = {k: res.mean(k) for k in res.rmse}
@@ -302,7 +303,7 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     if len(lgs) == 2:
         rel = np.abs(m["se2se2"] - m["se2r3"]) / lg_best
         out.append(Claim(
-            "SE(2)xSE(2) and SE(2)xR3 are close (within 5 %)" if lgs == ["se2se2", "se2r3"] else
+            "SE(2)xSE(2) and SE(2)xR3 are close (within 5 %)" if lgs == list(PAPER_LG) else
             f"{lgs[0]} and {lgs[1]} are close (within 5 %)",
             bool(np.all(rel <= close_tol)),
             f"max relative difference {rel.max():.1%} at σ_ω={s[rel.argmax()]:.2f}",

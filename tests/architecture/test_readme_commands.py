@@ -129,6 +129,8 @@ README_TO_RUN = {
     "lgekf evaluate --tune": ["lgekf evaluate ethucy --tune"],
     "lgekf track detections.csv --model cv --tune --tune-method em -o tracks.csv": None,
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
+    "lgekf study --space 3d": None,
+    "lgekf study --space 3d --out results3d": None,
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
     # as above: too few stand-in detections to learn SE(2)xR3's noise; CV modes tuned, the default modes smoothed
