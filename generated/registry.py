@@ -40,6 +40,7 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
          'noise_inputs': (0, 1, 2),
          'measurements': ('position3',),
          'refused': {'pose': 'the ct3 model moves in 3-D space, the pose measurement observes 2-D positions',
+                     'pose3': 'the ct3 model has no attitude to measure; use the position3 measurement',
                      'position': 'the ct3 model moves in 3-D space, the position measurement observes 2-D '
                                  'positions'},
          'linear': ()},
@@ -60,7 +61,9 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
           'lifts': '',
           'noise_inputs': (0, 1),
           'measurements': ('pose', 'position'),
-          'refused': {'position3': 'the ctrv model moves in 2-D space, the position3 measurement observes '
+          'refused': {'pose3': 'the ctrv model moves in 2-D space, the pose3 measurement observes 3-D '
+                               'positions',
+                      'position3': 'the ctrv model moves in 2-D space, the position3 measurement observes '
                                    '3-D positions'},
           'linear': ()},
  'cv': {'display_name': 'CV KF',
@@ -81,6 +84,7 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
         'noise_inputs': (0, 0),
         'measurements': ('position',),
         'refused': {'pose': 'the cv model has no heading to measure; use the position measurement',
+                    'pose3': 'the cv model moves in 2-D space, the pose3 measurement observes 3-D positions',
                     'position3': 'the cv model moves in 2-D space, the position3 measurement observes 3-D '
                                  'positions'},
         'linear': ('position',)},
@@ -102,6 +106,7 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
          'noise_inputs': (0, 0, 0),
          'measurements': ('position3',),
          'refused': {'pose': 'the cv3 model moves in 3-D space, the pose measurement observes 2-D positions',
+                     'pose3': 'the cv3 model has no attitude to measure; use the position3 measurement',
                      'position': 'the cv3 model moves in 3-D space, the position measurement observes 2-D '
                                  'positions'},
          'linear': ('position3',)},
@@ -122,7 +127,9 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
            'lifts': '',
            'noise_inputs': (0, 1),
            'measurements': ('pose', 'position'),
-           'refused': {'position3': 'the se2r2 model moves in 2-D space, the position3 measurement observes '
+           'refused': {'pose3': 'the se2r2 model moves in 2-D space, the pose3 measurement observes 3-D '
+                                'positions',
+                       'position3': 'the se2r2 model moves in 2-D space, the position3 measurement observes '
                                     '3-D positions'},
            'linear': ()},
  'se2r3': {'display_name': 'SE(2)×R³ LG-EKF',
@@ -142,7 +149,9 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
            'lifts': '',
            'noise_inputs': (0, 1, 2),
            'measurements': ('pose', 'position'),
-           'refused': {'position3': 'the se2r3 model moves in 2-D space, the position3 measurement observes '
+           'refused': {'pose3': 'the se2r3 model moves in 2-D space, the pose3 measurement observes 3-D '
+                                'positions',
+                       'position3': 'the se2r3 model moves in 2-D space, the position3 measurement observes '
                                     '3-D positions'},
            'linear': ()},
  'se2se2': {'display_name': 'SE(2)×SE(2) LG-EKF',
@@ -162,7 +171,9 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
             'lifts': '',
             'noise_inputs': (0, 1, 2),
             'measurements': ('pose', 'position'),
-            'refused': {'position3': 'the se2se2 model moves in 2-D space, the position3 measurement '
+            'refused': {'pose3': 'the se2se2 model moves in 2-D space, the pose3 measurement observes 3-D '
+                                 'positions',
+                        'position3': 'the se2se2 model moves in 2-D space, the position3 measurement '
                                      'observes 3-D positions'},
             'linear': ()},
  'se3r6': {'display_name': 'SE(3)×R⁶ LG-EKF',
@@ -198,7 +209,7 @@ MODELS = {'ct3': {'display_name': 'CT3 EKF',
            'forward_speed': (),
            'lifts': 'se2r3',
            'noise_inputs': (0, 0, 0, 1, 1, 1),
-           'measurements': ('position3',),
+           'measurements': ('pose3', 'position3'),
            'refused': {'pose': 'the se3r6 model moves in 3-D space, the pose measurement observes 2-D '
                                'positions',
                        'position': 'the se3r6 model moves in 3-D space, the position measurement observes '
@@ -213,6 +224,14 @@ MEASUREMENTS = {'pose': {'description': '2-D pose z = (x, y, θ) in SE(2) with n
           'angles': (2,),
           'dim': 3,
           'noise_inputs': (0, 1, 2)},
+ 'pose3': {'description': '3-D pose z = (x, y, z, roll, pitch, yaw) in SE(3) with noise stds (r_p, r_a) in '
+                          'its tangent (position, rotation vector; body frame)',
+           'space': '3d',
+           'z_names': ('x', 'y', 'z', 'roll', 'pitch', 'yaw'),
+           'noise_names': ('r_p', 'r_a'),
+           'angles': (3, 4, 5),
+           'dim': 6,
+           'noise_inputs': (0, 0, 0, 1, 1, 1)},
  'position': {'description': "2-D position z = (x, y) with isotropic noise std r (the paper's measurement)",
               'space': '2d',
               'z_names': ('x', 'y'),

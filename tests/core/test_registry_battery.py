@@ -183,7 +183,7 @@ class Reference:
         H = np.column_stack([(Gp.log(hinv @ np.asarray(self.h[meas]((mu @ G.exp(hh * e)).ravel()), dtype=float))
                               - Gp.log(hinv @ np.asarray(self.h[meas]((mu @ G.exp(-hh * e)).ravel()), dtype=float))) / (2 * hh)
                              for e in np.eye(G.n)])
-        R = np.diag(np.broadcast_to(np.asarray(r, dtype=float), (Gp.n,)) ** 2)
+        R = np.diag(_per_entry(meas, r) ** 2)
         S = H @ P @ H.T + R
         K = np.linalg.solve(S, H @ P).T
         e = Gp.log(hinv @ np.asarray(self.element[meas](z), dtype=float))
@@ -216,8 +216,15 @@ def _case(name, rng):
     return x, P, q
 
 
+def _per_entry(meas, r):
+    """The std of each entry of z from the measurement's noise stds (its ``noise_inputs``; one std for all)."""
+    spec = lgekf.core.registry.get_measurement(meas)
+    r = np.atleast_1d(np.asarray(r, dtype=float))
+    return r[list(spec.noise_inputs)] if spec.noise_inputs is not None and r.size > 1 else np.broadcast_to(r, (spec.dim,))
+
+
 def _meas_std(meas):
-    return (0.4, 0.3, 0.08) if meas == "pose" else 0.4
+    return {"pose": (0.4, 0.3, 0.08), "pose3": (0.4, 0.08)}.get(meas, 0.4)
 
 
 def _rel(a, b):
@@ -236,9 +243,9 @@ def test_predict_and_update_match_the_dense_reference(name, meas):
         mu_ref, P_ref = ref.predict(x, P, T, q)
         assert _rel(f.mean, mu_ref) < 1e-9 and _rel(f.P, P_ref) < 1e-6, (name, _rel(f.mean, mu_ref), _rel(f.P, P_ref))
         dim = SPACES[MODELS[name].space]["dim"]
-        z = np.array(f.x[:dim]) + rng.normal(size=dim) * 0.5
-        if meas == "pose":
-            z = np.append(z, f.x[2] + rng.normal() * 0.1)
+        m = MODELS[name].measurement(meas).dim
+        # the position, then (a pose) the model's heading or attitude angles, which follow it in every physical state
+        z = np.array(f.x[:m]) + np.concatenate([rng.normal(size=dim) * 0.5, rng.normal(size=m - dim) * 0.1])
         nis = f.update(z)
         mu_u, P_u, nis_ref = ref.update(meas, mu_ref, P_ref, z, _meas_std(meas))
         assert _rel(f.mean, mu_u) < 1e-6, (name, meas, _rel(f.mean, mu_u))
@@ -262,7 +269,9 @@ def test_batch_equals_class(name, meas):
             f.predict(dts[b, k])
             assert f.update(z[b, k]) == pytest.approx(nis[b, k], rel=1e-12, abs=1e-12)
             np.testing.assert_allclose(est[b, k], f.x, rtol=1e-12, atol=1e-12)
-            np.testing.assert_allclose(cov[b, k], f.P, rtol=1e-12, atol=1e-14)
+            # the batch's fused step contracts FMAs (derive/codegen/families/fused.py), the class's update does not: on
+            # the 12-dimensional SE(3) pose update the two round apart by up to ~3e-14 on entries of order 0.01-0.2
+            np.testing.assert_allclose(cov[b, k], f.P, rtol=1e-12, atol=1e-13)
 
 
 def _tangent_errors(ref, est, truth, angles):
@@ -289,7 +298,7 @@ def test_consistent_on_its_own_model(name, meas):
     truth = np.empty((B, K + 1, spec.n))
     k.simulate_batch(x0, np.full((B, K), T), np.ascontiguousarray(rng.standard_normal((B, K, len(stds))) * stds), truth)
     m = spec.measurement(meas).dim
-    r = np.broadcast_to(np.asarray(_meas_std(meas), dtype=float), (m,))
+    r = _per_entry(meas, _meas_std(meas))
     z = np.empty((B * K, m))
     getattr(k, f"measure_batch_{meas}")(np.ascontiguousarray(truth[:, 1:].reshape(-1, spec.n)),
                                          np.ascontiguousarray(rng.standard_normal((B * K, m)) * r), z)
@@ -314,13 +323,13 @@ def test_wrong_measurement_shape_is_one_clear_error(name, meas):
     with pytest.raises(ValueError, match=r"^z: expected shape"):
         lgekf.filter_batch(name, np.zeros((2, 3, 4)), dt=0.1, accel_std=q, meas_std=_meas_std(meas), x0=np.tile(x, (2, 1)), P0=P,
                            measurement=meas)
-    assert spec.measurement(meas).dim in (2, 3)
+    assert spec.measurement(meas).dim in (2, 3, 6)
 
 
 def test_every_model_refuses_what_does_not_fit_with_its_reason():
     for name, spec in MODELS.items():
         for meas, why in spec.refused.items():
-            with pytest.raises(ValueError, match="no heading|-D space"):
+            with pytest.raises(ValueError, match="no heading|no attitude|-D space"):
                 lgekf.make_filter(name, dt=0.1, accel_std=spec.default_accel_std, meas_std=(0.3, 0.3, 0.1),
                                   x0=np.zeros(spec.n) + 1.0, P0=np.eye(spec.n), measurement=meas)
             assert why
