@@ -169,9 +169,21 @@ def _render_model(args) -> tuple[str, str]:
             tmp = path.with_suffix(f".{os.getpid()}.tmp")
             tmp.write_text(src, encoding="utf-8")
             os.replace(tmp, path)
+            _prune(folder)
         except OSError:  # a read-only or full cache folder only costs the next render its time
             pass
     return fname, src
+
+
+#: rendered modules kept in the cache folder (the newest): a few generations of every model's module
+CACHE_KEEP = 64
+
+
+def _prune(folder: Path) -> None:
+    """Delete all but the ``CACHE_KEEP`` newest modules of the cache folder (each source change adds a generation)."""
+    files = sorted(folder.glob("*.py"), key=lambda p: p.stat().st_mtime, reverse=True)
+    for old in files[CACHE_KEEP:]:
+        old.unlink(missing_ok=True)
 
 
 def _render_model_now(name, models_dir, meas_dir) -> tuple[str, str]:
