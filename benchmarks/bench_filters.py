@@ -44,9 +44,19 @@ from c_baseline import CompilerMissing, load_c_baseline  # noqa: E402
 from dense_numpy import run_dense  # noqa: E402
 from flops import step_flops  # noqa: E402
 
-# every registry model: its default noise, started at the same common state (3 m/s, ω = 0.1)
-MODELS = {name: (spec.default_accel_std, lgekf.state_from_common(name, [0, 0, 0, 3, 0, 0.1]).tolist())
-          for name, spec in lgekf.MODELS.items()}
+from lgekf.core.registry import ALL_MODELS, SPACES, base_measurement  # noqa: E402
+
+
+def _start(space: str) -> list:
+    """The common start of every model of ``space``: 3 m/s forward, turning at 0.1 rad/s about the vertical."""
+    return [0, 0, 0, 3, 0, 0.1] if SPACES[space]["dim"] == 2 else [0] * 6 + [3, 0, 0] + [0, 0, 0.1]
+
+
+# every registry model of every space: its default noise, started at its space's common start; its position measurement
+MODELS = {name: (spec.default_accel_std, lgekf.state_from_common(name, _start(spec.space)).tolist())
+          for name, spec in ALL_MODELS.items()}
+MEAS = {name: base_measurement(spec.space) for name, spec in ALL_MODELS.items()}
+DIM = {name: SPACES[spec.space]["dim"] for name, spec in ALL_MODELS.items()}
 
 
 def best_of(fn, repeat=3):
@@ -58,26 +68,27 @@ def best_of(fn, repeat=3):
     return best
 
 
-def data(B, K, seed=0):
+def data(B, K, seed=0, dim=2):
     rng = np.random.default_rng(seed)
     t = np.arange(1, K + 1) * 0.1
-    truth = np.stack([3 * t, np.sin(t)], axis=-1)
-    return truth[None] + 0.5 * rng.standard_normal((B, K, 2))
+    truth = np.stack([3 * t, np.sin(t), 0.1 * t][:dim], axis=-1)
+    return truth[None] + 0.5 * rng.standard_normal((B, K, dim))
 
 
-def kernel_timers(model, B, K, Kone, meas="position"):
+def kernel_timers(model, B, K, Kone):
     """{column: zero-argument callable} running the model's generated loops on preallocated arrays."""
     spec = lgekf.get_model(model)
     kern = spec.kernels
     q, x0 = MODELS[model]
+    meas, dim = MEAS[model], DIM[model]
     n, npk = spec.n, spec.n_packed
-    z = data(B, K)
+    z = data(B, K, dim=dim)
     dts = np.full((B, K), 0.1)
     X0 = np.ascontiguousarray(np.tile(x0, (B, 1)), dtype=float)
     p0 = np.tile(np.eye(n)[np.triu_indices(n)] * 0.1, (B, 1))
     q, r = np.asarray(q, dtype=float), np.array([0.5])
     ox, on, op = np.empty((B, K, n)), np.empty((B, K)), np.empty((B, 0, npk))
-    z1, d1 = data(1, Kone, seed=1)[0], np.full(Kone, 0.1)
+    z1, d1 = data(1, Kone, seed=1, dim=dim)[0], np.full(Kone, 0.1)
     ox1, on1, op1 = np.empty((Kone, n)), np.empty(Kone), np.empty((0, npk))
     batch = getattr(kern, f"run_batch_{meas}")
     one = getattr(kern, f"run_one_{meas}")
@@ -130,7 +141,7 @@ def interleaved(timers: dict, repeat: int) -> dict:
 def class_ns(model, K):
     q, x0 = MODELS[model]
     n = len(x0)
-    z = data(1, K)[0]
+    z = data(1, K, dim=DIM[model])[0]
     f = lgekf.make_filter(model, dt=0.1, accel_std=q, meas_std=0.5, x0=x0, P0=np.eye(n) * 0.1)
     f.predict()
     f.update(z[0])
@@ -284,13 +295,20 @@ def markdown(best, have_c, B, K, Kone):
     fmt = lambda v: "-" if v is None else f"{v:.0f}"  # noqa: E731
     rat = lambda v, c: "-" if v is None or c is None else f"{v / c:.2f}×"  # noqa: E731
     cb, co = (best[("C", "batch")], best[("C", "one")]) if have_c else (None, None)
-    lines = [f"| model | batch ns | SIMD ns | one ns | flops/step (div, sincos) | batch ÷ C | SIMD ÷ C | one ÷ C |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    lines = [f"| model | batch ns | SIMD ns | one ns | flops/step (div, sincos) | batch ÷ C | SIMD ÷ C | one ÷ C | "
+             "ns/flop ÷ se2r3's (batch, SIMD, one) |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    per_flop = {}
+    for m in MODELS:
+        fc = step_flops(m, MEAS[m])
+        per_flop[m] = [None if best.get((m, c)) is None else best[(m, c)] / fc.flops for c in ("batch", "SIMD", "one")]
+    ref = per_flop.get("se2r3")
     for m in MODELS:
         b, s, o = best[(m, "batch")], best.get((m, "SIMD")), best[(m, "one")]
-        fc = step_flops(m)
+        fc = step_flops(m, MEAS[m])
+        npf = ", ".join("-" if v is None or ref is None or r is None else f"{v / r:.2f}" for v, r in zip(per_flop[m], ref or [None] * 3))
         lines.append(f"| {m} | {fmt(b)} | {fmt(s)} | {fmt(o)} | {fc.flops} ({fc.div}, {fc.sincos}) | {rat(b, cb)} | "
-                     f"{rat(s, cb)} | {rat(o, co)} |")
+                     f"{rat(s, cb)} | {rat(o, co)} | {npf} |")
     if have_c:
         lines.append(f"| C se2se2 | {fmt(cb)} | - | {fmt(co)} | | 1.00× | | 1.00× |")
     lines.append(f"\nbatch {B}×{K}, one trajectory {Kone} steps; ns per trajectory-step, best of the interleaved rounds.")

@@ -2842,7 +2842,7 @@ def row_speeds(X, rows, out):
 
 @nb.njit(cache=True)
 def common_to_state(c):
-    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), velocities in the body frame.
     """
     c0 = c[0]
     c1 = c[1]
@@ -5421,7 +5421,7 @@ def calH_position_into(s, out):
 
 @nb.njit(cache=True)
 def common_to_state_into(c, out):
-    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    """The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), velocities in the body frame.
     Written into ``out`` (no allocation).
     """
     c0 = c[0]

@@ -34,7 +34,7 @@ _PUBLIC = {
 
 
 def _filter_classes() -> list:
-    from .generated.registry import MODELS
+    from .generated.registry import MODELS  # every definition's table entry, of every space
 
     return [f"{name.upper()}Filter" for name in MODELS]
 

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import difflib
+import hashlib
+import os
 import sys
 import time
+from functools import lru_cache
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
@@ -13,6 +16,7 @@ import sympy as sp
 from ..lie.special import ANGLE_FUNCTIONS, taylor_coefficients
 from ..measurements import load_measurements
 from ..models import load_models
+from ..space import DEFAULT_SPACE
 from .emitter import model_kernels, registry_entry, se2_kernels, se3_kernels
 from .families.imm import render_imm
 from .families.monitor import MONITOR_HELPERS, MONITOR_NAMES, TEMPLATE_HELPERS
@@ -115,8 +119,74 @@ def _fitting(model, measurements):
     return fit, refused
 
 
+#: where rendered model modules are kept, keyed by a digest of every derive/ source (``render_cache_dir``)
+CACHE_ENV = "LGEKF_DERIVE_CACHE"
+
+
+def render_cache_dir() -> Path | None:
+    """The folder of rendered model modules: ``$LGEKF_DERIVE_CACHE`` ("off" for none), else
+    ``$XDG_CACHE_HOME/lgekf/derive`` (``~/.cache/lgekf/derive``).
+
+    A model's module is SymPy work (seconds for a planar model, about a minute for SE(3)×R⁶), and ``lgekf derive``,
+    ``--check`` and the tests render the same sources several times; the cache keys each module by a digest of every
+    file under derive/ (and of a user's definition folders), SymPy's and Python's versions and the model's name, so a
+    change anywhere in the derivation renders again (``sources_digest``)."""
+    env = os.environ.get(CACHE_ENV)
+    if env is not None:
+        return None if env.strip().lower() in ("off", "0", "") else Path(env)
+    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "lgekf" / "derive"
+
+
+@lru_cache(maxsize=None)
+def sources_digest(models_dir=None, meas_dir=None) -> str:
+    """SHA-256 of every .py and .tmpl file under derive/ (path and bytes), of the definition folders given, and of
+    SymPy's and Python's versions: what a rendered module depends on."""
+    h = hashlib.sha256()
+    root = Path(__file__).resolve().parent.parent
+    folders = [(root, "derive")] + [(Path(d), f"defs{i}") for i, d in enumerate((models_dir, meas_dir)) if d is not None]
+    for folder, label in folders:
+        for path in sorted(folder.rglob("*")):
+            if path.suffix in (".py", ".tmpl") and "__pycache__" not in path.parts:
+                h.update(f"{label}/{path.relative_to(folder).as_posix()}\0".encode())
+                h.update(path.read_bytes())
+    h.update(f"sympy {sp.__version__}; python {sys.version}".encode())
+    return h.hexdigest()
+
+
 def _render_model(args) -> tuple[str, str]:
-    name, models_dir, meas_dir = args
+    name, models_dir, meas_dir, cache = args
+    folder = render_cache_dir() if cache else None
+    if folder is not None:
+        path = folder / f"{sources_digest(models_dir, meas_dir)[:40]}-{name}.py"
+        try:
+            return f"{name}.py", path.read_text(encoding="utf-8")
+        except OSError:
+            pass
+    fname, src = _render_model_now(name, models_dir, meas_dir)
+    if folder is not None:
+        try:  # written whole and renamed: a concurrent render reads the old file or the new, never a part
+            folder.mkdir(parents=True, exist_ok=True)
+            tmp = path.with_suffix(f".{os.getpid()}.tmp")
+            tmp.write_text(src, encoding="utf-8")
+            os.replace(tmp, path)
+            _prune(folder)
+        except OSError:  # a read-only or full cache folder only costs the next render its time
+            pass
+    return fname, src
+
+
+#: rendered modules kept in the cache folder (the newest): a few generations of every model's module
+CACHE_KEEP = 64
+
+
+def _prune(folder: Path) -> None:
+    """Delete all but the ``CACHE_KEEP`` newest modules of the cache folder (each source change adds a generation)."""
+    files = sorted(folder.glob("*.py"), key=lambda p: p.stat().st_mtime, reverse=True)
+    for old in files[CACHE_KEEP:]:
+        old.unlink(missing_ok=True)
+
+
+def _render_model_now(name, models_dir, meas_dir) -> tuple[str, str]:
     model = load_models(models_dir)[name]
     fit, _ = _fitting(model, load_measurements(meas_dir))
     title = f"{model.description}: model quantities, fused predict/update steps and loops."
@@ -150,13 +220,21 @@ def render_registry(models: dict, measurements: dict) -> str:
         fit, refused = _fitting(model, measurements)
         table[name] = registry_entry(model, fit, refused)
     meas = {
-        name: {"description": m.description, "z_names": tuple(m.z_names), "noise_names": tuple(m.noise_names),
+        name: {"description": m.description, "space": m.space.name, "z_names": tuple(m.z_names), "noise_names": tuple(m.noise_names),
                "angles": tuple(m.angles), "dim": m.m, "noise_inputs": _noise_inputs(m)}
         for name, m in measurements.items()
     }
     out = [HEADER.format(title="The model table: one entry per motion-model definition, read by lgekf.core.registry.",
                          source="derive/models/*.py, derive/measurements/*.py through derive/codegen/build.py")]
-    out.append("\n__all__ = [\"MODELS\", \"MEASUREMENTS\"]\n")
+    out.append("\n__all__ = [\"SPACES\", \"DEFAULT_SPACE\", \"MODELS\", \"MEASUREMENTS\"]\n")
+    spaces = {}
+    for sp_ in [DEFAULT_SPACE] + [m.space for m in models.values()] + [m.space for m in measurements.values()]:
+        spaces.setdefault(sp_.name, {"dim": sp_.dim, "common_names": tuple(sp_.common_names),
+                                     "position_names": tuple(sp_.position_names), "mixes": sp_.mixes,
+                                     "monitored": sp_.monitored})
+    out.append("\n#: the spaces of motion (derive/space.py): their common coordinates and what the generated loops serve\n")
+    out.append("SPACES = " + pprint.pformat(spaces, sort_dicts=False, width=110) + "\n")
+    out.append(f"\n#: the space of the commands' defaults (the paper's plane)\nDEFAULT_SPACE = {DEFAULT_SPACE.name!r}\n")
     out.append("\nMODELS = " + pprint.pformat(table, sort_dicts=False, width=110) + "\n")
     out.append("\nMEASUREMENTS = " + pprint.pformat(meas, sort_dicts=False, width=110) + "\n")
     return "".join(out)
@@ -181,11 +259,12 @@ def _bar(total: int):
     return tqdm(total=total, desc="lgekf derive", unit="model", leave=False, file=sys.stderr)
 
 
-def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
+def render_all(jobs: int = 2, models_dir=None, meas_dir=None, cache: bool = True) -> dict[str, str]:
     """{file name: source} for every generated module (deterministic).
 
     ``models_dir`` / ``meas_dir``: folders of definitions other than the package's own (a test's toy
-    model, a user's model): rendered by the same emitter.
+    model, a user's model): rendered by the same emitter. ``cache``: reuse model modules rendered from the same
+    sources (``render_cache_dir``); False renders every one.
     """
     models = load_models(models_dir)
     measurements = load_measurements(meas_dir)
@@ -197,7 +276,7 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
         "SO(3) and SE(3) building blocks: hat, vee, exp, log (also near |φ| = π), inverse, Ad, ad, right Jacobian Φ and Φ^-1;\n"
         "tangent order (x, y, z, φx, φy, φz), T = μ·exp(ε), log(exp(-ξ) exp(ξ + δ)) ≈ Φ(ξ) δ.",
         "derive/lie/so3.py, derive/lie/se3.py through derive/codegen/families/group.py", se3_kernels(), IMPORTS, PREAMBLE)
-    jobs_args = [(n, models_dir, meas_dir) for n in sorted(models)]
+    jobs_args = [(n, models_dir, meas_dir, cache) for n in sorted(models)]
     bar = _bar(len(jobs_args))
     if jobs > 1 and len(jobs_args) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as ex:
@@ -213,8 +292,11 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     files["registry.py"] = render_registry(models, measurements)
     from .dispatch import render_dispatch
 
-    files["dispatch.py"] = render_dispatch(models, {n: _fitting(m, measurements)[0] for n, m in models.items()}, measurements)
-    files["imm.py"] = render_imm(measurements)  # the IMM's loop, per measurement from its definition (families/imm.py)
+    # the IMM's loop mixes the models of the spaces it is written for (derive.space.Space.mixes)
+    mixed = {n: m for n, m in models.items() if m.space.mixes}
+    mixed_meas = {n: m for n, m in measurements.items() if m.space.mixes}
+    files["dispatch.py"] = render_dispatch(mixed, {n: _fitting(m, mixed_meas)[0] for n, m in mixed.items()}, mixed_meas)
+    files["imm.py"] = render_imm(mixed_meas)  # the IMM's loop, per measurement from its definition (families/imm.py)
     files["__init__.py"] = HEADER.format(
         title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) and SE(3) blocks, the model table.",
         source="derive/codegen/build.py",
@@ -222,22 +304,23 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None) -> dict[str, str]:
     return dict(sorted(files.items()))
 
 
-def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2, models_dir=None, meas_dir=None) -> list[str]:
+def write_all(outdir: Path = GENERATED_DIR, jobs: int = 2, models_dir=None, meas_dir=None, cache: bool = True) -> list[str]:
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
-    files = render_all(jobs, models_dir, meas_dir)
+    files = render_all(jobs, models_dir, meas_dir, cache)
     for name, src in files.items():
         (outdir / name).write_text(src, encoding="utf-8")
     return list(files)
 
 
-def check(outdir: Path = GENERATED_DIR, jobs: int = 2, stream=sys.stdout, rendered: dict[str, str] | None = None) -> int:
+def check(outdir: Path = GENERATED_DIR, jobs: int = 2, stream=sys.stdout, rendered: dict[str, str] | None = None,
+          cache: bool = True) -> int:
     """0 if ``outdir`` equals a fresh regeneration, else 1 with a unified diff.
 
     ``rendered``: the regeneration ({file name: text}, as ``render_all`` returns it) when the caller has it
     already (the tests render once per session); None renders now.
     """
-    files = render_all(jobs) if rendered is None else rendered
+    files = render_all(jobs, cache=cache) if rendered is None else rendered
     stale = 0
     for name in sorted(files):
         new = files[name]
@@ -268,6 +351,9 @@ def main(argv=None) -> int:
     ap.add_argument("--verify", action="store_true", help="compare every equation printed in the paper with the derivation")
     ap.add_argument("--out", type=Path, default=GENERATED_DIR, help="output folder (default: the package's generated/)")
     ap.add_argument("--jobs", type=int, default=2, help="processes used for code generation (default 2)")
+    ap.add_argument("--no-cache", action="store_true",
+                    help="render every model module anew (default: reuse those rendered from the same sources, "
+                         f"kept in ${CACHE_ENV} or ~/.cache/lgekf/derive)")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     if a.verify:
@@ -277,10 +363,10 @@ def main(argv=None) -> int:
         print(f"verify: {time.perf_counter() - t0:.1f} s")
         return rc
     if a.check:
-        rc = check(a.out, a.jobs)
+        rc = check(a.out, a.jobs, cache=not a.no_cache)
         print(f"check: {time.perf_counter() - t0:.1f} s")
         return rc
-    names = write_all(a.out, a.jobs)
+    names = write_all(a.out, a.jobs, cache=not a.no_cache)
     print(f"wrote {len(names)} files to {a.out} in {time.perf_counter() - t0:.1f} s")
     return 0
 

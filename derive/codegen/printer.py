@@ -43,7 +43,7 @@ class Printer:
     """A deliberately small printer: Add, Mul, Pow, numbers, symbols, a few math functions, and Piecewise as a
     conditional expression (relations, And, Or in its conditions)."""
 
-    FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.atan2: "math.atan2", sp.Abs: "abs", sp.Max: "max"}
+    FUNCS = {sp.sin: "math.sin", sp.cos: "math.cos", sp.tan: "math.tan", sp.atan2: "math.atan2", sp.Abs: "abs", sp.Max: "max"}
 
     def __init__(self, names: dict[sp.Symbol, str] | None = None):
         self.names = names or {}
@@ -209,6 +209,28 @@ def _angle_atoms(exprs):
     return sorted(by_arg.items(), key=lambda kv: _sort_key(kv[0]))
 
 
+def _hoisted(defs, names):
+    """(stages to emit before, defs): every argument of an angle atom (sin, cos, an angle function) that holds an angle
+    function itself becomes a temporary ``_hK`` of a stage before (recursively), so that the angle functions of each
+    stage have arguments free of them (SE(3)'s Jacobian of a logarithm: sinc3 of |φ|, φ holding 1/sinc of the rotation
+    angle). Stages without such nesting (every planar kernel) are returned unchanged."""
+    kinds = (sp.sin, sp.cos, *ANGLE_FUNCTIONS)
+    repl = {}
+    pre = []
+    for _, ex in defs:
+        for atom in sorted(sp.sympify(ex).atoms(*kinds), key=_sort_key):
+            arg = atom.args[0]
+            if arg not in repl and arg.atoms(*ANGLE_FUNCTIONS):
+                repl[arg] = next(names)
+                pre.append((repl[arg], arg))
+    if not repl:
+        return [], defs
+    new = [(t, sp.sympify(e).replace(lambda a: isinstance(a, kinds) and a.args[0] in repl, lambda a: a.func(repl[a.args[0]])))
+           for t, e in defs]
+    before, pre = _hoisted(pre, names)
+    return before + [pre], new
+
+
 def _safe(name: str) -> str:
     return re.sub(r"[^0-9a-zA-Z_]", "_", name)
 
@@ -220,6 +242,16 @@ def render_kernel(k: Kernel) -> str:
     if k.skip_zero_outputs:
         outputs = [(t, e) for t, e in outputs if e != 0]
     stages = _prune_dead(stages, outputs, k.ret)
+    hoist = sp.numbered_symbols("_h", real=True)
+    unnested = []
+    for st in stages:
+        if isinstance(st, RawStage):
+            unnested.append(st)
+        else:
+            before, st = _hoisted(st, hoist)
+            unnested += before + [st]
+    before, outputs = _hoisted(outputs, hoist)
+    stages = unnested + before
 
     all_exprs = [e for st in stages if not isinstance(st, RawStage) for _, e in st] + [e for _, e in outputs]
     used = set().union(*[sp.sympify(e).free_symbols for e in all_exprs]) if all_exprs else set()

@@ -44,6 +44,8 @@ class SE2(FirstPrinciples):
 
     dim = 3
     matrix_size = 3
+    #: the exponential's directional limits at ε = 0 are quick in SymPy (``MotionModel.perturbed_mean``)
+    exact_limits = True
 
     @staticmethod
     def periodic_coordinates():
@@ -163,6 +165,7 @@ class Rn:
 
     def __init__(self, n: int):
         self.dim = n
+        self.exact_limits = True  # exp is I + ε^∧ exactly
         self.matrix_size = n + 1
 
     def periodic_coordinates(self):
@@ -227,6 +230,7 @@ class Product:
             flat.extend(f.factors if isinstance(f, Product) else [f])
         self.factors = [(_GroupInstance(f) if isinstance(f, type) else f) for f in flat]
         self.dim = sum(f.dim for f in self.factors)
+        self.exact_limits = all(f.exact_limits for f in self.factors)
 
     @property
     def matrix_size(self):

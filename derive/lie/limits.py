@@ -28,9 +28,10 @@ _GENERIC = ((1, 1, 1, 1, 1, 1), (1, -2, 3, -1, 2, -3), (3, 1, -2, 2, -1, 1), (-2
 
 
 def directions_for(n: int):
-    """Each coordinate axis plus four generic (non-axis) directions in R^n."""
+    """Each coordinate axis plus four generic (non-axis) directions in R^n (beyond 6 coordinates the generic
+    directions repeat their pattern, scaled by 2, 3, ... so that no two coordinates move alike)."""
     axes = [tuple(1 if i == j else 0 for i in range(n)) for j in range(n)]
-    generic = [g[:n] for g in _GENERIC]
+    generic = [tuple(g[k % 6] * (1 + k // 6) for k in range(n)) for g in _GENERIC]
     return axes + generic
 
 

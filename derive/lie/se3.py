@@ -50,6 +50,9 @@ class SE3(SeriesDerivations):
 
     dim = 6
     matrix_size = 4
+    #: the exponential's directional limits through |φ| take minutes in SymPy: first derivatives at ε = 0 use
+    #: exp(ε) = I + ε^∧ + O(|ε|²) (``MotionModel.perturbed_mean``)
+    exact_limits = False
 
     @staticmethod
     def periodic_coordinates():

@@ -90,6 +90,9 @@ class SO3(SeriesDerivations):
     """The rotation group SO(3) = {R : R^T R = I, det R = 1}, tangent the rotation vector φ = (φx, φy, φz)."""
 
     dim = 3
+    #: the exponential's directional limits through |φ| take minutes in SymPy: first derivatives at ε = 0 use
+    #: exp(ε) = I + ε^∧ + O(|ε|²) (``MotionModel.perturbed_mean``)
+    exact_limits = False
     matrix_size = 3
 
     @staticmethod

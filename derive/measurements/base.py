@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import sympy as sp
 
+from ..space import PLANE
+
 __all__ = ["MeasurementModel"]
 
 
@@ -23,6 +25,7 @@ class MeasurementModel:
 
     name: str = ""  # the definition file's stem, set by the loader
     description: str = ""
+    space = PLANE  # the space it observes (``derive.space``): it fits only the motion models of that space
     group = None
     z_names: tuple = ()
     noise_names: tuple = ()
@@ -58,5 +61,9 @@ class MeasurementModel:
         raise NotImplementedError
 
     def fits(self, model) -> str | None:
-        """None when this measurement applies to ``model``, else the reason why not."""
+        """None when this measurement applies to ``model``, else the reason why not (a model of another space; a
+        definition adds its own reasons and calls this first)."""
+        if model.space is not self.space:
+            return (f"the {model.name} model moves in {model.space.dim}-D space, the {self.name} measurement observes "
+                    f"{self.space.dim}-D positions")
         return None

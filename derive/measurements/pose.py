@@ -33,6 +33,9 @@ class Pose(MeasurementModel):
         return [Z[0, 2], Z[1, 2], sp.atan2(Z[1, 0], Z[0, 0])]
 
     def fits(self, model):
+        other = super().fits(model)
+        if other:
+            return other
         if model.heading(model.mean()) is None:
             return f"the {model.name} model has no heading to measure; use the position measurement"
         return None

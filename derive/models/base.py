@@ -27,21 +27,23 @@ from functools import cached_property
 
 import sympy as sp
 
-from ..lie.groups import SE2, Product, Rn
+from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
 from ..lie.special import to_exact
+from ..space import PLANE, SPACE3, angle_of
 
 __all__ = [
     "MotionModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
-    "dwna_G", "rotation", "angle_of", "SE2", "Rn", "Product",
+    "dwna_G", "rotation", "angle_of", "SE2", "SE3", "Rn", "Product", "PLANE", "SPACE3",
 ]
 
 x, y, theta = sp.symbols("x y theta", real=True)
 vx, vy, omega = sp.symbols("v_x v_y omega", real=True)
 dt = sp.Symbol("dt", positive=True)
-#: the common physical coordinates c (body-frame velocity), shared by every model
-COMMON = (x, y, theta, vx, vy, omega)
-COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
+#: the common physical coordinates c of the plane (body-frame velocity), shared by every planar model
+COMMON = PLANE.common
+COMMON_NAMES = PLANE.common_names
+assert COMMON == (x, y, theta, vx, vy, omega)
 
 
 def dwna_G(n: int, T=dt) -> sp.Matrix:
@@ -54,20 +56,14 @@ def rotation(a) -> sp.Matrix:
     return sp.Matrix([[sp.cos(a), -sp.sin(a)], [sp.sin(a), sp.cos(a)]])
 
 
-def angle_of(R: sp.Matrix):
-    """The angle a of a rotation matrix R = [[cos a, −sin a], [sin a, cos a]] (trigsimp'd)."""
-    c, s = sp.trigsimp(R[0, 0]), sp.trigsimp(R[1, 0])
-    if isinstance(c, sp.cos) and isinstance(s, sp.sin) and c.args == s.args:
-        return c.args[0]
-    return sp.atan2(s, c)
-
-
 class MotionModel:
     """A motion model on a matrix Lie group, declared by a subclass (see the module docstring).
 
     Declared by every definition
     ----------------------------
     display_name, description, color : how the model is shown (tables, figures)
+    space : the space the object moves in (``derive.space.PLANE``, the default, or ``SPACE3``): its common
+        coordinates c (``from_common``) and the measurements that fit
     group : the Lie group G
     physical : the physical state symbols, also the order of the tangent coordinates and of P
     internal : the internal state symbols (the kernels' storage layout)
@@ -78,17 +74,20 @@ class MotionModel:
     angles : physical coordinates that are angles (wrapped to (−π, π] on output and in differences)
     carried : (angle, cos symbol, sin symbol) carried in the internal state
     bounds : {physical index: largest representable |value|}, with ``bound_reason``
+    lifts : the name of the planar model this model lifts to 3-D space ("" for none): the study compares a 3-D model
+        where the paper compares the planar one
     forward_speed : (heading index, speed index) of a model that moves along its heading at a signed scalar speed
         (CTRV's ψ, v; SE(2)×R²'s θ, v): the state with (heading + π, −speed) is the same motion, and the runtime
         chooses the one whose heading is the direction of motion at a start (``lgekf.core.initiation``); () for none
     mean(), internal_of(X), internal_from_physical(), physical_from_internal(), Omega_of(X),
-    noise_input(), position(X), heading(X), from_common(), world_velocity()
+    noise_input(), position(X), heading(X) (plane) or attitude(X) (space), from_common(), world_velocity()
     """
 
     name: str = ""  # the definition file's stem, set by the loader
     display_name: str = ""
     description: str = ""
     color: str = "C7"
+    space = PLANE
     group = None
     physical: tuple = ()
     internal: tuple = ()
@@ -100,11 +99,13 @@ class MotionModel:
     bounds: dict = {}
     bound_reason: str = ""
     forward_speed: tuple = ()
+    lifts: str = ""
     names: tuple = ()
 
     # ------------------------------------------------------------------ declared (abstract)
     def mean(self) -> sp.Matrix:  # pragma: no cover - abstract
-        """μ as a group matrix, written in the physical symbols (cos/sin of carried angles allowed)."""
+        """μ as a group matrix, written in the physical symbols (cos/sin of carried angles allowed) or in internal
+        symbols that ``internal_from_physical`` expresses in the physical ones (a rotation matrix's entries)."""
         raise NotImplementedError
 
     def internal_of(self, X: sp.Matrix) -> list:  # pragma: no cover - abstract
@@ -132,19 +133,29 @@ class MotionModel:
         return list(self.noise_symbols)
 
     def position(self, X: sp.Matrix) -> tuple:  # pragma: no cover - abstract
-        """(x, y) of the object in the world frame, read off X."""
+        """(x, y) (plane) or (x, y, z) (space) of the object in the world frame, read off X."""
         raise NotImplementedError
 
     def heading(self, X: sp.Matrix):
-        """(cos, sin) of the object's heading read off X, or None when the model has none."""
+        """(cos, sin) of the object's heading read off X, or None when the model has none (plane)."""
+        return None
+
+    def attitude(self, X: sp.Matrix):
+        """The rotation matrix R (3 × 3, body to world) read off X, or None when the model has none (space)."""
+        return None
+
+    def body_rate(self):
+        """The body-frame angular rate (ω_x, ω_y, ω_z) in the physical symbols when no physical coordinate is one of
+        them (space); None: read off ``from_common``."""
         return None
 
     def from_common(self) -> list:  # pragma: no cover - abstract
-        """The physical state from the common coordinates c = (x, y, θ, v_x, v_y, ω) (``COMMON``)."""
+        """The physical state from the common coordinates c of the model's space (``space.common``: in the plane
+        (x, y, θ, v_x, v_y, ω))."""
         raise NotImplementedError
 
     def world_velocity(self) -> sp.Matrix:  # pragma: no cover - abstract
-        """The world-frame velocity (2,) in the physical symbols."""
+        """The world-frame velocity (2,) or (3,) in the physical symbols."""
         raise NotImplementedError
 
     # ------------------------------------------------------------------ derived
@@ -191,10 +202,23 @@ class MotionModel:
         return self.Omega_of(self.mean())
 
     @cached_property
+    def perturbed_mean(self) -> sp.Matrix:
+        """μ·exp([ε]^∧), for the derivatives at ε = 0 (𝒞, ℋ).
+
+        In full (raw form, sin/cos divided by ε, as the paper prints eq:motionG) when the group's exponential goes
+        through the directional limits quickly (SE(2), Rⁿ: ``exact_limits``); otherwise (a factor SO(3) or SE(3),
+        whose limits through |φ| take SymPy minutes) to first order, μ·(I + ε^∧): exp(ε) = I + ε^∧ + O(|ε|²), so every
+        first derivative at ε = 0 of a function smooth at μ is the same (tests/derive/test_models3.py checks 𝒞 and ℋ
+        against finite differences of the exact exponential).
+        """
+        if self.group.exact_limits:
+            return self.mean() * to_exact(self.group.exp(self.EPS))
+        return self.mean() * (sp.eye(self.group.matrix_size) + self.group.hat(self.EPS))
+
+    @cached_property
     def Omega_perturbed(self) -> sp.Matrix:
-        """Ω(μ·exp([ε]^∧)) in raw form (sin/cos divided by ε), as the paper prints eq:motionG."""
-        X = self.mean() * to_exact(self.group.exp(self.EPS))
-        return self.Omega_of(X).applyfunc(sp.expand)
+        """Ω(μ·exp([ε]^∧)) (``perturbed_mean``): in the plane in raw form, as the paper prints eq:motionG."""
+        return self.Omega_of(self.perturbed_mean).applyfunc(sp.expand)
 
     @cached_property
     def calC(self) -> sp.Matrix:
@@ -228,7 +252,7 @@ class MotionModel:
         log; for G' = Rⁿ the two are identical.
         """
         Gp = meas.group
-        X = self.mean() * to_exact(self.group.exp(self.EPS))
+        X = self.perturbed_mean
         mu = self.mean()
         E = Gp.inverse(meas.h(self, mu)) * meas.h(self, X) - sp.eye(Gp.matrix_size)
         return Gp.vee(E).applyfunc(lambda v: sp.expand(sp.simplify(v)))
@@ -256,9 +280,21 @@ class MotionModel:
         return jacobian_at_zero(self.measurement_error, self.EPS, report=self.limit_report_H)
 
     @cached_property
+    def mean_physical(self) -> sp.Matrix:
+        """μ written in the physical symbols only: ``mean()`` with every internal symbol that is not physical (a
+        rotation's entries) replaced by its ``internal_from_physical`` expression."""
+        sub = {s: e for s, e in zip(self.internal, self.internal_from_physical()) if s not in self.physical}
+        return self.mean().subs(sub, simultaneous=True) if sub else self.mean()
+
+    @cached_property
     def mean_of_common(self) -> sp.Matrix:
         """μ as a function of the common coordinates c (through ``from_common``)."""
-        return self.mean().subs(dict(zip(self.physical, self.from_common())), simultaneous=True)
+        return self.mean_physical.subs(dict(zip(self.physical, self.from_common())), simultaneous=True)
+
+    @property
+    def n_common(self) -> int:
+        """Number of common coordinates of the model's space."""
+        return len(self.space.common)
 
     @cached_property
     def common_jacobian(self) -> sp.Matrix:
@@ -266,62 +302,49 @@ class MotionModel:
 
         To first order log(μ⁻¹ X(c + d)) = [μ⁻¹ X(c + d) − I]^∨, so J = ∂/∂d of that at d = 0; P = J P_c Jᵀ.
         """
-        d = sp.symbols(f"_d0:{len(COMMON)}", real=True)
+        common = self.space.common
+        d = sp.symbols(f"_d0:{len(common)}", real=True)
         mu = self.mean_of_common
-        Xd = mu.subs({c: c + di for c, di in zip(COMMON, d)}, simultaneous=True)
+        Xd = mu.subs({c: c + di for c, di in zip(common, d)}, simultaneous=True)
         E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
         J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
-        return J.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+        return J.applyfunc(_tidy)
 
     @cached_property
     def common_of_physical(self) -> list:
-        """c = (x, y, θ, v_x, v_y, ω) read off the physical state (the inverse direction of ``from_common``).
-
-        Generic: (x, y) = ``position``; θ = the ``heading`` or, for a model without one, the direction of
-        the world velocity; (v_x, v_y) = R(θ)ᵀ·``world_velocity`` (body frame); ω = the physical coordinate
-        that ``from_common`` sets to ω.  Components in ``common_missing`` (the model carries no information
-        on them, e.g. CV's ω) are 0 here.
+        """c read off the physical state (the inverse direction of ``from_common``), by the model's space
+        (``derive.space``: in the plane (x, y) = ``position``, θ = the ``heading`` or the direction of the world
+        velocity, (v_x, v_y) = R(θ)ᵀ·``world_velocity``, ω the coordinate ``from_common`` sets to ω).  Components in
+        ``common_missing`` (the model carries no information on them, e.g. CV's ω) are 0 here.
         """
-        X = self.mean()
-        px, py = self.position(X)
-        w = self.world_velocity()
-        h = self.heading(X)
-        if h is None:
-            th = sp.atan2(w[1], w[0])
-            vb = [sp.sqrt(w[0] ** 2 + w[1] ** 2), sp.Integer(0)]
-        else:
-            ch, sh = h
-            th = angle_of(sp.Matrix([[ch, -sh], [sh, ch]]))
-            vb = [sp.simplify(ch * w[0] + sh * w[1]), sp.simplify(-sh * w[0] + ch * w[1])]
-        om = next((p for p, e in zip(self.physical, self.from_common()) if sp.sympify(e) == omega), sp.Integer(0))
-        return [px, py, th, vb[0], vb[1], om]
+        return self.space.common_of_physical(self)
 
     @cached_property
     def common_missing(self) -> tuple:
         """Indices of the common coordinates the model does not depend on (``from_common`` ignores them)."""
         used = set().union(*(sp.sympify(e).free_symbols for e in self.from_common()))
-        return tuple(i for i, c in enumerate(COMMON) if c not in used)
+        return tuple(i for i, c in enumerate(self.space.common) if c not in used)
 
     @cached_property
     def physical_jacobian(self) -> sp.Matrix:
         """∂ε/∂x at the mean: the tangent coordinates ε (X = μ·exp ε) w.r.t. the physical state x (n × n)."""
         d = sp.symbols(f"_d0:{self.n}", real=True)
-        mu = self.mean()
+        mu = self.mean_physical
         Xd = mu.subs({p: p + di for p, di in zip(self.physical, d)}, simultaneous=True)
         E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
         J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
-        return J.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+        return J.applyfunc(_tidy)
 
     @cached_property
     def common_of_physical_jacobian(self) -> sp.Matrix:
-        """∂c/∂ε at the mean (6 × n): a covariance P of ε maps to the common coordinates as A P Aᵀ.
+        """∂c/∂ε at the mean (n_common × n): a covariance P of ε maps to the common coordinates as A P Aᵀ.
 
         A = ∂c/∂x · (∂ε/∂x)⁻¹ (chain rule through the physical coordinates x); rows of ``common_missing``
         are zero.
         """
         c = sp.Matrix(self.common_of_physical)
         A = c.jacobian(sp.Matrix(self.physical)) * self.physical_jacobian.inv()
-        return A.applyfunc(lambda e: sp.simplify(sp.trigsimp(e)))
+        return A.applyfunc(_tidy)
 
     def periodic_tangent(self) -> tuple:
         """Tangent coordinates that are rotation angles of SE(2) factors (exp is periodic in them)."""
@@ -347,6 +370,16 @@ class MotionModel:
             if sp.Matrix(M).free_symbols & state:
                 return False
         return True
+
+
+#: entries with more operations than this are emitted as they are (CSE shares their parts); simplifying them takes
+#: SymPy minutes (a 3-D model's Euler-angle Jacobians) for little gain; every planar entry is below it
+TIDY_OPS = 60
+
+
+def _tidy(e):
+    """trigsimp + simplify of a small entry (``TIDY_OPS``), the entry itself otherwise."""
+    return sp.simplify(sp.trigsimp(e)) if sp.count_ops(e) <= TIDY_OPS else e
 
 
 def _plain_name(s) -> str:

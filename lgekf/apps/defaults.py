@@ -106,7 +106,7 @@ class NoisePlan:
                 parts.append(f"{m} {vals} (default: no object has {BURN_IN + 3} measurements to learn from)")
             else:
                 parts.append(f"{m} {vals} (given)")
-        text = f"noise from the data: {meas}; accel-std {'; '.join(parts)}"
+        text = f"noise from the data: {meas}" + (f"; accel-std {'; '.join(parts)}" if parts else "")
         if any(s == "data" for s in self.accel_source.values()):
             text += f"; typical speed {self.v_typ:.3g} m/s"
         if heading_std is not None:

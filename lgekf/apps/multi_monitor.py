@@ -7,7 +7,7 @@ applied to every confirmed track of the multi-target tracker, scan by scan.
   compared with the (1 − α) χ² quantile with W·m (short·m) degrees of freedom (``MonitorConfig``: α = 10⁻⁶).
   Held detections passed the gate, so a single one cannot trigger; a track whose detections sit persistently at
   the edge of its gate (an over-confident filter drifting off its object) does.
-* **Absurd speed**: the track's speed (``track.speed_course``: |world velocity| of its state) above
+* **Absurd speed**: the track's speed (``track_speed_course``: |world velocity| of its state) above
   ``speed_factor`` × ``--max-speed`` + ``speed_margin`` (2 × 30 + 1 = 61 m/s by default): twice the fastest
   speed at which the tracker starts a track. (The point estimate: a new track's speed is at most
   ``--max-speed`` by construction, so only a filter that ran away gets there.)
@@ -26,10 +26,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..core.common import common_world_velocity
+from ..estimators.multitarget.tracker import IMM_MODEL
 from .divergence import MonitorConfig
-from .track import speed_course
+from .track import speed_and_course, speed_course
 
-__all__ = ["MultiAlarm", "MultiMonitor"]
+__all__ = ["MultiAlarm", "MultiMonitor", "track_speed_course"]
+
+
+def track_speed_course(model: str, x: np.ndarray) -> np.ndarray:
+    """(N, 2) speed and course of a multi-target tracker's states x (N, n): the model's (``track.speed_course``), or
+    with the IMM (``IMM_MODEL``) of its combined estimate in the common coordinates (x, y, θ, v_x, v_y, ω)."""
+    if model == IMM_MODEL:
+        return speed_and_course(common_world_velocity(np.asarray(x, dtype=float)))
+    return speed_course(model, x)
 
 
 @dataclass(frozen=True)
@@ -82,7 +92,7 @@ class MultiMonitor:
         finite = np.isfinite(report.states).all(axis=1) & np.isfinite(report.stds).all(axis=1)
         speed = np.full(len(ids), np.nan)
         if finite.any():
-            speed[finite] = speed_course(self.model, report.states[finite])[:, 0]
+            speed[finite] = track_speed_course(self.model, report.states[finite])[:, 0]
         for k, i in enumerate(ids):
             if not finite[k]:
                 alarmed[i] = (3, float("nan"), float("nan"))

@@ -38,8 +38,9 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ..core.common import COMMON_NAMES, common_world_velocity
 from ..core.registry import BASE_MEASUREMENT
-from ..estimators.imm.estimator import DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
+from ..estimators.imm.estimator import DEFAULT_MODES, DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
 from ..io.formatting import format_rows, label_bytes, output_digits
 from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
@@ -47,14 +48,12 @@ from .imm_monitor import imm_monitored, scaled_modes
 from .track import MOTION_COLUMNS, speed_and_course, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
 
 __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
-           "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "COMMON_NAMES", "IMM_FILTER"]
+           "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "mode_columns", "COMMON_NAMES", "IMM_FILTER"]
 
 IMM_FILTER = "imm"  # its name in the tables of ``lgekf evaluate``
 
-#: ``lgekf track --model imm`` / ``lgekf evaluate --imm`` modes by default: CV and a calm and a manoeuvring SE(2)×R³
-#: (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and cv,se2r3, see docs/imm.md)
-DEFAULT_TRACK_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
-COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
+#: ``lgekf track --model imm`` / ``lgekf evaluate --imm`` / ``--multi --model imm`` modes by default (``DEFAULT_MODES``)
+DEFAULT_TRACK_MODES = DEFAULT_MODES
 #: the mode sets ``--tune`` fits when ``--imm-modes`` is not given; the one of lowest AIC is kept (docs/imm.md, real
 #: data: two CV modes win on pedestrians, a manoeuvring SE(2)×R³ added to them or the default on cars and cyclists)
 TUNE_MODE_SETS = (DEFAULT_TRACK_MODES, "cv:calm,cv:manoeuvre", "cv:calm,cv:manoeuvre,se2r3:manoeuvre")
@@ -115,9 +114,11 @@ class ImmTracked:
     mu_smooth: np.ndarray | None = None
 
 
-def _mode_columns(opts: ImmTrackOptions, prefix: str) -> list:
+def mode_columns(modes, prefix: str = "mu_") -> list:
+    """The column names of the mode probabilities of ``modes`` (``Mode`` list): <prefix><model>[_<label>], a repeated
+    name numbered _2, _3, ... (``/`` of a label given as numbers written ``-``)."""
     mode_cols = []
-    for m in opts.modes:
+    for m in modes:
         base = f"{prefix}{m.name.replace(':', '_').replace('/', '-')}"
         name, k = base, 2
         while name in mode_cols:
@@ -130,8 +131,8 @@ def imm_columns(opts: ImmTrackOptions, origin: bool = False, smooth: bool = Fals
     """The header of an IMM track file (module docstring); mode columns are named mu_<model>[_<label>]
     (the labels of modes given as numbers: their labels at the time of parsing, i.e. the numbers)."""
     smoothed = ([*(f"smooth_{s}" for s in COMMON_NAMES), *(f"smooth_std_{s}" for s in COMMON_NAMES),
-                 *_mode_columns(opts, "smooth_mu_")] if smooth else [])
-    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *MOTION_COLUMNS, *_mode_columns(opts, "mu_")]
+                 *mode_columns(opts.modes, "smooth_mu_")] if smooth else [])
+    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *MOTION_COLUMNS, *mode_columns(opts.modes, "mu_")]
             + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"] + smoothed)
 
 
@@ -307,12 +308,6 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
     text, fit = min(fitted, key=lambda tf: tf[1].aic)
     opts.modes_text, opts.modes, opts.switch = text, list(fit.modes), fit.switch
     return fit, table
-
-
-def common_world_velocity(c: np.ndarray) -> np.ndarray:
-    """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
-    ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
-    return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
 
 
 @dataclass

@@ -78,13 +78,13 @@ import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.multitarget.clutter import ClutterMap, bounding_box_density
-from ..estimators.multitarget.tracker import HEADING_CAP, MultiTargetTracker
+from ..estimators.multitarget.tracker import HEADING_CAP, IMM_MODEL, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
 from .divergence import KIND_NAMES
-from .multi_monitor import MultiMonitor
+from .multi_monitor import MultiMonitor, track_speed_course
 from .noise import MIN_MEAS_STD, chord_speeds, measurement_std
-from .track import MOTION_COLUMNS, speed_course
+from .track import MOTION_COLUMNS
 
 __all__ = [
     "Scans", "scans", "scan_window_from_data", "estimated_clutter_density", "provisional_meas_std", "MultiRun",
@@ -265,6 +265,8 @@ class MultiRun:
         1 on the rows of a divergence alarm (``lgekf.apps.multi_monitor``), else 0.
     alarms : list of MultiAlarm
         The monitor's alarms (each one deleted its track).
+    mu : ndarray, (R, M) or None
+        With the IMM (``model="imm"``): the mode probabilities of each output row.
     clutter : ndarray, (K,)
         The mean clutter density of every scan (``MultiTargetTracker.clutter_density``; per m² per scan).
     """
@@ -278,6 +280,7 @@ class MultiRun:
     held_starts: np.ndarray
     flags: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.uint8))
     alarms: list = field(default_factory=list)
+    mu: np.ndarray | None = None
     clutter: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
@@ -299,7 +302,7 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, *
     trk = MultiTargetTracker(**tracker_args)
     mon = MultiMonitor(trk.model, trk.meas.dim, trk.max_speed) if monitor else None
     order, starts = sc.order, sc.starts
-    ids, times, vals, held_id, held_row, flagged = [], [], [], [], [], []
+    ids, times, vals, held_id, held_row, flagged, mus = [], [], [], [], [], [], []
     clutter = np.empty(sc.count)
     written = 0
     for k in range(sc.count):
@@ -318,8 +321,12 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, *
             ids.append(rep.ids[keep])
             times.append(np.full(rep.ids[keep].size, rep.t))
             vals.append(np.hstack([rep.states, rep.stds, rep.existence[:, None]])[keep])
+            if rep.mu is not None:
+                mus.append(rep.mu[keep])
             written += ids[-1].size
-    n = trk.spec.n
+    n = len(trk.bank.state_names)
+    modes = getattr(trk.bank, "modes", None)
+    mu = None if modes is None else (np.vstack(mus) if mus else np.zeros((0, len(modes))))
     if not ids:
         ids, times, vals = np.zeros(0, dtype=np.int64), np.zeros(0), np.zeros((0, 2 * n + 1))
     else:
@@ -337,7 +344,8 @@ def track_scans(t: np.ndarray, Z: np.ndarray, sc: Scans, monitor: bool = True, *
     counts = count[count >= MIN_HELD]
     hstarts = np.zeros(counts.size + 1, dtype=np.int64)
     np.cumsum(counts, out=hstarts[1:])
-    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts, flags, [] if mon is None else mon.alarms, clutter)
+    return MultiRun(ids, times, vals, trk, t[hrow], Z[hrow], hstarts, flags, [] if mon is None else mon.alarms, mu,
+                    clutter)
 
 
 @dataclass
@@ -352,7 +360,8 @@ class NoiseFit:
         "given", "data" (estimated from the held detections) or "provisional" (nothing to estimate from: the
         provisional std or where the passes left it).
     accel_std : tuple or None
-        The process-noise stds used (None: the model's default).
+        The process-noise stds used (None: the model's default); with the IMM its modes (``Mode`` list, the noise
+        in them).
     plan : NoisePlan or None
         The estimate the values used came from (None: the first pass's values were kept).
     provisional : float or None
@@ -397,7 +406,10 @@ class NoiseFit:
                      f"the first at the provisional {self.provisional:.3g} m: lower quartile of the distance to the previous "
                      "scan's nearest detection / 1.07")
             meas = f"meas-std {self.meas_std:.3g} m (not estimated; {n} tracking pass{'es' if n != 1 else ''}, {first})"
-        if accel_given:
+        if model == IMM_MODEL:  # the modes' noise: given as numbers or the models' defaults × their levels
+            accel = "of the IMM's modes " + ", ".join(f"{m.name} {','.join(f'{v:.3g}' for v in m.accel_std)}"
+                                                      for m in self.accel_std) + " (not estimated)"
+        elif accel_given:
             accel = f"{model} {','.join(f'{v:.3g}' for v in self.accel_std)} (given)"
         else:
             accel = f"{model} {','.join(f'{v:.3g}' for v in get_model(model).default_accel_std)} (default)"
@@ -413,25 +425,63 @@ class _Pass:
     speed: float
 
 
-def _held_plan(run: MultiRun, model: str, measurement: str, meas_std, accel_std, omega_std: float,
+def _held_plan(run: MultiRun, models: list, measurement: str, meas_std, accel_std, omega_std: float,
                heading_std: float) -> NoisePlan | None:
-    """The noise from a run's held detections (``plan_noise`` on them; the measurement std estimated unless given,
-    then estimated all the same as ``meas_estimate``); None when no confirmed track holds ``MIN_HELD`` detections."""
+    """The noise of ``models`` from a run's held detections (``plan_noise`` on them; the measurement std estimated
+    unless given, then estimated all the same as ``meas_estimate``; ``accel_std`` the given process noise, {model:
+    stds}); None when no confirmed track holds ``MIN_HELD`` detections."""
     if run.held_starts.size < 2:
         return None
     est = measurement_std(run.held_t, run.held_z, run.held_starts)
     if not est.usable:
         return None
     heading = run.held_z[:, 2] if get_measurement(measurement).has_angle else None
-    plan = plan_noise(run.held_t, run.held_z[:, :2], run.held_starts, [model], meas_std=est.meas_std if meas_std is None else meas_std,
-                      accel_std={} if accel_std is None else {model: accel_std}, omega_std=omega_std, heading_std=heading_std,
-                      heading_cap=HEADING_CAP, heading=heading, measurement={model: measurement}, workers=1)
+    plan = plan_noise(run.held_t, run.held_z[:, :2], run.held_starts, models, meas_std=est.meas_std if meas_std is None else meas_std,
+                      accel_std=accel_std, omega_std=omega_std, heading_std=heading_std,
+                      heading_cap=HEADING_CAP, heading=heading, measurement={m: measurement for m in models}, workers=1)
     plan.meas_source, plan.meas_estimate = ("data" if meas_std is None else "given"), est
     return plan
 
 
 def _meas_tuple(s: float, measurement: str, heading_std: float):
     return get_measurement(measurement).stds(s, heading_std)
+
+
+class _ProcessNoise:
+    """The process noise of the tracker of ``tracker_args`` as ``fit_noise`` handles it: the models whose noise the
+    data give (``models``), the given noise ({model: stds}) and the tracker's arguments for a plan's noise q ({model:
+    stds} or None). A registry model: itself, ``accel_std``. The IMM (``IMM_MODEL``): the models of its modes whose
+    noise is a named level or the default (``ImmTrackOptions.tunable_models``), each such mode getting the data's noise
+    of its model × its level (as ``lgekf track --model imm``), as ``imm_modes``; modes given as numbers keep them."""
+
+    def __init__(self, tracker_args: dict, accel_std):
+        self.model = tracker_args["model"]
+        self.imm = None
+        if self.model == IMM_MODEL:
+            from .track_imm import ImmTrackOptions
+
+            self.imm = ImmTrackOptions(tracker_args.get("imm_modes"), tracker_args.get("imm_switch"))
+            self.models = self.imm.tunable_models()
+            self.given = {}
+        else:
+            self.models = [self.model]
+            self.given = {} if accel_std is None else {self.model: accel_std}
+        self.fixed = all(m in self.given for m in self.models)  # nothing for the data to set
+
+    def learned(self, plan: NoisePlan):
+        """The noise q of a plan: {model: stds} of the models estimated from the data (None: none)."""
+        q = {m: plan.accel_std[m] for m in self.models if plan.accel_source[m] == "data"}
+        return q or None
+
+    def tracker_noise(self, q) -> dict:
+        """The tracker's noise arguments for q (None: the given noise, else the defaults)."""
+        if self.imm is None:
+            return {"accel_std": self.given.get(self.model) if q is None else q[self.model]}
+        from .track_imm import ImmTrackOptions
+
+        opts = ImmTrackOptions(self.imm.modes_text if self.imm.modes_given else None, self.imm.switch)
+        opts.with_learned_noise(q or {})
+        return {"imm_modes": opts.modes}
 
 
 def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = None, accel_std=None,
@@ -463,24 +513,26 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
     fit : NoiseFit
         The noise it used.
     """
-    model, measurement = tracker_args["model"], tracker_args.get("measurement", BASE_MEASUREMENT)
+    measurement = tracker_args.get("measurement", BASE_MEASUREMENT)
+    noise = _ProcessNoise(tracker_args, accel_std)
+    args = {k: v for k, v in tracker_args.items() if k != "imm_modes"}
     provisional = None
     if meas_std is None:
         provisional = provisional_meas_std(sc, Z)
         s = 1.0 if provisional is None else provisional  # fewer than two scans hold detections: nothing to track anyway
     else:
         s = float(meas_std)
-    q, used, passes, last = accel_std, None, [], None  # used: the plan (s, q) came from; last: the previous pass with an estimate
+    q, used, passes, last = None, None, [], None  # used: the plan (s, q) came from; last: the previous pass with an estimate
     low, high = 0.0, math.inf  # stds known to be below the truth / to confirm no track
     while True:
-        run = track_scans(t, Z, sc, monitor, meas_std=_meas_tuple(s, measurement, heading_std), accel_std=q, **tracker_args)
-        plan = _held_plan(run, model, measurement, meas_std, accel_std, omega_std, heading_std)
+        run = track_scans(t, Z, sc, monitor, meas_std=_meas_tuple(s, measurement, heading_std), **noise.tracker_noise(q), **args)
+        plan = _held_plan(run, noise.models, measurement, meas_std, noise.given, omega_std, heading_std)
         e = None if plan is None else plan.meas_estimate.meas_std
         passes.append((s, e, run.n_confirmed))
         source = "given" if meas_std is not None else ("provisional" if used is None else "data")
-        fit = NoiseFit(s, source, q, used, provisional, passes)
+        fit = NoiseFit(s, source, next(iter(noise.tracker_noise(q).values())), used, provisional, passes)
         agrees = plan is not None and (meas_std is not None or 1 / AGREE <= e / s <= AGREE)
-        if agrees and (used is not None or (meas_std is not None and accel_std is not None)):
+        if agrees and (used is not None or (meas_std is not None and noise.fixed)):
             return run, fit
         if plan is None and last is not None:
             prev, prev_run, prev_fit = last
@@ -507,8 +559,8 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
                 s = RESTART * e if RESTART * e < high else math.sqrt(e * high)
             else:
                 s = e if e > low else math.sqrt(s * low)
-        if accel_std is None:
-            q = plan.accel_std[model] if plan.accel_source[model] == "data" else None
+        if not noise.fixed:
+            q = noise.learned(plan)
         used = plan
 
 
@@ -594,24 +646,33 @@ def clutter_line(run: MultiRun) -> str:
             f"({est.surveillance_area:.3g} m²), {level}{peak}; --clutter-density fixes it")
 
 
-def multi_output_columns(model: str) -> list:
-    """The header: track, t, the model's state, std_<state>, speed, course (``track.speed_course``: the world
-    velocity's size and direction, whatever the model's state), existence, flag (1 on a divergence alarm's rows,
-    ``lgekf.apps.multi_monitor``)."""
-    names = list(get_model(model).state_names)
-    return ["track", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS, "existence", "flag"]
+def multi_output_columns(model: str, modes=None) -> list:
+    """The header: track, t, the model's state, std_<state>, speed, course (``multi_monitor.track_speed_course``: the
+    world velocity's size and direction, whatever the model's state), existence, flag (1 on a divergence alarm's rows,
+    ``lgekf.apps.multi_monitor``). The IMM (``IMM_MODEL``): the combined estimate in the common coordinates x, y, theta,
+    vx, vy, omega (the state names of se2r3, as ``lgekf track --model imm``), and the mode probabilities mu_<mode> of
+    its ``modes`` after course."""
+    if model == IMM_MODEL:
+        from ..core.common import COMMON_NAMES
+        from .track_imm import mode_columns
+
+        names, mu = list(COMMON_NAMES), mode_columns(modes)
+    else:
+        names, mu = list(get_model(model).state_names), []
+    return ["track", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS, *mu, "existence", "flag"]
 
 
 def write_multi(fh, model: str, run: MultiRun, digits: int | None, z=None) -> None:
     """Write the header and the rows of a ``MultiRun`` as CSV bytes to ``fh``. ``digits`` None (no ``--precision``):
     10 significant digits, the positions as many as keep 0.1 mm at the largest |x|, |y| of ``z`` (the detections;
     default the tracks' own), t 1 µs (``lgekf.io.formatting.output_digits``)."""
-    cols = multi_output_columns(model)
+    cols = multi_output_columns(model, getattr(run.tracker.bank, "modes", None))
     fh.write((",".join(cols) + "\n").encode())
     if run.ids.size == 0:
         return
-    n = get_model(model).n
-    values = np.hstack([run.values[:, :2 * n], speed_course(model, run.values[:, :n]), run.values[:, 2 * n:],
+    n = len(run.tracker.bank.state_names)
+    mu = [] if run.mu is None else [run.mu]
+    values = np.hstack([run.values[:, :2 * n], track_speed_course(model, run.values[:, :n]), *mu, run.values[:, 2 * n:],
                         run.flags[:, None].astype(float)])
     labels, row = np.unique(run.ids, return_inverse=True)
     col_digits, t_digits = output_digits(cols[2:], digits, values[:, :2] if z is None else z, run.times)

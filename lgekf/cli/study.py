@@ -52,17 +52,23 @@ def study_parser():
     ap.add_argument("--seed", type=int, default=2016, help="random seed (default 2016)")
     ap.add_argument("--dt", type=float, default=0.1, help="sampling period T in s (default 0.1)")
     ap.add_argument("--steps", type=int, default=100, help="measurements per trajectory (default 100)")
-    ap.add_argument("--v0", default="3,0", help="initial body velocity v_x,v_y in m/s (default 3,0)")
-    ap.add_argument("--w0", type=float, default=0.0, help="initial angular velocity in rad/s (default 0)")
+    ap.add_argument("--space", default=None, metavar="2d|3d",
+                    help="the space of motion: 2d (the paper's plane, default) or 3d (the protocol lifted to SE(3): "
+                         "truth se3r6, filters se3r6, ct3, cv3, 3-D position measurements)")
+    ap.add_argument("--v0", default=None, help="initial body velocity v_x,v_y (3d: v_x,v_y,v_z) in m/s (default 3,0 / 3,0,0)")
+    ap.add_argument("--w0", default=None, help="initial angular velocity in rad/s (3d: ω_x,ω_y,ω_z) (default 0)")
     ap.add_argument("--sigma-v", type=float, default=0.1, help="std of n_x, n_y (default 0.1)")
     ap.add_argument("--meas-std", type=float, default=0.5, help="measurement noise std per axis in m (default 0.5)")
     from ..experiments.simulate import truth_models
-    from ..core.registry import MEASUREMENTS, MODELS
+    from ..core.registry import ALL_MEASUREMENTS, MODELS
 
-    ap.add_argument("--truth", default="se2se2", choices=list(truth_models()), help="truth motion model (default se2se2)")
-    ap.add_argument("--filters", default=",".join(MODELS), metavar="LIST",
-                    help=f"comma-separated filters to run (default: all, {','.join(MODELS)})")
-    ap.add_argument("--measure", default="position", choices=list(MEASUREMENTS),
+    from ..core.registry import SPACES
+
+    truths = [t for sp_ in SPACES for t in truth_models(sp_)]
+    ap.add_argument("--truth", default=None, choices=truths, help="truth motion model (default se2se2; 3d: se3r6)")
+    ap.add_argument("--filters", default=None, metavar="LIST",
+                    help=f"comma-separated filters to run (default: all of the space, {','.join(MODELS)})")
+    ap.add_argument("--measure", default=None, choices=list(ALL_MEASUREMENTS),
                     help="measurement model: position (x, y) or pose (x, y, θ) in SE(2); filters without a heading (CV) get the position part")
     ap.add_argument("--heading-std", type=float, default=0.1, help="pose measurements: std of the heading noise in rad (default 0.1)")
     ap.add_argument(
@@ -84,33 +90,50 @@ def study_parser():
 
 
 def config_from_args(a):
-    from ..experiments.study import FILTERS, StudyConfig
+    from ..core.registry import DEFAULT_SPACE, SPACES, models_of
+    from ..experiments.study import StudyConfig
 
-    scale = {f: 1.0 for f in FILTERS}
+    space = DEFAULT_SPACE if a.space is None else a.space.lower()
+    if space not in SPACES:
+        raise UsageError(f"--space: unknown space {a.space!r}; choose one of {', '.join(SPACES)}")
+    base = StudyConfig.for_space(space)
+    own = models_of(space)
+    scale = dict(base.noise_scale)
     for item in a.noise_scale:
         if "=" not in item:
             raise UsageError(f"--noise-scale: expected FILTER=K, got {item!r}")
         k, v = item.split("=", 1)
-        if k not in FILTERS:
-            raise UsageError(f"--noise-scale: unknown filter {k!r}; choose one of {', '.join(FILTERS)}")
+        if k not in own:
+            raise UsageError(f"--noise-scale: unknown filter {k!r}; choose one of {', '.join(own)}")
         scale[k] = _floats("--noise-scale", v, 1)[0]
-    cfg = StudyConfig(
-        dt=a.dt, steps=a.steps, trajectories=a.trajectories, sigmas=parse_sigmas(a.sigmas),
-        v0=tuple(_floats("--v0", a.v0, 2)), w0=a.w0, sigma_v=a.sigma_v, meas_std=a.meas_std,
-        truth=a.truth, seed=a.seed, noise_scale=scale, filters=_filter_list(a.filters),
-        measurement=a.measure, heading_std=a.heading_std,
+    dim = SPACES[space]["dim"]
+    rot = (len(SPACES[space]["common_names"]) - 2 * dim) // 2
+    v0 = base.v0 if a.v0 is None else tuple(_floats("--v0", a.v0, dim))
+    if a.w0 is None:
+        w0 = base.w0
+    else:
+        w = _floats("--w0", a.w0, rot)
+        w0 = w[0] if space == DEFAULT_SPACE else tuple(w)
+    cfg = StudyConfig.for_space(
+        space, dt=a.dt, steps=a.steps, trajectories=a.trajectories, sigmas=parse_sigmas(a.sigmas),
+        v0=v0, w0=w0, sigma_v=a.sigma_v, meas_std=a.meas_std,
+        truth=base.truth if a.truth is None else a.truth, seed=a.seed, noise_scale=scale,
+        filters=base.filters if a.filters is None else _filter_list(a.filters, own),
+        measurement=base.measurement if a.measure is None else a.measure, heading_std=a.heading_std,
     )
     cfg.validate()
     return cfg
 
 
-def _filter_list(text):
-    from ..core.registry import MODELS
+def _filter_list(text, own=None):
+    from ..core.registry import MODELS, SPACES
 
+    own = MODELS if own is None else own
+    imm = ["imm"] if SPACES[next(iter(own.values())).space]["mixes"] else []
     names = [v.strip() for v in str(text).split(",") if v.strip()]
-    bad = [v for v in names if v not in MODELS and v != "imm"]
+    bad = [v for v in names if v not in own and v not in imm]
     if bad or not names:
-        raise UsageError(f"--filters: unknown filter {bad[0] if bad else text!r}; choose from {', '.join(MODELS)}, imm")
+        raise UsageError(f"--filters: unknown filter {bad[0] if bad else text!r}; choose from {', '.join([*own, *imm])}")
     return tuple(dict.fromkeys(names))
 
 
@@ -130,7 +153,8 @@ def cmd_study(argv) -> int:
         return cmd_study_multi(argv)
     from .. import __version__
     from ..core.registry import get_measurement
-    from ..experiments.study import claims_check, config_dict, run_study
+    from ..core.registry import SPACES
+    from ..experiments.study import claims_check, config_dict, paper_names, run_study
 
     a = study_parser().parse_args(argv)
     cfg = config_from_args(a)
@@ -185,7 +209,8 @@ def cmd_study(argv) -> int:
         "wall_seconds": None,
         "versions": {"lgekf": __version__, "numpy": numpy.__version__, "numba": numba.__version__, "python": platform.python_version()},
         "notes": [
-            "P0 of each filter = J P0_phys J^T with J the Jacobian of its coordinates w.r.t. (x, y, theta, vx, vy, omega) at the initial estimate",
+            "P0 of each filter = J P0_phys J^T with J the Jacobian of its coordinates w.r.t. the common coordinates "
+            f"({', '.join(SPACES[cfg.space]['common_names'])}) at the initial estimate",
             "common random numbers: the same standard-normal draws for every sigma_w and every filter",
             "SE(2)xSE(2) truth: omega is the angle of T_d and wraps at +-pi; see wrapped_trajectories_per_sigma",
         ],
@@ -211,7 +236,10 @@ def cmd_study(argv) -> int:
         pos_only = [f for f in res.filters if cfg.filter_measurement(f) != cfg.measurement]
         print(f"measurements: {cfg.measurement} (heading std {cfg.heading_std} rad)"
               + (f"; {', '.join(pos_only)} got the position part only (no heading)" if pos_only else ""))
-    print("\nclaims of the paper about Fig. 4 under this protocol:")
+    names = paper_names(res.filters)
+    lifted = {k: f for k, f in names.items() if k != f}
+    print("\nclaims of the paper about Fig. 4 under this protocol"
+          + (f" (in {cfg.space}: {', '.join(f'{f} stands for {k}' for k, f in lifted.items())}):" if lifted else ":"))
     for c in claims:
         print(f"  [{'holds' if c.holds else 'does not hold'}] {c.text}: {c.evidence}")
     print(f"\nwrote {out}/summary.csv, rmse.csv, meta.json{'' if a.no_figure else ', study.png'}  "

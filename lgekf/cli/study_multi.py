@@ -24,7 +24,11 @@ def study_multi_parser():
                                     "(8 targets, births, deaths, crossings, close parallel targets).")
     ap.add_argument("--multi", action="store_true", required=True, help="the multi-target study")
     ap.add_argument("--out", type=Path, default=Path("results"), help="results folder (default results/): multi_gospa.csv")
-    ap.add_argument("--models", default=",".join(MODELS), metavar="LIST", help=f"models (default all: {','.join(MODELS)})")
+    ap.add_argument("--models", default=",".join(MODELS), metavar="LIST",
+                    help=f"models (default all: {','.join(MODELS)}); imm: an IMM of --imm-modes per track")
+    ap.add_argument("--imm-modes", default=None, metavar="LIST",
+                    help="with imm in --models: its modes (default those of lgekf track --model imm, "
+                         "cv,se2r3:calm,se2r3:manoeuvre)")
     ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help="associations (default jpda,pda,gnn)")
     ap.add_argument("--initiation", default=None, metavar="LIST",
                     help="track initiations to compare, one-point,two-point (default: the tracker's default for each "
@@ -69,12 +73,12 @@ def _names(option, text, allowed):
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
     from ..estimators.multitarget.association import ASSOCIATIONS
-    from ..estimators.multitarget.tracker import INITIATIONS
+    from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS
     from ..experiments.clutter_scenarios import STUDY_CLUTTERS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 
     a = study_multi_parser().parse_args(argv)
-    cfg = MultiStudyConfig(models=_names("--models", a.models, list(MODELS)),
+    cfg = MultiStudyConfig(models=_names("--models", a.models, [*MODELS, IMM_MODEL]), imm_modes=a.imm_modes,
                            associations=_names("--association", a.association, list(ASSOCIATIONS)),
                            initiations=(None,) if a.initiation is None else _names("--initiation", a.initiation,
                                                                                    list(INITIATIONS)),

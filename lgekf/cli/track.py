@@ -223,10 +223,9 @@ def cmd_track(argv) -> int:
         from .track_multi import MultiTrack
 
         est = MultiTrack(a, say)
-    elif a.model == "imm" or a.imm_modes is not None or a.imm_switch is not None:  # the IMM's modules only then (0.25 s)
-        from .track_imm import ImmTrack, check_imm_options
+    elif a.model == "imm":  # the IMM's modules only then (0.25 s); its options without it: check_estimator_options
+        from .track_imm import ImmTrack
 
-        check_imm_options(a)
         est = ImmTrack(a, say)
     else:
         est = ModelsTrack(a, say)

@@ -9,20 +9,16 @@ from ..apps.track_imm import ImmTrackOptions, imm_noise, tune_imm_classes, write
 from ..apps.warmup import imm_compile_seconds
 from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
+from .track_options import check_imm_options
 from .track_parquet import is_parquet
 from .track_pipeline import TrackEstimator
 
-__all__ = ["ImmTrack", "check_imm_options"]
+__all__ = ["ImmTrack", "check_imm_options", "imm_modes_line"]
 
 
-def check_imm_options(a) -> None:
-    """--imm-modes / --imm-switch only with --model imm (one line otherwise)."""
-    if a.model != "imm" and (a.imm_modes is not None or a.imm_switch is not None):
-        raise ValueError("--imm-modes/--imm-switch: only with --model imm")
-
-
-def _modes(opts) -> str:
-    return ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in opts.modes)
+def imm_modes_line(modes) -> str:
+    """The modes and their noise, for the stderr lines (``MODE (stds), ...``)."""
+    return ", ".join(f"{m.name} ({','.join(f'{v:.3g}' for v in m.accel_std)})" for m in modes)
 
 
 class ImmTrack(TrackEstimator):
@@ -64,7 +60,7 @@ class ImmTrack(TrackEstimator):
             for c, (summary, (o, r)) in enumerate(zip(summaries, self.classes.noise)):
                 head = f"class {c + 1}: " if len(found.plans) > 1 else ""
                 say(summary)
-                say(f"{head}imm: modes {_modes(o)}; switch {o.switch:g} per step; meas-std {r:.3g} m")
+                say(f"{head}imm: modes {imm_modes_line(o.modes)}; switch {o.switch:g} per step; meas-std {r:.3g} m")
             warn_misfit(a.meas_std, meas, starts)
         else:
             self.classes, found = imm_noise(meas, starts, opts, a.meas_std, a.omega_std, monitor)
@@ -74,7 +70,7 @@ class ImmTrack(TrackEstimator):
                 head = f"class {c + 1}: " if len(found.plans) > 1 else ""
                 if plan.estimated:
                     say(head + plan.describe())
-                say(f"{head}imm: modes {_modes(o)}; switch {o.switch:g} per step; meas-std {r:.3g} m "
+                say(f"{head}imm: modes {imm_modes_line(o.modes)}; switch {o.switch:g} per step; meas-std {r:.3g} m "
                     f"({'given' if a.meas_std is not None else plan.meas_source})")
             warn_misfit(a.meas_std, meas, starts)
         if getattr(a, "smooth", False):

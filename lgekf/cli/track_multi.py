@@ -19,6 +19,7 @@ from ..apps.track_multi import (
 from ..core.registry import MODELS, get_measurement
 from ..core.validate import positive_scalar
 from ..estimators.multitarget.clutter import DEFAULT_CLUTTER_SOURCE, clutter_from_data
+from ..estimators.multitarget.tracker import IMM_MODEL
 from ..io.files import is_stdio
 from ..io.cleaning import check_time_order, skipped_summary, sort_by_time
 from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows
@@ -49,7 +50,7 @@ def _accel_std(items, model):
 
 def _check_arguments(a):
     """The multi-target options' errors before any reading (one line each, exit 2; --precision and the paths are
-    the pipeline's, ``lgekf.cli.track.check_track_arguments``)."""
+    the pipeline's, ``lgekf.cli.track.check_track_arguments``; the IMM's modes and their measurement: the tracker's)."""
     if a.meas_std is not None:
         positive_scalar("meas-std", a.meas_std)
     if a.max_speed is not None:
@@ -58,6 +59,11 @@ def _check_arguments(a):
         positive_scalar("scan-window", a.scan_window, allow_zero=True)
     if a.clutter is not None and a.clutter_density is not None:
         raise ValueError("--clutter: not with --clutter-density (a given density is used as it is)")
+    if a.model == IMM_MODEL:
+        if a.accel_std:
+            raise ValueError("--multi --model imm: --accel-std is not supported (give the modes' noise in --imm-modes, "
+                             "e.g. se2r3:0.2/0.2/0.5)")
+        return None
     q = _accel_std(a.accel_std, a.model)
     MODELS[a.model].measurement(a.measure)
     return q
@@ -108,10 +114,24 @@ class MultiTrack(TrackEstimator):
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
                          max_speed=self.max_speed, omega_std=a.omega_std,
                          clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
+        self.noise_fixed = self.q is not None  # the process noise is not for the data to set
+        if a.model == IMM_MODEL:
+            from ..apps.track_imm import ImmTrackOptions
+
+            self.args.update(imm_modes=a.imm_modes, imm_switch=a.imm_switch)
+            self.noise_fixed = not ImmTrackOptions(a.imm_modes, a.imm_switch).tunable_models()  # every mode's in numbers
         from ..estimators.multitarget.tracker import MultiTargetTracker
 
         r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
         MultiTargetTracker(**self.args, accel_std=self.q, meas_std=get_measurement(a.measure).stds(r, self.heading_std))
+
+    def compile_seconds(self):
+        """The compile notice's estimate with the IMM (``lgekf.apps.warmup.imm_compile_seconds``); None otherwise."""
+        if self.a.model != IMM_MODEL:
+            return None
+        from ..apps.warmup import imm_compile_seconds
+
+        return imm_compile_seconds(False, False)
 
     def read(self):
         """The detections in time order, t in seconds; no objects (starts None)."""
@@ -141,11 +161,16 @@ class MultiTrack(TrackEstimator):
                 "bounding-box area; give --clutter-density to set it)")
         fit_args = dict(heading_std=self.heading_std, omega_std=a.omega_std, monitor=monitor is not None)
         self.run, fit = fit_noise(t, self.Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
-        if a.meas_std is None or q is None:
+        if a.meas_std is None or not self.noise_fixed:
             say(fit.describe(a.model, q is not None, self.heading_std if get_measurement(a.measure).has_angle else None,
                              a.heading_std is not None))
         if source in ("scan", "map"):
             say(clutter_line(self.run))
+        if a.model == IMM_MODEL:
+            from .track_imm import imm_modes_line
+
+            bank = self.run.tracker.bank
+            say(f"imm: modes {imm_modes_line(bank.modes)}; switch {1.0 - bank.setup.PI[0, 0]:.3g} per scan")
         if a.meas_std is not None:
             e = fit.check
             if e is None or not 1 / AGREE <= e / a.meas_std <= AGREE:  # the given value disagrees: the data's own estimate

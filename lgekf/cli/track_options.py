@@ -18,8 +18,8 @@ from ..io.units import TIME_UNITS
 from . import ArgumentParser
 from .cluster import add_cluster_options
 
-__all__ = ["track_parser", "add_column_options", "column_names", "check_estimator_options", "MULTI_DEFAULTS",
-           "DEFAULT_MAX_SPEED", "SPEED_WARN_FRACTION"]
+__all__ = ["track_parser", "add_column_options", "column_names", "check_estimator_options", "check_imm_options",
+           "MULTI_DEFAULTS", "DEFAULT_MAX_SPEED", "SPEED_WARN_FRACTION"]
 
 SPEED_WARN_FRACTION = 0.8  # --multi: a confirmed track this close to the default --max-speed is warned about
 DEFAULT_MAX_SPEED = 30.0  # m/s
@@ -34,7 +34,7 @@ MULTI_ONLY = ("association", "initiation", "detection_prob", "clutter_density", 
 SINGLE_ONLY = (("format", "csv", "--format"), ("frame_dt", None, "--frame-dt"), ("id_column", None, "--id-column"),
                ("use_heading", False, "--use-heading"), ("heading_unit", None, "--heading-unit"),
                ("full_cov", False, "--full-cov"), ("tune", False, "--tune"), ("tune_method", "lbfgs", "--tune-method"),
-               ("smooth", False, "--smooth"), ("imm_modes", None, "--imm-modes"), ("imm_switch", None, "--imm-switch"),
+               ("smooth", False, "--smooth"),
                ("workers", None, "--workers"), ("scheduler", None, "--scheduler"),
                ("partition_rows", PARTITION_ROWS, "--partition-rows"))
 
@@ -113,11 +113,12 @@ def track_parser():
                    help="with --tune: lbfgs = the likelihood optimiser (default), em = expectation-maximisation for the "
                         "linear Gaussian models (cv), the optimiser for the others")
 
-    g = ap.add_argument_group("IMM (--model imm)")
+    g = ap.add_argument_group("IMM (--model imm; with --multi an IMM per track)")
     g.add_argument("--imm-modes", default=None, metavar="LIST",
-                   help="modes MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3:calm,se2r3:manoeuvre)")
+                   help="modes MODEL[:calm|manoeuvre|a/b/c],... (default cv,se2r3:calm,se2r3:manoeuvre; with --multi at "
+                        "least two)")
     g.add_argument("--imm-switch", type=float, default=None, metavar="P",
-                   help="probability of leaving a mode per step (default 0.05)")
+                   help="probability of leaving a mode per step (per scan with --multi; default 0.05)")
 
     g = ap.add_argument_group("multi-target tracking (--multi: unlabelled detections with clutter and misses)")
     g.add_argument("--multi", action="store_true",
@@ -182,12 +183,20 @@ def track_parser():
     return ap
 
 
+def check_imm_options(a) -> None:
+    """--imm-modes / --imm-switch only with --model imm (one line otherwise)."""
+    if a.model != "imm" and (a.imm_modes is not None or a.imm_switch is not None):
+        raise ValueError("--imm-modes/--imm-switch: only with --model imm")
+
+
 def check_estimator_options(a) -> None:
     """One line (ValueError) for an option of another estimator: a multi-target option without ``--multi``, or an
-    option of the labelled-object estimators with it; then the multi-target defaults filled in."""
+    option of the labelled-object estimators with it, an IMM option without ``--model imm``; then the multi-target
+    defaults filled in."""
+    check_imm_options(a)
     if a.multi:
         given = [name for attr, default, name in SINGLE_ONLY if getattr(a, attr) != default]
-        if a.model in ("all", "imm"):
+        if a.model == "all":
             given.insert(0, f"--model {a.model}")
         if given:
             raise ValueError(f"{', '.join(given)}: not available with --multi (see docs/track_multi.md)")

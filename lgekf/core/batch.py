@@ -7,7 +7,7 @@ from numpy.typing import ArrayLike
 
 from .covariance import pack, unpack
 from .filters import measurement_std
-from .registry import get_model
+from .registry import base_measurement, get_model
 from .rts import forward_store, smooth_stored
 from .validate import as_float_array, positive_vector, spd_matrix
 
@@ -64,14 +64,14 @@ def measurements_array(z, m: int) -> np.ndarray:
 
 
 def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: ArrayLike, meas_std: float | ArrayLike,
-                 x0: ArrayLike, P0: ArrayLike, measurement: str = "position", return_cov: bool = False,
+                 x0: ArrayLike, P0: ArrayLike, measurement: str | None = None, return_cov: bool = False,
                  return_nis: bool = False, smooth: bool = False) -> np.ndarray | tuple[np.ndarray, ...]:
     """Run ``model`` over a batch of measurement sequences.
 
     Parameters
     ----------
     model : str
-        A registry model name ("se2se2", "se2r3", "se2r2", "ctrv", "cv", ...).
+        A registry model name ("se2se2", "se2r3", "se2r2", "ctrv", "cv"; in 3-D "se3r6", "ct3", "cv3", ...).
     z : array_like, (B, K, m)
         Measurements: (x, y) for ``measurement="position"``, (x, y, θ) for ``"pose"``. Step k is predicted
         by dt then updated with z[:, k]; a row containing NaN is a missed detection (predict only, NIS NaN).
@@ -83,7 +83,9 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
         Initial states in physical coordinates (the estimate at time 0, before z[:, 0]).
     P0 : array_like, (n, n) or (B, n, n)
         Initial covariances in the filter's coordinates.
-    measurement : {"position", "pose"}
+    measurement : str, optional
+        ``"position"``, ``"pose"``, ``"position3"`` (a 3-D model's (x, y, z)); default: the position measurement of the
+        model's space.
     return_cov, return_nis : bool
         Also return the covariances (B, K, n, n) and the NIS of every update (B, K).
     smooth : bool
@@ -103,6 +105,8 @@ def filter_batch(model: str, z: ArrayLike, *, dt: float | ArrayLike, accel_std: 
         ``smooth`` the smoothed states and (with ``return_cov``) the smoothed covariances.
     """
     spec = get_model(model)
+    if measurement is None:
+        measurement = base_measurement(spec.space)
     n = spec.n
     r = measurement_std(spec, measurement, meas_std)
     m = spec.measurement(measurement).dim

@@ -1,26 +1,33 @@
-"""The common physical coordinates c = (x, y, θ, v_x, v_y, ω) ((v_x, v_y) body-frame velocity) and how
-every model's state and covariance are made from them (what ``lgekf track`` and the study do inside)."""
+"""The common physical coordinates c of a model's space and how every model's state and covariance are made from them
+(what ``lgekf track`` and the study do inside): in the plane c = (x, y, θ, v_x, v_y, ω) ((v_x, v_y) body-frame
+velocity), in 3-D c = (x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z) (Z-Y-X Euler angles, body-frame
+velocity and rate; ``lgekf.core.registry.SPACES``)."""
 
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .registry import get_model
+from .registry import DEFAULT_SPACE, SPACES, get_model
 from .validate import as_float_array
 
-__all__ = ["state_from_common", "covariance_from_common"]
+__all__ = ["state_from_common", "covariance_from_common", "common_world_velocity", "COMMON_NAMES"]
+
+#: the names of the common coordinates (the physical state of SE(2)×SE(2) and SE(2)×R³)
+COMMON_NAMES = SPACES[DEFAULT_SPACE]["common_names"]  # the plane's: ("x", "y", "theta", "vx", "vy", "omega")
 
 
 def state_from_common(model: str, c: ArrayLike) -> np.ndarray:
-    """The physical state of ``model`` for common coordinates c (6,) or (B, 6).
+    """The physical state of ``model`` for common coordinates c (n_c,) or (B, n_c) of its space (n_c = 6 in the plane,
+    12 in 3-D).
 
     Parameters
     ----------
     model : str
         A registry model.
-    c : array_like, (6,) or (B, 6)
-        Common coordinates (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.
+    c : array_like, (n_c,) or (B, n_c)
+        Common coordinates (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame; in 3-D
+        (x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z).
 
     Returns
     -------
@@ -32,10 +39,11 @@ def state_from_common(model: str, c: ArrayLike) -> np.ndarray:
     array([0. , 0. , 0.1, 3. , 0.2])
     """
     spec = get_model(model)
+    nc = len(SPACES[spec.space]["common_names"])
     c = as_float_array("c", c)
-    flat = c.reshape(-1, 6) if c.shape[-1:] == (6,) else None
+    flat = c.reshape(-1, nc) if c.shape[-1:] == (nc,) else None
     if flat is None:
-        raise ValueError(f"c: expected shape (6,) or (B, 6), got {c.shape}")
+        raise ValueError(f"c: expected shape ({nc},) or (B, {nc}), got {c.shape}")
     out = np.array([spec.kernels.common_to_state(ci) for ci in flat])
     return out.reshape(c.shape[:-1] + (spec.n,))
 
@@ -44,15 +52,16 @@ def covariance_from_common(model: str, c: ArrayLike, P_common: ArrayLike) -> np.
     """P0 in the filter's coordinates from a covariance of the common coordinates.
 
     P = J P_c Jᵀ with J the (generated) Jacobian of the filter's tangent coordinates ε (X = μ·exp ε) with
-    respect to c = (x, y, θ, v_x, v_y, ω) at c. This is what ``lgekf track`` and the study do inside.
+    respect to the common coordinates c at c (in the plane (x, y, θ, v_x, v_y, ω)). This is what ``lgekf track`` and the
+    study do inside.
 
     Parameters
     ----------
     model : str
         A registry model.
-    c : array_like, (6,) or (B, 6)
-        Common coordinates of the estimate.
-    P_common : array_like, (6, 6) or (B, 6, 6)
+    c : array_like, (n_c,) or (B, n_c)
+        Common coordinates of the estimate (n_c = 6 in the plane, 12 in 3-D).
+    P_common : array_like, (n_c, n_c) or (B, n_c, n_c)
         Their covariance.
 
     Returns
@@ -67,10 +76,17 @@ def covariance_from_common(model: str, c: ArrayLike, P_common: ArrayLike) -> np.
     True
     """
     spec = get_model(model)
+    nc = len(SPACES[spec.space]["common_names"])
     c = as_float_array("c", c)
     Pc = as_float_array("P_common", P_common)
-    if c.shape[-1:] != (6,) or Pc.shape[-2:] != (6, 6):
-        raise ValueError(f"c, P_common: expected (…, 6) and (…, 6, 6), got {c.shape} and {Pc.shape}")
-    J = np.array([spec.kernels.common_jacobian(ci) for ci in c.reshape(-1, 6)]).reshape(c.shape[:-1] + (spec.n, 6))
+    if c.shape[-1:] != (nc,) or Pc.shape[-2:] != (nc, nc):
+        raise ValueError(f"c, P_common: expected (…, {nc}) and (…, {nc}, {nc}), got {c.shape} and {Pc.shape}")
+    J = np.array([spec.kernels.common_jacobian(ci) for ci in c.reshape(-1, nc)]).reshape(c.shape[:-1] + (spec.n, nc))
     P = J @ Pc @ np.swapaxes(J, -1, -2)
     return 0.5 * (P + np.swapaxes(P, -1, -2))
+
+
+def common_world_velocity(c: np.ndarray) -> np.ndarray:
+    """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
+    ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
+    return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)

@@ -16,7 +16,8 @@ Conventions
 * ``accel_std``: the model's process-noise stds (``noise_names``): SE(2)×SE(2), SE(2)×R³ (σ_x, σ_y, σ_ω)
   as n_k of the paper (Q = G diag(σ²) Gᵀ, G = [T²/2·I; T·I]); SE(2)×R² and CTRV (σ_a, σ_α) forward and
   yaw acceleration; CV σ_a (isotropic).
-* ``measurement="position"`` (default): z = (x, y), ``meas_std`` one std r per axis.
+* ``measurement="position"`` (default in the plane; ``"position3"`` in space): z = (x, y) (or (x, y, z)), ``meas_std``
+  one std r per axis.
   ``measurement="pose"``: z = (x, y, θ) ∈ SE(2), Z = h(X)·exp(m), m ~ N(0, diag(σ_x², σ_y², σ_θ²)) in
   the tangent of SE(2) (body frame), ``meas_std = (σ_x, σ_y, σ_θ)``; not for models without a heading (CV).
 """
@@ -27,10 +28,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .covariance import pack, unpack
-from .registry import MODELS, ModelSpec, get_model
+from .registry import ALL_MODELS, ModelSpec, base_measurement, get_model
 from .validate import as_float_array, positive_scalar, positive_vector, spd_matrix
 
-__all__ = ["Filter", "make_filter", *[f"{name.upper()}Filter" for name in MODELS]]
+__all__ = ["Filter", "make_filter", *[f"{name.upper()}Filter" for name in ALL_MODELS]]
 
 
 def measurement_std(spec: ModelSpec, measurement: str, meas_std) -> np.ndarray:
@@ -55,8 +56,9 @@ class Filter:
     P0 : array_like
         Initial covariance (n × n, symmetric positive definite) in the filter's tangent coordinates;
         see ``lgekf.covariance_from_common`` to build it from a covariance of the common coordinates.
-    measurement : {"position", "pose"}
-        The measurement model used by ``update``.
+    measurement : str, optional
+        The measurement model used by ``update`` (``"position"``, ``"pose"``; ``"position3"`` for a 3-D model); default:
+        the position measurement of the model's space.
     model : str, optional
         The registry model (only for the generic ``Filter``; the per-model classes fix it).
     record : bool
@@ -86,8 +88,10 @@ class Filter:
     model = ""
 
     def __init__(self, dt: float, accel_std: ArrayLike, meas_std: float | ArrayLike, x0: ArrayLike, P0: ArrayLike, *,
-                 measurement: str = "position", model: str | None = None, record: bool = False):
+                 measurement: str | None = None, model: str | None = None, record: bool = False):
         spec = get_model(model if model is not None else self.model)
+        if measurement is None:
+            measurement = base_measurement(spec.space)
         self._spec = spec
         self._k = spec.kernels
         self.measurement = measurement
@@ -258,7 +262,7 @@ def _model_class(spec: ModelSpec) -> type:
     return type(f"{spec.name.upper()}Filter", (Filter,), {"model": spec.name, "__doc__": doc, "__module__": __name__})
 
 
-_CLASSES = {name: _model_class(spec) for name, spec in MODELS.items()}
+_CLASSES = {name: _model_class(spec) for name, spec in ALL_MODELS.items()}
 globals().update({cls.__name__: cls for cls in _CLASSES.values()})
 
 

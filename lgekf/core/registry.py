@@ -11,10 +11,12 @@ from types import ModuleType
 
 import numpy as np
 
+from ..generated.registry import DEFAULT_SPACE, SPACES
 from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
-__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "MEASUREMENTS", "BASE_MEASUREMENT", "get_model", "get_measurement",
+__all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "ALL_MODELS", "MEASUREMENTS", "ALL_MEASUREMENTS", "BASE_MEASUREMENT",
+           "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "get_model", "get_measurement",
            "imm_kernel"]
 
 
@@ -24,6 +26,7 @@ class MeasurementSpec:
 
     name: str
     description: str
+    space: str  # the space it observes (``SPACES``): it fits the models of that space
     z_names: tuple
     noise_names: tuple
     angles: tuple
@@ -62,6 +65,7 @@ class ModelSpec:
     display_name: str
     description: str
     color: str
+    space: str  # the space the object moves in (``SPACES``: its common coordinates)
     state_names: tuple  # physical state, also the order of P's coordinates
     internal_names: tuple
     noise_names: tuple  # the entries of accel_std
@@ -76,6 +80,7 @@ class ModelSpec:
     refused: dict = field(default_factory=dict)  # {measurement: why not}
     linear: tuple = ()  # measurements with which the model is linear Gaussian (F, Q, ℋ state-free; EM applies)
     forward_speed: tuple = ()  # (heading, speed) physical indices: (heading + π, −speed) is the same motion; () for none
+    lifts: str = ""  # the planar model this 3-D model lifts ("" for none): the study compares it where the paper compares that
 
     @property
     def kernels(self) -> ModuleType:
@@ -117,7 +122,7 @@ class ModelSpec:
     def measurement_or_base(self, name: str) -> str:
         """``name`` if this model takes that measurement, else ``BASE_MEASUREMENT`` (e.g. CV given poses gets
         their position part)."""
-        return name if name in self.measurements else BASE_MEASUREMENT
+        return name if name in self.measurements else base_measurement(self.space)
 
     def measurement(self, name: str) -> MeasurementSpec:
         """The measurement model ``name`` if this model supports it, else a ValueError saying why."""
@@ -131,12 +136,35 @@ class ModelSpec:
         return tuple(sigma_v if k == "v" else sigma_w for k in self.matched_noise)
 
 
-MODELS: dict[str, ModelSpec] = {name: ModelSpec(name=name, **entry) for name, entry in _TABLE.items()}
-MEASUREMENTS: dict[str, MeasurementSpec] = {name: MeasurementSpec(name=name, **entry) for name, entry in _MEASUREMENTS.items()}
-# the measurement every model takes (the smallest one): the default of every command, and what a model that cannot
-# take a study's measurement gets instead (from the table, not by name)
-BASE_MEASUREMENT: str = min((m for m in MEASUREMENTS if all(m in spec.measurements for spec in MODELS.values())),
-                            key=lambda m: MEASUREMENTS[m].dim)
+#: every registered model, of every space
+ALL_MODELS: dict[str, ModelSpec] = {name: ModelSpec(name=name, **entry) for name, entry in _TABLE.items()}
+#: every registered measurement, of every space
+ALL_MEASUREMENTS: dict[str, MeasurementSpec] = {name: MeasurementSpec(name=name, **entry) for name, entry in _MEASUREMENTS.items()}
+
+
+def models_of(space: str) -> dict[str, ModelSpec]:
+    """The registered models of one space (``SPACES``), in table order."""
+    return {name: spec for name, spec in ALL_MODELS.items() if spec.space == space}
+
+
+def measurements_of(space: str) -> dict[str, MeasurementSpec]:
+    """The registered measurements of one space."""
+    return {name: spec for name, spec in ALL_MEASUREMENTS.items() if spec.space == space}
+
+
+def base_measurement(space: str) -> str:
+    """The measurement every model of ``space`` takes (the smallest one): the default of the commands, and what a model
+    that cannot take a study's measurement gets instead (from the table, not by name)."""
+    models = models_of(space).values()
+    return min((m for m in measurements_of(space) if all(m in spec.measurements for spec in models)),
+               key=lambda m: ALL_MEASUREMENTS[m].dim)
+
+
+#: the models of the default space (the plane): what ``lgekf track``, ``study``, ``sweep`` and ``evaluate`` offer
+MODELS: dict[str, ModelSpec] = models_of(DEFAULT_SPACE)
+#: the measurements of the default space
+MEASUREMENTS: dict[str, MeasurementSpec] = measurements_of(DEFAULT_SPACE)
+BASE_MEASUREMENT: str = base_measurement(DEFAULT_SPACE)
 
 
 def get_model(name: str) -> ModelSpec:
@@ -158,17 +186,17 @@ def get_model(name: str) -> ModelSpec:
         For an unknown name, listing the registered ones.
     """
     try:
-        return MODELS[name]
+        return ALL_MODELS[name]
     except (KeyError, TypeError):
-        raise ValueError(f"model: unknown model {name!r}; choose one of {', '.join(MODELS)}") from None
+        raise ValueError(f"model: unknown model {name!r}; choose one of {', '.join(ALL_MODELS)}") from None
 
 
 def get_measurement(name: str) -> MeasurementSpec:
     """The registered measurement model ``name`` or a ValueError listing the choices."""
     try:
-        return MEASUREMENTS[name]
+        return ALL_MEASUREMENTS[name]
     except (KeyError, TypeError):
-        raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(MEASUREMENTS)}") from None
+        raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(ALL_MEASUREMENTS)}") from None
 
 
 def imm_kernel(family: str, measurement: str):

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..core.filters import SE2SE2Filter
-from ..core.registry import BASE_MEASUREMENT, MODELS
+from ..core.registry import ALL_MODELS, DEFAULT_SPACE, base_measurement
 from ..generated import se2
 from .simulate import simulate
 
@@ -16,8 +16,8 @@ __all__ = [
     "study_figure", "banana_figure", "banana_panel", "highest_density_region", "trajectories_figure", "COLORS", "LABELS",
 ]
 
-COLORS = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "black", "imm": "tab:brown"}
-LABELS = {**{name: spec.display_name for name, spec in MODELS.items()}, "measurements": "measurements", "imm": "IMM"}
+COLORS = {**{name: spec.color for name, spec in ALL_MODELS.items()}, "measurements": "black", "imm": "tab:brown"}
+LABELS = {**{name: spec.display_name for name, spec in ALL_MODELS.items()}, "measurements": "measurements", "imm": "IMM"}
 
 
 def _plt():
@@ -53,7 +53,8 @@ def study_figure(result, path, pdf: bool = False):
     c = result.config
     ax.set_xlabel("rotational process noise σ_ω [rad/s²]")
     ax.set_ylabel("position RMSE [m]")
-    meas = "" if c.measurement == BASE_MEASUREMENT else f", {c.measurement} measurements"
+    meas = "" if c.measurement == base_measurement(c.space) else f", {c.measurement} measurements"
+    meas += "" if c.space == DEFAULT_SPACE else f", in {c.space}"
     ax.set_title(f"{c.trajectories} trajectories per σ_ω, T = {c.dt:g} s, {c.steps} steps, truth {c.truth}{meas}")
     ax.set_xlim(s.min(), s.max() if s.max() > s.min() else s.min() + 1)
     ax.set_ylim(bottom=0)

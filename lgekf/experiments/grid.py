@@ -60,7 +60,10 @@ NOT_AN_AXIS = {
     "filters": "every cell runs every filter of [fixed] filters on the same draws (one row per filter in the results)",
 }
 _HASH_PREFIX = b"lgekf.sweep.cell/1\n"
-assert set(OPTION_KINDS) == {f.name for f in fields(StudyConfig)}, "a StudyConfig field has no grid kind"
+#: StudyConfig fields a grid does not set: sweeps run the paper's protocol in the plane (the 3-D study is
+#: ``lgekf study --space 3d``), and leaving the field out keeps the cells' keys of earlier sweeps
+NOT_AN_OPTION = {"space"}
+assert set(OPTION_KINDS) | NOT_AN_OPTION == {f.name for f in fields(StudyConfig)}, "a StudyConfig field has no grid kind"
 
 
 class GridError(ValueError):
@@ -183,6 +186,8 @@ def _defaults() -> dict:
     c = StudyConfig()
     out = {}
     for f in fields(StudyConfig):
+        if f.name in NOT_AN_OPTION:
+            continue
         v = getattr(c, f.name)
         if isinstance(v, tuple):
             v = list(v)

@@ -14,11 +14,12 @@ from ..core.registry import get_model
 __all__ = ["position_rmse", "nees"]
 
 
-def position_rmse(est, truth_xy) -> np.ndarray:
-    """Per-trajectory RMSE of the position: est (B, K, >=2), truth_xy (B, K, >=2) -> (B,)."""
+def position_rmse(est, truth_xy, dim: int = 2) -> np.ndarray:
+    """Per-trajectory RMSE of the position (the first ``dim`` coordinates: 2 in the plane, 3 in space):
+    est (B, K, >=dim), truth_xy (B, K, >=dim) -> (B,)."""
     est = np.asarray(est, float)
     truth_xy = np.asarray(truth_xy, float)
-    return np.sqrt(np.mean(np.sum((est[..., :2] - truth_xy[..., :2]) ** 2, axis=-1), axis=-1))
+    return np.sqrt(np.mean(np.sum((est[..., :dim] - truth_xy[..., :dim]) ** 2, axis=-1), axis=-1))
 
 
 def nees(model: str, est, cov, truth) -> np.ndarray:

@@ -3,7 +3,9 @@ the base scenario (``lgekf.experiments.multi_scenarios``), scored by GOSPA (α =
 ``lgekf.experiments.gospa``) per scan and averaged, its localisation / missed / false parts, the track
 switches and the wall time of the tracker.
 
-Every cell sees the same detections (one stream per run seed). With ``dataset`` the streams are the real
+Every cell sees the same detections (one stream per run seed). A model ``imm`` (``IMM_MODEL``) is the tracker with
+an IMM per track (``imm_modes``, default the modes of ``lgekf track --model imm``), each mode with its model's
+default noise × its level, as the models of the other cells have their defaults. With ``dataset`` the streams are the real
 trajectories of ``lgekf evaluate`` (``lgekf.experiments.multi_scenarios.dataset_scenario``: truth + noise +
 misses + clutter) instead of the base scenario; with ``scenario`` "burst" or "patch" the base scenario's targets
 with clutter varying in time or concentrated in space (``lgekf.experiments.clutter_scenarios``). ``clutters``
@@ -20,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
-from ..estimators.multitarget.tracker import INITIATIONS, MultiTargetTracker
+from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS, MultiTargetTracker
 from .clutter_scenarios import CLUTTER_SCENARIOS, STUDY_CLUTTERS, clutter_scenario, study_clutter
 from .gospa import gospa_series
 from ..io.datasets import load_dataset
@@ -53,12 +55,19 @@ class MultiStudyConfig:
     max_speed: float = 30.0
     measurement: str = "position"  # or "pose" (models without a heading get the position part)
     heading_std: float = 0.05
+    imm_modes: str | None = None  # the modes of the model "imm" (None: the tracker's default, DEFAULT_MODES)
     scenario: str = "base"  # or "burst", "patch" (clutter_scenarios; clutter_density is then the background λ₀)
     clutters: tuple = ("true",)  # the clutter densities compared (clutter_scenarios.STUDY_CLUTTERS)
 
     def validate(self):
         for m in self.models:
-            get_model(m)
+            if m != IMM_MODEL:
+                get_model(m)
+        if self.imm_modes is not None and IMM_MODEL not in self.models:
+            raise ValueError(f"--imm-modes: only with the model {IMM_MODEL} in --models")
+        if IMM_MODEL in self.models:  # the modes' errors now, not after the other cells
+            MultiTargetTracker(model=IMM_MODEL, imm_modes=self.imm_modes, measurement=self.measurement,
+                               meas_std=get_measurement(self.measurement).stds(self.meas_std, self.heading_std))
         bad = [i for i in self.initiations if i is not None and i not in INITIATIONS]
         if bad or not self.initiations:
             raise ValueError(f"--initiation: unknown name {bad[0] if bad else ''!r}; choose from {', '.join(INITIATIONS)}")
@@ -151,13 +160,15 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
     cells = []
     for model, assoc, init, clutter in itertools.product(cfg.models, cfg.associations, cfg.initiations, cfg.clutters):
         parts, sw, wall, scans = [], 0, 0.0, 0
-        meas = get_measurement(get_model(model).measurement_or_base(cfg.measurement))
+        imm = model == IMM_MODEL
+        meas = get_measurement(cfg.measurement if imm else get_model(model).measurement_or_base(cfg.measurement))
+        extra = {"imm_modes": cfg.imm_modes} if imm else {}
         for sc in scen:
             trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
                                      clutter_density=study_clutter(clutter, sc, cfg.clutter_density),
                                      max_speed=cfg.max_speed,
                                      measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std),
-                                     initiation=init)
+                                     initiation=init, **extra)
 
             def step(t, Z, trk=trk, m=meas.dim):
                 rep = trk.step(t, Z[:, :m])

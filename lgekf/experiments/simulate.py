@@ -19,21 +19,22 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.registry import MODELS, get_measurement, get_model
+from ..core.common import COMMON_NAMES
+from ..core.registry import DEFAULT_SPACE, SPACES, get_measurement, get_model, models_of
 
 __all__ = ["Simulation", "simulate", "truth_models", "COMMON_NAMES"]
 
-COMMON_NAMES = ("x", "y", "theta", "vx", "vy", "omega")
 
-
-def truth_models() -> tuple:
-    """Registry models that can be a simulation truth (their physical state is the common state)."""
-    return tuple(name for name, spec in MODELS.items() if spec.state_names == COMMON_NAMES)
+def truth_models(space: str = DEFAULT_SPACE) -> tuple:
+    """Registry models of ``space`` that can be a simulation truth (their physical state is the space's common state:
+    in the plane SE(2)×SE(2) and SE(2)×R³, in 3-D SE(3)×R⁶)."""
+    common = SPACES[space]["common_names"]
+    return tuple(name for name, spec in models_of(space).items() if spec.state_names == common)
 
 
 @dataclass
 class Simulation:
-    truth: np.ndarray  # (B, K + 1, 6) common physical states, truth[:, 0] the initial state
+    truth: np.ndarray  # (B, K + 1, n_common) common physical states, truth[:, 0] the initial state
     z: np.ndarray  # (B, K, m) measurements of truth[:, 1:]
     dt: float
     wrapped: np.ndarray  # (B,) bool: a bounded coordinate of the truth wrapped (e.g. ω at ±π)
@@ -60,9 +61,9 @@ def simulate(
     in (shapes (B, steps, q) for the truth's q noise inputs and (B, steps, m)) so that several noise
     levels share common random numbers; otherwise they are drawn from ``rng``.
     """
-    if truth not in truth_models():
-        raise ValueError(f"truth: unknown truth model {truth!r}; choose one of {', '.join(truth_models())}")
     spec = get_model(truth)
+    if truth not in truth_models(spec.space):
+        raise ValueError(f"truth: unknown truth model {truth!r}; choose one of {', '.join(truth_models())}")
     meas = spec.measurement(measurement)
     x0 = np.ascontiguousarray(np.atleast_2d(np.asarray(x0, dtype=float)))
     spec.check_state("x0", x0)

@@ -33,7 +33,7 @@ import numpy as np
 from ..core.batch import filter_batch
 from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
-from ..core.registry import BASE_MEASUREMENT, MODELS, get_model
+from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, base_measurement, get_model, models_of
 from ..core.validate import positive_scalar
 from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
@@ -42,6 +42,7 @@ __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS",
 
 FILTERS = tuple(MODELS)  # every registry model, the default filter set
 PAPER_FILTERS = ("se2se2", "se2r3", "ctrv", "cv")  # the filters of the paper's Fig. 4 (its claims name them)
+PAPER_LG, PAPER_BASELINES = PAPER_FILTERS[:2], PAPER_FILTERS[2:]  # its two LG filters, its two baselines
 
 
 @dataclass
@@ -61,18 +62,54 @@ class StudyConfig:
     filters: tuple = FILTERS
     measurement: str = "position"
     heading_std: float = 0.1
+    space: str = DEFAULT_SPACE  # the space of motion (lgekf.core.registry.SPACES): "2d" the paper's plane, "3d"
+
+    @classmethod
+    def for_space(cls, space: str, **overrides) -> "StudyConfig":
+        """The protocol lifted to ``space`` ("3d": truth SE(3)×R⁶ with body velocity (3, 0, 0) m/s and a twist random
+        walk, filters = the space's models, 3-D position measurements; init stds 0.5 m / 0.1 rad / 0.5 m/s / 0.1 rad/s
+        per coordinate), then ``overrides``; "2d" is the paper's protocol."""
+        if space not in SPACES:
+            raise ValueError(f"space: unknown space {space!r}; choose one of {', '.join(SPACES)}")
+        if space == DEFAULT_SPACE:
+            return cls(**overrides)
+        dim, nc = SPACES[space]["dim"], len(SPACES[space]["common_names"])
+        r = (nc - 2 * dim) // 2  # rotational coordinates (attitude, rate)
+        filters = tuple(models_of(space))
+        base = dict(space=space, v0=(3.0,) + (0.0,) * (dim - 1), w0=(0.0,) * r,
+                    init_std=(0.5,) * dim + (0.1,) * r + (0.5,) * dim + (0.1,) * r, truth=truth_models(space)[0],
+                    filters=filters, noise_scale={f: 1.0 for f in filters}, measurement=base_measurement(space))
+        return cls(**{**base, **overrides})
+
+    @property
+    def dim(self) -> int:
+        """2 in the plane, 3 in space: the position coordinates."""
+        return SPACES[self.space]["dim"]
+
+    @property
+    def start(self) -> np.ndarray:
+        """The truth's initial common state: at the origin, level, with body velocity v0 and rate w0."""
+        v0, w0 = np.atleast_1d(np.asarray(self.v0, float)), np.atleast_1d(np.asarray(self.w0, float))
+        nc = len(SPACES[self.space]["common_names"])
+        return np.concatenate([np.zeros(nc - v0.size - w0.size), v0, w0])
 
     def validate(self) -> None:
         positive_scalar("dt", self.dt)
-        if len(self.v0) != 2 or not all(math.isfinite(v) for v in self.v0):
-            raise ValueError(f"v0: expected two finite numbers (body velocity v_x, v_y in m/s), got {list(self.v0)}")
-        if not math.isfinite(self.w0):
-            raise ValueError(f"w0: must be a finite number, got {self.w0}")
-        if self.truth not in truth_models():
-            raise ValueError(f"truth: unknown truth model {self.truth!r}; choose one of {', '.join(truth_models())}")
+        if self.space not in SPACES:
+            raise ValueError(f"space: unknown space {self.space!r}; choose one of {', '.join(SPACES)}")
+        dim, nc = self.dim, len(SPACES[self.space]["common_names"])
+        if len(self.v0) != dim or not all(math.isfinite(v) for v in self.v0):
+            raise ValueError(f"v0: expected {dim} finite numbers (body velocity in m/s), got {list(self.v0)}")
+        w0 = np.atleast_1d(np.asarray(self.w0, float))
+        if w0.size != (nc - 2 * dim) // 2 or not np.all(np.isfinite(w0)):
+            raise ValueError(f"w0: expected {(nc - 2 * dim) // 2} finite number(s) (angular velocity in rad/s), got {self.w0}")
+        if len(self.init_std) != nc:
+            raise ValueError(f"init_std: expected {nc} stds (one per common coordinate), got {len(self.init_std)}")
+        if self.truth not in truth_models(self.space):
+            raise ValueError(f"truth: unknown truth model {self.truth!r}; choose one of {', '.join(truth_models(self.space))}")
         truth = get_model(self.truth)
         for i, bound in truth.bounds.items():
-            if abs((0.0, 0.0, 0.0, *self.v0, self.w0)[int(i)]) > bound:
+            if abs(self.start[int(i)]) > bound:
                 raise ValueError(f"w0: not representable by the {self.truth} truth ({truth.bound_reason}); got w0 = {self.w0}")
         if self.seed < 0:
             raise ValueError(f"seed: must be a non-negative integer, got {self.seed}")
@@ -91,15 +128,19 @@ class StudyConfig:
             raise ValueError("init_std: stds must be non-negative")
         if not self.filters:
             raise ValueError("filters: choose at least one filter")
+        own = models_of(self.space)
         for f in self.filters:
-            if f != IMM_FILTER:
-                get_model(f)
-        if self.measurement != BASE_MEASUREMENT:
+            if f != IMM_FILTER and get_model(f).space != self.space:
+                raise ValueError(f"filters: {f} is a model of {get_model(f).space}, the study runs in {self.space}; "
+                                 f"choose from {', '.join(own)}")
+        if IMM_FILTER in self.filters and not SPACES[self.space]["mixes"]:
+            raise ValueError(f"filters: the imm filter is not available in {self.space} yet")
+        if self.measurement != base_measurement(self.space):
             get_model(self.truth).measurement(self.measurement)
             positive_scalar("heading_std", self.heading_std)
         for k, v in self.noise_scale.items():
-            if k not in FILTERS:
-                raise ValueError(f"noise scale: unknown filter {k!r}; choose one of {', '.join(FILTERS)}")
+            if k not in own:
+                raise ValueError(f"noise scale: unknown filter {k!r}; choose one of {', '.join(own)}")
             positive_scalar(f"noise scale for {k}", v)
 
     def filter_noise(self, name: str, sigma_w: float):
@@ -162,13 +203,13 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     # common random numbers, shared by every σ_ω and every filter
     u_proc = rng.standard_normal((B, K, 3))
     u_meas = rng.standard_normal((B, K, 2))
-    u_init = rng.standard_normal((B, 6))
+    u_init = rng.standard_normal((B, len(cfg.init_std)))
     extra = get_model(cfg.truth).measurement(cfg.measurement).dim - 2
     if extra:  # extra draws after the default ones: position studies are unchanged
         u_meas = np.concatenate([u_meas, rng.standard_normal((B, K, extra))], axis=-1)
     if len(truth.noise_inputs) > 3:
         u_proc = np.concatenate([u_proc, rng.standard_normal((B, K, len(truth.noise_inputs) - 3))], axis=-1)
-    truth0 = np.tile([0.0, 0.0, 0.0, cfg.v0[0], cfg.v0[1], cfg.w0], (B, 1))
+    truth0 = np.tile(cfg.start, (B, 1))
     est0 = truth0 + u_init * np.asarray(cfg.init_std)
     P0_phys = np.diag(np.square(cfg.init_std))
     # each filter's initial state and covariance in its own coordinates
@@ -198,9 +239,9 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
             truth0, dt=cfg.dt, steps=K, sigma_v=cfg.sigma_v, sigma_w=sw, meas_std=cfg.meas_noise(cfg.measurement),
             truth=cfg.truth, measurement=cfg.measurement, std_normal_process=u_proc, std_normal_meas=u_meas,
         )
-        pos = sim.truth[:, 1:, :2]
+        pos = sim.truth[:, 1:, :cfg.dim]
         wrapped[i] = int(sim.wrapped.sum())
-        rmse["measurements"][i] = position_rmse(sim.z, pos)
+        rmse["measurements"][i] = position_rmse(sim.z, pos, cfg.dim)
         for name in aliased:
             b = get_model(name).bounds
             aliased[name][i] = int(np.any([np.abs(sim.truth[:, :, int(j)]) > v for j, v in b.items()], axis=(0, 2)).sum())
@@ -210,12 +251,12 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
                 continue
             x0, P0 = inits[name]
             meas = cfg.filter_measurement(name)
-            z = sim.z if meas == cfg.measurement else np.ascontiguousarray(sim.z[..., :2])
+            z = sim.z if meas == cfg.measurement else np.ascontiguousarray(sim.z[..., :cfg.dim])
             est = filter_batch(
                 name, z, dt=cfg.dt, accel_std=cfg.filter_noise(name, sw), meas_std=cfg.meas_noise(meas), x0=x0, P0=P0,
                 measurement=meas,
             )
-            rmse[name][i] = position_rmse(est, pos)
+            rmse[name][i] = position_rmse(est, pos, cfg.dim)
         if progress is not None:
             progress(i + 1, S)
     return StudyResult(cfg, sigmas, rmse, wrapped, time.perf_counter() - t0, aliased, imm_chains)
@@ -243,30 +284,39 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     Thresholds: "close" = within ``close_tol`` (5 %) relative; "small σ_ω" = the lowest sixth of the
     σ_ω range, "large σ_ω" = the highest sixth.
     """
-    if not set(PAPER_FILTERS) <= set(res.filters):
-        return []  # the claims compare the paper's four filters
+    names = paper_names(res.filters)
+    lgs = [names[k] for k in PAPER_LG if k in names]
+    if not lgs or not set(PAPER_BASELINES) <= set(names):
+        return []  # the claims compare the paper's filters (or, in 3-D, the models that lift them)
     s = res.sigmas
     m = {k: res.mean(k) for k in res.rmse}
-    lg_best = np.minimum(m["se2se2"], m["se2r3"])
-    lg_worst = np.maximum(m["se2se2"], m["se2r3"])
+    for k, f in names.items():  # the paper's names for the study's filters
+        m[k] = m[f]
+    lg_best = np.minimum.reduce([m[f] for f in lgs])
+    lg_worst = np.maximum.reduce([m[f] for f in lgs])
     S = len(s)
     order = np.argsort(s, kind="stable")  # by value: --sigmas may be given in any order
     lo = order[: max(1, S // 6)]
     hi = order[S - max(1, S // 6):]
     out = []
 
-    rel = np.abs(m["se2se2"] - m["se2r3"]) / lg_best
-    out.append(Claim(
-        "SE(2)xSE(2) and SE(2)xR3 are close (within 5 %)",
-        bool(np.all(rel <= close_tol)),
-        f"max relative difference {rel.max():.1%} at σ_ω={s[rel.argmax()]:.2f}",
-    ))
+    if len(lgs) == 2:
+        rel = np.abs(m["se2se2"] - m["se2r3"]) / lg_best
+        out.append(Claim(
+            "SE(2)xSE(2) and SE(2)xR3 are close (within 5 %)" if lgs == list(PAPER_LG) else
+            f"{lgs[0]} and {lgs[1]} are close (within 5 %)",
+            bool(np.all(rel <= close_tol)),
+            f"max relative difference {rel.max():.1%} at σ_ω={s[rel.argmax()]:.2f}",
+        ))
     base_best = np.minimum(m["ctrv"], m["cv"])
     wins = lg_worst < base_best
+    ctrv, cv = names["ctrv"], names["cv"]
     out.append(Claim(
-        "the two LG filters are the best filters at every σ_ω",
+        "the two LG filters are the best filters at every σ_ω" if len(lgs) == 2 else
+        f"the LG filter ({lgs[0]}) is the best filter at every σ_ω",
         bool(np.all(wins)),
-        f"both LG filters beat CTRV and CV at {int(wins.sum())}/{S} σ_ω values"
+        (f"both LG filters beat CTRV and CV at {int(wins.sum())}/{S} σ_ω values" if len(lgs) == 2 else
+         f"{lgs[0]} beats {ctrv} and {cv} at {int(wins.sum())}/{S} σ_ω values")
         + ("" if wins.all() else f"; not at σ_ω = {', '.join(f'{v:.2f}' for v in s[~wins][:6])}"),
     ))
     cv_gap_lo = float(np.mean(m["cv"][lo] / lg_best[lo] - 1))
@@ -294,7 +344,7 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
         bool(S > 1 and ctrv_hi < ctrv_lo),
         f"CTRV gap to best LG: {ctrv_lo:+.1%} (small σ_ω) -> {ctrv_hi:+.1%} (large σ_ω)",
     ))
-    worst = np.max(np.vstack([m[f] for f in PAPER_FILTERS]), axis=0)
+    worst = np.max(np.vstack([m[names[f]] for f in PAPER_FILTERS if f in names]), axis=0)
     ratio = worst / m["measurements"]
     out.append(Claim(
         "every filter beats the raw measurements at every σ_ω",
@@ -304,9 +354,22 @@ def claims_check(res: StudyResult, close_tol: float = 0.05) -> list[Claim]:
     return out
 
 
+def paper_names(filters) -> dict:
+    """{the paper's filter: the study's filter standing for it}: a planar filter stands for itself, a 3-D one for the
+    planar model it lifts (its definition's ``lifts``: se3r6 for se2r3, ct3 for ctrv, cv3 for cv)."""
+    out = {}
+    for f in filters:
+        if f != IMM_FILTER:
+            key = get_model(f).lifts or f
+            if key in PAPER_FILTERS:
+                out.setdefault(key, f)
+    return out
+
+
 def config_dict(cfg: StudyConfig) -> dict:
     d = asdict(cfg)
     d["v0"] = list(cfg.v0)
+    d["w0"] = list(cfg.w0) if isinstance(cfg.w0, (tuple, list)) else cfg.w0
     d["init_std"] = list(cfg.init_std)
     d["filters"] = list(cfg.filters)
     return d

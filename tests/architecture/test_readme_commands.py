@@ -73,6 +73,10 @@ STUDY_SYNOPSIS = ("lgekf study [--trajectories N] [--sigmas 0:3:30] [--seed S] [
 README_TO_RUN = {
     "lgekf track detections.csv --multi --model se2se2 -o tracks.csv --clutter-density 1e-4 --detection-prob 0.9 --association jpda": None,
     "lgekf study --multi": ["lgekf study --multi --runs 1 --duration 2 --models cv,se2se2"],
+    "lgekf track detections.csv --multi --model imm -o tracks.csv": None,
+    "lgekf track detections.csv --multi --model imm --imm-modes cv,se2r3:manoeuvre --imm-switch 0.02 -o tracks.csv": None,
+    "lgekf study --multi --models se2r3,cv,imm --association jpda":
+        ["lgekf study --multi --models cv,imm --association jpda --runs 1 --duration 2 --out results_imm"],
     "lgekf study --multi --initiation one-point,two-point":
         ["lgekf study --multi --initiation one-point,two-point --runs 1 --duration 2 --models cv --out results_init"],
     "lgekf study --multi --scenario patch --models se2r3,cv --association jpda --clutter true,file,scan,map,oracle":
@@ -134,6 +138,8 @@ README_TO_RUN = {
     "lgekf evaluate --tune": ["lgekf evaluate ethucy --tune"],
     "lgekf track detections.csv --model cv --tune --tune-method em -o tracks.csv": None,
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
+    "lgekf study --space 3d": None,
+    "lgekf study --space 3d --out results3d": None,
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
     # as above: too few stand-in detections to learn SE(2)xR3's noise; CV modes tuned, the default modes smoothed

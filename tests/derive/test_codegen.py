@@ -44,9 +44,11 @@ _RENDER = textwrap.dedent(
 )
 
 
-def _render_in_subprocess(out: Path, seed: str, jobs: int) -> subprocess.Popen:
-    """render_all in a fresh interpreter with PYTHONHASHSEED=seed, written to ``out`` as JSON."""
-    return subprocess.Popen([sys.executable, "-c", _RENDER, str(out), str(jobs)], env={**os.environ, "PYTHONHASHSEED": seed},
+def _render_in_subprocess(out: Path, seed: str, jobs: int, cache: bool = True) -> subprocess.Popen:
+    """render_all in a fresh interpreter with PYTHONHASHSEED=seed, written to ``out`` as JSON; ``cache``: whether model
+    modules rendered from the same sources may be reused (``derive.codegen.build.render_cache_dir``)."""
+    env = {**os.environ, "PYTHONHASHSEED": seed, **({} if cache else {"LGEKF_DERIVE_CACHE": "off"})}
+    return subprocess.Popen([sys.executable, "-c", _RENDER, str(out), str(jobs)], env=env,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
@@ -119,16 +121,38 @@ def test_generated_files_cover_the_models():
 
 @pytest.mark.slow
 def test_render_all_is_deterministic(tmp_path, rendered):
-    """render_all in two interpreters with different hash seeds (0: the shared render; 4242, one process
-    here): byte-identical output."""
+    """render_all in two interpreters with different hash seeds (0: the shared render, its model modules perhaps from
+    the render cache; 4242 here, every module rendered anew): byte-identical output, so the cache also gives what a
+    fresh derivation gives."""
     out = tmp_path / "render_4242.json"
-    p = _render_in_subprocess(out, "4242", 2)
+    p = _render_in_subprocess(out, "4242", 2, cache=False)
     _, err = p.communicate(timeout=900)
     assert p.returncode == 0, err[-3000:]
     b = json.loads(out.read_text(encoding="utf-8"))
     assert sorted(rendered) == sorted(b)
     differ = [name for name in rendered if rendered[name].encode() != b[name].encode()]
     assert not differ, f"render_all output depends on PYTHONHASHSEED: {differ}"
+
+
+def test_render_cache_key_follows_the_sources(tmp_path, monkeypatch):
+    """A change to any definition (here a copy of the models with one comment added) gives another digest, so the
+    cache never serves a module derived from other sources."""
+    import shutil
+
+    from lgekf.derive.codegen.build import render_cache_dir, sources_digest
+
+    models = Path(__file__).resolve().parents[2] / "derive" / "models"
+    a, b = tmp_path / "a", tmp_path / "b"
+    shutil.copytree(models, a, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(models, b, ignore=shutil.ignore_patterns("__pycache__"))
+    assert sources_digest(a) == sources_digest(b) != sources_digest()
+    (b / "cv.py").write_text((b / "cv.py").read_text(encoding="utf-8") + "# one more line\n", encoding="utf-8")
+    sources_digest.cache_clear()
+    assert sources_digest(a) != sources_digest(b)
+    monkeypatch.setenv("LGEKF_DERIVE_CACHE", "off")
+    assert render_cache_dir() is None
+    monkeypatch.setenv("LGEKF_DERIVE_CACHE", str(tmp_path / "c"))
+    assert render_cache_dir() == tmp_path / "c"
 
 
 def test_runtime_does_not_import_sympy():

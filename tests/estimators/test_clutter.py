@@ -364,3 +364,13 @@ def test_scenarios_have_their_clutter():
     np.testing.assert_allclose(p.true_density(0.0, np.array([[0.0, 0.0], [90.0, 90.0]])), [1e-4 + 1.25e-2, 1e-4])
     base, ref = clutter_scenario("base", seed=3), base_scenario(seed=3)
     assert all(np.array_equal(x, y) for x, y in zip(base.detections, ref.detections))
+
+
+def test_the_imm_bank_takes_the_estimated_clutter():
+    """An IMM per track (``model="imm"``) with the map: the same component, λ(z) in its association."""
+    sc = clutter_scenario("patch", seed=0, duration=3.0)
+    trk = MultiTargetTracker(model="imm", clutter_density=study_clutter("map", sc, 1e-4), meas_std=0.3)
+    for t, Z in zip(sc.times, sc.detections):
+        rep = trk.step(t, Z)
+    assert isinstance(trk.clutter, ClutterMap) and trk.clutter.peak() > 3
+    assert 4 <= rep.ids.size <= 10 and np.isfinite(trk.clutter_density)

@@ -148,7 +148,7 @@ BAD = {
     "accel_other_model": ("t,x,y\n0,0,0\n", ["--model", "cv", "--accel-std", "se2se2=1,2,3"], "not the tracked model"),
     "cv_pose": ("t,x,y,heading\n0,0,0,0\n", ["--model", "cv", "--measure", "pose"], "no heading to measure"),
     "tune_smooth": ("t,x,y\n0,0,0\n", ["--tune", "--smooth"], "--tune, --smooth: not available with --multi"),
-    "model_imm": ("t,x,y\n0,0,0\n", ["--model", "imm"], "--model imm: not available with --multi"),
+    "model_all": ("t,x,y\n0,0,0\n", ["--model", "all"], "--model all: not available with --multi"),
     "id_column": ("t,x,y,car\n0,0,0,1\n", ["--id-column", "car"], "--id-column: not available with --multi"),
 }
 

@@ -43,6 +43,7 @@ import sympy as sp
 
 from ...algebra import LEGEND, lg_update, packed_index, sym_cov
 from ..printer import Kernel, RawStage
+from .model import fused_test_takes_numbers
 from ..template import load
 
 __all__ = ["fused_step_kernel", "step_wrapper", "angle_cap_lines", "fallback_lines", "FALLBACK", "kernels"]
@@ -77,6 +78,13 @@ def fallback_lines(Pp: sp.Matrix, restore: list[tuple[int, str]]) -> list[str]:
     n = Pp.shape[0]
     npk = n * (n + 1) // 2
     idx = packed_index(n)
+    if not fused_test_takes_numbers(n):  # too many entries for one call (model.CALL_ARGS_LIMIT): store, then test p
+        lines = [f"p[{k}] = out_p{k}" for k in range(npk)]
+        lines += ["if not covariance_is_pd_fused(p):"]
+        lines += [f"    p[{idx[(i, j)]}] = {Pp[i, j].name}" for i in range(n) for j in range(i, n)]
+        lines += [f"    out_s{i} = {v}" for i, v in restore]
+        lines += [f"    nis = {FALLBACK!r}"]
+        return lines + [f"s[{i}] = out_s{i}" for i, _ in restore]
     lines = [f"if not covariance_is_pd_fused({', '.join(f'out_p{k}' for k in range(npk))}):"]
     lines += [f"    out_p{idx[(i, j)]} = {Pp[i, j].name}" for i in range(n) for j in range(i, n)]
     lines += [f"    out_s{i} = {v}" for i, v in restore]

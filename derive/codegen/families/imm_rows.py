@@ -14,8 +14,8 @@ no counting either.
 
 * ``between_add_at``, ``mix_transport_at``, ``retract_at``: the mean iteration and the transported covariance
   terms of mixing on the group (``derive.codegen.mixing``);
-* ``common_of_state_at`` / ``state_of_common_at``: a Gaussian to and from the common coordinates, the 6 × 6
-  common covariance stored row-major in one row;
+* ``common_of_state_at`` / ``state_of_common_at``: a Gaussian to and from the common coordinates, the common
+  covariance (6 × 6 in the plane) stored row-major in one row;
 * ``step_ll_<meas>``: the fused step ``step_try_<meas>`` (``derive.codegen.fused``) on rows, returning
   ``(nis, rdet)``, rdet = 1/det S of the innovation covariance S = ℋPℋᵀ + R at the predicted state (eq:K), which
   the step computes anyway: the IMM's likelihood needs log det S = −log rdet, and no separate
@@ -39,13 +39,14 @@ from ..template import load
 
 __all__ = ["row_variant", "imm_row_kernels", "dispatch_chains", "ROW_KERNELS", "MIX_TEMPLATE", "kernels"]
 
-#: (kernel, name of the row variant, {array parameter: columns of its 2-D form, or None for a vector})
+#: (kernel, name of the row variant, {array parameter: columns of its 2-D form ("common": the number of common
+#: coordinates of the model's space), or None for a vector})
 ROW_KERNELS = (
     ("between_add", "between_add_at", {"s": None, "t": None, "acc": None}),
     ("mix_transport", "mix_transport_at", {"s": None, "t": None, "pt": None, "acc": None}),
     ("retract", "retract_at", {"s": None, "eps": None}),
-    ("common_of_state", "common_of_state_at", {"s": None, "p": None, "c": None, "Pc": 6}),
-    ("state_of_common", "state_of_common_at", {"c": None, "Pc": 6, "s": None, "p": None}),
+    ("common_of_state", "common_of_state_at", {"s": None, "p": None, "c": None, "Pc": "common"}),
+    ("state_of_common", "state_of_common_at", {"c": None, "Pc": "common", "s": None, "p": None}),
 )
 
 
@@ -67,7 +68,8 @@ MIX_TEMPLATE = load("mix_on_group.py.tmpl")
 def imm_row_kernels(model, kernels) -> list:
     """The row variants of one model (module docstring); ``kernels``: the model's kernels so far."""
     by_name = {k.name: k for k in kernels if isinstance(k, Kernel)}
-    out = [row_variant(by_name[src], name, arrays) for src, name, arrays in ROW_KERNELS]
+    out = [row_variant(by_name[src], name, {x: model.n_common if c == "common" else c for x, c in arrays.items()})
+           for src, name, arrays in ROW_KERNELS]
     for kname, k in sorted(by_name.items()):
         if kname.startswith("step_try_"):
             meas = kname[len("step_try_"):]

@@ -140,8 +140,7 @@ def common_kernels(model) -> list:
     ``common_of_state`` runs with error_model="numpy" (a heading read off a zero velocity gives NaN/inf, not an
     exception, and the caller redoes that rare case).
     """
-    from ...models.base import COMMON
-
+    common, nc, cdoc = model.space.common, model.n_common, model.space.common_doc
     n = model.n
     idx = packed_index(n)
     sin_ = [(v, f"s[{i}]") for i, v in enumerate(model.internal)]
@@ -154,25 +153,25 @@ def common_kernels(model) -> list:
     P = sp.Matrix(n, n, lambda i, j: psyms[(min(i, j), max(i, j))])
     p_in = [(psyms[(i, j)], f"p[{idx[(i, j)]}]") for i in range(n) for j in range(i, n)]
     udefs, C = _congruence(A, P, "U")
-    outs = [(f"c[{k}]", cvals[k]) for k in range(6)]
-    for i in range(6):
-        for j in range(i, 6):
+    outs = [(f"c[{k}]", cvals[k]) for k in range(nc)]
+    for i in range(nc):
+        for j in range(i, nc):
             outs.append((f"Pc[{i}, {j}]", C[i, j]))
             if j != i:
                 outs.append((f"Pc[{j}, {i}]", C[i, j]))
     to_common = Kernel(
         name="common_of_state",
-        doc=("A mode's Gaussian in the common coordinates: c = (x, y, θ, v_x, v_y, ω) of the internal state s (as\n"
-             "physical_to_common(physical(s))) and Pc = A P Aᵀ (6 × 6), A = ∂c/∂ε (physical_to_common_jacobian) at s."),
+        doc=(f"A mode's Gaussian in the common coordinates: c = {cdoc} of the internal state s (as\n"
+             f"physical_to_common(physical(s))) and Pc = A P Aᵀ ({nc} × {nc}), A = ∂c/∂ε (physical_to_common_jacobian) at s."),
         params=["s", "p", "c", "Pc"], inputs=sin_ + p_in, stages=[phys, adefs, udefs], outputs=outs,
         error_model="numpy",
     )
-    cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
-    csub = dict(zip(COMMON, cs))
+    cs = sp.symbols(f"c0:{nc}", real=True)
+    csub = dict(zip(common, cs))
     cin = [(ci, f"c[{k}]") for k, ci in enumerate(cs)]
-    pcs = {(i, j): sp.Symbol(f"pc{i}_{j}", real=True) for i in range(6) for j in range(i, 6)}
-    Pc = sp.Matrix(6, 6, lambda i, j: pcs[(min(i, j), max(i, j))])
-    pc_in = [(pcs[(i, j)], f"Pc[{i}, {j}]") for i in range(6) for j in range(i, 6)]
+    pcs = {(i, j): sp.Symbol(f"pc{i}_{j}", real=True) for i in range(nc) for j in range(i, nc)}
+    Pc = sp.Matrix(nc, nc, lambda i, j: pcs[(min(i, j), max(i, j))])
+    pc_in = [(pcs[(i, j)], f"Pc[{i}, {j}]") for i in range(nc) for j in range(i, nc)]
     phys_c = [(xi, sp.sympify(e).subs(csub, simultaneous=True)) for xi, e in zip(xs, model.from_common())]
     internal = [sp.sympify(e).xreplace(xsub) for e in model.internal_from_physical()]
     jdefs, J = _symbolic(model.common_jacobian.subs(csub, simultaneous=True), "J")
@@ -181,7 +180,7 @@ def common_kernels(model) -> list:
     outs += [(f"p[{idx[(i, j)]}]", C[i, j]) for i in range(n) for j in range(i, n)]
     from_common = Kernel(
         name="state_of_common",
-        doc=("A Gaussian in the common coordinates (c, Pc (6 × 6, upper triangle read)) as the model's: the internal state\n"
+        doc=(f"A Gaussian in the common coordinates (c, Pc ({nc} × {nc}, upper triangle read)) as the model's: the internal state\n"
              "s = state_from_physical(common_to_state(c)) and p = J Pc Jᵀ packed, J = ∂ε/∂c (common_jacobian) at c."),
         params=["c", "Pc", "s", "p"], inputs=cin + pc_in, stages=[phys_c, jdefs, vdefs], outputs=outs,
     )

@@ -17,10 +17,11 @@ from __future__ import annotations
 import sympy as sp
 
 from ...algebra import LEGEND, lg_predict, lg_update, packed_index, symbolize
-from ...models.base import COMMON
 from ..blocks import cov_outputs, matrix_kernel, vec_inputs, vector_kernel
 from ..printer import Kernel
 from ..template import load
+
+_WORDS = {2: "two", 3: "three"}
 
 __all__ = ["PD_TOL", "PD_TOL_FUSED", "pd_check_kernels", "angle_limit_kernel", "kernels"]
 
@@ -31,6 +32,16 @@ PD_TOL = 1e-13  # LDLᵀ pivot / largest variance below which a covariance count
 # test's; it asks for 100× larger pivots, so that it accepts no covariance that covariance_is_pd rejects (measured on
 # tests/core/test_covariance_health.py; derive/codegen/fused.py)
 PD_TOL_FUSED = 1e-11
+
+
+#: CPython compiles a call with more positional arguments than this as f(*args) (its STACK_USE_GUIDELINE), which numba
+#: cannot inline: a covariance with more packed entries is tested as an array (``fused_test_takes_numbers``)
+CALL_ARGS_LIMIT = 30
+
+
+def fused_test_takes_numbers(n: int) -> bool:
+    """Whether ``covariance_is_pd_fused`` takes the n(n+1)/2 entries as numbers (else the packed array)."""
+    return n * (n + 1) // 2 <= CALL_ARGS_LIMIT
 
 
 def pd_check_kernels(n: int):
@@ -62,11 +73,17 @@ def pd_check_kernels(n: int):
     diag = [idx[(j, j)] for j in range(n)]
     repair = load("repair_pd.py.tmpl").format(tol=repr(PD_TOL), diag=repr(tuple(diag)))
     names = [f"p{i}_{j}" for i in range(n) for j in range(i, n)]
-    fused = [ln.replace(f"{PD_TOL!r} * max(", f"{PD_TOL_FUSED!r} * max(") for ln in lines[3 + len(names):]]
-    fused = ['@nb.njit(cache=True, inline="always", error_model="numpy")',
-             f"def covariance_is_pd_fused({', '.join(names)}):",
-             f'    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused\n'
-             f'    steps (derive/codegen/fused.py), with pivots > {PD_TOL_FUSED!r} · max_i P_ii."""'] + fused
+    tight = [ln.replace(f"{PD_TOL!r} * max(", f"{PD_TOL_FUSED!r} * max(") for ln in lines[3:]]
+    if fused_test_takes_numbers(n):
+        fused = ['@nb.njit(cache=True, inline="always", error_model="numpy")',
+                 f"def covariance_is_pd_fused({', '.join(names)}):",
+                 f'    """covariance_is_pd of the entries p<i>_<j> (upper triangle, row-major) as numbers, inlined into the fused\n'
+                 f'    steps (derive/codegen/fused.py), with pivots > {PD_TOL_FUSED!r} · max_i P_ii."""'] + tight[len(names):]
+    else:
+        fused = ['@nb.njit(cache=True, inline="always", error_model="numpy")',
+                 "def covariance_is_pd_fused(p):",
+                 f'    """covariance_is_pd of the packed covariance p, inlined into the fused steps (derive/codegen/fused.py), with\n'
+                 f'    pivots > {PD_TOL_FUSED!r} · max_i P_ii (its {len(names)} entries are too many for a call with one argument each)."""'] + tight
     return [("covariance_is_pd", "\n".join(lines)), ("covariance_is_pd_fused", "\n".join(fused)), ("repair_pd", repair)]
 
 
@@ -207,19 +224,20 @@ def kernels(model, measurements: dict, built) -> list:
         stages=[pdefs], outputs=[(f"s[{i}]", Ps[0, k]) for k, i in enumerate(new)],
     )))
     out.append(("simulation", Kernel(
-        name="position_into", doc="The position (the first two physical coordinates) of the internal state into ``out`` (2,).",
-        params=["s", "out"], inputs=sin_, outputs=[(f"out[{i}]", e) for i, e in enumerate(model.physical_from_internal()[:2])])))
+        name="position_into", doc=f"The position (the first {_WORDS[model.space.dim]} physical coordinates) of the internal state into ``out`` ({model.space.dim},).",
+        params=["s", "out"], inputs=sin_, outputs=[(f"out[{i}]", e) for i, e in enumerate(model.physical_from_internal()[:model.space.dim])])))
     # ---- common coordinates
-    cs = sp.symbols(f"c0:{len(COMMON)}", real=True)
-    csub = dict(zip(COMMON, cs))
+    cs = sp.symbols(f"c0:{model.n_common}", real=True)
+    csub = dict(zip(model.space.common, cs))
     cin = vec_inputs("c", cs)
-    out.append(("velocity", vector_kernel("world_velocity", "World-frame velocity (2,) of a physical state x of this model.", ["x"],
+    nd = model.space.dim
+    out.append(("velocity", vector_kernel("world_velocity", f"World-frame velocity ({nd},) of a physical state x of this model.", ["x"],
                                           vec_inputs("x", model.physical), model.world_velocity())))
-    out.append(("velocity", Kernel(name="world_velocity_into", doc="world_velocity of a physical state x written into out (2,) (no allocation).",
+    out.append(("velocity", Kernel(name="world_velocity_into", doc=f"world_velocity of a physical state x written into out ({nd},) (no allocation).",
                                    params=["x", "out"], inputs=vec_inputs("x", model.physical),
                                    outputs=[(f"out[{i}]", e) for i, e in enumerate(model.world_velocity())])))
     out.append(("common", vector_kernel(
-        "common_to_state", "The model's physical state from the common c = (x, y, θ, v_x, v_y, ω), (v_x, v_y) in the body frame.",
+        "common_to_state", f"The model's physical state from the common c = {model.space.common_doc}, velocities in the body frame.",
         ["c"], cin, [sp.sympify(e).subs(csub, simultaneous=True) for e in model.from_common()])))
     out.append(("common", matrix_kernel(
         "common_jacobian", "J = ∂(filter coordinates ε)/∂c at c: maps a covariance of c to the filter's P (P = J P_c J^T).",

@@ -37,7 +37,10 @@ def measurement_monitor_kernels(meas: str) -> list:
 
 
 def kernels(model, measurements: dict, built) -> list:
-    """The family's entry (``derive.codegen.emitter``): (slot, kernel) pairs of one model module."""
+    """The family's entry (``derive.codegen.emitter``): (slot, kernel) pairs of one model module; none for a model whose
+    space the monitor's two-point restart does not serve (``derive.space.Space.monitored``)."""
+    if not model.space.monitored:
+        return []
     out = [("monitor_model", k) for k in model_monitor_kernels()]
     for meas in measurements.values():
         out += [(("monitor", meas.name), k) for k in measurement_monitor_kernels(meas.name)]

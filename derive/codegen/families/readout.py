@@ -40,13 +40,16 @@ def common_readout_kernels(model, kernels=(), measurements=()) -> list:
     (the model's other kernels)."""
     into = set(INTO) | {f"{family}_{meas}" for family in INTO_PER_MEASUREMENT for meas in measurements}
     xin = vec_inputs("xp", model.physical)
-    missing = [1.0 if i in model.common_missing else 0.0 for i in range(6)]
+    nc, cdoc = model.n_common, model.space.common_doc
+    missing = [1.0 if i in model.common_missing else 0.0 for i in range(nc)]
+    frame = "a heading" if model.space.dim == 2 else "an attitude"
+    angle = "θ" if model.space.dim == 2 else "the attitude"
     own = [
-        vector_kernel("physical_to_common", "c = (x, y, θ, v_x, v_y, ω) of a physical state x (θ from the velocity for a model\n"
-                      "without a heading; 0 for the coordinates of common_missing).", ["xp"], xin, model.common_of_physical),
-        matrix_kernel("physical_to_common_jacobian", "A = ∂c/∂ε (6 × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.",
+        vector_kernel("physical_to_common", f"c = {cdoc} of a physical state x ({angle} from the velocity for a model\n"
+                      f"without {frame}; 0 for the coordinates of common_missing).", ["xp"], xin, model.common_of_physical),
+        matrix_kernel("physical_to_common_jacobian", f"A = ∂c/∂ε ({nc} × n) at the physical state x (X = μ·exp ε): P_c = A P Aᵀ.",
                       ["xp"], xin, model.common_of_physical_jacobian),
-        ("common_missing", load("common_missing.py.tmpl").format(missing=repr(missing))),
+        ("common_missing", load("common_missing.py.tmpl").format(missing=repr(missing), common=cdoc)),
     ]
     every = [k for k in (*kernels, *own) if isinstance(k, Kernel) and k.name in into]
     return own + [into_variant(k) for k in every]

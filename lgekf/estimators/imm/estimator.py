@@ -33,13 +33,17 @@ from ...core.validate import as_float_array, positive_scalar, positive_vector, s
 from ...generated.dispatch import MODEL_NAMES, N_INTERNAL, N_TANGENT
 
 __all__ = [
-    "Mode", "IMM", "imm_batch", "parse_modes", "transition_matrix", "NOISE_LEVELS", "DEFAULT_SWITCH",
+    "Mode", "IMM", "imm_batch", "parse_modes", "transition_matrix", "NOISE_LEVELS", "DEFAULT_SWITCH", "DEFAULT_MODES",
 ]
 
 #: named noise levels of a mode, as factors of the model's ``default_accel_std``
 NOISE_LEVELS = {"calm": 0.2, "default": 1.0, "manoeuvre": 4.0, "maneuver": 4.0}
 #: default probability of leaving a mode per step (the transition matrix's off-diagonal mass)
 DEFAULT_SWITCH = 0.05
+#: the modes of ``lgekf track --model imm``, ``lgekf evaluate --imm`` and the multi-target tracker's IMM by default: CV
+#: and a calm and a manoeuvring SE(2)×R³ (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and
+#: cv,se2r3, see docs/imm.md)
+DEFAULT_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
 #: below this speed (m/s) the conversions' Jacobians are evaluated at this speed (singular at 0)
 SPEED_FLOOR = 1e-9
 

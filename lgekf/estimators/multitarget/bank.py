@@ -10,12 +10,12 @@ scan for all tracks (no Python per track):
   and detection j (the quantities PDA/JPDA/GNN weigh);
 * ``update(beta0, beta)``: the PDA correction of every track with the association weights β of the last
   gated scan;
-* ``physical(rows)`` and ``stds()``: the estimates to report.
+* ``physical(rows)``, ``covariances(rows)`` and ``stds(rows)``: the estimates to report.
 
 ``ModelBank`` implements it with the generated kernels of a model (fused ``predict``, ``calH_<meas>``,
-the innovation, ``retract``, ``right_jacobian``; see ``derive/codegen/bank.py``). An IMM bank would
-implement the same five calls: ``gate`` with the mode-mixed likelihood Σ_k μ_k N_k, ``update`` with the
-IMM-PDA per-mode corrections, and the tracker would use it unchanged.
+the innovation, ``retract``, ``right_jacobian``; see ``derive/codegen/bank.py``). ``IMMBank``
+(``imm_bank.py``) implements the same calls with an IMM per track: ``gate`` with the mode-mixed likelihood
+Σ_k c̄_k N_k, ``update`` with the IMM-PDA per-mode corrections; the tracker uses it unchanged.
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ class TrackFilterBank(Protocol):
 
     def covariances(self, rows: np.ndarray) -> np.ndarray: ...
 
-    def stds(self) -> np.ndarray: ...
+    def stds(self, rows: np.ndarray | None = None) -> np.ndarray: ...
 
 
 class ModelBank:
@@ -79,6 +79,7 @@ class ModelBank:
 
     def __init__(self, model: str, measurement: str, accel_std, meas_std, capacity: int = 64):
         self.spec = get_model(model)
+        self.state_names = tuple(self.spec.state_names)
         self.meas = self.spec.measurement(measurement)
         self.kern = self.spec.kernels
         self.q = np.ascontiguousarray(accel_std, dtype=float)
@@ -185,6 +186,8 @@ class ModelBank:
         perturbation X = μ·exp(ε), the model's tangent order)."""
         return unpack(self.p[np.asarray(rows, dtype=np.int64)], self.n)
 
-    def stds(self) -> np.ndarray:
-        """Square roots of P's diagonal (N, n): the std of each tangent coordinate."""
-        return np.sqrt(np.maximum(self.p[:, self._diag], 0.0))
+    def stds(self, rows: np.ndarray | None = None) -> np.ndarray:
+        """Square roots of P's diagonal: the std of each tangent coordinate, (len(rows), n) of the given rows, or
+        (N, n) of every row when None."""
+        p = self.p if rows is None else self.p[np.asarray(rows, dtype=np.int64)]
+        return np.sqrt(np.maximum(p[:, self._diag], 0.0))

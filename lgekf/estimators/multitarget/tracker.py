@@ -47,7 +47,10 @@ One call ``step(t, detections)`` per scan (all detections of one time):
    Every track gets a unique integer id (0, 1, 2, ... in order of initiation), never reused.
 
 The per-track filters are a ``TrackFilterBank`` (``lgekf.estimators.multitarget.bank``): ``ModelBank`` for any
-registry model; an IMM bank implementing the same five calls plugs in unchanged (``bank=`` argument).
+registry model, or with ``model="imm"`` an ``IMMBank`` (``lgekf.estimators.multitarget.imm_bank``: an IMM of
+``imm_modes`` per track, the mode-mixed likelihood in the association, the IMM-PDA correction; its states are the
+combined estimate in the common coordinates x, y, θ, v_x, v_y, ω, as ``lgekf track --model imm`` reports); any other
+bank implementing the same calls plugs in unchanged (``bank=`` argument).
 
 With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
 """
@@ -61,7 +64,7 @@ import numba as nb
 import numpy as np
 
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ...core.registry import get_model
+from ...core.registry import get_measurement, get_model
 from ...core.validate import positive_scalar
 from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
@@ -69,9 +72,10 @@ from .clutter import ClutterEstimator, ConstantClutter, clutter_estimator
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
 
-__all__ = ["MultiTargetTracker", "ScanReport", "Track", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
+__all__ = ["MultiTargetTracker", "ScanReport", "Track", "IMM_MODEL", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
            "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
 
+IMM_MODEL = "imm"  # ``model`` of a tracker whose per-track filters are IMMs (``IMMBank``)
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
 INITIATIONS = ("one-point", "two-point")
 DEFAULT_INITIATION = {"jpda": "one-point", "gnn": "one-point", "pda": "two-point"}  # per association: measured
@@ -170,11 +174,13 @@ class ScanReport:
     ids : ndarray of int, (K,)
         Track ids.
     states : ndarray, (K, n)
-        Physical states (the model's ``state_names``).
+        Physical states (the model's ``state_names``; the IMM: its combined estimate in the common coordinates).
     stds : ndarray, (K, n)
-        Std of each tangent coordinate (square roots of P's diagonal).
+        Std of each tangent coordinate (square roots of P's diagonal; the IMM: of the common coordinates).
     existence : ndarray, (K,)
         Existence probabilities.
+    mu : ndarray, (K, M) or None
+        The IMM's mode probabilities (``model="imm"``), else None.
     """
 
     t: float
@@ -182,6 +188,7 @@ class ScanReport:
     states: np.ndarray
     stds: np.ndarray
     existence: np.ndarray
+    mu: np.ndarray | None = None
 
 
 @dataclass
@@ -198,7 +205,8 @@ class Track:
         Physical states (the model's ``state_names``).
     covariances : ndarray, (K, n, n)
         Covariances in the tangent of each scan's mean (right perturbation X = μ·exp(ε), the model's tangent order;
-        the square roots of their diagonals are ``ScanReport.stds``).
+        the IMM: the combined covariance in the common coordinates; the square roots of their diagonals are
+        ``ScanReport.stds``).
     existence : ndarray, (K,)
         Existence probabilities.
     """
@@ -216,7 +224,9 @@ class MultiTargetTracker:
     Parameters
     ----------
     model : str
-        A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...).
+        A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...), or ``"imm"`` (``IMM_MODEL``):
+        an IMM of ``imm_modes`` per track (``IMMBank``); its states, stds and covariances are the combined
+        estimate in the common coordinates (x, y, θ, v_x, v_y, ω).
     association : {"jpda", "pda", "gnn"}
         JPDA (JIPDA; exact joint events up to ``max_events`` per cluster, loopy belief propagation beyond),
         PDA per track, or global nearest neighbour.
@@ -229,7 +239,8 @@ class MultiTargetTracker:
     meas_std : float or tuple
         Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements.
     accel_std : tuple, optional
-        The model's process-noise stds (default the model's ``default_accel_std``).
+        The model's process-noise stds (default the model's ``default_accel_std``); not with ``"imm"`` (each
+        mode's noise is in ``imm_modes``).
     measurement : {"position", "pose"}
         Detections (x, y) or (x, y, θ).
     gate_prob : float
@@ -264,6 +275,12 @@ class MultiTargetTracker:
         The per-track filters (default a ``ModelBank`` of ``model``); e.g. an IMM bank.
     history : bool
         Keep every reported track's states, covariances and existence scan by scan (``tracks()``).
+    imm_modes : str or list, optional
+        ``model="imm"``: the modes (``lgekf.estimators.imm.parse_modes`` syntax or ``Mode`` objects, at least two;
+        default ``DEFAULT_MODES``, the modes of ``lgekf track --model imm``: CV and a calm and a manoeuvring
+        SE(2)×R³).
+    imm_switch : float, optional
+        ``model="imm"``: the probability of leaving a mode per scan (default ``DEFAULT_SWITCH``, 0.05).
 
     Attributes
     ----------
@@ -307,9 +324,18 @@ class MultiTargetTracker:
                  confirm_existence: float = 0.9, report_existence: float = 0.5, delete_existence: float = 0.01,
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
                  seed_scans: int = 1, bank: TrackFilterBank | None = None, initiation: str | None = None,
-                 speed_std: float | None = None, birth_density: float | None = None, history: bool = False):
-        spec = get_model(model)
-        meas = spec.measurement(measurement)
+                 speed_std: float | None = None, birth_density: float | None = None, history: bool = False,
+                 imm_modes=None, imm_switch: float | None = None):
+        if model == IMM_MODEL:
+            if accel_std is not None:
+                raise ValueError("accel-std: not with the IMM; give each mode's noise in the modes (e.g. "
+                                 "se2r3:0.2/0.2/0.5)")
+            spec, meas = None, get_measurement(measurement)
+        else:
+            if imm_modes is not None or imm_switch is not None:
+                raise ValueError("imm-modes/imm-switch: only with the IMM (model imm)")
+            spec = get_model(model)
+            meas = spec.measurement(measurement)
         if association not in ASSOCIATIONS:
             raise ValueError(f"association: unknown method {association!r}; choose one of {', '.join(ASSOCIATIONS)}")
         initiation = DEFAULT_INITIATION[association] if initiation is None else initiation
@@ -352,11 +378,12 @@ class MultiTargetTracker:
         if r.size != len(meas.noise_names) or not np.all(np.isfinite(r)) or np.any(r <= 0):
             raise ValueError(f"meas-std: {measurement} takes {len(meas.noise_names)} positive value(s) "
                              f"({', '.join(meas.noise_names)}), got {np.asarray(meas_std).tolist()}")
-        q = spec.default_accel_std if accel_std is None else accel_std
-        q = np.atleast_1d(np.asarray(q, dtype=float))
-        if q.size != len(spec.noise_names) or not np.all(np.isfinite(q)) or np.any(q < 0):
-            raise ValueError(f"accel-std: {model} takes {len(spec.noise_names)} non-negative value(s) "
-                             f"({', '.join(spec.noise_names)}), got {np.asarray(accel_std).tolist()}")
+        if spec is not None:
+            q = spec.default_accel_std if accel_std is None else accel_std
+            q = np.atleast_1d(np.asarray(q, dtype=float))
+            if q.size != len(spec.noise_names) or not np.all(np.isfinite(q)) or np.any(q < 0):
+                raise ValueError(f"accel-std: {model} takes {len(spec.noise_names)} non-negative value(s) "
+                                 f"({', '.join(spec.noise_names)}), got {np.asarray(accel_std).tolist()}")
         self.model, self.measurement, self.association = model, measurement, association
         self.spec, self.meas = spec, meas
         self.pd, self.pg, self.ps = float(detection_prob), float(gate_prob), float(survival_prob)
@@ -369,6 +396,12 @@ class MultiTargetTracker:
         self.kappa = self.clutter_density / self.angle_volume
         self.gamma = gate_threshold(self.pg, meas.dim)
         self.clutter.configure(math.sqrt(2.0 * self.gamma) * self.pos_std)  # a held track's gate radius: S ≈ 2R
+        if bank is None and spec is None:
+            from ..imm.estimator import DEFAULT_MODES, DEFAULT_SWITCH
+            from .imm_bank import IMMBank
+
+            bank = IMMBank(DEFAULT_MODES if imm_modes is None else imm_modes, measurement, r,
+                           DEFAULT_SWITCH if imm_switch is None else imm_switch)
         self.bank = bank if bank is not None else ModelBank(model, measurement, q, r)
         cap = self.bank.live.size
         self.r = np.zeros(cap)
@@ -537,6 +570,14 @@ class MultiTargetTracker:
         hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
         c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
                            heading, hstd, HEADING_CAP, first=np.arange(B))
+        return self._initial(c, var)
+
+    def _initial(self, c, var):
+        """x0 (B, n), P0 (B, n, n) of the bank from common coordinates c (B, 6) and their variances (B, 6): the
+        model's (``initial_estimates``); the IMM's bank takes the common coordinates themselves (each mode converts
+        them, ``IMMBank.add``)."""
+        if self.spec is None:
+            return c, var[:, :, None] * np.eye(6)
         return initial_estimates(self.model, c, var)
 
     def _one_point(self, t, unused, r0=None):
@@ -546,7 +587,7 @@ class MultiTargetTracker:
             return
         hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
         c, var = one_point_prior(unused, self.pos_std, self.speed_std, self.omega_std, hstd)
-        rows = self._start(*initial_estimates(self.model, c, var), r0)
+        rows = self._start(*self._initial(c, var), r0)
         self.max_existence = max(self.max_existence, self.r_birth if r0 is None else float(np.max(r0)))
         self.first_t[rows] = t
         self.first_z[rows] = unused
@@ -608,7 +649,8 @@ class MultiTargetTracker:
         sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
         sel = sel[np.argsort(self.ids[sel], kind="stable")]
         X = self.bank.physical(sel)
-        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds()[sel], self.r[sel].copy())
+        mu = self.bank.mode_probabilities(sel) if hasattr(self.bank, "mode_probabilities") else None
+        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds(sel), self.r[sel].copy(), mu)
         if self.history is not None and self.t is not None and self._recorded != self.t:
             self._recorded = self.t
             for k, P in enumerate(self.bank.covariances(sel)):
