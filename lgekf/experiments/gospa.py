@@ -229,6 +229,8 @@ def _table(data, what: str, columns):
         except (OSError, ValueError) as e:
             raise ValueError(f"{what}: cannot read {os.fspath(data)!r}: {e}") from None
     frame = data if hasattr(data, "columns") else pd.DataFrame(dict(data))
+    if columns[0] == "id" and "id" not in frame.columns and "track" in frame.columns:
+        columns = ("track", *columns[1:])  # `lgekf track --multi` names its track ids `track`
     missing = [c for c in columns if c not in frame.columns]
     if missing:
         raise ValueError(f"{what}: no column {', '.join(map(repr, missing))} (has {', '.join(map(str, frame.columns))}); "
@@ -267,7 +269,8 @@ def gospa_tracks(tracks, truth, c: float = 2.0, p: float = 2.0, tolerance: float
         interval between the truth's times, so each row belongs to one scan at most; rows farther from every scan
         are left out). A scan where no track has a row counts every truth as missed.
     columns : (id, t, x, y)
-        The column names of ``tracks``.
+        The column names of ``tracks`` (with the default ``id``, a table without ``id`` but with ``track``, as
+        ``lgekf track --multi`` writes, is read by ``track``).
     truth_columns : (id, t, x, y), optional
         Those of ``truth`` (default ``columns``).
 

@@ -129,3 +129,12 @@ def test_gospa_tracks_tolerance_and_bad_input():
         gospa_tracks(tracks, truth, c=0.0)
     with pytest.raises(ValueError, match="cannot read"):
         gospa_tracks("/nonexistent/tracks.csv", truth)
+
+
+def test_gospa_tracks_reads_the_track_column_of_multi_output():
+    """`lgekf track --multi` names its ids `track`: the default columns read it when there is no `id`."""
+    truth = {"id": [1, 1], "t": [0.0, 1.0], "x": [0.0, 1.0], "y": [0.0, 0.0]}
+    multi = {"track": [7, 7], "t": [0.0, 1.0], "x": [0.75, 1.75], "y": [1.0, 1.0]}
+    assert gospa_tracks(multi, truth, c=2, p=2).distance.tolist() == [1.25, 1.25]
+    with pytest.raises(ValueError, match="no column 'id'"):
+        gospa_tracks({"obj": [7], "t": [0.0], "x": [0.0], "y": [0.0]}, truth)
