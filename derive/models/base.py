@@ -29,11 +29,11 @@ import sympy as sp
 
 from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
-from ..lie.special import to_exact
+from ..lie.special import to_exact, wrap
 from ..space import PLANE, SPACE3, angle_of
 
 __all__ = [
-    "MotionModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
+    "MotionModel", "VectorModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
     "dwna_G", "rotation", "angle_of", "SE2", "SE3", "Rn", "Product", "PLANE", "SPACE3",
 ]
 
@@ -370,6 +370,37 @@ class MotionModel:
             if sp.Matrix(M).free_symbols & state:
                 return False
         return True
+
+
+class VectorModel(MotionModel):
+    """A motion model on Rⁿ (the Euclidean EKF, or the KF when linear): μ = exp(x) with x the physical state, so the
+    tangent ε is the error of the physical state and the LG-EKF machinery is the EKF (Φ = I, Ad = I); the internal
+    state is the physical one, read back with the ``angles`` wrapped to (−π, π]; Ω(x) = f(x) − x from the model's
+    exact discretisation ``f(s)`` (a list of the physical symbols in, the next state out).  CTRV, CT3, CV, CV3."""
+
+    @property
+    def internal(self) -> tuple:
+        return tuple(self.physical)
+
+    def f(self, s) -> sp.Matrix:  # pragma: no cover - abstract
+        """The exact discretisation x' = f(x) over one step of length ``dt``."""
+        raise NotImplementedError
+
+    def mean(self):
+        return self.group.exp(self.physical)
+
+    def internal_of(self, X):
+        return list(self.group.log(X))
+
+    def internal_from_physical(self):
+        return list(self.physical)
+
+    def physical_from_internal(self):
+        return [wrap(p) if i in self.angles else p for i, p in enumerate(self.physical)]
+
+    def Omega_of(self, X):
+        s = self.group.log(X)
+        return self.f(list(s)) - s
 
 
 #: entries with more operations than this are emitted as they are (CSE shares their parts); simplifying them takes

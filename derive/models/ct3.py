@@ -13,16 +13,16 @@ the climb), its body rate (0, 0, ω).
 
 import sympy as sp
 
-from ..lie.special import sinc, wrap
+from ..lie.special import sinc
 from ..space import SPACE3, euler_rotation
-from .base import MotionModel, Rn, dt
+from .base import Rn, VectorModel, dt
 
 x, y, z, roll, pitch, yaw, vx, vy, vz, wx, wy, wz = SPACE3.common
 psi, v, omega = sp.symbols("psi v omega", real=True)
 vz_ = sp.Symbol("v_up", real=True)
 
 
-class CT3(MotionModel):
+class CT3(VectorModel):
     display_name = "CT3 EKF"
     description = "EKF with the 3-D coordinated-turn model (horizontal CTRV, constant vertical speed)"
     color = "tab:green"
@@ -31,24 +31,11 @@ class CT3(MotionModel):
     group = Rn(7)
     physical = (x, y, z, psi, v, omega, vz_)
     names = ("x", "y", "z", "psi", "v", "omega", "vz")
-    internal = (x, y, z, psi, v, omega, vz_)
     noise_names = ("sigma_a", "sigma_alpha", "sigma_z")
     default_accel_std = (0.5, 1.0, 0.5)
     matched_noise = ("v", "w", "v")
     angles = (3,)
     forward_speed = (3, 4)  # (course, v): (course + π, −v) is the same motion
-
-    def mean(self):
-        return self.group.exp(self.physical)
-
-    def internal_of(self, X):
-        return list(self.group.log(X))
-
-    def internal_from_physical(self):
-        return list(self.physical)
-
-    def physical_from_internal(self):
-        return [x, y, z, wrap(psi), v, omega, vz_]
 
     def f(self, s):
         """The exact discretisation x' = f(x) (sinc form)."""
@@ -56,10 +43,6 @@ class CT3(MotionModel):
         h = W * dt / 2
         return sp.Matrix([X + V * dt * sp.cos(P + h) * sinc(h), Y + V * dt * sp.sin(P + h) * sinc(h), Z + VZ * dt,
                           P + W * dt, V, W, VZ])
-
-    def Omega_of(self, X):
-        s = self.group.log(X)
-        return self.f(list(s)) - s
 
     def noise_input(self):
         c, s = sp.cos(psi), sp.sin(psi)

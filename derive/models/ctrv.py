@@ -9,36 +9,23 @@ G(ψ) = [[T²/2 cos ψ, 0], [T²/2 sin ψ, 0], [0, T²/2], [T, 0], [0, T]], take
 
 import sympy as sp
 
-from ..lie.special import sinc, wrap
-from .base import MotionModel, Rn, dt, omega, theta, vx, vy, x, y
+from ..lie.special import sinc
+from .base import Rn, VectorModel, dt, omega, theta, vx, vy, x, y
 
 psi, v = sp.symbols("psi v", real=True)
 
 
-class CTRV(MotionModel):
+class CTRV(VectorModel):
     display_name = "CTRV EKF"
     description = "EKF with the constant turn rate and velocity model"
     color = "tab:green"
     group = Rn(5)
     physical = (x, y, psi, v, omega)
-    internal = (x, y, psi, v, omega)
     noise_names = ("sigma_a", "sigma_alpha")
     default_accel_std = (0.5, 1.0)
     matched_noise = ("v", "w")
     angles = (2,)
     forward_speed = (2, 3)  # (heading, v): (heading + π, −v) is the same motion
-
-    def mean(self):
-        return self.group.exp(self.physical)
-
-    def internal_of(self, X):
-        return list(self.group.log(X))
-
-    def internal_from_physical(self):
-        return list(self.physical)
-
-    def physical_from_internal(self):
-        return [x, y, wrap(psi), v, omega]
 
     def f(self, s):
         """The exact discretisation x' = f(x) (sinc form)."""
@@ -53,10 +40,6 @@ class CTRV(MotionModel):
         dx = sp.integrate(v * sp.cos(psi_t), (t, 0, dt))
         dy = sp.integrate(v * sp.sin(psi_t), (t, 0, dt))
         return sp.Matrix([x + dx, y + dy, psi_t.subs(t, dt), v, omega])
-
-    def Omega_of(self, X):
-        s = self.group.log(X)
-        return self.f(list(s)) - s
 
     def noise_input(self):
         c, s = sp.cos(psi), sp.sin(psi)

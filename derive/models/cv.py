@@ -7,38 +7,26 @@ G = [T²/2 I; T I].  CV has no heading: pose measurements do not fit it.
 
 import sympy as sp
 
-from .base import MotionModel, Rn, dt, dwna_G, theta, vx, vy, x, y
+from .base import Rn, VectorModel, dt, dwna_G, theta, vx, vy, x, y
 
 wx, wy = sp.symbols("w_x w_y", real=True)
 
 
-class CV(MotionModel):
+class CV(VectorModel):
     display_name = "CV KF"
     description = "Kalman filter with the constant (world-frame) velocity model"
     color = "tab:red"
     group = Rn(4)
     physical = (x, y, wx, wy)
     names = ("x", "y", "vx", "vy")  # world-frame velocity, named as in the output files
-    internal = (x, y, wx, wy)
     noise_names = ("sigma_a",)
     default_accel_std = (0.5,)
     matched_noise = ("v",)
 
-    def mean(self):
-        return self.group.exp(self.physical)
-
-    def internal_of(self, X):
-        return list(self.group.log(X))
-
-    def internal_from_physical(self):
-        return list(self.physical)
-
-    def physical_from_internal(self):
-        return list(self.physical)
-
-    def Omega_of(self, X):
-        s = self.group.log(X)
-        return sp.Matrix([dt * s[2], dt * s[3], 0, 0])
+    def f(self, s):
+        """x' = x + T w, w' = w."""
+        X, Y, WX, WY = s
+        return sp.Matrix([X + dt * WX, Y + dt * WY, WX, WY])
 
     def noise_input(self):
         return dwna_G(2)

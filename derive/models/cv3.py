@@ -8,13 +8,13 @@ CV3 has no attitude: it fits the 3-D position measurement only.
 import sympy as sp
 
 from ..space import SPACE3, euler_rotation
-from .base import MotionModel, Rn, dt, dwna_G
+from .base import Rn, VectorModel, dt, dwna_G
 
 x, y, z, roll, pitch, yaw, vx, vy, vz = SPACE3.common[:9]
 wx, wy, wz = sp.symbols("w_x w_y w_z", real=True)
 
 
-class CV3(MotionModel):
+class CV3(VectorModel):
     display_name = "CV3 KF"
     description = "Kalman filter with the constant (world-frame) velocity model in 3-D"
     color = "tab:red"
@@ -23,26 +23,14 @@ class CV3(MotionModel):
     group = Rn(6)
     physical = (x, y, z, wx, wy, wz)
     names = ("x", "y", "z", "vx", "vy", "vz")  # world-frame velocity, named as in the output files
-    internal = (x, y, z, wx, wy, wz)
     noise_names = ("sigma_a",)
     default_accel_std = (0.5,)
     matched_noise = ("v",)
 
-    def mean(self):
-        return self.group.exp(self.physical)
-
-    def internal_of(self, X):
-        return list(self.group.log(X))
-
-    def internal_from_physical(self):
-        return list(self.physical)
-
-    def physical_from_internal(self):
-        return list(self.physical)
-
-    def Omega_of(self, X):
-        s = self.group.log(X)
-        return sp.Matrix([dt * s[3], dt * s[4], dt * s[5], 0, 0, 0])
+    def f(self, s):
+        """x' = x + T w, w' = w."""
+        X, Y, Z, WX, WY, WZ = s
+        return sp.Matrix([X + dt * WX, Y + dt * WY, Z + dt * WZ, WX, WY, WZ])
 
     def noise_input(self):
         return dwna_G(3)
