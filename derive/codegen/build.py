@@ -276,7 +276,9 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None, cache: bool = True
         "SO(3) and SE(3) building blocks: hat, vee, exp, log (also near |φ| = π), inverse, Ad, ad, right Jacobian Φ and Φ^-1;\n"
         "tangent order (x, y, z, φx, φy, φz), T = μ·exp(ε), log(exp(-ξ) exp(ξ + δ)) ≈ Φ(ξ) δ.",
         "derive/lie/so3.py, derive/lie/se3.py through derive/codegen/families/group.py", se3_kernels(), IMPORTS, PREAMBLE)
-    jobs_args = [(n, models_dir, meas_dir, cache) for n in sorted(models)]
+    # the largest state first (its module takes longest: SE(3)×R⁶ about as long as all the others), so that the
+    # processes finish together
+    jobs_args = [(n, models_dir, meas_dir, cache) for n in sorted(models, key=lambda n: (-models[n].n, n))]
     bar = _bar(len(jobs_args))
     if jobs > 1 and len(jobs_args) > 1:
         with ProcessPoolExecutor(max_workers=jobs) as ex:

@@ -218,7 +218,10 @@ def _hoisted(defs, names):
     repl = {}
     pre = []
     for _, ex in defs:
-        for atom in sorted(sp.sympify(ex).atoms(*kinds), key=_sort_key):
+        ex = sp.sympify(ex)
+        if not ex.has(*ANGLE_FUNCTIONS):  # nothing can be nested in it (most expressions: one quick traversal)
+            continue
+        for atom in sorted(ex.atoms(*kinds), key=_sort_key):
             arg = atom.args[0]
             if arg not in repl and arg.atoms(*ANGLE_FUNCTIONS):
                 repl[arg] = next(names)

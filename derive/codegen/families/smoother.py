@@ -34,6 +34,27 @@ STORE_TEMPLATE = load("store.py.tmpl")
 SMOOTH_TEMPLATE = load("smooth.py.tmpl")
 
 
+#: measurement dimensions up to which det S is SymPy's expanded determinant (m = 2, 3: a few products); beyond, the
+#: expansion takes SymPy minutes (m = 6: 160 s, a 3-D pose) and the kernel multiplies the pivots of an unrolled LDLᵀ
+LDL_FROM = 3
+
+
+def _ldl_determinant(S: sp.Matrix, det: sp.Symbol) -> list:
+    """Stages computing det = Π d_j, the pivots of S = L D Lᵀ (S symmetric; one definition per stage, each reading the
+    earlier ones)."""
+    m = S.shape[0]
+    d, L, stages = [], {}, []
+    for j in range(m):
+        dj = sp.Symbol(f"ld{j}", real=True)
+        stages.append([(dj, S[j, j] - sum((L[j, k] ** 2 * d[k] for k in range(j)), sp.Integer(0)))])
+        d.append(dj)
+        for i in range(j + 1, m):
+            lij = sp.Symbol(f"ll{i}_{j}", real=True)
+            stages.append([(lij, (S[i, j] - sum((L[i, k] * L[j, k] * d[k] for k in range(j)), sp.Integer(0))) / dj)])
+            L[i, j] = lij
+    return stages + [[(det, sp.Mul(*d))]]
+
+
 def _logdet_kernel(model, meas, P, pin, sin_):
     """log det(ℋ P ℋᵀ + R) at the predicted state: ℋ of eq:calH, R of the measurement definition."""
     H = model.calH_for(meas).applyfunc(model.to_internal)
@@ -41,13 +62,17 @@ def _logdet_kernel(model, meas, P, pin, sin_):
     pdefs, HPs = symbolize(Hs * P, "hp")
     sdefs, Ss = symbolize(HPs * Hs.T + meas.R(), "S", only_upper=True)
     det = sp.Symbol("detS", real=True)
+    if meas.m <= LDL_FROM:
+        det_stages = [[(det, sp.expand(Ss.det()) if meas.m > 1 else Ss[0, 0])]]
+    else:
+        det_stages = _ldl_determinant(Ss, det)
     r_params = list(meas.noise_names)
     return Kernel(
         name=f"innovation_logdet_{meas.name}",
         doc=(f"log det S, S = ℋ P ℋᵀ + R (eq:K) for a {meas.name} measurement at the predicted state (s, p),\n"
              "noise stds (" + ", ".join(r_params) + "): the log-determinant term of the innovation log-likelihood."),
         params=["s", "p", *r_params], inputs=sin_ + pin + list(zip(meas.noise_symbols, r_params)),
-        stages=[hdefs, pdefs, sdefs, [(det, sp.expand(Ss.det()) if meas.m > 1 else Ss[0, 0])]],
+        stages=[hdefs, pdefs, sdefs, *det_stages],
         outputs=[], ret="math.log(detS)",
     )
 
