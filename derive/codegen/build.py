@@ -249,7 +249,7 @@ class _NoBar:
 
 
 def _bar(total: int):
-    """A tqdm bar over the models on a terminal (derivation takes 30-60 s), nothing otherwise."""
+    """A tqdm bar over the models on a terminal (an uncached derivation takes about a minute), nothing otherwise."""
     if not sys.stderr.isatty():
         return _NoBar()
     try:

@@ -11,6 +11,6 @@ def cmd_derive(argv) -> int:
     from ..derive.codegen.build import main as derive_main
 
     if not {"-h", "--help"} & set(argv):
-        # derive is SymPy work (not numba, not cached): it takes this long on every run
-        print("lgekf derive: deriving with SymPy, about 30-60 s...", file=sys.stderr, flush=True)
+        # derive is SymPy work (about a minute; the render cache serves unchanged sources in seconds)
+        print("lgekf derive: deriving with SymPy, up to about 60 s...", file=sys.stderr, flush=True)
     return derive_main(argv)

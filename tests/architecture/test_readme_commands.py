@@ -87,7 +87,8 @@ README_TO_RUN = {
          f"--duration 2 --out results_clutter_{s}" for s in ("base", "burst")],
     "lgekf track detections.csv --multi -o tracks.csv --clutter scan": None,
     "lgekf track DETECTIONS.csv --multi -o OUT.csv --clutter file|scan|map":
-        [f"lgekf track detections.csv --multi -o out_clutter_{c}.csv --clutter {c}" for c in ("file", "scan", "map")],
+        # scan: the command above
+        [f"lgekf track detections.csv --multi -o out_clutter_{c}.csv --clutter {c}" for c in ("file", "map")],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,
@@ -138,7 +139,7 @@ README_TO_RUN = {
     "lgekf evaluate --tune": ["lgekf evaluate ethucy --tune"],
     "lgekf track detections.csv --model cv --tune --tune-method em -o tracks.csv": None,
     "lgekf study --filters se2se2,se2r3,se2r2,ctrv,cv,imm": None,
-    "lgekf study --space 3d": None,
+    "lgekf study --space 3d": ["lgekf study --space 3d --out results3d"],  # one run for both
     "lgekf study --space 3d --out results3d": None,
     "lgekf track detections.csv --model imm -o tracks_imm.csv": None,
     "lgekf track detections.csv --model imm --imm-modes se2r3:calm,se2r3:manoeuvre --imm-switch 0.02 -o tracks_imm2.csv": None,
