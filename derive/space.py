@@ -55,8 +55,6 @@ class Space:
     common_names: tuple = ()
     common_doc = ""  # the common coordinates as docstrings write them
     position_names: tuple = ()
-    #: indices of the common coordinates that are angles (wrapped on output and in differences)
-    common_angles: tuple = ()
     #: the generated IMM loop (``generated/dispatch.py``, ``generated/imm.py``) mixes the models of this space
     mixes = False
     #: the divergence monitor's kernels (its two-point restart, ``derive/codegen/families/monitor.py``) serve this space
@@ -64,10 +62,6 @@ class Space:
 
     def __repr__(self):
         return f"Space({self.name!r})"
-
-    def frame(self, model, X):
-        """(cos, sin) of the heading (plane) or the attitude R (space) of ``model`` read off X, or None."""
-        raise NotImplementedError  # pragma: no cover - abstract
 
     def common_of_physical(self, model) -> list:  # pragma: no cover - abstract
         """c read off the physical state of ``model`` (the inverse direction of its ``from_common``)."""
@@ -83,12 +77,8 @@ class Plane(Space):
     common_names = ("x", "y", "theta", "vx", "vy", "omega")
     common_doc = "(x, y, θ, v_x, v_y, ω)"
     position_names = ("x", "y")
-    common_angles = (2,)
     mixes = True
     monitored = True
-
-    def frame(self, model, X):
-        return model.heading(X)
 
     def common_of_physical(self, model) -> list:
         """(x, y) = ``position``; θ = the ``heading`` or, for a model without one, the direction of the world
@@ -117,10 +107,6 @@ class Space3(Space):
     common_names = ("x", "y", "z", "roll", "pitch", "yaw", "vx", "vy", "vz", "wx", "wy", "wz")
     common_doc = "(x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z)"
     position_names = ("x", "y", "z")
-    common_angles = (3, 4, 5)
-
-    def frame(self, model, X):
-        return model.attitude(X)
 
     def common_of_physical(self, model) -> list:
         """(x, y, z) = ``position``; the attitude from ``attitude`` (Euler angles of R) or, for a model without one,

@@ -90,7 +90,7 @@ def study_parser():
 
 
 def config_from_args(a):
-    from ..core.registry import DEFAULT_SPACE, SPACES, models_of
+    from ..core.registry import DEFAULT_SPACE, SPACES, models_of, rotation_dims
     from ..experiments.study import StudyConfig
 
     space = DEFAULT_SPACE if a.space is None else a.space.lower()
@@ -107,7 +107,7 @@ def config_from_args(a):
             raise UsageError(f"--noise-scale: unknown filter {k!r}; choose one of {', '.join(own)}")
         scale[k] = _floats("--noise-scale", v, 1)[0]
     dim = SPACES[space]["dim"]
-    rot = (len(SPACES[space]["common_names"]) - 2 * dim) // 2
+    rot = rotation_dims(space)
     v0 = base.v0 if a.v0 is None else tuple(_floats("--v0", a.v0, dim))
     if a.w0 is None:
         w0 = base.w0

@@ -16,7 +16,7 @@ from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
 __all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "ALL_MODELS", "MEASUREMENTS", "ALL_MEASUREMENTS", "BASE_MEASUREMENT",
-           "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "get_model", "get_measurement",
+           "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "rotation_dims", "get_model", "get_measurement",
            "imm_kernel"]
 
 
@@ -150,6 +150,12 @@ def models_of(space: str) -> dict[str, ModelSpec]:
 def measurements_of(space: str) -> dict[str, MeasurementSpec]:
     """The registered measurements of one space."""
     return {name: spec for name, spec in ALL_MEASUREMENTS.items() if spec.space == space}
+
+
+def rotation_dims(space: str) -> int:
+    """Rotational coordinates of the space (1 in the plane: θ and ω; 3 in 3-D: the attitude and the body rate): its
+    common coordinates are position, attitude, velocity, rate."""
+    return (len(SPACES[space]["common_names"]) - 2 * SPACES[space]["dim"]) // 2
 
 
 def base_measurement(space: str) -> str:

@@ -33,7 +33,7 @@ import numpy as np
 from ..core.batch import filter_batch
 from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
-from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, base_measurement, get_model, models_of
+from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, base_measurement, get_model, models_of, rotation_dims
 from ..core.validate import positive_scalar
 from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
@@ -73,8 +73,7 @@ class StudyConfig:
             raise ValueError(f"space: unknown space {space!r}; choose one of {', '.join(SPACES)}")
         if space == DEFAULT_SPACE:
             return cls(**overrides)
-        dim, nc = SPACES[space]["dim"], len(SPACES[space]["common_names"])
-        r = (nc - 2 * dim) // 2  # rotational coordinates (attitude, rate)
+        dim, r = SPACES[space]["dim"], rotation_dims(space)
         filters = tuple(models_of(space))
         base = dict(space=space, v0=(3.0,) + (0.0,) * (dim - 1), w0=(0.0,) * r,
                     init_std=(0.5,) * dim + (0.1,) * r + (0.5,) * dim + (0.1,) * r, truth=truth_models(space)[0],
@@ -101,8 +100,8 @@ class StudyConfig:
         if len(self.v0) != dim or not all(math.isfinite(v) for v in self.v0):
             raise ValueError(f"v0: expected {dim} finite numbers (body velocity in m/s), got {list(self.v0)}")
         w0 = np.atleast_1d(np.asarray(self.w0, float))
-        if w0.size != (nc - 2 * dim) // 2 or not np.all(np.isfinite(w0)):
-            raise ValueError(f"w0: expected {(nc - 2 * dim) // 2} finite number(s) (angular velocity in rad/s), got {self.w0}")
+        if w0.size != rotation_dims(self.space) or not np.all(np.isfinite(w0)):
+            raise ValueError(f"w0: expected {rotation_dims(self.space)} finite number(s) (angular velocity in rad/s), got {self.w0}")
         if len(self.init_std) != nc:
             raise ValueError(f"init_std: expected {nc} stds (one per common coordinate), got {len(self.init_std)}")
         if self.truth not in truth_models(self.space):
