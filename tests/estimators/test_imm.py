@@ -42,7 +42,7 @@ def _vee(L, E):
     return np.linalg.lstsq(A, L.ravel(), rcond=None)[0]
 
 
-def _dense_mixture(mus, Ps, w, E, rng, N=300, iters=4):
+def _dense_mixture(mus, Ps, w, E, rng, N=120, iters=3):
     """Reference: 2N samples of each N_G(μ_i, P_i) through dense expm (antithetic, whitened so that the tangent
     samples have exactly mean 0 and covariance P_i: what remains is the group's nonlinearity, not Monte Carlo
     noise), the weighted Karcher mean through dense logm (iterated), and the weighted covariance of
