@@ -9,6 +9,7 @@ Runtime layers (lower may not import higher): generated (0) < core, io (1) < est
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from pathlib import Path
 
@@ -26,8 +27,10 @@ def _modules(pkg_dir: Path, pkg: str):
         yield ".".join([pkg, *parts]), path, path.name == "__init__.py"
 
 
-def _imports(name: str, path: Path, is_pkg: bool):
-    """Absolute names of the modules ``path`` imports (relative imports resolved)."""
+@functools.lru_cache(maxsize=None)
+def _imports(name: str, path: Path, is_pkg: bool) -> frozenset:
+    """Absolute names of the modules ``path`` imports (relative imports resolved); parsed once per run (the generated
+    modules are megabytes of source: parsing them for every test cost seconds each)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     base = name.split(".") if is_pkg else name.split(".")[:-1]
     out = set()
@@ -42,7 +45,7 @@ def _imports(name: str, path: Path, is_pkg: bool):
                 mod = node.module or ""
             out.add(mod)
             out |= {f"{mod}.{a.name}" for a in node.names}
-    return out
+    return frozenset(out)
 
 
 def _layer(name: str, table: dict, pkg: str):
