@@ -29,7 +29,7 @@ def study_multi_parser():
     ap.add_argument("--imm-modes", default=None, metavar="LIST",
                     help="with imm in --models: its modes (default those of lgekf track --model imm, "
                          "cv,se2r3:calm,se2r3:manoeuvre)")
-    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help="associations (default jpda,pda,gnn)")
+    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help=f"associations (default {','.join(ASSOCIATIONS)})")
     ap.add_argument("--initiation", default=None, metavar="LIST",
                     help="track initiations to compare, one-point,two-point (default: the tracker's default for each "
                          "association, one-point with jpda and gnn, two-point with pda)")

@@ -122,10 +122,11 @@ def track_parser():
 
     g = ap.add_argument_group("multi-target tracking (--multi: unlabelled detections with clutter and misses)")
     g.add_argument("--multi", action="store_true",
-                   help="track many objects from unlabelled detections (JPDA/PDA/GNN with integrated track existence; an "
+                   help="track many objects from unlabelled detections (JPDA/JPDA*/PDA/GNN with integrated track existence; an "
                         "id column is ignored); see docs/track_multi.md")
     g.add_argument("--association", default=None, choices=list(ASSOCIATIONS),
-                   help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), pda or gnn "
+                   help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), jpdastar (JPDA* "
+                        "with the best of permuted events only: close tracks do not coalesce), pda or gnn "
                         f"(default {MULTI_DEFAULTS['association']})")
     g.add_argument("--initiation", default=None, choices=list(INITIATIONS),
                    help="how tracks start: one-point = a tentative track from every detection no track claims, velocity "

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
+from ..estimators.multitarget.association import ASSOCIATIONS
 from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS, MultiTargetTracker
 from .clutter_scenarios import CLUTTER_SCENARIOS, STUDY_CLUTTERS, clutter_scenario, study_clutter
 from .gospa import gospa_series
@@ -39,7 +40,7 @@ class MultiStudyConfig:
     """The protocol of ``lgekf study --multi`` (defaults: the table of docs/multi_target.md)."""
 
     models: tuple = ("se2se2", "se2r3", "se2r2", "ctrv", "cv")
-    associations: tuple = ("jpda", "pda", "gnn")
+    associations: tuple = ASSOCIATIONS
     initiations: tuple = (None,)  # None: the tracker's default for the association (DEFAULT_INITIATION)
     runs: int = 5
     seed: int = 2016

@@ -86,6 +86,10 @@ README_TO_RUN = {
         [f"lgekf study --multi --scenario {s} --models cv --association jpda --clutter true,file,scan,map,oracle --runs 1 "
          f"--duration 2 --out results_clutter_{s}" for s in ("base", "burst")],
     "lgekf track detections.csv --multi -o tracks.csv --clutter scan": None,
+    "lgekf track detections.csv --multi --association jpdastar -o tracks.csv": None,
+    "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 3 --models cv,se2r3 --association jpda,jpdastar,gnn":
+        ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv "
+         "--association jpdastar --out results_jpdastar"],
     "lgekf track DETECTIONS.csv --multi -o OUT.csv --clutter file|scan|map":
         # scan: the command above
         [f"lgekf track detections.csv --multi -o out_clutter_{c}.csv --clutter {c}" for c in ("file", "map")],

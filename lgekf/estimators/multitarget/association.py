@@ -17,6 +17,11 @@ and the association marginals p_i0, p_ij (``association_marginals``) are
   these are the β's of the parametric PDA (Bar-Shalom & Tse 1975);
 * ``"jpda"``: joint events over clusters of tracks sharing detections (``lgekf.estimators.multitarget.jpda``: exact
   enumeration up to ``max_events`` events per cluster, loopy belief propagation beyond);
+* ``"jpdastar"``: JPDA* (Blom & Bloem, "Probabilistic data association avoiding track coalescence", IEEE TAC 45(2),
+  2000): the same joint events, but of the events that detect the same tracks with the same detections (permutations
+  of one another) only the most probable enters the sums; JPDA weighs "track 1 took z_a, track 2 z_b" and the
+  swapped event alike when two targets are close, pulls both tracks towards the middle and lets them swap
+  identities; JPDA* does not (clusters beyond ``max_events`` events: the loopy-belief-propagation JPDA);
 * ``"gnn"``: one global nearest-neighbour assignment maximising Π w (scipy's
   ``linear_sum_assignment`` on −log ψ_ij, ψ_ij = W_ij/w0_i, with a "missed" column per track); the
   assigned detection j* then gets p_ij* = W_ij*/(w0_i + W_ij*) (a PDA with the one detection). Given the
@@ -46,7 +51,7 @@ from .jpda import MAX_EVENTS, jpda_marginals
 
 __all__ = ["ASSOCIATIONS", "association_weights", "association_marginals", "existence_and_weights", "gnn_assignment"]
 
-ASSOCIATIONS = ("jpda", "pda", "gnn")
+ASSOCIATIONS = ("jpda", "jpdastar", "pda", "gnn")
 GNN_FORBIDDEN = 1e18
 
 
@@ -131,8 +136,9 @@ def association_marginals(method: str, w0: np.ndarray, W: np.ndarray, gated: np.
 
     Parameters
     ----------
-    method : {"jpda", "pda", "gnn"}
-        Joint (tracks share detections), single-target, or global nearest neighbour.
+    method : {"jpda", "jpdastar", "pda", "gnn"}
+        Joint (tracks share detections), JPDA* (joint, the best permutation only), single-target, or global nearest
+        neighbour.
     w0, W, gated, live : ndarray
         The factor weights (N,), (N, M), the gates (N, M) and the rows in use (N,)
         (``association_weights``).
@@ -157,8 +163,8 @@ def association_marginals(method: str, w0: np.ndarray, W: np.ndarray, gated: np.
     exact = np.ones(N, dtype=bool)
     if method == "pda":
         _pda_marginals(w0, W, gated, live, p0, P)
-    elif method == "jpda":
-        jpda_marginals(w0, W, gated, live, int(max_events), p0, P, exact)
+    elif method in ("jpda", "jpdastar"):
+        jpda_marginals(w0, W, gated, live, int(max_events), p0, P, exact, method == "jpdastar")
     elif method == "gnn":
         j = gnn_assignment(w0, W, gated, live)
         left = live & (j < 0)

@@ -14,6 +14,8 @@ different clusters are independent, so the marginals are computed per cluster:
 * **exact** enumeration of every feasible joint event (depth-first, each track's options "missed" or an
   unused gated detection) when the cluster has at most ``max_events`` events by the bound Π_i (1 + n_i),
   n_i the detections in track i's gate;
+  with ``star`` (JPDA*, Blom & Bloem 2000) only the most probable of the events that detect the same tracks with the
+  same detections enters the sums (``exact_cluster_marginals``: against track coalescence);
 * otherwise the **loopy belief propagation** approximation of Williams & Lau ("Approximate evaluation
   of marginal association probabilities with belief propagation", IEEE TAES 50(4), 2014): with
   ψ_ij = W_ij / w0_i, messages μ_{i→j} = ψ_ij / (1 + Σ_{j'≠j} ψ_ij' ν_{j'→i}) and
@@ -68,31 +70,26 @@ def cluster_labels(gated, live):
 
 
 @nb.njit(cache=True)
-def exact_cluster_marginals(w0, W, gated, p0, P):
-    """Exact marginals of one cluster by enumerating every feasible joint event.
+def _event_key(choice, opt, nt):
+    """(detected tracks, used detections) of a joint event as two bit masks (nt, detections < 63)."""
+    tmask = 0
+    dmask = 0
+    for k in range(nt):
+        if choice[k] >= 1:
+            tmask |= 1 << k
+            dmask |= 1 << opt[k, choice[k] - 1]
+    return tmask, dmask
 
-    w0 (nt,), W (nt, nm), gated (nt, nm) bool; writes p0 (nt,) and P (nt, nm). Each track's weights are
-    scaled by their maximum first (the marginals do not change: every event has one factor per track)."""
-    nt, nm = W.shape
-    opt = np.full((nt, nm), -1)
-    nopt = np.zeros(nt, dtype=np.int64)
-    sw0 = np.empty(nt)
-    sW = np.zeros((nt, nm))
-    for i in range(nt):
-        big = w0[i]
-        for j in range(nm):
-            if gated[i, j] and W[i, j] > big:
-                big = W[i, j]
-        if big <= 0.0:
-            big = 1.0
-        sw0[i] = w0[i] / big
-        for j in range(nm):
-            if gated[i, j]:
-                sW[i, j] = W[i, j] / big
-                opt[i, nopt[i]] = j
-                nopt[i] += 1
-    acc0 = np.zeros(nt)
-    acc = np.zeros((nt, nm))
+
+@nb.njit(cache=True)
+def _enumerate_events(sw0, sW, opt, nopt, mode, best, acc0, acc):
+    """Depth-first over every feasible joint event of a cluster (each track "missed" or an unused gated detection),
+    with the event weight v = Π_k w_{k,θ(k)}; returns Σ v over the events counted.
+
+    mode 0: every event counts (JPDA). mode 1: record in ``best`` the largest weight of each (detected tracks, used
+    detections) key, count nothing. mode 2: count only the event of largest weight of its key (JPDA*; the first of
+    equal ones), using the ``best`` of mode 1."""
+    nt, nm = sW.shape
     choice = np.full(nt, -1)  # -1: not started; 0: missed; k >= 1: option k - 1
     used = np.zeros(nm, dtype=np.bool_)
     pw = np.ones(nt + 1)
@@ -118,6 +115,15 @@ def exact_cluster_marginals(w0, W, gated, p0, P):
         pw[i + 1] = pw[i] * w
         if i == nt - 1:
             v = pw[nt]
+            if mode != 0:
+                key = _event_key(choice, opt, nt)
+                if mode == 1:
+                    if key not in best or v > best[key]:
+                        best[key] = v
+                    continue
+                if v != best[key]:
+                    continue
+                best[key] = np.inf  # taken: an equal event of the same key does not count again
             total += v
             for k in range(nt):
                 if choice[k] == 0:
@@ -127,10 +133,54 @@ def exact_cluster_marginals(w0, W, gated, p0, P):
         else:
             depth += 1
             choice[depth] = -1
+    return total
+
+
+@nb.njit(cache=True)
+def exact_cluster_marginals(w0, W, gated, p0, P, star=False):
+    """Exact marginals of one cluster by enumerating every feasible joint event.
+
+    w0 (nt,), W (nt, nm), gated (nt, nm) bool; writes p0 (nt,) and P (nt, nm). Each track's weights are
+    scaled by their maximum first (the marginals do not change: every event has one factor per track).
+
+    ``star``: JPDA* (Blom & Bloem, "Probabilistic data association avoiding track coalescence", IEEE TAC 45(2),
+    2000): of the joint events that detect the same tracks with the same detections (permutations of one
+    another), only the most probable one enters the sums. When two tracks follow close targets, JPDA weighs
+    "track 1 took z_a, track 2 took z_b" and the swapped event alike and pulls both tracks to the middle
+    (coalescence); JPDA* keeps the better of the two. Needs fewer than 63 tracks and detections in the cluster
+    (bit masks); beyond, plain JPDA. Returns whether the JPDA* rule was applied."""
+    nt, nm = W.shape
+    opt = np.full((nt, nm), -1)
+    nopt = np.zeros(nt, dtype=np.int64)
+    sw0 = np.empty(nt)
+    sW = np.zeros((nt, nm))
+    for i in range(nt):
+        big = w0[i]
+        for j in range(nm):
+            if gated[i, j] and W[i, j] > big:
+                big = W[i, j]
+        if big <= 0.0:
+            big = 1.0
+        sw0[i] = w0[i] / big
+        for j in range(nm):
+            if gated[i, j]:
+                sW[i, j] = W[i, j] / big
+                opt[i, nopt[i]] = j
+                nopt[i] += 1
+    acc0 = np.zeros(nt)
+    acc = np.zeros((nt, nm))
+    best = {(0, 0): 0.0}
+    applied = star and nt < 63 and nm < 63
+    if applied:
+        _enumerate_events(sw0, sW, opt, nopt, 1, best, acc0, acc)
+        total = _enumerate_events(sw0, sW, opt, nopt, 2, best, acc0, acc)
+    else:
+        total = _enumerate_events(sw0, sW, opt, nopt, 0, best, acc0, acc)
     for i in range(nt):
         p0[i] = acc0[i] / total
         for j in range(nm):
             P[i, j] = acc[i, j] / total
+    return applied
 
 
 @nb.njit(cache=True)
@@ -179,9 +229,11 @@ def lbp_cluster_marginals(w0, W, gated, p0, P, max_iter=200, tol=1e-9):
 
 
 @nb.njit(cache=True)
-def jpda_marginals(w0, W, gated, live, max_events, p0, P, exact):
+def jpda_marginals(w0, W, gated, live, max_events, p0, P, exact, star=False):
     """JPDA marginals of every live track: p0 (N,) missed, P (N, M) detection j; exact[i] tells whether
-    track i's cluster was enumerated exactly (else loopy belief propagation). Returns the cluster labels."""
+    track i's cluster was enumerated exactly (else loopy belief propagation, which has no JPDA* form: ``star``
+    applies to the enumerated clusters). ``star``: JPDA* (``exact_cluster_marginals``). Returns the cluster
+    labels."""
     N, M = W.shape
     labels = cluster_labels(gated, live)
     for i in range(N):
@@ -222,7 +274,7 @@ def jpda_marginals(w0, W, gated, live, max_events, p0, P, exact):
         lP = np.zeros((nt, nm))
         ok = bound <= max_events
         if ok:
-            exact_cluster_marginals(lw0, lW, lg, lp0, lP)
+            exact_cluster_marginals(lw0, lW, lg, lp0, lP, star)
         else:
             lbp_cluster_marginals(lw0, lW, lg, lp0, lP)
         for a in range(nt):

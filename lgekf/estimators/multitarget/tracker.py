@@ -78,7 +78,7 @@ __all__ = ["MultiTargetTracker", "ScanReport", "Track", "IMM_MODEL", "HEADING_CA
 IMM_MODEL = "imm"  # ``model`` of a tracker whose per-track filters are IMMs (``IMMBank``)
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
 INITIATIONS = ("one-point", "two-point")
-DEFAULT_INITIATION = {"jpda": "one-point", "gnn": "one-point", "pda": "two-point"}  # per association: measured
+DEFAULT_INITIATION = {"jpda": "one-point", "jpdastar": "one-point", "gnn": "one-point", "pda": "two-point"}  # per association: measured
 BIRTH_EXISTENCE = {"one-point": 0.02, "two-point": 0.1}  # a new track's existence without birth_density
 SPEED_STD_FRACTION = 1.0 / 3.0  # one-point: the velocity prior's std per axis is max_speed/3
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
@@ -227,9 +227,11 @@ class MultiTargetTracker:
         A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...), or ``"imm"`` (``IMM_MODEL``):
         an IMM of ``imm_modes`` per track (``IMMBank``); its states, stds and covariances are the combined
         estimate in the common coordinates (x, y, θ, v_x, v_y, ω).
-    association : {"jpda", "pda", "gnn"}
+    association : {"jpda", "jpdastar", "pda", "gnn"}
         JPDA (JIPDA; exact joint events up to ``max_events`` per cluster, loopy belief propagation beyond),
-        PDA per track, or global nearest neighbour.
+        JPDA* (JPDA with only the most probable of the events that permute the same detections among the same
+        tracks: no coalescence of close tracks; ``lgekf.estimators.multitarget.association``), PDA per track, or global
+        nearest neighbour.
     detection_prob : float
         P_D in (0, 1].
     clutter_density : float, str or ClutterEstimator
