@@ -78,6 +78,7 @@ import numpy as np
 
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.multitarget.clutter import ClutterMap, bounding_box_density
+from ..core.initiation import DEFAULT_OMEGA_STD
 from ..estimators.multitarget.tracker import HEADING_CAP, IMM_MODEL, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
@@ -562,6 +563,43 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
         if not noise.fixed:
             q = noise.learned(plan)
         used = plan
+
+
+def study_process_noise(times, detections, tracker_args: dict, meas_std: float, heading_std: float) -> tuple[dict, str]:
+    """The process noise ``lgekf track --multi`` would estimate from a detection stream, for ``lgekf study --multi
+    --noise data`` (``lgekf.experiments.multi_study.run_multi_study``'s ``noise_fit``): the tracking passes of
+    ``fit_noise`` with the measurement std given (the study's), the process noise from the data, no monitor.
+
+    Parameters
+    ----------
+    times : sequence of float
+        The scans' times.
+    detections : sequence of ndarray (M_k, m)
+        The scans' detections.
+    tracker_args : dict
+        ``MultiTargetTracker`` arguments but ``meas_std`` and ``accel_std``.
+    meas_std, heading_std : float
+        The position std (m) and, for pose detections, the heading std (rad).
+
+    Returns
+    -------
+    noise : dict
+        The tracker's noise arguments: ``{"accel_std": stds}``, or ``{"imm_modes": modes}`` for the IMM.
+    text : str
+        The values, e.g. ``0.177,0.177,0.125``.
+    """
+    t = np.concatenate([np.full(len(Z), float(tk)) for tk, Z in zip(times, detections)])
+    Z = np.vstack([np.asarray(Z, dtype=float) for Z in detections])
+    sc = scans(t, 0.0)
+    omega = tracker_args.get("omega_std", DEFAULT_OMEGA_STD)
+    args = {k: v for k, v in tracker_args.items() if k != "omega_std"}
+    _, fit = fit_noise(t, Z, sc, args, meas_std=meas_std, accel_std=None, heading_std=heading_std, omega_std=omega,
+                       monitor=False)
+    if tracker_args["model"] == IMM_MODEL:
+        return {"imm_modes": fit.accel_std}, " ".join(f"{m.name}:{','.join(f'{v:.3g}' for v in m.accel_std)}"
+                                                      for m in fit.accel_std)
+    q = fit.accel_std if fit.accel_std is not None else get_model(tracker_args["model"]).default_accel_std
+    return {"accel_std": tuple(q)}, ",".join(f"{v:.3g}" for v in q)
 
 
 def _round_up(v: float) -> str:

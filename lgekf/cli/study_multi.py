@@ -46,6 +46,9 @@ def study_multi_parser():
                          "per-file estimate), scan (estimated per scan), map (a clutter map), oracle (the true density at "
                          "each detection) (default true)")
     ap.add_argument("--meas-std", type=float, default=0.3, help="measurement std in m (default 0.3)")
+    ap.add_argument("--noise", default="default", choices=["default", "data"],
+                    help="the trackers' process noise: the models' defaults, or estimated from each run's detections as "
+                         "lgekf track --multi does (the measurement std stays --meas-std) (default: default)")
     ap.add_argument("--dt", type=float, default=0.1, help="scan interval in s (default 0.1)")
     ap.add_argument("--duration", type=float, default=20.0, help="scenario length in s (default 20)")
     ap.add_argument("--gospa-c", type=float, default=5.0, help="GOSPA cut-off c in m (default 5)")
@@ -86,17 +89,21 @@ def cmd_study_multi(argv) -> int:
                            clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
                            dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed,
                            measurement=a.measure, heading_std=a.heading_std, scenario=a.scenario,
-                           clutters=_names("--clutter", a.clutter, list(STUDY_CLUTTERS))).validate()
+                           clutters=_names("--clutter", a.clutter, list(STUDY_CLUTTERS)), noise=a.noise).validate()
     say = (lambda s: None) if a.quiet else (lambda s: print(s, file=sys.stderr))
     with compile_notice("lgekf study", enabled=not a.quiet):
-        cells = run_multi_study(cfg, progress=lambda c: say(f"  {c.model} {c.association} {c.initiation} {c.clutter}: GOSPA "
-                                                            f"{c.gospa:.3f}"))
+        fit = None
+        if cfg.noise == "data":
+            from ..apps.track_multi import study_process_noise as fit
+        cells = run_multi_study(cfg, noise_fit=fit, progress=lambda c: say(
+            f"  {c.model} {c.association} {c.initiation} {c.clutter}: GOSPA {c.gospa:.3f}"
+            + (f" (accel-std {c.accel_std})" if cfg.noise == "data" else "")))
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(MULTI_COLUMNS)
     for c in cells:
         w.writerow([c.model, c.association, c.initiation, c.clutter, f"{c.gospa:.6g}", f"{c.localisation:.6g}", f"{c.missed:.6g}", f"{c.false:.6g}",
-                    c.switches, f"{c.scans_per_s:.4g}"])
+                    c.switches, f"{c.scans_per_s:.4g}", c.accel_std])
     a.out.mkdir(parents=True, exist_ok=True)
     path = a.out / "multi_gospa.csv"
     write_atomic(path, buf.getvalue())

@@ -29,10 +29,11 @@ from .gospa import gospa_series
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario
 
-__all__ = ["MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
+__all__ = ["NOISES", "MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
 
 MULTI_COLUMNS = ("model", "association", "initiation", "clutter", "gospa", "localisation", "missed", "false", "switches",
-                 "scans_per_s")
+                 "scans_per_s", "accel_std")
+NOISES = ("default", "data")  # the process noise of the cells: the models' defaults, or estimated from each stream
 
 
 @dataclass
@@ -59,6 +60,7 @@ class MultiStudyConfig:
     imm_modes: str | None = None  # the modes of the model "imm" (None: the tracker's default, DEFAULT_MODES)
     scenario: str = "base"  # or "burst", "patch" (clutter_scenarios; clutter_density is then the background λ₀)
     clutters: tuple = ("true",)  # the clutter densities compared (clutter_scenarios.STUDY_CLUTTERS)
+    noise: str = "default"  # the process noise: the models' defaults, or "data" (as lgekf track --multi estimates it)
 
     def validate(self):
         for m in self.models:
@@ -91,6 +93,8 @@ class MultiStudyConfig:
             raise ValueError(f"--measure: one of {', '.join(MEASUREMENTS)}, got {self.measurement!r}")
         if not self.p >= 1:
             raise ValueError(f"--gospa-p: must be at least 1, got {self.p}")
+        if self.noise not in NOISES:
+            raise ValueError(f"--noise: one of {', '.join(NOISES)}, got {self.noise!r}")
         return self
 
 
@@ -109,6 +113,7 @@ class MultiCell:
     switches: int
     scans_per_s: float
     clutter: str = "true"
+    accel_std: str = "default"  # the process noise used: "default", or per run the values estimated from the data
 
 
 def run_tracker_on(scenario, step, c: float, p: float):
@@ -153,23 +158,34 @@ def measures_heading(cfg: MultiStudyConfig) -> bool:
     return get_measurement(cfg.measurement).has_angle
 
 
-def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
+def run_multi_study(cfg: MultiStudyConfig, progress=None, noise_fit=None) -> list:
     """Every model × association × initiation × clutter of ``cfg`` on ``cfg.runs`` scenarios (the same detections
-    for every cell); a list of ``MultiCell``."""
+    for every cell); a list of ``MultiCell``.
+
+    ``noise_fit``: with ``cfg.noise == "data"``, ``noise_fit(times, detections, tracker_args, meas_std, heading_std)
+    -> (noise arguments, text)`` estimates each cell's process noise from each scenario's detections before it is
+    tracked (``lgekf.apps.track_multi.study_process_noise``: what ``lgekf track --multi`` does; the study's
+    measurement std is given)."""
     cfg.validate()
+    if cfg.noise == "data" and noise_fit is None:
+        raise ValueError("noise='data' needs noise_fit (lgekf.apps.track_multi.study_process_noise)")
     scen = scenarios(cfg)
     cells = []
     for model, assoc, init, clutter in itertools.product(cfg.models, cfg.associations, cfg.initiations, cfg.clutters):
-        parts, sw, wall, scans = [], 0, 0.0, 0
+        parts, sw, wall, scans, fitted = [], 0, 0.0, 0, []
         imm = model == IMM_MODEL
         meas = get_measurement(cfg.measurement if imm else get_model(model).measurement_or_base(cfg.measurement))
         extra = {"imm_modes": cfg.imm_modes} if imm else {}
         for sc in scen:
-            trk = MultiTargetTracker(model=model, association=assoc, detection_prob=cfg.detection_prob,
-                                     clutter_density=study_clutter(clutter, sc, cfg.clutter_density),
-                                     max_speed=cfg.max_speed,
-                                     measurement=meas.name, meas_std=meas.stds(cfg.meas_std, cfg.heading_std),
-                                     initiation=init, **extra)
+            args = dict(model=model, association=assoc, detection_prob=cfg.detection_prob,
+                        clutter_density=study_clutter(clutter, sc, cfg.clutter_density), max_speed=cfg.max_speed,
+                        measurement=meas.name, initiation=init, **extra)
+            if cfg.noise == "data":
+                noise, text = noise_fit(sc.times, [Z[:, :meas.dim] for Z in sc.detections], args, cfg.meas_std,
+                                        cfg.heading_std)
+                args.update(noise)
+                fitted.append(text)
+            trk = MultiTargetTracker(meas_std=meas.stds(cfg.meas_std, cfg.heading_std), **args)
 
             def step(t, Z, trk=trk, m=meas.dim):
                 rep = trk.step(t, Z[:, :m])
@@ -182,7 +198,8 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None) -> list:
             scans += len(sc.times)
         a = np.mean(parts, axis=0)
         cells.append(MultiCell(model, assoc, trk.initiation, *map(float, a), sw,
-                               scans / wall if wall > 0 else float("inf"), clutter=clutter))
+                               scans / wall if wall > 0 else float("inf"), clutter=clutter,
+                               accel_std=" | ".join(fitted) if fitted else "default"))
         if progress is not None:
             progress(cells[-1])
     return cells
@@ -196,7 +213,9 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
     lam = "λ" if cfg.scenario == "base" else "background λ"
     head = (f"GOSPA (c = {cfg.c:g} m, p = {cfg.p:g}, α = 2) per scan, {cfg.runs} runs × {what}; "
             f"P_D = {cfg.detection_prob:g}, {lam} = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
-            + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else ""))
+            + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else "")
+            + ("; process noise estimated from each run's detections (as lgekf track --multi), in the accel_std column"
+               if cfg.noise == "data" else ""))
     lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'clutter':<7} {'GOSPA':>7} {'loc.':>7} {'missed':>7} "
                    f"{'false':>7} {'switches':>8} {'scans/s':>8}"]
     for c in cells:

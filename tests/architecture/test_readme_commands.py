@@ -87,6 +87,9 @@ README_TO_RUN = {
          f"--duration 2 --out results_clutter_{s}" for s in ("base", "burst")],
     "lgekf track detections.csv --multi -o tracks.csv --clutter scan": None,
     "lgekf track detections.csv --multi --association jpdastar -o tracks.csv": None,
+    "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 3 --noise data":
+        ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv "
+         "--association gnn --noise data --out results_noise_data"],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 3 --models cv,se2r3 --association jpda,jpdastar,gnn":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv "
          "--association jpdastar --out results_jpdastar"],

@@ -65,6 +65,38 @@ def test_study_compares_initiations_on_the_same_detections():
     assert (cells[1].gospa, cells[1].missed, cells[1].switches) == (alone[0].gospa, alone[0].missed, alone[0].switches)
 
 
+def test_noise_from_the_data_is_what_track_multi_estimates_on_each_run(tmp_path):
+    """--noise data: each run's process noise is ``study_process_noise`` of that run's detections (the passes of
+    ``lgekf track --multi``, tested in tests/cli/test_track_multi_defaults.py), recorded per run in the accel_std
+    column; the cell's tracker then uses it (its GOSPA is that of a default-noise cell given those stds)."""
+    import csv
+
+    from lgekf.apps.track_multi import study_process_noise
+    from lgekf.cli import main
+    from lgekf.experiments.multi_study import scenarios
+
+    cfg = MultiStudyConfig(models=("cv",), associations=("gnn",), runs=1, duration=3.0, noise="data")
+    with pytest.raises(ValueError, match="noise='data' needs noise_fit"):
+        run_multi_study(cfg)
+    cell = run_multi_study(cfg, noise_fit=study_process_noise)[0]
+    sc = scenarios(cfg)[0]
+    args = dict(model="cv", association="gnn", detection_prob=0.9, clutter_density=cfg.clutter_density, max_speed=30.0,
+                measurement="position", initiation=None)
+    noise, text = study_process_noise(sc.times, [Z[:, :2] for Z in sc.detections], args, cfg.meas_std, cfg.heading_std)
+    assert cell.accel_std == text and float(text) > 0
+    assert noise["accel_std"] != (0.5,)  # not the default here: the estimate acts
+    from lgekf.experiments.multi_study import run_tracker_on
+    from lgekf.estimators.multitarget.tracker import MultiTargetTracker
+
+    trk = MultiTargetTracker(meas_std=cfg.meas_std, **args, **noise)
+    g = run_tracker_on(sc, lambda t, Z: (lambda r: (r.ids, r.states[:, :2]))(trk.step(t, Z[:, :2])), cfg.c, cfg.p)[0]
+    assert cell.gospa == g
+    assert main(["study", "--multi", "--noise", "data", "--runs", "1", "--duration", "2", "--models", "cv", "--association",
+                 "gnn", "--out", str(tmp_path), "--quiet"]) == 0
+    rows = list(csv.DictReader(open(tmp_path / "multi_gospa.csv")))
+    assert len(rows) == 1 and float(rows[0]["accel_std"]) > 0
+
+
 def test_real_trajectories_as_detection_streams():
     root = data_root()
     try:
@@ -82,6 +114,7 @@ def test_real_trajectories_as_detection_streams():
     (["--detection-prob", "0"], "--detection-prob: must be a probability"),
     (["--gospa-p", "0.5"], "--gospa-p: must be at least 1"),
     (["--initiation", "three-point"], "--initiation: unknown name 'three-point'"),
+    (["--noise", "learned"], "--noise: invalid choice: 'learned'"),
 ])
 def test_study_multi_errors_are_one_line(args, msg, capsys, tmp_path):
     from lgekf.cli import main
