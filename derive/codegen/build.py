@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import hashlib
+import io
 import os
 import sys
 import time
@@ -153,35 +154,59 @@ def sources_digest(models_dir=None, meas_dir=None) -> str:
     return h.hexdigest()
 
 
-def _render_model(args) -> tuple[str, str]:
-    name, models_dir, meas_dir, cache = args
+def cached_text(name: str, compute, cache: bool = True, models_dir=None, meas_dir=None) -> tuple[str, bool]:
+    """``compute()`` (a str that depends on the derivation's sources only), read from the render cache when the same
+    sources made it before (``render_cache_dir``, file ``<sources_digest>-<name>``), else computed and kept there.
+    Returns (text, whether it came from the cache)."""
     folder = render_cache_dir() if cache else None
     if folder is not None:
-        path = folder / f"{sources_digest(models_dir, meas_dir)[:40]}-{name}.py"
+        path = folder / f"{sources_digest(models_dir, meas_dir)[:40]}-{name}"
         try:
-            return f"{name}.py", path.read_text(encoding="utf-8")
+            return path.read_text(encoding="utf-8"), True
         except OSError:
             pass
-    fname, src = _render_model_now(name, models_dir, meas_dir)
+    text = compute()
     if folder is not None:
         try:  # written whole and renamed: a concurrent render reads the old file or the new, never a part
             folder.mkdir(parents=True, exist_ok=True)
             tmp = path.with_suffix(f".{os.getpid()}.tmp")
-            tmp.write_text(src, encoding="utf-8")
+            tmp.write_text(text, encoding="utf-8")
             os.replace(tmp, path)
             _prune(folder)
         except OSError:  # a read-only or full cache folder only costs the next render its time
             pass
-    return fname, src
+    return text, False
 
 
-#: rendered modules kept in the cache folder (the newest): a few generations of every model's module
+def _render_model(args) -> tuple[str, str]:
+    name, models_dir, meas_dir, cache = args
+    src, _ = cached_text(f"{name}.py", lambda: _render_model_now(name, models_dir, meas_dir)[1], cache, models_dir, meas_dir)
+    return f"{name}.py", src
+
+
+def cached_verify(cache: bool = True) -> tuple[int, str, bool]:
+    """``derive.paper.verify.run_verify``'s exit code and report, from the render cache when the same derivation
+    sources (the transcription of the paper among them) were verified before. Returns (code, report, from cache)."""
+    from ..paper.verify import run_verify
+
+    def compute():
+        buf = io.StringIO()
+        rc = run_verify(buf)
+        return f"{rc}\n{buf.getvalue()}"
+
+    text, hit = cached_text("verify.txt", compute, cache)
+    rc, _, report = text.partition("\n")
+    return int(rc), report, hit
+
+
+#: rendered modules and verification reports kept in the cache folder (the newest): a few generations of each
 CACHE_KEEP = 64
 
 
 def _prune(folder: Path) -> None:
-    """Delete all but the ``CACHE_KEEP`` newest modules of the cache folder (each source change adds a generation)."""
-    files = sorted(folder.glob("*.py"), key=lambda p: p.stat().st_mtime, reverse=True)
+    """Delete all but the ``CACHE_KEEP`` newest modules and reports of the cache folder (each source change adds a
+    generation)."""
+    files = sorted([*folder.glob("*.py"), *folder.glob("*.txt")], key=lambda p: p.stat().st_mtime, reverse=True)
     for old in files[CACHE_KEEP:]:
         old.unlink(missing_ok=True)
 
@@ -359,10 +384,9 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     if a.verify:
-        from ..paper.verify import run_verify
-
-        rc = run_verify()
-        print(f"verify: {time.perf_counter() - t0:.1f} s")
+        rc, report, hit = cached_verify(cache=not a.no_cache)
+        sys.stdout.write(report)
+        print(f"verify: {time.perf_counter() - t0:.1f} s" + (" (the report of the same sources, from the render cache)" if hit else ""))
         return rc
     if a.check:
         rc = check(a.out, a.jobs, cache=not a.no_cache)

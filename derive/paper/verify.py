@@ -147,11 +147,13 @@ def _one_line(obj) -> str:
     return " ".join(sp.sstr(obj).split())
 
 
-def run_verify(stream=sys.stdout) -> int:
-    """Check every printed equation; 0 if each is OK or a recorded erratum, else 1."""
+def run_verify(stream=sys.stdout, only=None) -> int:
+    """Check every printed equation (``only``: the entries of these labels alone); 0 if each is OK or a recorded
+    erratum, else 1."""
     n_ok = n_err = n_bad = 0
     seen = set()
-    for entry in PRINTED:
+    entries = [e for e in PRINTED if only is None or e.label in only]
+    for entry in entries:
         seen.add(entry.label)
         ok, P, D = compare(entry)
         known = entry.label in KNOWN_ERRATA
@@ -168,10 +170,10 @@ def run_verify(stream=sys.stdout) -> int:
             n_bad += 1
             print(f"{entry.label} MISMATCH {_one_line(P)} -> {_one_line(D)}", file=stream)
     for label in KNOWN_ERRATA:
-        if label not in seen:
+        if label not in seen and only is None:
             n_bad += 1
             print(f"{label} STALE recorded erratum has no entry in paper.PRINTED", file=stream)
-    summary = f"{len(PRINTED)} equations: {n_ok} OK, {n_err} errata"
+    summary = f"{len(entries)} equations: {n_ok} OK, {n_err} errata"
     if n_bad:
         summary += f", {n_bad} unexpected (MISMATCH/STALE)"
     print(summary, file=stream)

@@ -168,6 +168,27 @@ def test_render_cache_key_follows_the_sources(tmp_path, monkeypatch):
     assert render_cache_dir() == tmp_path / "c"
 
 
+def test_cached_text_computes_once_per_sources_and_name(tmp_path, monkeypatch):
+    """The render cache (modules, the verification report): the first call computes and keeps the text, the next
+    reads it; another name is another entry; with the cache off every call computes."""
+    from lgekf.derive.codegen.build import cached_text
+
+    calls = []
+
+    def compute(text):
+        calls.append(text)
+        return text
+
+    monkeypatch.setenv("LGEKF_DERIVE_CACHE", str(tmp_path / "c"))
+    assert cached_text("verify.txt", lambda: compute("0\nreport")) == ("0\nreport", False)
+    assert cached_text("verify.txt", lambda: compute("changed")) == ("0\nreport", True)
+    assert cached_text("other.txt", lambda: compute("x")) == ("x", False)
+    assert calls == ["0\nreport", "x"] and len(list((tmp_path / "c").glob("*-verify.txt"))) == 1
+    monkeypatch.setenv("LGEKF_DERIVE_CACHE", "off")
+    assert cached_text("verify.txt", lambda: compute("y")) == ("y", False)
+    assert cached_text("verify.txt", lambda: compute("z"), cache=True) == ("z", False) and calls[-2:] == ["y", "z"]
+
+
 def test_runtime_does_not_import_sympy():
     code = textwrap.dedent(
         """
