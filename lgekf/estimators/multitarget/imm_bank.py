@@ -197,6 +197,35 @@ class IMMBank:
             bank.remove(rows)
         self._cache = None
 
+    def copy(self, rows: np.ndarray) -> np.ndarray:
+        """Duplicate the live ``rows`` in every mode (state, covariance, the last ``gate``'s quantities), their mode
+        probabilities and gated pairs; returns the new rows (the PMBM's local hypotheses, ``ModelBank.copy``)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        new = None
+        for bank in self.banks:
+            r = bank.copy(rows)
+            assert new is None or np.array_equal(r, new)  # every mode bank has the same free rows
+            new = r
+        cap = self.capacity
+        if self.mu.shape[0] < cap:
+            self.mu = np.vstack([self.mu, np.zeros((cap - self.mu.shape[0], self.M))])
+            self._work(cap)
+        self.mu[new] = self.mu[rows]
+        if self._pairs is not None and self.d2.ndim == 2 and self.d2.shape[1] > 0:
+            d2 = np.full((cap, self.d2.shape[1]), np.inf)
+            d2[:self.d2.shape[0]] = self.d2
+            d2[new] = d2[rows]
+            self.d2 = d2
+            ii, jj, lr = self._pairs
+            order = np.argsort(ii, kind="stable")
+            cnt = np.bincount(ii, minlength=cap)[rows]  # the gated pairs of each copied row
+            start = np.searchsorted(ii[order], rows)
+            sel = order[np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt) + np.repeat(start, cnt)]
+            self._pairs = (np.concatenate([ii, np.repeat(new, cnt)]), np.concatenate([jj, jj[sel]]),
+                           np.concatenate([lr, lr[:, sel]], axis=1))
+        self._cache = None
+        return new
+
     def _gather(self):
         for k, b in enumerate(self.banks):
             self.S[:, k, :b.s.shape[1]] = b.s

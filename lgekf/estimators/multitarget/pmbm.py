@@ -1,0 +1,371 @@
+"""The Poisson multi-Bernoulli mixture (PMBM) filter, track-oriented, as the association ``"pmbm"`` of
+``MultiTargetTracker``.
+
+García-Fernández, Williams, Granström & Svensson, "Poisson multi-Bernoulli mixture filter: direct derivation and
+implementation", IEEE TAES 54(4), 2018 (the update of their Section IV; notation as Granström, Svensson, Xia,
+Williams & García-Fernández, "Poisson multi-Bernoulli mixtures for sets of trajectories", 2019). The multi-target
+density is a Poisson part (targets never detected) times a mixture of multi-Bernoullis:
+
+* **Poisson part**, for position detections a uniform density D_u of undetected targets per m² with the one-point
+  velocity prior of the tracker (``one_point_prior``): predicted D_u ← p_S D_u + β (β the birth density per m² per
+  scan) and updated by the miss, D_u ← (1 − P_D) D_u. A detection z not associated with an existing Bernoulli is
+  a new target's first detection or clutter: it starts a **new Bernoulli** of existence e/(e + λ(z)), e = P_D D_u
+  (weight e + λ(z)), its state the one-point prior at z;
+* **Bernoullis**, each with **local hypotheses**: an existence r, a filter state (a row of the tracker's bank,
+  ``TrackFilterBank``) and the detection it holds. A local hypothesis with prediction ẑ, S has the children
+  - the miss: r' = r(1 − P_D P_G)/(1 − r P_D P_G), the state predicted only, weight 1 − r P_D P_G;
+  - detection j in its gate: r' = 1, the state updated with z_j alone (a copy of the row, ``copy``, updated by
+    ``update`` with β_ij = 1), weight r P_D N(z_j; ẑ, S);
+  (P_G the gate probability; the tracker's JPDA weighs its joint events with the same factors);
+* **global hypotheses**: one local hypothesis per Bernoulli (or "does not exist", e.g. a new Bernoulli whose
+  detection went to another target), each with a weight. The update of a global hypothesis h of weight w_h: the
+  k_h = ⌈N_h w_h⌉ best assignments of the scan's detections (N_h = ``max_hypotheses``; ``murty.k_best_assignments``
+  on the cost matrix detections × (Bernoullis, one new-target-or-clutter column per detection), costs
+  −log(r P_D N / ((1 − r P_D P_G) λ)) and −log((e + λ)/λ), forbidden outside the gates); the new weight is
+  w_h Π_b (1 − r_b P_D P_G) × exp(−cost) (up to the factor Π_j λ_j common to all). Then normalise, prune the
+  global hypotheses of weight below ``hypothesis_prune``, keep at most ``max_hypotheses``, drop the local
+  hypotheses no global hypothesis uses, and the Bernoullis whose existence is below ``delete_existence`` in every
+  global hypothesis.
+
+**Clusters.** Global hypotheses are kept per cluster of Bernoullis that have shared detections: the mixture is the
+product of the clusters' mixtures (exact while they do not interact). Per scan the clusters whose gates take a
+common detection are merged (the product of their hypotheses, capped), and a Bernoulli whose local hypothesis is
+the same in every global hypothesis of its cluster is split off into a cluster of its own (exact: the weights do
+not depend on it). A detection in no gate starts a Bernoulli in a cluster of its own, without any assignment.
+
+**Estimates.** The most likely global hypothesis is the product of each cluster's best one; its Bernoullis with
+existence ≥ the tracker's report threshold, once confirmed (existence ≥ ``confirm_existence`` in the best global
+hypothesis of some scan), are the reported tracks; a Bernoulli's id is the track id. A track *holds* detection j
+when its local hypothesis in the best global hypothesis was updated with j in this scan.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+
+from .murty import k_best_assignments
+
+__all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS"]
+
+PMBM_DEFAULTS = {"max_hypotheses": 20, "hypothesis_prune": 1e-3}
+
+
+def _logsumexp(a):
+    m = np.max(a)
+    return m + math.log(np.exp(a - m).sum())
+
+
+@dataclass
+class Cluster:
+    """Global hypotheses over some Bernoullis: ``rows`` (H, B) the bank row of each Bernoulli's local hypothesis in
+    each global hypothesis (−1: the Bernoulli does not exist there), ``lw`` (H,) normalised log-weights,
+    ``ids`` (B,) the Bernoullis' ids (track ids)."""
+
+    ids: np.ndarray
+    rows: np.ndarray
+    lw: np.ndarray
+
+    @property
+    def best(self) -> np.ndarray:
+        """The rows of the most likely global hypothesis (−1 where a Bernoulli does not exist in it)."""
+        return self.rows[int(np.argmax(self.lw))]
+
+
+def _merge_duplicates(rows, lw):
+    """Global hypotheses with equal local hypotheses as one (weights added)."""
+    if rows.shape[0] < 2:
+        return rows, lw
+    uniq, inv = np.unique(rows, axis=0, return_inverse=True)
+    if uniq.shape[0] == rows.shape[0]:
+        return rows, lw
+    inv = inv.reshape(-1)
+    out = np.full(uniq.shape[0], -np.inf)
+    for k in range(uniq.shape[0]):
+        out[k] = _logsumexp(lw[inv == k])
+    return uniq, out
+
+
+class PMBM:
+    """The PMBM part of a ``MultiTargetTracker(association="pmbm")`` (module docstring). It keeps the clusters and the
+    Poisson density; the tracker keeps, per bank row (local hypothesis), its existence ``r``, Bernoulli id ``ids``
+    and one-point bookkeeping, and calls ``scan`` once per scan after the prediction.
+
+    Parameters
+    ----------
+    trk : MultiTargetTracker
+    max_hypotheses : int
+        At most this many global hypotheses per cluster; also N_h of the k-best rule k_h = ⌈N_h w_h⌉.
+    hypothesis_prune : float
+        Global hypotheses of normalised weight below this are dropped (per cluster).
+    birth : float
+        β, the Poisson birth density per m² per scan.
+    """
+
+    def __init__(self, trk, max_hypotheses: int, hypothesis_prune: float, birth: float):
+        self.trk = trk
+        self.max_hypotheses = int(max_hypotheses)
+        self.hypothesis_prune = float(hypothesis_prune)
+        self.birth = float(birth)
+        self.undetected = 0.0  # D_u per m² (after the last update)
+        self.clusters: list[Cluster] = []
+        self.confirmed_ids: set = set()
+        self.last_hypotheses = 0
+
+    # ------------------------------------------------------------------ Poisson part
+    def predict_poisson(self):
+        """D_u ← p_S D_u + β."""
+        self.undetected = self.trk.ps * self.undetected + self.birth
+
+    def best_rows(self) -> np.ndarray:
+        """The rows of the most likely global hypothesis (every cluster's best)."""
+        if not self.clusters:
+            return np.zeros(0, dtype=np.int64)
+        b = np.concatenate([c.best for c in self.clusters])
+        return b[b >= 0]
+
+    def n_hypotheses(self) -> int:
+        """The number of global hypotheses summed over the clusters (their product is the mixture's size)."""
+        return sum(c.lw.size for c in self.clusters)
+
+    # ------------------------------------------------------------------ one scan
+    def scan(self, t, Z, lam, ll, gated, d2):
+        """The PMBM update with detections Z (M, m) at time t, clutter density λ (a float or (M,), per m²), the bank's
+        log-likelihoods ll and gates (N, M) of every row and d² (N, M). Returns the held (ids, detections, d²) of the
+        best global hypothesis."""
+        trk = self.trk
+        M = Z.shape[0]
+        pdg = trk.pd * trk.pg
+        lamv = np.broadcast_to(np.asarray(lam, dtype=float), (M,)).copy()
+        e = trk.pd * self.undetected  # P_D D_u per m²
+        self.e_last = e
+        log_new = np.log1p(e / lamv)  # log((e + λ)/λ): the new-target-or-clutter column
+        r = trk.r
+        with np.errstate(divide="ignore"):
+            logw0 = np.log1p(-r * pdg)  # per row
+            kappa = lamv / trk.angle_volume
+            logW = ll + np.log(r * trk.pd)[:, None] - np.log(kappa)[None, :] - logw0[:, None]  # vs the miss
+        # clusters touching common detections -> groups (connected components of clusters and detections)
+        C = len(self.clusters)
+        row_cluster = np.full(r.size, -1, dtype=np.int64)
+        for k, c in enumerate(self.clusters):
+            rr = c.rows[c.rows >= 0]
+            row_cluster[rr] = k
+        gi, gj = np.nonzero(gated & (row_cluster >= 0)[:, None])
+        gc = row_cluster[gi]
+        graph = coo_matrix((np.ones(gc.size), (gc, C + gj)), shape=(C + M, C + M))
+        _, comp = connected_components(graph, directed=False)
+        det_comp = comp[C:]
+        cl_comp = comp[:C]
+        has_cluster = np.zeros(C + M, dtype=bool)
+        has_cluster[cl_comp] = True
+        self._children = {}  # (parent row, j) -> child index; parent −1: born from detection j
+        self._child_parent, self._child_det = [], []
+        new_clusters = []  # (ids-or-None list, child-index table, lw)
+        groups: dict = {}
+        for k in range(C):
+            groups.setdefault(int(cl_comp[k]), ([], []))[0].append(k)
+        for j in range(M):
+            if has_cluster[det_comp[j]]:
+                groups[int(det_comp[j])][1].append(j)
+        # detections in no gate: a Bernoulli each, in a cluster of its own
+        for j in np.flatnonzero(~has_cluster[det_comp]):
+            new_clusters.append(([None], np.array([[self._child(-1, int(j))]]), np.zeros(1), [int(j)]))
+        for ks, dets in groups.values():
+            new_clusters.append(self._update_group([self.clusters[k] for k in ks], np.asarray(dets, dtype=np.int64),
+                                                   logW, gated, logw0, log_new))
+        return self._apply(t, Z, lamv, e, new_clusters, d2)
+
+    def _child(self, parent, j):
+        key = (parent, j)
+        c = self._children.get(key)
+        if c is None:
+            c = len(self._child_parent)
+            self._children[key] = c
+            self._child_parent.append(parent)
+            self._child_det.append(j)
+        return c
+
+    def _update_group(self, clusters, dets, logW, gated, logw0, log_new):
+        """The new global hypotheses of the merged clusters with detections ``dets``: a (ids, child table, lw, born
+        detections) tuple (module docstring)."""
+        ids = np.concatenate([c.ids for c in clusters])
+        rows, lw = clusters[0].rows, clusters[0].lw
+        for c in clusters[1:]:  # the product of the clusters' hypotheses, capped
+            H1, H2 = lw.size, c.lw.size
+            rows = np.hstack([np.repeat(rows, H2, axis=0), np.tile(c.rows, (H1, 1))])
+            lw = (lw[:, None] + c.lw[None, :]).reshape(-1)
+            if lw.size > self.max_hypotheses:
+                keep = np.argsort(-lw, kind="stable")[:self.max_hypotheses]
+                rows, lw = rows[keep], lw[keep]
+        lw = lw - _logsumexp(lw)
+        B, d = ids.size, dets.size
+        out_rows, out_lw = [], []
+        for h in range(lw.size):
+            rh = rows[h]
+            exists = rh >= 0
+            base = lw[h] + float(logw0[rh[exists]].sum())
+            if d == 0:
+                sols = [(np.zeros(0, dtype=np.int64), 0.0)]
+            else:
+                cost = np.full((d, B + d), np.inf)
+                ex = np.flatnonzero(exists)
+                sub = gated[np.ix_(rh[ex], dets)]
+                cost[:, ex] = np.where(sub, -logW[np.ix_(rh[ex], dets)], np.inf).T
+                cost[np.arange(d), B + np.arange(d)] = -log_new[dets]
+                k = max(1, math.ceil(self.max_hypotheses * math.exp(lw[h])))
+                sols = k_best_assignments(cost, k)
+            for sol, c in sols:
+                table = np.full(B + d, -1, dtype=np.int64)
+                given = np.full(B, -1, dtype=np.int64)
+                for a in range(d):
+                    col = sol[a]
+                    if col < B:
+                        given[col] = dets[a]
+                    else:
+                        table[B + a] = self._child(-1, int(dets[a]))
+                for b in np.flatnonzero(exists):
+                    table[b] = self._child(int(rh[b]), int(given[b]))
+                out_rows.append(table)
+                out_lw.append(base - c)
+        T = np.array(out_rows)
+        w = np.array(out_lw)
+        w -= _logsumexp(w)
+        order = np.argsort(-w, kind="stable")
+        order = order[w[order] >= math.log(self.hypothesis_prune)][:self.max_hypotheses]
+        if order.size == 0:
+            order = np.argsort(-w, kind="stable")[:1]
+        T, w = T[order], w[order] - _logsumexp(w[order])
+        return list(ids) + [None] * d, T, w, [int(j) for j in dets]
+
+    def _apply(self, t, Z, lamv, e, new_clusters, d2):
+        """The bank operations of all children at once, then the clusters in bank rows, deletion and splitting."""
+        trk = self.trk
+        bank = trk.bank
+        pdg = trk.pd * trk.pg
+        parent = np.asarray(self._child_parent, dtype=np.int64)
+        det = np.asarray(self._child_det, dtype=np.int64)
+        n = parent.size
+        child_row = np.full(n, -1, dtype=np.int64)
+        miss = (parent >= 0) & (det < 0)
+        child_row[miss] = parent[miss]  # the miss keeps the predicted state in place
+        hit = np.flatnonzero((parent >= 0) & (det >= 0))
+        born = np.flatnonzero(parent < 0)
+        restart = hit[trk.on_prior[parent[hit]]]
+        plain = hit[~trk.on_prior[parent[hit]]]
+        self.held_d2 = np.full(n, np.nan)
+        self.held_d2[hit] = d2[parent[hit], det[hit]]
+        # detection children: copies of the parent rows, hard-updated with their detection (β_ij = 1)
+        if plain.size:
+            new = bank.copy(parent[plain])
+            trk._sync()
+            N = bank.live.size
+            beta0 = np.ones(N)
+            beta = np.zeros((N, Z.shape[0]))
+            beta0[new] = 0.0
+            beta[new, det[plain]] = 1.0
+            bank.update(beta0, beta)
+            child_row[plain] = new
+            for a in (trk.ids, trk.first_t, trk.first_z):
+                a[new] = a[parent[plain]]
+            trk.on_prior[new] = False
+        # one-point children at their second detection: started again by the two-point rule (the tracker's)
+        if restart.size:
+            p = parent[restart]
+            x0, P0 = trk._pair_estimates(trk.first_t[p], trk.first_z[p], np.full(p.size, t), Z[det[restart]])
+            new = bank.add(x0, P0)
+            trk._sync()
+            child_row[restart] = new
+            trk.ids[new] = trk.ids[p]
+            trk.on_prior[new] = False
+        r_parent = trk.r.copy()
+        # parents no miss child keeps: gone
+        is_child = np.zeros(bank.live.size, dtype=bool)
+        is_child[child_row[child_row >= 0]] = True
+        old = np.flatnonzero(bank.live & ~is_child)
+        if old.size:
+            bank.remove(old)
+            trk.r[old], trk.ids[old], trk.on_prior[old] = 0.0, -1, False
+        trk.r[parent[miss]] = r_parent[parent[miss]] * (1.0 - pdg) / (1.0 - r_parent[parent[miss]] * pdg)
+        trk.r[child_row[hit]] = 1.0
+        if born.size:  # new Bernoullis: the one-point prior at their detection, existence e/(e + λ)
+            zj = Z[det[born]]
+            new = bank.add(*trk._one_point_estimates(zj))
+            trk._sync()
+            child_row[born] = new
+            trk.r[new] = e / (e + lamv[det[born]])
+            trk.on_prior[new] = True
+            trk.first_t[new] = t
+            trk.first_z[new] = zj
+            trk.ids[new] = -1  # an id when a kept global hypothesis has it (below)
+        self.undetected *= 1.0 - trk.pd
+        # the clusters in rows; new Bernoullis get their ids; deletion; splitting
+        clusters = []
+        for ids, T, w, dets in new_clusters:
+            R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
+            keep_col = []
+            for b in range(R.shape[1]):
+                col = R[:, b]
+                ex = col >= 0
+                if not ex.any():
+                    continue
+                if float(trk.r[col[ex]].max()) < trk.r_delete or not np.all(np.isfinite(trk.r[col[ex]])):
+                    R[:, b] = -1
+                    continue
+                if ids[b] is None:
+                    ids[b] = trk.next_id
+                    trk.next_id += 1
+                trk.ids[col[ex]] = ids[b]
+                keep_col.append(b)
+            if not keep_col:
+                continue
+            R = R[:, keep_col]
+            cid = np.array([ids[b] for b in keep_col], dtype=np.int64)
+            R, w = _merge_duplicates(R, w)
+            w = w - _logsumexp(w)
+            const = np.all(R == R[:1], axis=0)
+            if R.shape[0] == 1 or const.all():
+                for b in range(R.shape[1]):
+                    clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
+            else:
+                for b in np.flatnonzero(const):
+                    clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
+                clusters.append(Cluster(cid[~const], R[:, ~const], w))
+        self.clusters = clusters
+        # local hypotheses no global hypothesis uses
+        used = np.zeros(bank.live.size, dtype=bool)
+        for c in clusters:
+            used[c.rows[c.rows >= 0]] = True
+        gone = np.flatnonzero(bank.live & ~used)
+        if gone.size:
+            bank.remove(gone)
+            trk.r[gone], trk.ids[gone], trk.on_prior[gone] = 0.0, -1, False
+        self.last_hypotheses = self.n_hypotheses()
+        # the best global hypothesis: confirmations and the detections it holds
+        best = self.best_rows()
+        ok = trk.r[best] >= trk.r_confirm
+        self.confirmed_ids.update(int(i) for i in trk.ids[best[ok]])
+        row_child = np.full(bank.live.size, -1, dtype=np.int64)
+        row_child[child_row[hit]] = hit
+        hb = best[row_child[best] >= 0]
+        ch = row_child[hb]
+        return trk.ids[hb].copy(), det[ch].copy(), self.held_d2[ch].copy()
+
+    def drop(self, ids):
+        """Delete the Bernoullis with these ids (a divergence monitor's verdict) from every global hypothesis."""
+        ids = np.asarray(ids, dtype=np.int64)
+        out = []
+        for c in self.clusters:
+            gone = np.isin(c.ids, ids)
+            if not gone.any():
+                out.append(c)
+                continue
+            if gone.all():
+                continue
+            R, w = _merge_duplicates(c.rows[:, ~gone], c.lw)
+            out.append(Cluster(c.ids[~gone], R, w - _logsumexp(w)))
+        self.clusters = out
