@@ -231,3 +231,46 @@ def test_bad_parameters(kw, msg):
     args.update(kw)
     with pytest.raises(ValueError, match=msg):
         MultiTargetTracker(**args)
+
+
+def detections_file(path, duration=3.0):
+    sc = base_scenario(seed=0, targets=CROSSING, duration=duration)
+    lines = ["t,x,y"]
+    for t, Z in zip(sc.times, sc.detections):
+        lines += [f"{t:.10g},{z[0]:.6f},{z[1]:.6f}" for z in Z]
+    path.write_text("\n".join(lines) + "\n")
+    return sc
+
+
+def test_cli_runs_pmbm_with_no_other_option(tmp_path, capsys):
+    """`lgekf track FILE --multi --association pmbm` (noise, clutter from the data; in process: ``lgekf.cli.main``):
+    exit 0, finite output, a confirmed track near every target at the end."""
+    from lgekf.cli import main
+
+    sc = detections_file(tmp_path / "d.csv")
+    out = tmp_path / "tracks.csv"
+    code = main(["track", str(tmp_path / "d.csv"), "--multi", "--association", "pmbm", "-o", str(out)])
+    assert code == 0, capsys.readouterr().err
+    data = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert np.all(np.isfinite(data))
+    last = data[data[:, 1] == data[:, 1].max()]
+    truth = sc.truth[-1][1][:, :2]
+    d = np.hypot(last[:, None, 2] - truth[None, :, 0], last[:, None, 3] - truth[None, :, 1]).min(axis=0)
+    assert np.all(d < 1.5), d
+
+
+@pytest.mark.parametrize("extra, msg", [
+    (["--max-hypotheses", "0"], "max-hypotheses: must be a positive integer"),
+    (["--hypothesis-prune", "2"], "hypothesis-prune: must be a weight in (0, 1)"),
+    (["--initiation", "two-point"], "initiation: the PMBM starts targets from its Poisson part"),
+])
+def test_cli_bad_pmbm_values_are_one_line_and_no_output(tmp_path, capsys, extra, msg):
+    from lgekf.cli import main
+
+    detections_file(tmp_path / "d.csv", duration=0.5)
+    out = tmp_path / "out.csv"
+    code = main(["track", str(tmp_path / "d.csv"), "--multi", "--association", "pmbm", "-o", str(out), *extra])
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert code == 2 and len(lines) == 1 and msg in lines[0], err
+    assert not out.exists()
