@@ -29,10 +29,11 @@ def study_multi_parser():
     ap.add_argument("--imm-modes", default=None, metavar="LIST",
                     help="with imm in --models: its modes (default those of lgekf track --model imm, "
                          "cv,se2r3:calm,se2r3:manoeuvre)")
-    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help="associations (default jpda,pda,gnn)")
+    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST",
+                    help="associations of jpda,pda,gnn,pmbm (default jpda,pda,gnn)")
     ap.add_argument("--initiation", default=None, metavar="LIST",
                     help="track initiations to compare, one-point,two-point (default: the tracker's default for each "
-                         "association, one-point with jpda and gnn, two-point with pda)")
+                         "association, one-point with jpda, gnn and pmbm, two-point with pda; pmbm is one-point only)")
     ap.add_argument("--runs", type=int, default=5, help="Monte Carlo runs (default 5)")
     ap.add_argument("--seed", type=int, default=2016, help="seed of the first run (default 2016)")
     ap.add_argument("--detection-prob", type=float, default=0.9, help="P_D (default 0.9)")
@@ -72,8 +73,7 @@ def _names(option, text, allowed):
 
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
-    from ..estimators.multitarget.association import ASSOCIATIONS
-    from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS
+    from ..estimators.multitarget.tracker import ASSOCIATIONS, IMM_MODEL, INITIATIONS
     from ..experiments.clutter_scenarios import STUDY_CLUTTERS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 

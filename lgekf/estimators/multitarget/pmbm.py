@@ -115,6 +115,7 @@ class PMBM:
         self.clusters: list[Cluster] = []
         self.confirmed_ids: set = set()
         self.last_hypotheses = 0
+        self._best = None  # best_rows() until the clusters change
 
     # ------------------------------------------------------------------ Poisson part
     def predict_poisson(self):
@@ -123,10 +124,10 @@ class PMBM:
 
     def best_rows(self) -> np.ndarray:
         """The rows of the most likely global hypothesis (every cluster's best)."""
-        if not self.clusters:
-            return np.zeros(0, dtype=np.int64)
-        b = np.concatenate([c.best for c in self.clusters])
-        return b[b >= 0]
+        if self._best is None:
+            b = np.concatenate([c.best for c in self.clusters]) if self.clusters else np.zeros(0, dtype=np.int64)
+            self._best = b[b >= 0]
+        return self._best
 
     def n_hypotheses(self) -> int:
         """The number of global hypotheses summed over the clusters (their product is the mixture's size)."""
@@ -175,10 +176,14 @@ class PMBM:
         # detections in no gate: a Bernoulli each, in a cluster of its own
         for j in np.flatnonzero(~has_cluster[det_comp]):
             new_clusters.append(([None], np.array([[self._child(-1, int(j))]]), np.zeros(1), [int(j)]))
+        quiet = []  # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
         for ks, dets in groups.values():
-            new_clusters.append(self._update_group([self.clusters[k] for k in ks], np.asarray(dets, dtype=np.int64),
-                                                   logW, gated, logw0, log_new))
-        return self._apply(t, Z, lamv, e, new_clusters, d2)
+            if not dets and len(ks) == 1 and self.clusters[ks[0]].rows.shape == (1, 1):
+                quiet.append(self.clusters[ks[0]])
+            else:
+                new_clusters.append(self._update_group([self.clusters[k] for k in ks], np.asarray(dets, dtype=np.int64),
+                                                       logW, gated, logw0, log_new))
+        return self._apply(t, Z, lamv, e, new_clusters, quiet, d2)
 
     def _child(self, parent, j):
         key = (parent, j)
@@ -204,6 +209,8 @@ class PMBM:
                 rows, lw = rows[keep], lw[keep]
         lw = lw - _logsumexp(lw)
         B, d = ids.size, dets.size
+        if B == 1 and lw.size == 1 and rows[0, 0] >= 0:
+            return self._single(ids, int(rows[0, 0]), dets, logW, gated, log_new)
         out_rows, out_lw = [], []
         for h in range(lw.size):
             rh = rows[h]
@@ -242,7 +249,32 @@ class PMBM:
         T, w = T[order], w[order] - _logsumexp(w[order])
         return list(ids) + [None] * d, T, w, [int(j) for j in dets]
 
-    def _apply(self, t, Z, lamv, e, new_clusters, d2):
+    def _single(self, ids, row, dets, logW, gated, log_new):
+        """``_update_group`` of one Bernoulli with one local hypothesis (row) and detections ``dets``: its d + 1 global
+        hypotheses enumerated (the miss and every detection in its gate, the other detections new targets or clutter),
+        the same as Murty's d + 1 best (no other assignment exists)."""
+        d = dets.size
+        g = gated[row, dets]
+        ln = log_new[dets]
+        tot = float(ln.sum())
+        lw = np.concatenate([[tot], (logW[row, dets] - ln + tot)[g]])  # the miss, then each gated detection
+        lw -= _logsumexp(lw)
+        order = np.argsort(-lw, kind="stable")
+        order = order[lw[order] >= math.log(self.hypothesis_prune)][:self.max_hypotheses]
+        if order.size == 0:
+            order = np.argsort(-lw, kind="stable")[:1]
+        hit = np.flatnonzero(g)
+        T = np.full((order.size, 1 + d), -1, dtype=np.int64)
+        for a, o in enumerate(order):
+            j_own = -1 if o == 0 else int(hit[o - 1])
+            T[a, 0] = self._child(row, int(dets[j_own]) if j_own >= 0 else -1)
+            for k in range(d):
+                if k != j_own:
+                    T[a, 1 + k] = self._child(-1, int(dets[k]))
+        w = lw[order] - _logsumexp(lw[order])
+        return list(ids) + [None] * d, T, w, [int(j) for j in dets]
+
+    def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
         """The bank operations of all children at once, then the clusters in bank rows, deletion and splitting."""
         trk = self.trk
         bank = trk.bank
@@ -253,6 +285,8 @@ class PMBM:
         child_row = np.full(n, -1, dtype=np.int64)
         miss = (parent >= 0) & (det < 0)
         child_row[miss] = parent[miss]  # the miss keeps the predicted state in place
+        quiet_rows = np.array([c.rows[0, 0] for c in quiet], dtype=np.int64)  # singletons (split at the last scan)
+        missed = np.concatenate([parent[miss], quiet_rows])
         hit = np.flatnonzero((parent >= 0) & (det >= 0))
         born = np.flatnonzero(parent < 0)
         restart = hit[trk.on_prior[parent[hit]]]
@@ -286,11 +320,12 @@ class PMBM:
         # parents no miss child keeps: gone
         is_child = np.zeros(bank.live.size, dtype=bool)
         is_child[child_row[child_row >= 0]] = True
+        is_child[quiet_rows] = True
         old = np.flatnonzero(bank.live & ~is_child)
         if old.size:
             bank.remove(old)
             trk.r[old], trk.ids[old], trk.on_prior[old] = 0.0, -1, False
-        trk.r[parent[miss]] = r_parent[parent[miss]] * (1.0 - pdg) / (1.0 - r_parent[parent[miss]] * pdg)
+        trk.r[missed] = r_parent[missed] * (1.0 - pdg) / (1.0 - r_parent[missed] * pdg)
         trk.r[child_row[hit]] = 1.0
         if born.size:  # new Bernoullis: the one-point prior at their detection, existence e/(e + λ)
             zj = Z[det[born]]
@@ -304,7 +339,8 @@ class PMBM:
             trk.ids[new] = -1  # an id when a kept global hypothesis has it (below)
         self.undetected *= 1.0 - trk.pd
         # the clusters in rows; new Bernoullis get their ids; deletion; splitting
-        clusters = []
+        keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
+        clusters = [c for c, k in zip(quiet, keep) if k]
         for ids, T, w, dets in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
             keep_col = []
@@ -325,6 +361,9 @@ class PMBM:
                 continue
             R = R[:, keep_col]
             cid = np.array([ids[b] for b in keep_col], dtype=np.int64)
+            if R.shape[0] == 1:
+                clusters.extend(Cluster(cid[b:b + 1], R[:, b:b + 1], np.zeros(1)) for b in range(R.shape[1]))
+                continue
             R, w = _merge_duplicates(R, w)
             w = w - _logsumexp(w)
             const = np.all(R == R[:1], axis=0)
@@ -336,6 +375,7 @@ class PMBM:
                     clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
                 clusters.append(Cluster(cid[~const], R[:, ~const], w))
         self.clusters = clusters
+        self._best = None
         # local hypotheses no global hypothesis uses
         used = np.zeros(bank.live.size, dtype=bool)
         for c in clusters:
