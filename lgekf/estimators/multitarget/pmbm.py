@@ -148,41 +148,46 @@ class PMBM:
         r = trk.r
         with np.errstate(divide="ignore"):
             logw0 = np.log1p(-r * pdg)  # per row
-            kappa = lamv / trk.angle_volume
-            logW = ll + np.log(r * trk.pd)[:, None] - np.log(kappa)[None, :] - logw0[:, None]  # vs the miss
+        # log(r P_D N / ((1 − r P_D P_G) κ)) on the gated pairs (κ = λ per m² per angle volume)
+        ai, aj = np.nonzero(gated)
+        logW = np.full(gated.shape, -np.inf)
+        logW[ai, aj] = (ll[ai, aj] + np.log(r[ai] * trk.pd) - np.log(lamv[aj] / trk.angle_volume) - logw0[ai])
         # clusters touching common detections -> groups (connected components of clusters and detections)
         C = len(self.clusters)
         row_cluster = np.full(r.size, -1, dtype=np.int64)
+        shape11 = np.zeros(C, dtype=bool)
         for k, c in enumerate(self.clusters):
-            rr = c.rows[c.rows >= 0]
-            row_cluster[rr] = k
-        gi, gj = np.nonzero(gated & (row_cluster >= 0)[:, None])
-        gc = row_cluster[gi]
+            row_cluster[c.rows[c.rows >= 0]] = k
+            shape11[k] = c.rows.shape == (1, 1)
+        sel = row_cluster[ai] >= 0
+        gc, gj = row_cluster[ai[sel]], aj[sel]
         graph = coo_matrix((np.ones(gc.size), (gc, C + gj)), shape=(C + M, C + M))
         _, comp = connected_components(graph, directed=False)
         det_comp = comp[C:]
         cl_comp = comp[:C]
-        has_cluster = np.zeros(C + M, dtype=bool)
-        has_cluster[cl_comp] = True
+        n_cl = np.bincount(cl_comp, minlength=C + M)
+        n_det = np.bincount(det_comp, minlength=C + M)
         self._children = {}  # (parent row, j) -> child index; parent −1: born from detection j
         self._child_parent, self._child_det = [], []
-        new_clusters = []  # (ids-or-None list, child-index table, lw)
-        groups: dict = {}
-        for k in range(C):
-            groups.setdefault(int(cl_comp[k]), ([], []))[0].append(k)
-        for j in range(M):
-            if has_cluster[det_comp[j]]:
-                groups[int(det_comp[j])][1].append(j)
-        # detections in no gate: a Bernoulli each, in a cluster of its own
-        for j in np.flatnonzero(~has_cluster[det_comp]):
-            new_clusters.append(([None], np.array([[self._child(-1, int(j))]]), np.zeros(1), [int(j)]))
-        quiet = []  # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
-        for ks, dets in groups.values():
-            if not dets and len(ks) == 1 and self.clusters[ks[0]].rows.shape == (1, 1):
-                quiet.append(self.clusters[ks[0]])
-            else:
-                new_clusters.append(self._update_group([self.clusters[k] for k in ks], np.asarray(dets, dtype=np.int64),
-                                                       logW, gated, logw0, log_new))
+        # detections in no gate: a Bernoulli each, in a cluster of its own (``_apply``)
+        self._lone = np.flatnonzero(n_cl[det_comp] == 0)
+        # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
+        quiet_mask = shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 0)
+        quiet = [self.clusters[k] for k in np.flatnonzero(quiet_mask)]
+        new_clusters = []  # (ids-or-None list, child-index table, lw, detections)
+        busy = np.flatnonzero(~quiet_mask)
+        if busy.size:
+            order = np.argsort(cl_comp[busy], kind="stable")
+            ks_sorted = busy[order]
+            comps = cl_comp[ks_sorted]
+            cuts = np.flatnonzero(np.diff(comps)) + 1
+            dorder = np.argsort(det_comp, kind="stable")
+            dcomp = det_comp[dorder]
+            for ks in np.split(ks_sorted, cuts):
+                cc = cl_comp[ks[0]]
+                lo, hi = np.searchsorted(dcomp, cc), np.searchsorted(dcomp, cc, side="right")
+                dets = np.sort(dorder[lo:hi])
+                new_clusters.append(self._update_group([self.clusters[k] for k in ks], dets, logW, gated, logw0, log_new))
         return self._apply(t, Z, lamv, e, new_clusters, quiet, d2)
 
     def _child(self, parent, j):
@@ -198,6 +203,8 @@ class PMBM:
     def _update_group(self, clusters, dets, logW, gated, logw0, log_new):
         """The new global hypotheses of the merged clusters with detections ``dets``: a (ids, child table, lw, born
         detections) tuple (module docstring)."""
+        if len(clusters) == 1 and clusters[0].rows.shape == (1, 1) and clusters[0].rows[0, 0] >= 0:
+            return self._single(clusters[0].ids, int(clusters[0].rows[0, 0]), dets, logW, gated, log_new)
         ids = np.concatenate([c.ids for c in clusters])
         rows, lw = clusters[0].rows, clusters[0].lw
         for c in clusters[1:]:  # the product of the clusters' hypotheses, capped
@@ -255,15 +262,15 @@ class PMBM:
         the same as Murty's d + 1 best (no other assignment exists)."""
         d = dets.size
         g = gated[row, dets]
-        ln = log_new[dets]
-        tot = float(ln.sum())
-        lw = np.concatenate([[tot], (logW[row, dets] - ln + tot)[g]])  # the miss, then each gated detection
-        lw -= _logsumexp(lw)
-        order = np.argsort(-lw, kind="stable")
-        order = order[lw[order] >= math.log(self.hypothesis_prune)][:self.max_hypotheses]
-        if order.size == 0:
-            order = np.argsort(-lw, kind="stable")[:1]
         hit = np.flatnonzero(g)
+        lw = np.empty(1 + hit.size)
+        lw[0] = 0.0  # the miss, then each gated detection (relative to all detections new targets or clutter)
+        lw[1:] = logW[row, dets[hit]] - log_new[dets[hit]]
+        lw -= lw.max()
+        lw -= math.log(np.exp(lw).sum())
+        order = np.argsort(-lw, kind="stable")
+        n = int(np.count_nonzero(lw >= math.log(self.hypothesis_prune)))
+        order = order[:max(1, min(n, self.max_hypotheses))]
         T = np.full((order.size, 1 + d), -1, dtype=np.int64)
         for a, o in enumerate(order):
             j_own = -1 if o == 0 else int(hit[o - 1])
@@ -271,7 +278,7 @@ class PMBM:
             for k in range(d):
                 if k != j_own:
                     T[a, 1 + k] = self._child(-1, int(dets[k]))
-        w = lw[order] - _logsumexp(lw[order])
+        w = lw[order] - _logsumexp(lw[order]) if order.size > 1 else np.zeros(1)
         return list(ids) + [None] * d, T, w, [int(j) for j in dets]
 
     def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
@@ -288,6 +295,8 @@ class PMBM:
         quiet_rows = np.array([c.rows[0, 0] for c in quiet], dtype=np.int64)  # singletons (split at the last scan)
         missed = np.concatenate([parent[miss], quiet_rows])
         hit = np.flatnonzero((parent >= 0) & (det >= 0))
+        lone = self._lone
+        born_det = np.concatenate([det[parent < 0], lone])  # new Bernoullis' detections: in hypotheses, then alone
         born = np.flatnonzero(parent < 0)
         restart = hit[trk.on_prior[parent[hit]]]
         plain = hit[~trk.on_prior[parent[hit]]]
@@ -327,12 +336,14 @@ class PMBM:
             trk.r[old], trk.ids[old], trk.on_prior[old] = 0.0, -1, False
         trk.r[missed] = r_parent[missed] * (1.0 - pdg) / (1.0 - r_parent[missed] * pdg)
         trk.r[child_row[hit]] = 1.0
-        if born.size:  # new Bernoullis: the one-point prior at their detection, existence e/(e + λ)
-            zj = Z[det[born]]
+        lone_rows = np.zeros(0, dtype=np.int64)
+        if born_det.size:  # new Bernoullis: the one-point prior at their detection, existence e/(e + λ)
+            zj = Z[born_det]
             new = bank.add(*trk._one_point_estimates(zj))
             trk._sync()
-            child_row[born] = new
-            trk.r[new] = e / (e + lamv[det[born]])
+            child_row[born] = new[:born.size]
+            lone_rows = new[born.size:]
+            trk.r[new] = e / (e + lamv[born_det])
             trk.on_prior[new] = True
             trk.first_t[new] = t
             trk.first_z[new] = zj
@@ -341,6 +352,11 @@ class PMBM:
         # the clusters in rows; new Bernoullis get their ids; deletion; splitting
         keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
         clusters = [c for c, k in zip(quiet, keep) if k]
+        lone_rows = lone_rows[trk.r[lone_rows] >= trk.r_delete]  # (else removed below: no hypothesis uses them)
+        lone_ids = np.arange(trk.next_id, trk.next_id + lone_rows.size)
+        trk.next_id += lone_rows.size
+        trk.ids[lone_rows] = lone_ids
+        clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
         for ids, T, w, dets in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
             keep_col = []
