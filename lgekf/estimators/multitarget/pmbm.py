@@ -33,10 +33,14 @@ common detection are merged (the product of their hypotheses, capped), and a Ber
 the same in every global hypothesis of its cluster is split off into a cluster of its own (exact: the weights do
 not depend on it). A detection in no gate starts a Bernoulli in a cluster of its own, without any assignment.
 
-**Estimates.** The most likely global hypothesis is the product of each cluster's best one; its Bernoullis with
-existence ≥ the tracker's report threshold, once confirmed (existence ≥ ``confirm_existence`` in the best global
-hypothesis of some scan), are the reported tracks; a Bernoulli's id is the track id. A track *holds* detection j
-when its local hypothesis in the best global hypothesis was updated with j in this scan.
+**Estimates.** The most likely global hypothesis is the product of each cluster's best one (García-Fernández et al.
+2018, Section VI, estimator 1). A Bernoulli is *confirmed* the first time its existence marginalised over the global
+hypotheses, r̄_b = Σ_h w_h r_hb (r_hb = 0 where it does not exist), is ≥ ``confirm_existence``; a confirmed
+Bernoulli is reported while its local hypothesis in the best global hypothesis has r ≥ the report threshold, with
+that local hypothesis's state and r̄_b as its existence; its id is the track id. Why the marginal for confirmation:
+the local r is 1 after any detection, so a new Bernoulli of a false alarm that gets a second false alarm in its gate
+would be confirmed at once whenever that hypothesis is the most likely (in dense clutter: 8× the false-track part,
+docs/multi_target.md); the marginal weighs it against "both were clutter", as JIPDA's existence does.
 """
 
 from __future__ import annotations
@@ -124,9 +128,28 @@ class PMBM:
 
     def best_rows(self) -> np.ndarray:
         """The rows of the most likely global hypothesis (every cluster's best)."""
+        return self._best_and_existence()[0]
+
+    def best_existence(self) -> np.ndarray:
+        """The existence of each Bernoulli of ``best_rows`` marginalised over its cluster's global hypotheses,
+        r̄_b = Σ_h w_h r_hb (r_hb = 0 where it does not exist): the probability that the target exists."""
+        return self._best_and_existence()[1]
+
+    def _best_and_existence(self):
         if self._best is None:
-            b = np.concatenate([c.best for c in self.clusters]) if self.clusters else np.zeros(0, dtype=np.int64)
-            self._best = b[b >= 0]
+            r = self.trk.r
+            rows, marg = [], []
+            for c in self.clusters:
+                if c.lw.size == 1:
+                    rows.append(c.rows[0])
+                    marg.append(r[c.rows[0]])
+                    continue
+                rows.append(c.best)
+                rr = np.where(c.rows >= 0, r[np.maximum(c.rows, 0)], 0.0)
+                marg.append(np.exp(c.lw) @ rr)
+            b = np.concatenate(rows) if rows else np.zeros(0, dtype=np.int64)
+            m = np.concatenate(marg) if marg else np.zeros(0)
+            self._best = (b[b >= 0], m[b >= 0])
         return self._best
 
     def n_hypotheses(self) -> int:
@@ -401,9 +424,9 @@ class PMBM:
             bank.remove(gone)
             trk.r[gone], trk.ids[gone], trk.on_prior[gone] = 0.0, -1, False
         self.last_hypotheses = self.n_hypotheses()
-        # the best global hypothesis: confirmations and the detections it holds
+        # the best global hypothesis: confirmations (by the marginal existence) and the detections it holds
         best = self.best_rows()
-        ok = trk.r[best] >= trk.r_confirm
+        ok = self.best_existence() >= trk.r_confirm
         self.confirmed_ids.update(int(i) for i in trk.ids[best[ok]])
         row_child = np.full(bank.live.size, -1, dtype=np.int64)
         row_child[child_row[hit]] = hit

@@ -551,8 +551,7 @@ class MultiTargetTracker:
         from the best global hypothesis's expected detections, the update, the held detections of the best global
         hypothesis."""
         pm, bank = self.pmbm, self.bank
-        best = pm.best_rows()
-        lam = self._clutter_at(t, Z, float(self.r[best].sum()) * self.pd * self.pg)
+        lam = self._clutter_at(t, Z, float(pm.best_existence().sum()) * self.pd * self.pg)
         if self.birth_density is None:
             r0 = self.pmbm_r0
             pm.birth = self.clutter_density * r0 / (1.0 - r0) * (1.0 - self.ps * (1.0 - self.pd)) / self.pd
@@ -714,16 +713,19 @@ class MultiTargetTracker:
     def report(self) -> ScanReport:
         """The confirmed tracks now (confirmed and existence ≥ ``report_existence``), sorted by id."""
         live = self.bank.live
-        if self.pmbm is not None:  # the best global hypothesis's confirmed Bernoullis
-            best = self.pmbm.best_rows()
+        if self.pmbm is not None:  # the best global hypothesis's confirmed Bernoullis with r ≥ report; existence r̄
+            best, ex = self.pmbm.best_rows(), self.pmbm.best_existence()
             conf = np.fromiter(self.pmbm.confirmed_ids, dtype=np.int64, count=len(self.pmbm.confirmed_ids))
-            sel = best[np.isin(self.ids[best], conf) & (self.r[best] >= self.r_report)]
+            ok = np.isin(self.ids[best], conf) & (self.r[best] >= self.r_report)
+            sel, ex = best[ok], ex[ok]
         else:
             sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
-        sel = sel[np.argsort(self.ids[sel], kind="stable")]
+            ex = self.r[sel]
+        order = np.argsort(self.ids[sel], kind="stable")
+        sel, ex = sel[order], ex[order]
         X = self.bank.physical(sel)
         mu = self.bank.mode_probabilities(sel) if hasattr(self.bank, "mode_probabilities") else None
-        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds(sel), self.r[sel].copy(), mu)
+        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds(sel), ex.copy(), mu)
         if self.history is not None and self.t is not None and self._recorded != self.t:
             self._recorded = self.t
             for k, P in enumerate(self.bank.covariances(sel)):
