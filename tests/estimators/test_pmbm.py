@@ -276,3 +276,51 @@ def test_cli_bad_pmbm_values_are_one_line_and_no_output(tmp_path, capsys, extra,
     lines = [ln for ln in err.splitlines() if ln.strip()]
     assert code == 2 and len(lines) == 1 and msg in lines[0], err
     assert not out.exists()
+
+
+def test_bank_copy_and_hard_update():
+    """``ModelBank.copy`` between ``gate`` and ``update`` (growing the bank): the copy updated with β_ij = 1 is the
+    Kalman update with z_j (CV is linear: numpy K = PHᵀS⁻¹), the original row untouched; ``IMMBank.copy``: the copy
+    updated is the original updated without a copy."""
+    from lgekf.estimators.multitarget.bank import ModelBank
+    from lgekf.estimators.multitarget.imm_bank import IMMBank
+
+    x0, P0 = np.array([[1.0, 2.0, 3.0, -1.0]]), np.array([np.diag([0.5, 0.7, 2.0, 1.5])])
+    Z = np.array([[1.4, 1.8], [0.5, 2.6]])
+    bank = ModelBank("cv", "position", [0.5], [R], capacity=1)
+    row = bank.add(x0, P0)
+    bank.gate(Z, GAMMA)
+    new = bank.copy(np.array([row[0], row[0]]))  # two copies: the bank grows
+    assert bank.live.size >= 3 and set(new.tolist()).isdisjoint(row.tolist())
+    beta0, beta = np.ones(bank.live.size), np.zeros((bank.live.size, 2))
+    beta0[new] = 0.0
+    beta[new[0], 0] = beta[new[1], 1] = 1.0
+    bank.update(beta0, beta)
+    H = np.hstack([np.eye(2), np.zeros((2, 2))])
+    S = H @ P0[0] @ H.T + R**2 * np.eye(2)
+    K = P0[0] @ H.T @ np.linalg.inv(S)
+    for k in (0, 1):
+        np.testing.assert_allclose(bank.physical(new[k:k + 1])[0], x0[0] + K @ (Z[k] - x0[0, :2]), atol=1e-12)
+        np.testing.assert_allclose(bank.covariances(new[k:k + 1])[0], (np.eye(4) - K @ H) @ P0[0], atol=1e-12)
+    np.testing.assert_allclose(bank.physical(row)[0], x0[0])
+
+    def imm():
+        b = IMMBank("cv,se2r3:calm", "position", R, capacity=1)
+        c = np.array([[1.0, 2.0, 0.3, 3.0, 0.5, 0.1]])
+        r = b.add(c, np.diag([0.5, 0.5, 0.2, 1.0, 1.0, 0.1])[None])
+        b.predict(0.1)
+        b.gate(Z, GAMMA)
+        return b, r
+
+    a, ra = imm()
+    ca = a.copy(ra)
+    b0, bb = np.ones(a.live.size), np.zeros((a.live.size, 2))
+    b0[ca], bb[ca, 1] = 0.0, 1.0
+    a.update(b0, bb)
+    ref, rr = imm()
+    b0, bb = np.ones(ref.live.size), np.zeros((ref.live.size, 2))
+    b0[rr], bb[rr, 1] = 0.0, 1.0
+    ref.update(b0, bb)
+    np.testing.assert_allclose(a.physical(ca), ref.physical(rr), atol=1e-12)
+    np.testing.assert_allclose(a.covariances(ca), ref.covariances(rr), atol=1e-12)
+    np.testing.assert_allclose(a.mode_probabilities(ca), ref.mode_probabilities(rr), atol=1e-12)
