@@ -34,7 +34,12 @@ the same in every global hypothesis of its cluster is split off into a cluster o
 not depend on it). A detection in no gate starts a Bernoulli in a cluster of its own, without any assignment.
 
 **Estimates.** The most likely global hypothesis is the product of each cluster's best one (García-Fernández et al.
-2018, Section VI, estimator 1). A Bernoulli is *confirmed* the first time its existence marginalised over the global
+2018, Section VI, estimator 1), with a hysteresis: in each cluster the reported global hypothesis is the most likely
+one unless a continuation (a child) of the one reported at the last scan has at least 1/``BEST_HYSTERESIS`` (1/3)
+of its weight; then the most likely such continuation. (Two global hypotheses that explain a target by two different
+Bernoullis, e.g. a young track missed once and a new Bernoulli started by that detection, keep a nearly constant
+weight ratio while their states differ a little, and the plain argmax flipped between them, an identity switch each
+time; docs/multi_target.md.) A Bernoulli is *confirmed* the first time its existence marginalised over the global
 hypotheses, r̄_b = Σ_h w_h r_hb (r_hb = 0 where it does not exist), is ≥ ``confirm_existence``; a confirmed
 Bernoulli is reported while its local hypothesis in the best global hypothesis has r ≥ the report threshold, with
 that local hypothesis's state and r̄_b as its existence; its id is the track id. Why the marginal for confirmation:
@@ -54,9 +59,10 @@ from scipy.sparse.csgraph import connected_components
 
 from .murty import k_best_assignments
 
-__all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS"]
+__all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
 
 PMBM_DEFAULTS = {"max_hypotheses": 20, "hypothesis_prune": 1e-3}
+BEST_HYSTERESIS = 3.0  # the reported global hypothesis's continuation is kept unless another is 3x as likely
 
 
 def _logsumexp(a):
@@ -73,25 +79,41 @@ class Cluster:
     ids: np.ndarray
     rows: np.ndarray
     lw: np.ndarray
+    chosen: int = 0
 
     @property
     def best(self) -> np.ndarray:
-        """The rows of the most likely global hypothesis (−1 where a Bernoulli does not exist in it)."""
-        return self.rows[int(np.argmax(self.lw))]
+        """The rows of the reported global hypothesis (−1 where a Bernoulli does not exist in it): ``chosen``."""
+        return self.rows[self.chosen]
+
+    def chosen_flags(self) -> np.ndarray:
+        """(H,) True at the reported global hypothesis."""
+        f = np.zeros(self.lw.size, dtype=bool)
+        f[self.chosen] = True
+        return f
 
 
-def _merge_duplicates(rows, lw):
-    """Global hypotheses with equal local hypotheses as one (weights added)."""
+def _choose(lw, from_chosen):
+    """The global hypothesis to report: the most likely one, unless a continuation of the last reported one is within
+    ``BEST_HYSTERESIS`` of it (module docstring): argmax of w_h·(BEST_HYSTERESIS if it descends from it, else 1)."""
+    return int(np.argmax(lw + math.log(BEST_HYSTERESIS) * from_chosen))
+
+
+def _merge_duplicates(rows, lw, flags):
+    """Global hypotheses with equal local hypotheses as one (weights added; descending from the reported one if any
+    did)."""
     if rows.shape[0] < 2:
-        return rows, lw
+        return rows, lw, flags
     uniq, inv = np.unique(rows, axis=0, return_inverse=True)
     if uniq.shape[0] == rows.shape[0]:
-        return rows, lw
+        return rows, lw, flags
     inv = inv.reshape(-1)
     out = np.full(uniq.shape[0], -np.inf)
+    fl = np.zeros(uniq.shape[0], dtype=bool)
     for k in range(uniq.shape[0]):
         out[k] = _logsumexp(lw[inv == k])
-    return uniq, out
+        fl[k] = flags[inv == k].any()
+    return uniq, out, fl
 
 
 class PMBM:
@@ -229,19 +251,20 @@ class PMBM:
         if len(clusters) == 1 and clusters[0].rows.shape == (1, 1) and clusters[0].rows[0, 0] >= 0:
             return self._single(clusters[0].ids, int(clusters[0].rows[0, 0]), dets, logW, gated, log_new)
         ids = np.concatenate([c.ids for c in clusters])
-        rows, lw = clusters[0].rows, clusters[0].lw
+        rows, lw, fl = clusters[0].rows, clusters[0].lw, clusters[0].chosen_flags()
         for c in clusters[1:]:  # the product of the clusters' hypotheses, capped
             H1, H2 = lw.size, c.lw.size
             rows = np.hstack([np.repeat(rows, H2, axis=0), np.tile(c.rows, (H1, 1))])
             lw = (lw[:, None] + c.lw[None, :]).reshape(-1)
+            fl = (fl[:, None] & c.chosen_flags()[None, :]).reshape(-1)
             if lw.size > self.max_hypotheses:
                 keep = np.argsort(-lw, kind="stable")[:self.max_hypotheses]
-                rows, lw = rows[keep], lw[keep]
+                rows, lw, fl = rows[keep], lw[keep], fl[keep]
         lw = lw - _logsumexp(lw)
         B, d = ids.size, dets.size
         if B == 1 and lw.size == 1 and rows[0, 0] >= 0:
             return self._single(ids, int(rows[0, 0]), dets, logW, gated, log_new)
-        out_rows, out_lw = [], []
+        out_rows, out_lw, out_fl = [], [], []
         for h in range(lw.size):
             rh = rows[h]
             exists = rh >= 0
@@ -269,6 +292,7 @@ class PMBM:
                     table[b] = self._child(int(rh[b]), int(given[b]))
                 out_rows.append(table)
                 out_lw.append(base - c)
+                out_fl.append(fl[h])
         T = np.array(out_rows)
         w = np.array(out_lw)
         w -= _logsumexp(w)
@@ -277,7 +301,7 @@ class PMBM:
         if order.size == 0:
             order = np.argsort(-w, kind="stable")[:1]
         T, w = T[order], w[order] - _logsumexp(w[order])
-        return list(ids) + [None] * d, T, w, [int(j) for j in dets]
+        return list(ids) + [None] * d, T, w, [int(j) for j in dets], np.array(out_fl, dtype=bool)[order]
 
     def _single(self, ids, row, dets, logW, gated, log_new):
         """``_update_group`` of one Bernoulli with one local hypothesis (row) and detections ``dets``: its d + 1 global
@@ -302,7 +326,7 @@ class PMBM:
                 if k != j_own:
                     T[a, 1 + k] = self._child(-1, int(dets[k]))
         w = lw[order] - _logsumexp(lw[order]) if order.size > 1 else np.zeros(1)
-        return list(ids) + [None] * d, T, w, [int(j) for j in dets]
+        return list(ids) + [None] * d, T, w, [int(j) for j in dets], np.ones(order.size, dtype=bool)
 
     def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
         """The bank operations of all children at once, then the clusters in bank rows, deletion and splitting."""
@@ -380,7 +404,7 @@ class PMBM:
         trk.next_id += lone_rows.size
         trk.ids[lone_rows] = lone_ids
         clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
-        for ids, T, w, dets in new_clusters:
+        for ids, T, w, dets, fl in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
             keep_col = []
             for b in range(R.shape[1]):
@@ -403,7 +427,7 @@ class PMBM:
             if R.shape[0] == 1:
                 clusters.extend(Cluster(cid[b:b + 1], R[:, b:b + 1], np.zeros(1)) for b in range(R.shape[1]))
                 continue
-            R, w = _merge_duplicates(R, w)
+            R, w, fl = _merge_duplicates(R, w, fl)
             w = w - _logsumexp(w)
             const = np.all(R == R[:1], axis=0)
             if R.shape[0] == 1 or const.all():
@@ -412,7 +436,7 @@ class PMBM:
             else:
                 for b in np.flatnonzero(const):
                     clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
-                clusters.append(Cluster(cid[~const], R[:, ~const], w))
+                clusters.append(Cluster(cid[~const], R[:, ~const], w, _choose(w, fl)))
         self.clusters = clusters
         self._best = None
         # local hypotheses no global hypothesis uses
@@ -445,6 +469,6 @@ class PMBM:
                 continue
             if gone.all():
                 continue
-            R, w = _merge_duplicates(c.rows[:, ~gone], c.lw)
-            out.append(Cluster(c.ids[~gone], R, w - _logsumexp(w)))
+            R, w, fl = _merge_duplicates(c.rows[:, ~gone], c.lw, c.chosen_flags())
+            out.append(Cluster(c.ids[~gone], R, w - _logsumexp(w), _choose(w, fl)))
         self.clusters = out
