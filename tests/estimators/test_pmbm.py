@@ -324,3 +324,25 @@ def test_bank_copy_and_hard_update():
     np.testing.assert_allclose(a.physical(ca), ref.physical(rr), atol=1e-12)
     np.testing.assert_allclose(a.covariances(ca), ref.covariances(rr), atol=1e-12)
     np.testing.assert_allclose(a.mode_probabilities(ca), ref.mode_probabilities(rr), atol=1e-12)
+
+
+def test_drop_removes_a_bernoulli_from_every_global_hypothesis():
+    """``drop(ids)`` (the divergence monitor's verdict): the Bernoulli leaves every cluster and its rows the bank; the
+    next reports do not have it, and another Bernoulli takes its target (one of its other global hypotheses' or a
+    new one)."""
+    sc = base_scenario(seed=0, targets=CROSSING, duration=3.0)
+    trk = MultiTargetTracker(model="cv", association="pmbm", clutter_density=1e-4, meas_std=0.3, detection_prob=0.9)
+    for t, Z in zip(sc.times[:15], sc.detections[:15]):
+        rep = trk.step(t, Z)
+    gone = int(rep.ids[0])
+    n = trk.n_tracks
+    trk.drop([gone])
+    assert trk.n_tracks == n - 1
+    assert all(gone not in c.ids for c in trk.pmbm.clusters)
+    assert not np.any(trk.ids[trk.bank.live] == gone)
+    for t, Z in zip(sc.times[15:], sc.detections[15:]):
+        rep = trk.step(t, Z)
+        assert gone not in rep.ids
+    truth = sc.truth[-1][1][:, :2]
+    d = np.hypot(rep.states[:, None, 0] - truth[None, :, 0], rep.states[:, None, 1] - truth[None, :, 1]).min(axis=0)
+    assert rep.ids.size == 4 and np.all(d < 1.5), d

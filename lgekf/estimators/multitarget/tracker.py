@@ -53,6 +53,12 @@ combined estimate in the common coordinates x, y, θ, v_x, v_y, ω, as ``lgekf t
 bank implementing the same calls plugs in unchanged (``bank=`` argument).
 
 With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
+
+``association="pmbm"`` replaces steps 3–5 by the Poisson multi-Bernoulli mixture filter
+(``lgekf.estimators.multitarget.pmbm``): each bank row is a local hypothesis of a Bernoulli (a track id), global
+hypotheses per cluster by Murty's k best assignments (``murty.py``), births from its Poisson part (one-point
+priors); the prediction, the gates and likelihoods, the clutter component and the one-point restart are this
+tracker's.
 """
 
 from __future__ import annotations
