@@ -219,8 +219,19 @@ class PMBM:
         # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
         quiet_mask = shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 0)
         quiet = [self.clusters[k] for k in np.flatnonzero(quiet_mask)]
+        # one Bernoulli, one hypothesis, one detection that no other gate takes, the miss's weight below the pruning
+        # threshold: the hard update with it is the only global hypothesis kept (what ``_single`` gives), in bulk
+        pair = np.flatnonzero(shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 1))
+        det_of_comp = np.full(C + M, -1, dtype=np.int64)
+        det_of_comp[det_comp] = np.arange(M)
+        prow = np.array([self.clusters[k].rows[0, 0] for k in pair], dtype=np.int64)
+        pj = det_of_comp[cl_comp[pair]]
+        sure = -np.logaddexp(0.0, logW[prow, pj] - log_new[pj]) < math.log(self.hypothesis_prune)  # log w_miss
+        self._sure = [(self.clusters[k], self._child(int(i), int(j))) for k, i, j in zip(pair[sure], prow[sure], pj[sure])]
+        busy_mask = ~quiet_mask
+        busy_mask[pair[sure]] = False
         new_clusters = []  # (ids-or-None list, child-index table, lw, detections)
-        busy = np.flatnonzero(~quiet_mask)
+        busy = np.flatnonzero(busy_mask)
         if busy.size:
             order = np.argsort(cl_comp[busy], kind="stable")
             ks_sorted = busy[order]
@@ -399,6 +410,7 @@ class PMBM:
         # the clusters in rows; new Bernoullis get their ids; deletion; splitting
         keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
         clusters = [c for c, k in zip(quiet, keep) if k]
+        clusters.extend(Cluster(c.ids, child_row[ch].reshape(1, 1), c.lw) for c, ch in self._sure)
         lone_rows = lone_rows[trk.r[lone_rows] >= trk.r_delete]  # (else removed below: no hypothesis uses them)
         lone_ids = np.arange(trk.next_id, trk.next_id + lone_rows.size)
         trk.next_id += lone_rows.size
@@ -406,7 +418,7 @@ class PMBM:
         clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
         for ids, T, w, dets, fl in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
-            keep_col = []
+            keep_col, deleted = [], False
             for b in range(R.shape[1]):
                 col = R[:, b]
                 ex = col >= 0
@@ -414,6 +426,7 @@ class PMBM:
                     continue
                 if float(trk.r[col[ex]].max()) < trk.r_delete or not np.all(np.isfinite(trk.r[col[ex]])):
                     R[:, b] = -1
+                    deleted = True
                     continue
                 if ids[b] is None:
                     ids[b] = trk.next_id
@@ -427,7 +440,8 @@ class PMBM:
             if R.shape[0] == 1:
                 clusters.extend(Cluster(cid[b:b + 1], R[:, b:b + 1], np.zeros(1)) for b in range(R.shape[1]))
                 continue
-            R, w, fl = _merge_duplicates(R, w, fl)
+            if deleted:  # (distinct assignments give distinct children: equal hypotheses only after a deletion)
+                R, w, fl = _merge_duplicates(R, w, fl)
             w = w - _logsumexp(w)
             const = np.all(R == R[:1], axis=0)
             if R.shape[0] == 1 or const.all():
