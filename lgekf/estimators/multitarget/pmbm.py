@@ -418,15 +418,16 @@ class PMBM:
         clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
         for ids, T, w, dets, fl in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
-            keep_col, deleted = [], False
+            rr = trk.r[np.maximum(R, 0)]
+            faint = (R >= 0) & ~(rr >= trk.r_delete)  # (NaN included)
+            deleted = bool(faint.any())
+            if deleted:  # a local hypothesis below the deletion threshold: the Bernoulli does not exist there
+                R[faint] = -1
+            keep_col = []
             for b in range(R.shape[1]):
                 col = R[:, b]
                 ex = col >= 0
                 if not ex.any():
-                    continue
-                if float(trk.r[col[ex]].max()) < trk.r_delete or not np.all(np.isfinite(trk.r[col[ex]])):
-                    R[:, b] = -1
-                    deleted = True
                     continue
                 if ids[b] is None:
                     ids[b] = trk.next_id
