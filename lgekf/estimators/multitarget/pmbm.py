@@ -61,7 +61,7 @@ from .murty import k_best_assignments
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
 
-PMBM_DEFAULTS = {"max_hypotheses": 20, "hypothesis_prune": 1e-3}
+PMBM_DEFAULTS = {"max_hypotheses": 50, "hypothesis_prune": 1e-3}
 BEST_HYSTERESIS = 3.0  # the reported global hypothesis's continuation is kept unless another is 3x as likely
 
 
@@ -416,6 +416,19 @@ class PMBM:
         trk.next_id += lone_rows.size
         trk.ids[lone_rows] = lone_ids
         clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
+        # each detection's probability of being a target's: Σ_h w_h (1 if a track takes it in h, e/(e + λ) if it
+        # starts a Bernoulli there)
+        r_new = e / (e + lamv)
+        target = np.zeros(Z.shape[0])
+        target[lone] = r_new[lone]
+        target[det[[ch for _, ch in self._sure]]] = 1.0
+        for ids, T, w, dets, fl in new_clusters:
+            hh, cc = np.nonzero(T >= 0)
+            ch = T[hh, cc]
+            jj = det[ch]
+            on = jj >= 0
+            np.add.at(target, jj[on], np.exp(w[hh[on]]) * np.where(parent[ch[on]] < 0, r_new[jj[on]], 1.0))
+        self.detection_target = target
         for ids, T, w, dets, fl in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
             rr = trk.r[np.maximum(R, 0)]
@@ -471,6 +484,7 @@ class PMBM:
         row_child[child_row[hit]] = hit
         hb = best[row_child[best] >= 0]
         ch = row_child[hb]
+        self.confirmed_ids.update(int(i) for i in trk.ids[hb[target[det[ch]] >= trk.r_confirm]])
         return trk.ids[hb].copy(), det[ch].copy(), self.held_d2[ch].copy()
 
     def drop(self, ids):

@@ -295,7 +295,7 @@ class MultiTargetTracker:
         ``model="imm"``: the probability of leaving a mode per scan (default ``DEFAULT_SWITCH``, 0.05).
     max_hypotheses : int, optional
         PMBM: at most this many global hypotheses per cluster of interacting tracks, and N_h of the k-best rule (a
-        global hypothesis of weight w gets its ⌈N_h w⌉ best assignments); default 20.
+        global hypothesis of weight w gets its ⌈N_h w⌉ best assignments); default 50.
     hypothesis_prune : float, optional
         PMBM: global hypotheses of normalised weight below this are dropped (default 1e-3).
 
