@@ -39,13 +39,23 @@ one unless a continuation (a child) of the one reported at the last scan has at 
 of its weight; then the most likely such continuation. (Two global hypotheses that explain a target by two different
 Bernoullis, e.g. a young track missed once and a new Bernoulli started by that detection, keep a nearly constant
 weight ratio while their states differ a little, and the plain argmax flipped between them, an identity switch each
-time; docs/multi_target.md.) A Bernoulli is *confirmed* the first time its existence marginalised over the global
-hypotheses, r̄_b = Σ_h w_h r_hb (r_hb = 0 where it does not exist), is ≥ ``confirm_existence``; a confirmed
-Bernoulli is reported while its local hypothesis in the best global hypothesis has r ≥ the report threshold, with
-that local hypothesis's state and r̄_b as its existence; its id is the track id. Why the marginal for confirmation:
-the local r is 1 after any detection, so a new Bernoulli of a false alarm that gets a second false alarm in its gate
-would be confirmed at once whenever that hypothesis is the most likely (in dense clutter: 8× the false-track part,
-docs/multi_target.md); the marginal weighs it against "both were clutter", as JIPDA's existence does.
+time; docs/multi_target.md.) A Bernoulli is *confirmed* the first time (a) its existence marginalised over the
+global hypotheses, r̄_b = Σ_h w_h r_hb (r_hb = 0 where it does not exist), is ≥ ``confirm_existence``, or (b) the
+detection its local hypothesis in the reported global hypothesis holds is a target's with probability
+≥ ``confirm_existence``: Σ_h w_h (1 if a Bernoulli takes it in h, e/(e + λ) if it starts one there). A confirmed
+Bernoulli is reported while its local hypothesis in the reported global hypothesis has r ≥ the report threshold,
+with that local hypothesis's state and r̄_b as its existence; its id is the track id. Why not the local r for
+confirmation: it is 1 after any detection, so a new Bernoulli of a false alarm that gets a second false alarm in its
+gate would be confirmed at once whenever that hypothesis is the most likely (in dense clutter: 8× the false-track
+part); the marginals weigh it against "both were clutter", as JIPDA's existence does. Why (b): a target's first
+detections are often explained by two Bernoullis in different global hypotheses (one started at its first
+detection, one at its second, the first missed), which split r̄ between them; the detection itself is a target's
+in both.
+
+**Local hypotheses below ``delete_existence``** are "does not exist" in their global hypothesis (a missed new
+Bernoulli, r₀ = 0.02 → 0.002, as JPDA deletes its track); kept, their covariances grew scan by scan while other
+global hypotheses held the Bernoulli, and their gates of hundreds of metres merged whole crowds into one capped
+cluster.
 """
 
 from __future__ import annotations
@@ -61,7 +71,7 @@ from .murty import k_best_assignments
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
 
-PMBM_DEFAULTS = {"max_hypotheses": 50, "hypothesis_prune": 1e-3}
+PMBM_DEFAULTS = {"max_hypotheses": 50, "hypothesis_prune": 1e-3}  # measured: docs/multi_target.md
 BEST_HYSTERESIS = 3.0  # the reported global hypothesis's continuation is kept unless another is 3x as likely
 
 
@@ -131,6 +141,8 @@ class PMBM:
     birth : float
         β, the Poisson birth density per m² per scan.
     """
+
+    confirm_by_detection = True  # also confirm by the held detection's probability of being a target's (docstring)
 
     def __init__(self, trk, max_hypotheses: int, hypothesis_prune: float, birth: float):
         self.trk = trk
@@ -484,7 +496,8 @@ class PMBM:
         row_child[child_row[hit]] = hit
         hb = best[row_child[best] >= 0]
         ch = row_child[hb]
-        self.confirmed_ids.update(int(i) for i in trk.ids[hb[target[det[ch]] >= trk.r_confirm]])
+        if self.confirm_by_detection:
+            self.confirmed_ids.update(int(i) for i in trk.ids[hb[target[det[ch]] >= trk.r_confirm]])
         return trk.ids[hb].copy(), det[ch].copy(), self.held_d2[ch].copy()
 
     def drop(self, ids):
