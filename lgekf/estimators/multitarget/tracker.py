@@ -188,7 +188,7 @@ class ScanReport:
     stds : ndarray, (K, n)
         Std of each tangent coordinate (square roots of P's diagonal; the IMM: of the common coordinates).
     existence : ndarray, (K,)
-        Existence probabilities.
+        Existence probabilities (the PMBM: marginalised over its global hypotheses, r̄).
     mu : ndarray, (K, M) or None
         The IMM's mode probabilities (``model="imm"``), else None.
     """
