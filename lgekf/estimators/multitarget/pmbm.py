@@ -150,10 +150,30 @@ class PMBM:
         self.hypothesis_prune = float(hypothesis_prune)
         self.birth = float(birth)
         self.undetected = 0.0  # D_u per m² (after the last update)
-        self.clusters: list[Cluster] = []
+        self.multi: list[Cluster] = []  # clusters of several Bernoullis or global hypotheses
+        self.s_rows = np.zeros(0, dtype=np.int64)  # the clusters of one Bernoulli with one local hypothesis (most):
+        self.s_ids = np.zeros(0, dtype=np.int64)  # its row and id, as arrays
         self.confirmed_ids: set = set()
         self.last_hypotheses = 0
         self._best = None  # best_rows() until the clusters change
+
+    @property
+    def clusters(self) -> list:
+        """Every cluster as a ``Cluster`` (the one-Bernoulli one-hypothesis ones made from their arrays)."""
+        return [Cluster(self.s_ids[k:k + 1], self.s_rows[k:k + 1, None], np.zeros(1)) for k in range(self.s_rows.size)] \
+            + list(self.multi)
+
+    @clusters.setter
+    def clusters(self, clusters):
+        single = [c for c in clusters if c.rows.shape == (1, 1) and c.rows[0, 0] >= 0]
+        self.s_rows = np.array([c.rows[0, 0] for c in single], dtype=np.int64)
+        self.s_ids = np.array([c.ids[0] for c in single], dtype=np.int64)
+        self.multi = [c for c in clusters if not (c.rows.shape == (1, 1) and c.rows[0, 0] >= 0)]
+        self._best = None
+
+    def n_bernoullis(self) -> int:
+        """The number of Bernoullis (tracks, tentative included)."""
+        return self.s_rows.size + sum(c.ids.size for c in self.multi)
 
     # ------------------------------------------------------------------ Poisson part
     def predict_poisson(self):
@@ -172,8 +192,8 @@ class PMBM:
     def _best_and_existence(self):
         if self._best is None:
             r = self.trk.r
-            rows, marg = [], []
-            for c in self.clusters:
+            rows, marg = [self.s_rows], [r[self.s_rows]]
+            for c in self.multi:
                 if c.lw.size == 1:
                     rows.append(c.rows[0])
                     marg.append(r[c.rows[0]])
@@ -188,7 +208,7 @@ class PMBM:
 
     def n_hypotheses(self) -> int:
         """The number of global hypotheses summed over the clusters (their product is the mixture's size)."""
-        return sum(c.lw.size for c in self.clusters)
+        return self.s_rows.size + sum(c.lw.size for c in self.multi)
 
     # ------------------------------------------------------------------ one scan
     def scan(self, t, Z, lam, ll, gated, d2):
@@ -210,12 +230,15 @@ class PMBM:
         logW = np.full(gated.shape, -np.inf)
         logW[ai, aj] = (ll[ai, aj] + np.log(r[ai] * trk.pd) - np.log(lamv[aj] / trk.angle_volume) - logw0[ai])
         # clusters touching common detections -> groups (connected components of clusters and detections)
-        C = len(self.clusters)
+        # (cluster k < S: the one-Bernoulli cluster s_rows[k]; k ≥ S: multi[k − S])
+        S = self.s_rows.size
+        C = S + len(self.multi)
         row_cluster = np.full(r.size, -1, dtype=np.int64)
+        row_cluster[self.s_rows] = np.arange(S)
         shape11 = np.zeros(C, dtype=bool)
-        for k, c in enumerate(self.clusters):
-            row_cluster[c.rows[c.rows >= 0]] = k
-            shape11[k] = c.rows.shape == (1, 1)
+        shape11[:S] = True
+        for k, c in enumerate(self.multi):
+            row_cluster[c.rows[c.rows >= 0]] = S + k
         sel = row_cluster[ai] >= 0
         gc, gj = row_cluster[ai[sel]], aj[sel]
         graph = coo_matrix((np.ones(gc.size), (gc, C + gj)), shape=(C + M, C + M))
@@ -230,16 +253,16 @@ class PMBM:
         self._lone = np.flatnonzero(n_cl[det_comp] == 0)
         # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
         quiet_mask = shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 0)
-        quiet = [self.clusters[k] for k in np.flatnonzero(quiet_mask)]
+        quiet = np.flatnonzero(quiet_mask)  # (< S)
         # one Bernoulli, one hypothesis, one detection that no other gate takes, the miss's weight below the pruning
         # threshold: the hard update with it is the only global hypothesis kept (what ``_single`` gives), in bulk
         pair = np.flatnonzero(shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 1))
         det_of_comp = np.full(C + M, -1, dtype=np.int64)
         det_of_comp[det_comp] = np.arange(M)
-        prow = np.array([self.clusters[k].rows[0, 0] for k in pair], dtype=np.int64)
+        prow = self.s_rows[pair]
         pj = det_of_comp[cl_comp[pair]]
         sure = -np.logaddexp(0.0, logW[prow, pj] - log_new[pj]) < math.log(self.hypothesis_prune)  # log w_miss
-        self._sure = [(self.clusters[k], self._child(int(i), int(j))) for k, i, j in zip(pair[sure], prow[sure], pj[sure])]
+        self._sure = (pair[sure], prow[sure], pj[sure])  # their children are registered after the others (``_apply``)
         busy_mask = ~quiet_mask
         busy_mask[pair[sure]] = False
         new_clusters = []  # (ids-or-None list, child-index table, lw, detections)
@@ -255,8 +278,15 @@ class PMBM:
                 cc = cl_comp[ks[0]]
                 lo, hi = np.searchsorted(dcomp, cc), np.searchsorted(dcomp, cc, side="right")
                 dets = np.sort(dorder[lo:hi])
-                new_clusters.append(self._update_group([self.clusters[k] for k in ks], dets, logW, gated, logw0, log_new))
+                new_clusters.append(self._update_group([self._cluster(k) for k in ks], dets, logW, gated, logw0, log_new))
         return self._apply(t, Z, lamv, e, new_clusters, quiet, d2)
+
+    def _cluster(self, k):
+        """Cluster k of ``scan``'s numbering as a ``Cluster``."""
+        S = self.s_rows.size
+        if k >= S:
+            return self.multi[k - S]
+        return Cluster(self.s_ids[k:k + 1], self.s_rows[k:k + 1, None], np.zeros(1))
 
     def _child(self, parent, j):
         key = (parent, j)
@@ -356,13 +386,16 @@ class PMBM:
         trk = self.trk
         bank = trk.bank
         pdg = trk.pd * trk.pg
-        parent = np.asarray(self._child_parent, dtype=np.int64)
-        det = np.asarray(self._child_det, dtype=np.int64)
+        sure_k, sure_row, sure_det = self._sure  # the sure hard updates: children n0, n0 + 1, ... (unique keys)
+        n0 = len(self._child_parent)
+        parent = np.concatenate([np.asarray(self._child_parent, dtype=np.int64), sure_row])
+        det = np.concatenate([np.asarray(self._child_det, dtype=np.int64), sure_det])
+        sure_child = n0 + np.arange(sure_k.size)
         n = parent.size
         child_row = np.full(n, -1, dtype=np.int64)
         miss = (parent >= 0) & (det < 0)
         child_row[miss] = parent[miss]  # the miss keeps the predicted state in place
-        quiet_rows = np.array([c.rows[0, 0] for c in quiet], dtype=np.int64)  # singletons (split at the last scan)
+        quiet_rows = self.s_rows[quiet]
         missed = np.concatenate([parent[miss], quiet_rows])
         hit = np.flatnonzero((parent >= 0) & (det >= 0))
         lone = self._lone
@@ -421,19 +454,21 @@ class PMBM:
         self.undetected *= 1.0 - trk.pd
         # the clusters in rows; new Bernoullis get their ids; deletion; splitting
         keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
-        clusters = [c for c, k in zip(quiet, keep) if k]
-        clusters.extend(Cluster(c.ids, child_row[ch].reshape(1, 1), c.lw) for c, ch in self._sure)
+        s_rows = [quiet_rows[keep], child_row[sure_child]]
+        s_ids = [self.s_ids[quiet[keep]], self.s_ids[sure_k]]
         lone_rows = lone_rows[trk.r[lone_rows] >= trk.r_delete]  # (else removed below: no hypothesis uses them)
         lone_ids = np.arange(trk.next_id, trk.next_id + lone_rows.size)
         trk.next_id += lone_rows.size
         trk.ids[lone_rows] = lone_ids
-        clusters.extend(Cluster(lone_ids[k:k + 1], lone_rows[k:k + 1, None], np.zeros(1)) for k in range(lone_rows.size))
+        s_rows.append(lone_rows)
+        s_ids.append(lone_ids)
+        clusters = []
         # each detection's probability of being a target's: Σ_h w_h (1 if a track takes it in h, e/(e + λ) if it
         # starts a Bernoulli there)
         r_new = e / (e + lamv)
         target = np.zeros(Z.shape[0])
         target[lone] = r_new[lone]
-        target[det[[ch for _, ch in self._sure]]] = 1.0
+        target[sure_det] = 1.0
         for ids, T, w, dets, fl in new_clusters:
             hh, cc = np.nonzero(T >= 0)
             ch = T[hh, cc]
@@ -464,23 +499,25 @@ class PMBM:
             R = R[:, keep_col]
             cid = np.array([ids[b] for b in keep_col], dtype=np.int64)
             if R.shape[0] == 1:
-                clusters.extend(Cluster(cid[b:b + 1], R[:, b:b + 1], np.zeros(1)) for b in range(R.shape[1]))
+                s_rows.append(R[0])
+                s_ids.append(cid)
                 continue
             if deleted:  # (distinct assignments give distinct children: equal hypotheses only after a deletion)
                 R, w, fl = _merge_duplicates(R, w, fl)
             w = w - _logsumexp(w)
             const = np.all(R == R[:1], axis=0)
-            if R.shape[0] == 1 or const.all():
-                for b in range(R.shape[1]):
-                    clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
-            else:
-                for b in np.flatnonzero(const):
-                    clusters.append(Cluster(cid[b:b + 1], R[:1, b:b + 1], np.zeros(1)))
-                clusters.append(Cluster(cid[~const], R[:, ~const], w, _choose(w, fl)))
-        self.clusters = clusters
+            split = const & (R[0] >= 0)  # the same local hypothesis in every global hypothesis: a cluster of its own
+            s_rows.append(R[0, split])
+            s_ids.append(cid[split])
+            if not split.all():
+                clusters.append(Cluster(cid[~split], R[:, ~split], w, _choose(w, fl)))
+        self.multi = clusters
+        self.s_rows = np.concatenate(s_rows).astype(np.int64)
+        self.s_ids = np.concatenate(s_ids).astype(np.int64)
         self._best = None
         # local hypotheses no global hypothesis uses
         used = np.zeros(bank.live.size, dtype=bool)
+        used[self.s_rows] = True
         for c in clusters:
             used[c.rows[c.rows >= 0]] = True
         gone = np.flatnonzero(bank.live & ~used)

@@ -753,5 +753,5 @@ class MultiTargetTracker:
     def n_tracks(self) -> int:
         """Number of live tracks (tentative and confirmed; the PMBM: Bernoullis)."""
         if self.pmbm is not None:
-            return int(sum(c.ids.size for c in self.pmbm.clusters))
+            return self.pmbm.n_bernoullis()
         return int(self.bank.live.sum())
