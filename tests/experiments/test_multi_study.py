@@ -65,6 +65,17 @@ def test_study_compares_initiations_on_the_same_detections():
     assert (cells[1].gospa, cells[1].missed, cells[1].switches) == (alone[0].gospa, alone[0].missed, alone[0].switches)
 
 
+def test_study_runs_the_pmbm_one_point_only():
+    """pmbm in the study: its cell with one-point initiation, none with two-point (the PMBM refuses it), next to
+    JPDA's two."""
+    cfg = MultiStudyConfig(models=("cv",), associations=("jpda", "pmbm"), initiations=("one-point", "two-point"),
+                           runs=1, duration=2.0)
+    cells = run_multi_study(cfg)
+    assert [(c.association, c.initiation) for c in cells] == [("jpda", "one-point"), ("jpda", "two-point"),
+                                                              ("pmbm", "one-point")]
+    assert np.isfinite(cells[2].gospa) and cells[2].gospa < 5.0
+
+
 def test_real_trajectories_as_detection_streams():
     root = data_root()
     try:
