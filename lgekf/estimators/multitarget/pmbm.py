@@ -103,6 +103,21 @@ class Cluster:
         return f
 
 
+class LogWeights:
+    """log(r P_D N(e_ij; 0, S_i) / ((1 − r P_D P_G) κ_j)) of rows i and detections j (the cost of detection j to the
+    local hypothesis of row i against its miss, with the 1/κ_j common to all assignments), formed on demand from the
+    bank's log-likelihoods ll (N, M), per-row and per-detection terms: ll_ij + a_i + b_j (−inf outside the gates)."""
+
+    def __init__(self, ll, a, b):
+        self.ll, self.a, self.b = ll, a, b
+
+    def pairs(self, i, j):
+        return self.ll[i, j] + self.a[i] + self.b[j]
+
+    def block(self, rows, cols):
+        return self.ll[np.ix_(rows, cols)] + self.a[rows, None] + self.b[None, cols]
+
+
 def _choose(lw, from_chosen):
     """The global hypothesis to report: the most likely one, unless a continuation of the last reported one is within
     ``BEST_HYSTERESIS`` of it (module docstring): argmax of w_h·(BEST_HYSTERESIS if it descends from it, else 1)."""
@@ -226,9 +241,10 @@ class PMBM:
         with np.errstate(divide="ignore"):
             logw0 = np.log1p(-r * pdg)  # per row
         # log(r P_D N / ((1 − r P_D P_G) κ)) on the gated pairs (κ = λ per m² per angle volume)
+        # (ll is −inf outside the gates: so is logW; formed where needed, ``LogWeights``)
+        with np.errstate(divide="ignore"):
+            logW = LogWeights(ll, np.log(r * trk.pd) - logw0, -np.log(lamv / trk.angle_volume))
         ai, aj = np.nonzero(gated)
-        logW = np.full(gated.shape, -np.inf)
-        logW[ai, aj] = (ll[ai, aj] + np.log(r[ai] * trk.pd) - np.log(lamv[aj] / trk.angle_volume) - logw0[ai])
         # clusters touching common detections -> groups (connected components of clusters and detections)
         # (cluster k < S: the one-Bernoulli cluster s_rows[k]; k ≥ S: multi[k − S])
         S = self.s_rows.size
@@ -261,7 +277,7 @@ class PMBM:
         det_of_comp[det_comp] = np.arange(M)
         prow = self.s_rows[pair]
         pj = det_of_comp[cl_comp[pair]]
-        sure = -np.logaddexp(0.0, logW[prow, pj] - log_new[pj]) < math.log(self.hypothesis_prune)  # log w_miss
+        sure = -np.logaddexp(0.0, logW.pairs(prow, pj) - log_new[pj]) < math.log(self.hypothesis_prune)  # log w_miss
         self._sure = (pair[sure], prow[sure], pj[sure])  # their children are registered after the others (``_apply``)
         busy_mask = ~quiet_mask
         busy_mask[pair[sure]] = False
@@ -328,7 +344,7 @@ class PMBM:
                 cost = np.full((d, B + d), np.inf)
                 ex = np.flatnonzero(exists)
                 sub = gated[np.ix_(rh[ex], dets)]
-                cost[:, ex] = np.where(sub, -logW[np.ix_(rh[ex], dets)], np.inf).T
+                cost[:, ex] = np.where(sub, -logW.block(rh[ex], dets), np.inf).T
                 cost[np.arange(d), B + np.arange(d)] = -log_new[dets]
                 k = max(1, math.ceil(self.max_hypotheses * math.exp(lw[h])))
                 sols = k_best_assignments(cost, k)
@@ -365,7 +381,7 @@ class PMBM:
         hit = np.flatnonzero(g)
         lw = np.empty(1 + hit.size)
         lw[0] = 0.0  # the miss, then each gated detection (relative to all detections new targets or clutter)
-        lw[1:] = logW[row, dets[hit]] - log_new[dets[hit]]
+        lw[1:] = logW.pairs(np.full(hit.size, row), dets[hit]) - log_new[dets[hit]]
         lw -= lw.max()
         lw -= math.log(np.exp(lw).sum())
         order = np.argsort(-lw, kind="stable")
