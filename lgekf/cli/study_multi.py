@@ -17,6 +17,7 @@ __all__ = ["cmd_study_multi", "study_multi_parser"]
 def study_multi_parser():
     from ..core.registry import MODELS
     from ..estimators.multitarget.association import ASSOCIATIONS
+    from ..estimators.multitarget.tracker import ASSOCIATIONS as ALL_ASSOCIATIONS
     from ..experiments.clutter_scenarios import CLUTTER_SCENARIOS
 
     ap = ArgumentParser(prog="lgekf study --multi",
@@ -29,10 +30,11 @@ def study_multi_parser():
     ap.add_argument("--imm-modes", default=None, metavar="LIST",
                     help="with imm in --models: its modes (default those of lgekf track --model imm, "
                          "cv,se2r3:calm,se2r3:manoeuvre)")
-    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST", help=f"associations (default {','.join(ASSOCIATIONS)})")
+    ap.add_argument("--association", default=",".join(ASSOCIATIONS), metavar="LIST",
+                    help=f"associations of {','.join(ALL_ASSOCIATIONS)} (default {','.join(ASSOCIATIONS)})")
     ap.add_argument("--initiation", default=None, metavar="LIST",
                     help="track initiations to compare, one-point,two-point (default: the tracker's default for each "
-                         "association, one-point with jpda and gnn, two-point with pda)")
+                         "association, one-point with jpda, gnn and pmbm, two-point with pda; pmbm is one-point only)")
     ap.add_argument("--runs", type=int, default=5, help="Monte Carlo runs (default 5)")
     ap.add_argument("--seed", type=int, default=2016, help="seed of the first run (default 2016)")
     ap.add_argument("--detection-prob", type=float, default=0.9, help="P_D (default 0.9)")
@@ -75,8 +77,7 @@ def _names(option, text, allowed):
 
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
-    from ..estimators.multitarget.association import ASSOCIATIONS
-    from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS
+    from ..estimators.multitarget.tracker import ASSOCIATIONS, IMM_MODEL, INITIATIONS
     from ..experiments.clutter_scenarios import STUDY_CLUTTERS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 

@@ -113,6 +113,7 @@ class MultiTrack(TrackEstimator):
                          initiation=a.initiation, birth_density=a.birth_density,
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
                          max_speed=self.max_speed, omega_std=a.omega_std,
+                         max_hypotheses=a.max_hypotheses, hypothesis_prune=a.hypothesis_prune,
                          clutter_density=1.0 if a.clutter_density is None else a.clutter_density)
         self.noise_fixed = self.q is not None  # the process noise is not for the data to set
         if a.model == IMM_MODEL:

@@ -10,9 +10,10 @@ from __future__ import annotations
 from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS
-from ..estimators.multitarget.association import ASSOCIATIONS
 from ..estimators.multitarget.clutter import CLUTTER_SOURCES, DEFAULT_CLUTTER_SOURCE
-from ..estimators.multitarget.tracker import BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS, SPEED_STD_FRACTION
+from ..estimators.multitarget.pmbm import PMBM_DEFAULTS
+from ..estimators.multitarget.tracker import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS,
+                                             SPEED_STD_FRACTION)
 from ..io.readers import COLUMN_OPTIONS
 from ..io.units import TIME_UNITS
 from . import ArgumentParser
@@ -29,7 +30,8 @@ DEFAULT_MAX_SPEED = 30.0  # m/s
 MULTI_DEFAULTS = {"association": "jpda", "detection_prob": 0.9, "gate_prob": 0.99, "survival_prob": 0.99,
                   "confirm_existence": 0.9, "delete_existence": 0.01}
 MULTI_ONLY = ("association", "initiation", "detection_prob", "clutter_density", "clutter", "gate_prob", "survival_prob",
-              "birth_existence", "birth_density", "confirm_existence", "delete_existence", "max_speed", "scan_window")
+              "birth_existence", "birth_density", "confirm_existence", "delete_existence", "max_speed", "scan_window",
+              "max_hypotheses", "hypothesis_prune")
 # options of the labelled-object estimators that --multi does not take: (attribute, its default, the option's name)
 SINGLE_ONLY = (("format", "csv", "--format"), ("frame_dt", None, "--frame-dt"), ("id_column", None, "--id-column"),
                ("use_heading", False, "--use-heading"), ("heading_unit", None, "--heading-unit"),
@@ -126,8 +128,9 @@ def track_parser():
                         "id column is ignored); see docs/track_multi.md")
     g.add_argument("--association", default=None, choices=list(ASSOCIATIONS),
                    help="jpda (joint, exact up to 5000 events per cluster, loopy belief propagation beyond), jpdastar (JPDA* "
-                        "with the best of permuted events only: close tracks do not coalesce), pda or gnn "
-                        f"(default {MULTI_DEFAULTS['association']})")
+                        "with the best of permuted events only: close tracks do not coalesce), pda, gnn or "
+                        "pmbm (Poisson multi-Bernoulli mixture: multiple hypotheses by Murty's k best assignments, births "
+                        f"from its Poisson part) (default {MULTI_DEFAULTS['association']})")
     g.add_argument("--initiation", default=None, choices=list(INITIATIONS),
                    help="how tracks start: one-point = a tentative track from every detection no track claims, velocity "
                         "0 +- --max-speed/3 per axis, confirmed by its existence probability; two-point = from two "
@@ -157,6 +160,12 @@ def track_parser():
                    help=f"existence that confirms a track (default {MULTI_DEFAULTS['confirm_existence']})")
     g.add_argument("--delete-existence", type=float, default=None,
                    help=f"existence below which a track is deleted (default {MULTI_DEFAULTS['delete_existence']})")
+    g.add_argument("--max-hypotheses", type=int, default=None, metavar="N",
+                   help="pmbm: at most N global hypotheses per cluster of interacting tracks; a hypothesis of weight w "
+                        f"gets its ceil(N w) best assignments (default {PMBM_DEFAULTS['max_hypotheses']})")
+    g.add_argument("--hypothesis-prune", type=float, default=None, metavar="W",
+                   help="pmbm: drop global hypotheses of normalised weight below W "
+                        f"(default {PMBM_DEFAULTS['hypothesis_prune']:g})")
     g.add_argument("--max-speed", type=float, default=None,
                    help=f"speed scale of new tracks in m/s (default {DEFAULT_MAX_SPEED:g}): one-point, a new track's velocity "
                         f"std per axis is {SPEED_STD_FRACTION:.3g}x it; two-point, the largest speed of its two detections; a "

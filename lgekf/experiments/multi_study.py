@@ -172,6 +172,8 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None, noise_fit=None) -> lis
     scen = scenarios(cfg)
     cells = []
     for model, assoc, init, clutter in itertools.product(cfg.models, cfg.associations, cfg.initiations, cfg.clutters):
+        if assoc == "pmbm" and init == "two-point":
+            continue  # the PMBM's births are its Poisson part's (one-point)
         parts, sw, wall, scans, fitted = [], 0, 0.0, 0, []
         imm = model == IMM_MODEL
         meas = get_measurement(cfg.measurement if imm else get_model(model).measurement_or_base(cfg.measurement))

@@ -97,6 +97,17 @@ def test_noise_from_the_data_is_what_track_multi_estimates_on_each_run(tmp_path)
     assert len(rows) == 1 and float(rows[0]["accel_std"]) > 0
 
 
+def test_study_runs_the_pmbm_one_point_only():
+    """pmbm in the study: its cell with one-point initiation, none with two-point (the PMBM refuses it), next to
+    JPDA's two."""
+    cfg = MultiStudyConfig(models=("cv",), associations=("jpda", "pmbm"), initiations=("one-point", "two-point"),
+                           runs=1, duration=2.0)
+    cells = run_multi_study(cfg)
+    assert [(c.association, c.initiation) for c in cells] == [("jpda", "one-point"), ("jpda", "two-point"),
+                                                              ("pmbm", "one-point")]
+    assert np.isfinite(cells[2].gospa) and cells[2].gospa < 5.0
+
+
 def test_real_trajectories_as_detection_streams():
     root = data_root()
     try:

@@ -10,6 +10,9 @@ scan for all tracks (no Python per track):
   and detection j (the quantities PDA/JPDA/GNN weigh);
 * ``update(beta0, beta)``: the PDA correction of every track with the association weights β of the last
   gated scan;
+* ``copy(rows) -> new_rows``: duplicates of rows, with their state and the quantities of the last ``gate`` (the
+  PMBM's local hypotheses: a copy updated by ``update`` with β_ij = 1 for one detection j is the hard update with
+  that detection, the original stays the missed-detection hypothesis);
 * ``physical(rows)``, ``covariances(rows)`` and ``stds(rows)``: the estimates to report.
 
 ``ModelBank`` implements it with the generated kernels of a model (fused ``predict``, ``calH_<meas>``,
@@ -47,6 +50,8 @@ class TrackFilterBank(Protocol):
     def gate(self, Z: np.ndarray, gamma: float) -> tuple[np.ndarray, np.ndarray]: ...
 
     def update(self, beta0: np.ndarray, beta: np.ndarray) -> None: ...
+
+    def copy(self, rows: np.ndarray) -> np.ndarray: ...
 
     def physical(self, rows: np.ndarray) -> np.ndarray: ...
 
@@ -107,11 +112,20 @@ class ModelBank:
         self.logdet = np.zeros(cap)
 
     def _grow(self, need):
+        """More rows; the rows in use keep their state and the quantities of the last ``gate`` (ℋ, S, S⁻¹, log det S,
+        d², innovations), so that ``copy`` between ``gate`` and ``update`` may grow the bank."""
         cap = self.live.size
         new = max(2 * cap, need)
-        old = (self.s, self.p, self.live)
+        old = (self.s, self.p, self.live, self.H, self.S, self.Sinv, self.logdet)
         self._alloc(new)
-        self.s[:cap], self.p[:cap], self.live[:cap] = old
+        self.s[:cap], self.p[:cap], self.live[:cap], self.H[:cap], self.S[:cap], self.Sinv[:cap], self.logdet[:cap] = old
+        if self._last is not None:
+            E = np.zeros((new,) + self._last.shape[1:])
+            E[:cap] = self._last
+            self._last = E
+            d2 = np.full((new, self.d2.shape[1]), np.inf)
+            d2[:cap] = self.d2
+            self.d2 = d2
 
     def add(self, x0: np.ndarray, P0: np.ndarray) -> np.ndarray:
         """Start tracks at physical states x0 (B, n) with covariances P0 (B, n, n); returns their rows."""
@@ -132,6 +146,24 @@ class ModelBank:
     def remove(self, rows: np.ndarray) -> None:
         """End the tracks of ``rows`` (their rows are reused)."""
         self.live[np.asarray(rows, dtype=np.int64)] = False
+
+    def copy(self, rows: np.ndarray) -> np.ndarray:
+        """Duplicate the live ``rows``: state, covariance and the quantities of the last ``gate`` (so ``update`` treats a
+        copy as its original); returns the new rows, in the order of ``rows``."""
+        rows = np.asarray(rows, dtype=np.int64)
+        B = rows.size
+        free = np.flatnonzero(~self.live)
+        if free.size < B:
+            self._grow(self.live.size + B - free.size)
+            free = np.flatnonzero(~self.live)
+        new = free[:B]
+        for a in (self.s, self.p, self.H, self.S, self.Sinv, self.logdet):
+            a[new] = a[rows]
+        if self._last is not None and self._last.shape[0] == self.live.size:
+            self._last[new] = self._last[rows]
+            self.d2[new] = self.d2[rows]
+        self.live[new] = True
+        return new
 
     def predict(self, dt: float) -> None:
         """Predict every live track by dt > 0 (the generated fused ``predict``)."""

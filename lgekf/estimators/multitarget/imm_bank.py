@@ -178,17 +178,20 @@ class IMMBank:
         var = np.ascontiguousarray(np.diagonal(P0, axis1=1, axis2=2))
         if c.shape[1] != 6 or np.any(P0 != var[:, :, None] * np.eye(6)):
             raise ValueError("IMMBank.add: expected common coordinates (B, 6) and diagonal covariances (B, 6, 6)")
-        rows = None
-        for m, bank in zip(self.modes, self.banks):
-            r = bank.add(*initial_estimates(m.model, c, var))
-            assert rows is None or np.array_equal(r, rows)  # every mode bank has the same free rows
-            rows = r
+        rows = self._same_rows([bank.add(*initial_estimates(m.model, c, var)) for m, bank in zip(self.modes, self.banks)])
+        self.mu[rows] = self.setup.mu0
+        self._cache = None
+        return rows
+
+    def _same_rows(self, per_mode):
+        """The rows every mode bank gave to the same new tracks (they have the same free rows), with ``mu`` and the
+        mixing workspace grown to the capacity."""
+        rows = per_mode[0]
+        assert all(np.array_equal(r, rows) for r in per_mode[1:])
         cap = self.capacity
         if self.mu.shape[0] < cap:
             self.mu = np.vstack([self.mu, np.zeros((cap - self.mu.shape[0], self.M))])
             self._work(cap)
-        self.mu[rows] = self.setup.mu0
-        self._cache = None
         return rows
 
     def remove(self, rows: np.ndarray) -> None:
@@ -196,6 +199,28 @@ class IMMBank:
         for bank in self.banks:
             bank.remove(rows)
         self._cache = None
+
+    def copy(self, rows: np.ndarray) -> np.ndarray:
+        """Duplicate the live ``rows`` in every mode (state, covariance, the last ``gate``'s quantities), their mode
+        probabilities and gated pairs; returns the new rows (the PMBM's local hypotheses, ``ModelBank.copy``)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        new = self._same_rows([bank.copy(rows) for bank in self.banks])
+        cap = self.capacity
+        self.mu[new] = self.mu[rows]
+        if self._pairs is not None and self.d2.ndim == 2 and self.d2.shape[1] > 0:
+            d2 = np.full((cap, self.d2.shape[1]), np.inf)
+            d2[:self.d2.shape[0]] = self.d2
+            d2[new] = d2[rows]
+            self.d2 = d2
+            ii, jj, lr = self._pairs
+            order = np.argsort(ii, kind="stable")
+            cnt = np.bincount(ii, minlength=cap)[rows]  # the gated pairs of each copied row
+            start = np.searchsorted(ii[order], rows)
+            sel = order[np.arange(cnt.sum()) - np.repeat(np.cumsum(cnt) - cnt, cnt) + np.repeat(start, cnt)]
+            self._pairs = (np.concatenate([ii, np.repeat(new, cnt)]), np.concatenate([jj, jj[sel]]),
+                           np.concatenate([lr, lr[:, sel]], axis=1))
+        self._cache = None
+        return new
 
     def _gather(self):
         for k, b in enumerate(self.banks):

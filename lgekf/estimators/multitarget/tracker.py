@@ -53,6 +53,12 @@ combined estimate in the common coordinates x, y, θ, v_x, v_y, ω, as ``lgekf t
 bank implementing the same calls plugs in unchanged (``bank=`` argument).
 
 With r ≈ 1, P_D P_G ≈ 1 and no clutter the JPDA/PDA update is the ordinary LG-EKF update (tests).
+
+``association="pmbm"`` replaces steps 3–5 by the Poisson multi-Bernoulli mixture filter
+(``lgekf.estimators.multitarget.pmbm``): each bank row is a local hypothesis of a Bernoulli (a track id), global
+hypotheses per cluster by Murty's k best assignments (``murty.py``), births from its Poisson part (one-point
+priors); the prediction, the gates and likelihoods, the clutter component and the one-point restart are this
+tracker's.
 """
 
 from __future__ import annotations
@@ -66,19 +72,23 @@ import numpy as np
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
 from ...core.registry import get_measurement, get_model
 from ...core.validate import positive_scalar
-from .association import ASSOCIATIONS, association_marginals, association_weights, existence_and_weights
+from .association import ASSOCIATIONS as MARGINAL_ASSOCIATIONS
+from .association import association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
 from .clutter import ClutterEstimator, ConstantClutter, clutter_estimator
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
+from .pmbm import PMBM, PMBM_DEFAULTS
 
-__all__ = ["MultiTargetTracker", "ScanReport", "Track", "IMM_MODEL", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
+__all__ = ["MultiTargetTracker", "ScanReport", "Track", "ASSOCIATIONS", "IMM_MODEL", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
            "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
 
 IMM_MODEL = "imm"  # ``model`` of a tracker whose per-track filters are IMMs (``IMMBank``)
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
 INITIATIONS = ("one-point", "two-point")
-DEFAULT_INITIATION = {"jpda": "one-point", "jpdastar": "one-point", "gnn": "one-point", "pda": "two-point"}  # per association: measured
+ASSOCIATIONS = MARGINAL_ASSOCIATIONS + ("pmbm",)  # the marginals of association.py, and the PMBM filter (pmbm.py)
+DEFAULT_INITIATION = {"jpda": "one-point", "jpdastar": "one-point", "gnn": "one-point", "pda": "two-point",  # measured
+                      "pmbm": "one-point"}  # the PMBM's own: its Poisson part
 BIRTH_EXISTENCE = {"one-point": 0.02, "two-point": 0.1}  # a new track's existence without birth_density
 SPEED_STD_FRACTION = 1.0 / 3.0  # one-point: the velocity prior's std per axis is max_speed/3
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
@@ -178,7 +188,7 @@ class ScanReport:
     stds : ndarray, (K, n)
         Std of each tangent coordinate (square roots of P's diagonal; the IMM: of the common coordinates).
     existence : ndarray, (K,)
-        Existence probabilities.
+        Existence probabilities (the PMBM: marginalised over its global hypotheses, r̄).
     mu : ndarray, (K, M) or None
         The IMM's mode probabilities (``model="imm"``), else None.
     """
@@ -227,11 +237,12 @@ class MultiTargetTracker:
         A registry model (``se2se2``, ``se2r3``, ``se2r2``, ``ctrv``, ``cv``, ...), or ``"imm"`` (``IMM_MODEL``):
         an IMM of ``imm_modes`` per track (``IMMBank``); its states, stds and covariances are the combined
         estimate in the common coordinates (x, y, θ, v_x, v_y, ω).
-    association : {"jpda", "jpdastar", "pda", "gnn"}
+    association : {"jpda", "jpdastar", "pda", "gnn", "pmbm"}
         JPDA (JIPDA; exact joint events up to ``max_events`` per cluster, loopy belief propagation beyond),
         JPDA* (JPDA with only the most probable of the events that permute the same detections among the same
-        tracks: no coalescence of close tracks; ``lgekf.estimators.multitarget.association``), PDA per track, or global
-        nearest neighbour.
+        tracks: no coalescence of close tracks; ``lgekf.estimators.multitarget.association``), PDA per track, global
+        nearest neighbour, or the Poisson multi-Bernoulli mixture filter (``lgekf.estimators.multitarget.pmbm``: multiple
+        hypotheses, Murty's k best assignments; its births are its Poisson part's, one-point).
     detection_prob : float
         P_D in (0, 1].
     clutter_density : float, str or ClutterEstimator
@@ -283,6 +294,11 @@ class MultiTargetTracker:
         SE(2)×R³).
     imm_switch : float, optional
         ``model="imm"``: the probability of leaving a mode per scan (default ``DEFAULT_SWITCH``, 0.05).
+    max_hypotheses : int, optional
+        PMBM: at most this many global hypotheses per cluster of interacting tracks, and N_h of the k-best rule (a
+        global hypothesis of weight w gets its ⌈N_h w⌉ best assignments); default 50.
+    hypothesis_prune : float, optional
+        PMBM: global hypotheses of normalised weight below this are dropped (default 1e-3).
 
     Attributes
     ----------
@@ -327,7 +343,8 @@ class MultiTargetTracker:
                  max_speed: float = 30.0, omega_std: float = DEFAULT_OMEGA_STD, max_events: int = MAX_EVENTS,
                  seed_scans: int = 1, bank: TrackFilterBank | None = None, initiation: str | None = None,
                  speed_std: float | None = None, birth_density: float | None = None, history: bool = False,
-                 imm_modes=None, imm_switch: float | None = None):
+                 imm_modes=None, imm_switch: float | None = None, max_hypotheses: int | None = None,
+                 hypothesis_prune: float | None = None):
         if model == IMM_MODEL:
             if accel_std is not None:
                 raise ValueError("accel-std: not with the IMM; give each mode's noise in the modes (e.g. "
@@ -343,6 +360,19 @@ class MultiTargetTracker:
         initiation = DEFAULT_INITIATION[association] if initiation is None else initiation
         if initiation not in INITIATIONS:
             raise ValueError(f"initiation: unknown method {initiation!r}; choose one of {', '.join(INITIATIONS)}")
+        if association == "pmbm":
+            if initiation != "one-point":
+                raise ValueError("initiation: the PMBM starts targets from its Poisson part (one-point); "
+                                 f"{initiation} is not available with it")
+            max_hypotheses = PMBM_DEFAULTS["max_hypotheses"] if max_hypotheses is None else max_hypotheses
+            hypothesis_prune = PMBM_DEFAULTS["hypothesis_prune"] if hypothesis_prune is None else hypothesis_prune
+            if isinstance(max_hypotheses, bool) or not float(max_hypotheses).is_integer() or max_hypotheses < 1:
+                raise ValueError(f"max-hypotheses: must be a positive integer, got {max_hypotheses}")
+            positive_scalar("hypothesis-prune", hypothesis_prune)
+            if hypothesis_prune >= 1:
+                raise ValueError(f"hypothesis-prune: must be a weight in (0, 1), got {hypothesis_prune}")
+        elif max_hypotheses is not None or hypothesis_prune is not None:
+            raise ValueError("max-hypotheses/hypothesis-prune: only with the PMBM (association pmbm)")
         one_point = initiation == "one-point"
         if not one_point:
             for name, v in (("birth-density", birth_density), ("speed-std", speed_std)):
@@ -426,6 +456,9 @@ class MultiTargetTracker:
         self.held = (np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64))
         self.held_nis = np.zeros(0)
         self.max_existence = 0.0
+        self.pmbm_r0 = self.r_birth  # the PMBM's steady-state new-Bernoulli existence without birth_density
+        self.pmbm = (PMBM(self, int(max_hypotheses), float(hypothesis_prune), 0.0 if birth_density is None else birth_density)
+                     if association == "pmbm" else None)
 
     # ------------------------------------------------------------------ one scan
     def step(self, t: float, detections) -> ScanReport:
@@ -466,6 +499,8 @@ class MultiTargetTracker:
         if live.any():
             bank.predict(dt)
             self.r[live] *= self.ps
+        if self.pmbm is not None:
+            return self._step_pmbm(t, Z)
         lam = self._clutter_at(t, Z, float(self.r[live].sum()) * self.pd * self.pg)
         not_confirmed = np.ones(M)  # each detection's probability of not being a confirmed track's
         if live.any():
@@ -513,6 +548,38 @@ class MultiTargetTracker:
             self.r_birth = one_point_existence(self.birth_density, self.clutter_density)
             r0 = one_point_existence(self.birth_density, lam[unused] if np.ndim(lam) else np.full(int(unused.sum()), lam))
         self._initiate(t, dt, Z[unused], r0)
+        self.t = t
+        return self.report()
+
+    def _step_pmbm(self, t, Z):
+        """The PMBM update of the predicted tracks (``lgekf.estimators.multitarget.pmbm``): the Poisson part predicted
+        with its birth β (``birth_density``, or without it β = λ r₀/(1 − r₀)·(1 − p_S(1 − P_D))/P_D at the scan's
+        clutter level λ: the steady-state new Bernoulli then has existence r₀ = ``birth_existence``), the clutter
+        from the best global hypothesis's expected detections, the update, the held detections of the best global
+        hypothesis."""
+        pm, bank = self.pmbm, self.bank
+        lam = self._clutter_at(t, Z, float(pm.best_existence().sum()) * self.pd * self.pg)
+        if self.birth_density is None:
+            r0 = self.pmbm_r0
+            pm.birth = self.clutter_density * r0 / (1.0 - r0) * (1.0 - self.ps * (1.0 - self.pd)) / self.pd
+        pm.predict_poisson()
+        M = Z.shape[0]
+        N = bank.live.size
+        if bank.live.any():
+            ll, gated = bank.gate(Z, self.gamma)
+            d2 = bank.d2
+        else:
+            ll, gated, d2 = np.full((N, M), -np.inf), np.zeros((N, M), dtype=bool), np.full((N, M), np.inf)
+        ids, dets, nis = pm.scan(t, Z, lam, ll, gated, d2)
+        self.held, self.held_nis = (ids, dets), nis
+        self.r_birth = one_point_existence(pm.e_last, self.clutter_density)  # this scan's e/(e + λ)
+        not_confirmed = np.ones(M)
+        conf = np.isin(ids, np.fromiter(pm.confirmed_ids, dtype=np.int64, count=len(pm.confirmed_ids)))
+        not_confirmed[dets[conf]] = 0.0
+        self.clutter.update(Z, not_confirmed)
+        live = bank.live
+        if live.any():
+            self.max_existence = max(self.max_existence, float(self.r[live].max()))
         self.t = t
         return self.report()
 
@@ -582,14 +649,17 @@ class MultiTargetTracker:
             return c, var[:, :, None] * np.eye(6)
         return initial_estimates(self.model, c, var)
 
+    def _one_point_estimates(self, Z):
+        """x0, P0 of the bank from the one-point prior (``one_point_prior``) at each detection of Z (U, m)."""
+        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
+        return self._initial(*one_point_prior(Z, self.pos_std, self.speed_std, self.omega_std, hstd))
+
     def _one_point(self, t, unused, r0=None):
         """A track from each unused detection (U, m): ``one_point_prior``, existence r0 (U,) (default ``r_birth``);
         the detection and t are kept for the restart at its first held detection."""
         if unused.shape[0] == 0:
             return
-        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
-        c, var = one_point_prior(unused, self.pos_std, self.speed_std, self.omega_std, hstd)
-        rows = self._start(*self._initial(c, var), r0)
+        rows = self._start(*self._one_point_estimates(unused), r0)
         self.max_existence = max(self.max_existence, self.r_birth if r0 is None else float(np.max(r0)))
         self.first_t[rows] = t
         self.first_z[rows] = unused
@@ -636,6 +706,8 @@ class MultiTargetTracker:
     def drop(self, ids) -> None:
         """Delete the tracks with these ids now (e.g. a divergence monitor's verdict); their detections are gone,
         the next scans may start new tracks (new ids) where they are."""
+        if self.pmbm is not None:
+            self.pmbm.drop(ids)
         rows = np.flatnonzero(np.isin(self.ids, np.asarray(ids, dtype=np.int64)) & self.bank.live)
         if rows.size:
             self.bank.remove(rows)
@@ -648,11 +720,19 @@ class MultiTargetTracker:
     def report(self) -> ScanReport:
         """The confirmed tracks now (confirmed and existence ≥ ``report_existence``), sorted by id."""
         live = self.bank.live
-        sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
-        sel = sel[np.argsort(self.ids[sel], kind="stable")]
+        if self.pmbm is not None:  # the best global hypothesis's confirmed Bernoullis with r ≥ report; existence r̄
+            best, ex = self.pmbm.best_rows(), self.pmbm.best_existence()
+            conf = np.fromiter(self.pmbm.confirmed_ids, dtype=np.int64, count=len(self.pmbm.confirmed_ids))
+            ok = np.isin(self.ids[best], conf) & (self.r[best] >= self.r_report)
+            sel, ex = best[ok], ex[ok]
+        else:
+            sel = np.flatnonzero(live & self.confirmed & (self.r >= self.r_report))
+            ex = self.r[sel]
+        order = np.argsort(self.ids[sel], kind="stable")
+        sel, ex = sel[order], ex[order]
         X = self.bank.physical(sel)
         mu = self.bank.mode_probabilities(sel) if hasattr(self.bank, "mode_probabilities") else None
-        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds(sel), self.r[sel].copy(), mu)
+        rep = ScanReport(self.t, self.ids[sel].copy(), X, self.bank.stds(sel), ex.copy(), mu)
         if self.history is not None and self.t is not None and self._recorded != self.t:
             self._recorded = self.t
             for k, P in enumerate(self.bank.covariances(sel)):
@@ -672,5 +752,7 @@ class MultiTargetTracker:
 
     @property
     def n_tracks(self) -> int:
-        """Number of live tracks (tentative and confirmed)."""
+        """Number of live tracks (tentative and confirmed; the PMBM: Bernoullis)."""
+        if self.pmbm is not None:
+            return self.pmbm.n_bernoullis()
         return int(self.bank.live.sum())
