@@ -15,7 +15,8 @@ from ..apps.divergence import MonitorConfig
 from ..apps.track import (
     DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
-from ..core.registry import BASE_MEASUREMENT, MODELS, get_measurement
+from ..apps.track import DEFAULT_MODELS
+from ..core.registry import DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, models_of, space_of_positions
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.grouping import objects_subset
 from ..io.readers import COLUMN_OPTIONS
@@ -23,7 +24,7 @@ from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_wa
 from .cluster import check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_options import check_estimator_options, column_names, track_parser
-from .track_pipeline import TrackEstimator, frame_note
+from .track_pipeline import SPACE_HINTS, SPACE_WORDS, TrackEstimator, frame_note, input_space
 from .track_parquet import check_parquet_arguments, is_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
 
@@ -32,10 +33,12 @@ __all__ = ["cmd_track", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
 
-def parse_accel_std(items, models):
-    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable).
+def parse_accel_std(items, models, table_of=MODELS):
+    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable); ``table_of``: the models
+    of the input's space (``models_of``).
 
     Returns {model: stds} for the models given (the others get their noise from the data)."""
+    MODELS = table_of
     table = {}
     for item in items:
         if "=" in item:
@@ -98,25 +101,63 @@ class ModelsTrack(TrackEstimator):
 
     def __init__(self, a, say):
         super().__init__(a, say)
-        self.models = list(MODELS) if a.model == "all" else [a.model]
+        self.space = None  # the space of the input's positions (``input_space``): it selects the models
+        self.models = []
 
     def check(self) -> None:
         """The models' own argument errors before any reading (one line each; the shared ones:
-        ``check_track_arguments``)."""
-        a, models = self.a, self.models
-        self.given_q = parse_accel_std(a.accel_std, models)
+        ``check_track_arguments``). The space of the input (x, y or x, y, z: ``input_space``, from its header) selects
+        the models and the measurement; from stdin, whose header cannot be read twice, the plane is assumed until the
+        rows are read (``adopt_space``)."""
+        self.space_known = (space := input_space(self.a)) is not None
+        self.resolve(space or DEFAULT_SPACE, announce=self.space_known)
+        check_cluster_options(self.a)
+        if self.space != DEFAULT_SPACE and cluster_requested(self.a):
+            raise ValueError("--workers/--scheduler: tracks in the plane only (yet); the input has 3-D positions")
+
+    def resolve(self, space: str, announce: bool = True) -> None:
+        """The models (``--model``, its default ``DEFAULT_MODELS[space]``, or ``all``: every model of ``space``), their
+        measurement (``--measure`` as ``space`` measures it: ``measurement_in``) and given noise, for an input of
+        ``space``; a model of another space is one error line naming the models that fit."""
+        a = self.a
+        table = models_of(space)
+        if a.model is None:
+            models = [DEFAULT_MODELS[space]]
+        elif a.model == "all":
+            models = list(table)
+        elif a.model not in table:
+            other = get_model(a.model).space
+            raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[other]}, and the input has {SPACE_WORDS[space]} "
+                             f"positions{SPACE_HINTS[space]}; the models that fit: {', '.join(table)}")
+        else:
+            models = [a.model]
+        self.space, self.models = space, models
+        self.given_q = parse_accel_std(a.accel_std, models, table)
         # validate the given values before any reading (the estimated ones are valid by construction)
         TrackConfig(self.given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
                     DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
-        measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
-        if a.model != "all" and measure[a.model] is None:
-            MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
+        asked = measurement_in(space, a.measure)
+        base = base_measurement(space)
+        measure = {m: asked if asked in table[m].measurements else None for m in models}
+        if a.model not in (None, "all") and measure[a.model] is None:
+            table[a.model].measurement(asked)  # raises with the definition's reason
         for m in models:
             if measure[m] is None:
-                measure[m] = BASE_MEASUREMENT
-                self.say(f"{m} cannot take {a.measure} measurements: it gets {BASE_MEASUREMENT} only")
+                measure[m] = base
+                if announce:
+                    self.say(f"{m} cannot take {asked} measurements: it gets {base} only")
         self.measure = measure
-        check_cluster_options(a)
+
+    def adopt_space(self, meas) -> None:
+        """After reading: the input's space from its positions (z (N, d)); an input whose space its header did not
+        say (stdin) re-resolves the models, unless ``--model all`` already named its output files."""
+        space = space_of_positions(meas.z.shape[1])
+        if space == self.space:
+            return
+        if self.space_known or self.a.model == "all":
+            raise ValueError(f"--model all: the input (stdin) has {SPACE_WORDS[space]} positions; its output files are "
+                             f"named before reading: give the input as a file, or one --model")
+        self.resolve(space)
 
     def run_on_cluster(self) -> int | None:
         """``--workers/--scheduler``: the same output computed on Dask in partitions of whole objects (its exit status);
@@ -236,6 +277,7 @@ def cmd_track(argv) -> int:
     if status is not None:
         return status
     meas, starts = est.read()
+    est.adopt_space(meas)
     t_read = time.perf_counter() - t0
     if meas.origin is not None:
         say(frame_note(meas))
