@@ -282,8 +282,9 @@ class DatasetResult:
                 row["vel_rmse"] = row["vel_ci_lo"] = row["vel_ci_hi"] = float("nan")
                 row["vel_n"] = 0
             for name in MOTION_METRICS if self.dataset.space != "2d" else ():
-                err = self.motion.get(m_row, {}).get(name)
-                per = np.nanmean(err, axis=0) if err is not None else np.full(1, np.nan)
+                err = self.motion.get(m_row, {}).get(name)  # (S, J); a track with no scored row (at rest: no course) is nan
+                per = np.nanmean(err, axis=0) if err is not None and np.isfinite(err).any(axis=0).all() else (
+                    np.array([np.nanmean(c) if np.isfinite(c).any() else np.nan for c in err.T]) if err is not None else np.full(1, np.nan))
                 row[f"{name}_rmse"] = float(np.mean(per[np.isfinite(per)])) if np.isfinite(per).any() else float("nan")
             rows.append(row)
         return rows

@@ -56,7 +56,7 @@ from ..core.covariance import pack, packed_diagonal
 from ..core.initiation import (  # noqa: F401
     DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, moving_backwards, two_point,
 )
-from ..core.registry import ALL_MODELS, SPACES, get_model, measurement_in
+from ..core.registry import ALL_MODELS, SPACES, get_model, measurement_in, models_of
 from ..core.validate import positive_scalar
 from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
@@ -66,16 +66,27 @@ from ..io.grouping import objects_subset, row_objects
 from ..io.parquet import ParquetRows
 
 __all__ = [
-    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
+    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_MODELS", "default_model", "own_measurement", "motion_columns", "turn_rates", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
     "output_path", "write_model", "Written", "SMOOTH_FAILED", "ClassConfigs", "track_chunk", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
 DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in ALL_MODELS.items()}  # from each definition
-#: ``lgekf track``'s model when none is given, per space of the input's positions: in the plane SE(2)×SE(2); in 3-D
-#: SE(3)×R⁶, the only 3-D model that takes the attitude (pose3) and the best of the three on positions of turning,
-#: climbing motion (docs/space3d.md: the 3-D study and the KITTI table)
-DEFAULT_MODELS = {"2d": "se2se2", "3d": "se3r6"}
+#: ``lgekf track``'s model when none is given, per space of the input's positions (for a measurement it cannot take: the
+#: first model of the space that takes it, ``default_model``): in the plane SE(2)×SE(2); in 3-D CT3, the best of the
+#: three with the noise from the data on 3-D positions of a car (KITTI), a drone's helix and a climbing turn
+#: (docs/space3d.md, "Which model by default"); given roll, pitch, yaw (pose3) SE(3)×R⁶, the only one that takes them
+DEFAULT_MODELS = {"2d": "se2se2", "3d": "ct3"}
+
+
+def default_model(space: str, measurement: str) -> str:
+    """``lgekf track``'s model of ``space`` for ``measurement`` (as that space measures it): ``DEFAULT_MODELS[space]``
+    if it takes it, else the first registered model of the space that does."""
+    table = models_of(space)
+    meas = measurement_in(space, measurement)
+    if meas in table[DEFAULT_MODELS[space]].measurements:
+        return DEFAULT_MODELS[space]
+    return next((m for m, spec in table.items() if meas in spec.measurements), DEFAULT_MODELS[space])
 DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows

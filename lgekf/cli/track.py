@@ -15,7 +15,7 @@ from ..apps.divergence import MonitorConfig
 from ..apps.track import (
     DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
 )
-from ..apps.track import DEFAULT_MODELS
+from ..apps.track import default_model
 from ..core.registry import DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, models_of, space_of_positions
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.grouping import objects_subset
@@ -122,13 +122,13 @@ class ModelsTrack(TrackEstimator):
         a = self.a
         table = models_of(space)
         if a.model is None:
-            models = [DEFAULT_MODELS[space]]
+            models = [default_model(space, a.measure)]
         elif a.model == "all":
             models = list(table)
         elif a.model not in table:
             other = get_model(a.model).space
-            raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[other]}, and the input has {SPACE_WORDS[space]} "
-                             f"positions{SPACE_HINTS[space]}; the models that fit: {', '.join(table)}")
+            raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[other]}, and the input has {SPACE_HINTS[space]}; "
+                             f"the models that fit: {', '.join(table)}")
         else:
             models = [a.model]
         self.space, self.models = space, models
@@ -155,7 +155,7 @@ class ModelsTrack(TrackEstimator):
         if space == self.space:
             return
         if self.space_known or self.a.model == "all":
-            raise ValueError(f"--model all: the input (stdin) has {SPACE_WORDS[space]} positions; its output files are "
+            raise ValueError(f"--model all: the input (stdin) has {SPACE_HINTS[space]}; its output files are "
                              f"named before reading: give the input as a file, or one --model")
         self.resolve(space)
 

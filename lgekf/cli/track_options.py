@@ -95,7 +95,8 @@ def track_parser():
 
     g = ap.add_argument_group("model and noise")
     g.add_argument("--model", default=None, choices=[*ALL_MODELS, "all", "imm"],
-                   help="filter (default se2se2 on x, y; se3r6 on 3-D positions, a z or alt column; the models of the "
+                   help="filter (default se2se2 on x, y; on 3-D positions (a z or alt column) ct3, or se3r6 with --measure "
+                        "pose (roll, pitch, yaw); the models of the "
                         "plane: " + ", ".join(MODELS) + "; of 3-D space: " + ", ".join(models_of("3d")) + "); all: one "
                         "output per model of the input's space; imm: an IMM of --imm-modes (plane)")
     g.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(ALL_MEASUREMENTS),

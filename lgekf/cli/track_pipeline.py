@@ -30,8 +30,8 @@ from .track_parquet import is_parquet, read_parquet
 __all__ = ["TrackEstimator", "read_track_input", "frame_note", "check_time_unit", "input_space", "SPACE_WORDS", "SPACE_HINTS"]
 
 #: the spaces as the messages name them
-SPACE_WORDS = {"2d": "the plane (2-D)", "3d": "3-D space"}
-SPACE_HINTS = {"2d": " (no z or alt column)", "3d": " (a z or alt column)"}
+SPACE_WORDS = {"2d": "the plane", "3d": "3-D space"}
+SPACE_HINTS = {"2d": "2-D positions (no z or alt column)", "3d": "3-D positions (a z or alt column)"}
 
 
 class TrackEstimator:

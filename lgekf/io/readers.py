@@ -495,15 +495,16 @@ def _resolve_columns(source, header, want_heading, auto):
             f"{source}: missing column{'s' if len(missing) > 1 else ''} {', '.join(repr(m) for m in missing)}; "
             f"the header has: {shown}{hint}; expected t, x, y (or t, lat, lon in degrees) and optionally id, heading"
         )
-    if want_heading and "heading" not in where:
-        raise DataError(f"{source}: --use-heading needs a 'heading' column (rad, or --heading-column NAME); the header has: "
-                        f"{', '.join(h.strip() for h in header)}")
     if want_heading and ("z" in where or "alt" in where):  # 3-D positions: the attitude is roll, pitch, yaw
-        missing = [k for k in ("roll", "pitch") if k not in where]
+        missing = [k for k in ("roll", "pitch", "heading") if k not in where]
         if missing:
             raise DataError(f"{source}: a pose in 3-D needs roll, pitch and yaw (or heading) columns (rad); missing "
-                            f"{', '.join(repr(m) for m in missing)}; the header has: {', '.join(h.strip() for h in header)}")
-    else:
+                            f"{', '.join(repr('yaw' if m == 'heading' else m) for m in missing)}; the header has: "
+                            f"{', '.join(h.strip() for h in header)}")
+    elif want_heading and "heading" not in where:
+        raise DataError(f"{source}: --use-heading needs a 'heading' column (rad, or --heading-column NAME); the header has: "
+                        f"{', '.join(h.strip() for h in header)}")
+    if not (want_heading and ("z" in where or "alt" in where)):
         where.pop("roll", None)
         where.pop("pitch", None)
     return where
