@@ -252,11 +252,12 @@ class ModelsTrack(TrackEstimator):
         return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
 
 
-def cmd_track(argv) -> int:
+def cmd_track(argv, written: dict | None = None) -> int:
     """``lgekf track``: one pipeline for every estimator (``lgekf.cli.track_pipeline``): check → read → plan the noise →
     estimate (with the monitor, and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model
     MODEL|all``), ``ImmTrack`` (``--model imm``, ``lgekf.cli.track_imm``) or ``MultiTrack`` (``--multi``,
-    ``lgekf.cli.track_multi``); one parser for all (``lgekf.cli.track_options``)."""
+    ``lgekf.cli.track_multi``); one parser for all (``lgekf.cli.track_options``). ``written``: a dict filled with
+    {model: output path} of the files written (``lgekf.track``)."""
     a = track_parser().parse_args(argv)
     check_estimator_options(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
@@ -293,6 +294,8 @@ def cmd_track(argv) -> int:
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             what = est.write(handles, meas, starts, monitor, bar)
         files.commit()
+    if written is not None:
+        written.update(zip(est.models, outs))
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
         for line in est.report(outs, what, meas):
