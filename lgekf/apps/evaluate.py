@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.registry import MODELS, SPACES, get_model, models_of
+from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, get_model, models_of
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
@@ -72,14 +72,20 @@ COURSE_MIN_SPEED = 1.0  # m/s: the course (and the turn rate) is scored where th
 
 def filters_of(ds: Dataset) -> tuple:
     """The filters evaluated on a dataset: every registered model of its space (``FILTERS`` in the plane)."""
-    return FILTERS if ds.space == "2d" else tuple(models_of(ds.space))
+    return tuple(models_of(ds.space))
 
 
 def baseline_of(space: str) -> str:
     """The baseline of the paired differences in ``space``: CV, or the model of that space that lifts it (CV3)."""
-    if space == "2d":
-        return BASELINE
-    return next(m for m, spec in models_of(space).items() if spec.lifts == BASELINE)
+    return next(m for m, spec in models_of(space).items() if BASELINE in (m, spec.lifts))
+
+
+def _seed_means(err: np.ndarray) -> np.ndarray:
+    """Each track's mean over the seeds of its finite values: (S, J) -> (J,), nan for a track with none (a car at rest
+    has no course to score)."""
+    ok = np.isfinite(err)
+    n = ok.sum(axis=0)
+    return np.where(n > 0, np.where(ok, err, 0.0).sum(axis=0) / np.maximum(n, 1), np.nan)
 
 
 def _turning(model: str) -> bool:
@@ -200,7 +206,7 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
     ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask). ``motion``: a
     dict filled with the 3-D motion errors (``track_rmse``; not with a runner).
     """
-    if runner is not None and ds.space != "2d":
+    if runner is not None and ds.space != DEFAULT_SPACE:
         raise ValueError("--workers/--scheduler: the evaluation of a 3-D dataset runs in one process (yet)")
     zs = []
     meas = np.empty((len(seeds), ds.n_tracks))
@@ -209,10 +215,12 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
-    if imm is not None and ds.space != "2d":
+    if imm is not None and not SPACES[ds.space]["mixes"]:
         raise ValueError("--imm: the IMM mixes planar models only (yet); the dataset is in 3-D space")
-    out = ((runner or track_rmse)(ds, zs, cfg, models) if runner is not None or motion is None and imm is None
-           else track_rmse(ds, zs, cfg, models if imm is None else (*models, IMM_FILTER), imm, motion))
+    if runner is not None and imm is None:
+        out = runner(ds, zs, cfg, models)
+    else:
+        out = track_rmse(ds, zs, cfg, models if imm is None else (*models, IMM_FILTER), imm, motion)
     out["measurements"] = (meas, None)
     return out
 
@@ -281,10 +289,9 @@ class DatasetResult:
             else:
                 row["vel_rmse"] = row["vel_ci_lo"] = row["vel_ci_hi"] = float("nan")
                 row["vel_n"] = 0
-            for name in MOTION_METRICS if self.dataset.space != "2d" else ():
-                err = self.motion.get(m_row, {}).get(name)  # (S, J); a track with no scored row (at rest: no course) is nan
-                per = np.nanmean(err, axis=0) if err is not None and np.isfinite(err).any(axis=0).all() else (
-                    np.array([np.nanmean(c) if np.isfinite(c).any() else np.nan for c in err.T]) if err is not None else np.full(1, np.nan))
+            for name in MOTION_METRICS if self.dataset.space != DEFAULT_SPACE else ():
+                err = self.motion.get(m_row, {}).get(name)  # (S, J)
+                per = _seed_means(err) if err is not None else np.full(1, np.nan)
                 row[f"{name}_rmse"] = float(np.mean(per[np.isfinite(per)])) if np.isfinite(per).any() else float("nan")
             rows.append(row)
         return rows

@@ -66,7 +66,8 @@ from ..io.grouping import objects_subset, row_objects
 from ..io.parquet import ParquetRows
 
 __all__ = [
-    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_MODELS", "default_model", "own_measurement", "motion_columns", "turn_rates", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
+    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_MODELS", "default_model", "own_measurement", "motion_columns", "turn_rates",
+    "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
     "output_path", "write_model", "Written", "SMOOTH_FAILED", "ClassConfigs", "track_chunk", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
@@ -328,8 +329,7 @@ def speed_course(model: str, x: np.ndarray) -> np.ndarray:
     get_model(model).kernels.world_velocities(x, v)
     if d == 2:
         return speed_and_course(v)
-    speed = np.sqrt(v[:, 0] ** 2 + v[:, 1] ** 2 + v[:, 2] ** 2)
-    return np.column_stack([speed, np.arctan2(v[:, 1], v[:, 0]), v[:, 2], turn_rates(model, x)])
+    return np.column_stack([np.linalg.norm(v, axis=1), np.arctan2(v[:, 1], v[:, 0]), v[:, 2], turn_rates(model, x)])
 
 
 def turn_rates(model: str, x: np.ndarray, h: float = TURN_RATE_STEP) -> np.ndarray:

@@ -13,10 +13,11 @@ import numpy as np
 from ..apps.defaults import plan_noise_by_class
 from ..apps.divergence import MonitorConfig
 from ..apps.track import (
-    DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, default_model, output_path, write_model,
 )
-from ..apps.track import default_model
-from ..core.registry import DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, models_of, space_of_positions
+from ..core.registry import (
+    ALL_MODELS, DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, models_of, space_of_positions,
+)
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.grouping import objects_subset
 from ..io.readers import COLUMN_OPTIONS
@@ -33,19 +34,18 @@ __all__ = ["cmd_track", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
 
-def parse_accel_std(items, models, table_of=MODELS):
-    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable); ``table_of``: the models
-    of the input's space (``models_of``).
+def parse_accel_std(items, models, known=MODELS):
+    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable); ``known``: the models
+    of the input's space (``models_of``; default the plane's).
 
     Returns {model: stds} for the models given (the others get their noise from the data)."""
-    MODELS = table_of
     table = {}
     for item in items:
         if "=" in item:
             name, text = item.split("=", 1)
             name = name.strip()
-            if name not in MODELS:
-                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(MODELS)}")
+            if name not in known:
+                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(known)}")
             targets = [name]
         else:
             if len(models) > 1:
@@ -56,10 +56,10 @@ def parse_accel_std(items, models, table_of=MODELS):
         except ValueError:
             raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
         for m in targets:
-            need = len(MODELS[m].noise_names)
+            need = len(known[m].noise_names)
             if len(vals) != need:
                 raise ValueError(
-                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(MODELS[m].noise_names)}), got {len(vals)}"
+                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(known[m].noise_names)}), got {len(vals)}"
                 )
             if any((not math.isfinite(v)) or v < 0 for v in vals):
                 raise ValueError(f"--accel-std: noise stds must be non-negative numbers, got {text!r}")
@@ -107,10 +107,12 @@ class ModelsTrack(TrackEstimator):
     def check(self) -> None:
         """The models' own argument errors before any reading (one line each; the shared ones:
         ``check_track_arguments``). The space of the input (x, y or x, y, z: ``input_space``, from its header) selects
-        the models and the measurement; from stdin, whose header cannot be read twice, the plane is assumed until the
-        rows are read (``adopt_space``)."""
-        self.space_known = (space := input_space(self.a)) is not None
-        self.resolve(space or DEFAULT_SPACE, announce=self.space_known)
+        the models and the measurement; from stdin, whose header cannot be read twice, the space of ``--model`` (the
+        plane for none or ``all``) is assumed until the rows are read (``adopt_space``)."""
+        space = input_space(self.a)
+        self.space_known = space is not None
+        guess = get_model(self.a.model).space if self.a.model in ALL_MODELS else DEFAULT_SPACE
+        self.resolve(space or guess, announce=self.space_known)
         check_cluster_options(self.a)
         if self.space != DEFAULT_SPACE and cluster_requested(self.a):
             raise ValueError("--workers/--scheduler: tracks in the plane only (yet); the input has 3-D positions")
@@ -154,10 +156,10 @@ class ModelsTrack(TrackEstimator):
         space = space_of_positions(meas.z.shape[1])
         if space == self.space:
             return
-        if self.space_known or self.a.model == "all":
+        if self.a.model == "all":
             raise ValueError(f"--model all: the input (stdin) has {SPACE_HINTS[space]}; its output files are "
                              f"named before reading: give the input as a file, or one --model")
-        self.resolve(space)
+        self.resolve(space)  # a model of the other space: one line naming those that fit
 
     def run_on_cluster(self) -> int | None:
         """``--workers/--scheduler``: the same output computed on Dask in partitions of whole objects (its exit status);

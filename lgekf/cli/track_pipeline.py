@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-from ..core.registry import get_measurement
+from ..core.registry import DEFAULT_SPACE, get_measurement, models_of, space_of_positions
 from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.files import is_stdio
 from ..io.geo import max_scale_error, to_latlon
@@ -51,9 +51,10 @@ class TrackEstimator:
     def adopt_space(self, meas) -> None:
         """After reading: refuse an input whose space the estimator does not track (the IMM and the multi-target
         tracker: the plane only, yet); ``ModelsTrack`` selects its models by the space."""
-        if meas.z.shape[1] != 2:
+        space = space_of_positions(meas.z.shape[1])
+        if space != DEFAULT_SPACE:
             raise ValueError(f"{'--multi' if self.a.multi else '--model imm'}: tracks in the plane only (yet); the input "
-                             "has 3-D positions (a z or alt column): use --model se3r6, ct3 or cv3")
+                             f"has {SPACE_HINTS[space]}: use --model {', '.join(models_of(space))}")
 
     def data_warnings(self, meas, starts) -> list:
         """The unit checks over the file and per object (``lgekf.io.units``)."""

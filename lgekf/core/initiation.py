@@ -25,9 +25,10 @@ import numba as nb
 import numpy as np
 
 from ..generated.monitor import initial_covariances, jacobian_points, two_points
-from .registry import get_model
+from .registry import SPACES, get_model, space_of_positions
 
-__all__ = ["two_point", "initial_estimates", "moving_backwards", "common_size", "attitude_rows", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "SIDESLIP_FRACTION",
+__all__ = ["two_point", "initial_estimates", "moving_backwards", "common_size", "attitude_rows", "DEFAULT_OMEGA_STD",
+           "DEFAULT_HEADING_STD", "SIDESLIP_FRACTION",
            "LOOKAHEAD_S", "LOOKAHEAD_NOISE"]
 
 DEFAULT_OMEGA_STD = 0.5
@@ -64,11 +65,9 @@ def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, h
 
 
 def common_size(z) -> int:
-    """The number of common coordinates of the space of positions z (N, d): position, attitude, velocity and rate,
-    2d + d(d − 1) (the attitude and the rate have the d(d − 1)/2 coordinates of SO(d)): 6 in the plane, 12 in 3-D
-    (``derive/space.py``)."""
-    d = np.shape(z)[1]
-    return d * (d + 1)
+    """The number of common coordinates of the space of positions z (N, d) (``derive/space.py``: position, attitude,
+    velocity, rate): 6 in the plane, 12 in 3-D."""
+    return len(SPACES[space_of_positions(np.shape(z)[1])]["common_names"])
 
 
 def attitude_rows(heading) -> np.ndarray:
