@@ -77,6 +77,32 @@ def test_3d_track_errors_are_near_the_truth(drone):
     assert np.sqrt(np.mean(course ** 2)) < 0.1
 
 
+@pytest.mark.slow
+def test_lat_lon_alt_file_is_tracked_in_east_north_up(drone, tmp_path):
+    """The drone's positions as lat, lon, alt about (49°, 8.4°, 112 m) (``to_latlon``, the inverse of the reader's
+    projection): the same track in metres east, north, up of the first fix, the fix in origin_lat, origin_lon,
+    origin_alt."""
+    from lgekf.io.geo import to_latlon
+
+    header, x, _, _, z = drone
+    lat, lon = to_latlon(z[:, 0] - z[0, 0], z[:, 1] - z[0, 1], 49.0, 8.4)
+    t = T0 + DT * np.arange(N)
+    src = tmp_path / "geo.csv"
+    np.savetxt(src, np.column_stack([t, lat, lon, 112.0 + z[:, 2] - z[0, 2]]), delimiter=",", header="t,lat,lon,alt",
+               comments="", fmt="%.12f")
+    assert main(["track", str(src), "-o", str(tmp_path / "out.csv"), "--quiet"]) == 0
+    with open(tmp_path / "out.csv") as f:
+        h2 = f.readline().strip().split(",")
+    y = np.loadtxt(tmp_path / "out.csv", delimiter=",", skiprows=1)
+    assert h2[-4:] == ["origin_lat", "origin_lon", "origin_alt", "flag"]
+    np.testing.assert_allclose(y[:, h2.index("origin_lat"):h2.index("flag")], np.tile([lat[0], lon[0], 112.0], (N, 1)), rtol=1e-15)
+    np.testing.assert_allclose(y[0, 2:5], 0.0, atol=1e-6)  # the first fix is the origin
+    enu = z - z[0]
+    assert np.max(np.abs(enu)) > 50  # a flight of some size
+    # the same track, shifted to the fix: the reader's projection inverts to_latlon about the same origin (5e-7 m here)
+    assert np.max(np.abs(y[:, 2:5] - x[:, 2:5] + z[0])) < 1e-5
+
+
 def test_default_model_by_space_and_measurement():
     """Positions: se2se2 in the plane, ct3 in 3-D (docs/space3d.md); a pose in 3-D: se3r6, the model that takes it."""
     assert default_model("2d", "position") == "se2se2" and default_model("2d", "pose") == "se2se2"
