@@ -1339,11 +1339,11 @@ def recover_pose(
     x0 = np.empty((1, n))
     p0 = np.empty(p.shape[1])
     nc = z_all.shape[1] * (z_all.shape[1] + 1)  # the space's common coordinates: 2d + d(d - 1) (6 in the plane, 12 in 3-D)
-    c6 = np.empty((1, nc))
-    var6 = np.empty(nc)
-    cj6 = np.empty((1, nc))
-    J6 = np.empty((1, n, nc))
-    P6 = np.empty((n, n))
+    c1 = np.empty((1, nc))
+    var1 = np.empty(nc)
+    cj1 = np.empty((1, nc))
+    J1 = np.empty((1, n, nc))
+    P1 = np.empty((n, n))
     for si in range(seg_obj.shape[0]):
         o = seg_obj[si]
         first = seg_first[si]
@@ -1401,7 +1401,7 @@ def recover_pose(
                 break
             last[o] = g
             reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
-                        sideslip, baseline, angles, c6, var6, cj6, J6, P6, x0, p0)
+                        sideslip, baseline, angles, c1, var1, cj1, J1, P1, x0, p0)
             copy_row(x0, 0, x, g)
             for j in range(p0.shape[0]):
                 p[g, j] = p0[j]
@@ -2699,11 +2699,11 @@ def recover_position(
     x0 = np.empty((1, n))
     p0 = np.empty(p.shape[1])
     nc = z_all.shape[1] * (z_all.shape[1] + 1)  # the space's common coordinates: 2d + d(d - 1) (6 in the plane, 12 in 3-D)
-    c6 = np.empty((1, nc))
-    var6 = np.empty(nc)
-    cj6 = np.empty((1, nc))
-    J6 = np.empty((1, n, nc))
-    P6 = np.empty((n, n))
+    c1 = np.empty((1, nc))
+    var1 = np.empty(nc)
+    cj1 = np.empty((1, nc))
+    J1 = np.empty((1, n, nc))
+    P1 = np.empty((n, n))
     for si in range(seg_obj.shape[0]):
         o = seg_obj[si]
         first = seg_first[si]
@@ -2761,7 +2761,7 @@ def recover_position(
                 break
             last[o] = g
             reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
-                        sideslip, baseline, angles, c6, var6, cj6, J6, P6, x0, p0)
+                        sideslip, baseline, angles, c1, var1, cj1, J1, P1, x0, p0)
             copy_row(x0, 0, x, g)
             for j in range(p0.shape[0]):
                 p[g, j] = p0[j]
