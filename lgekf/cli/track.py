@@ -16,7 +16,8 @@ from ..apps.track import (
     DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, default_model, output_path, write_model,
 )
 from ..core.registry import (
-    ALL_MODELS, DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, models_of, space_of_positions,
+    ALL_MODELS, DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, measurements_of, models_of,
+    space_of_positions,
 )
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.grouping import objects_subset
@@ -138,7 +139,11 @@ class ModelsTrack(TrackEstimator):
         # validate the given values before any reading (the estimated ones are valid by construction)
         TrackConfig(self.given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
                     DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
-        asked = measurement_in(space, a.measure)
+        own = get_measurement(a.measure).space
+        if own not in (space, DEFAULT_SPACE):  # position3 / pose3 named on a file of 2-D positions
+            raise ValueError(f"--measure {a.measure}: observes {SPACE_WORDS[own]}, and the input has {SPACE_HINTS[space]}; "
+                             f"choose {' or '.join(measurements_of(space))}")
+        asked = measurement_in(space, a.measure)  # position, pose: as the input's space measures them
         base = base_measurement(space)
         measure = {m: asked if asked in table[m].measurements else None for m in models}
         if a.model not in (None, "all") and measure[a.model] is None:
