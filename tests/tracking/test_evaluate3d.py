@@ -5,25 +5,15 @@ rate of the track output against the models' own rates."""
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 import pytest
+from _real_data import DATA, needs
 from scipy.spatial.transform import Rotation
 
 from lgekf.apps.evaluate import COURSE_MIN_SPEED, _rotation_angle, filters_of, baseline_of, track_rmse
 from lgekf.apps.track import TrackConfig, turn_rates
 from lgekf.io.datasets import KITTI_DT, load_dataset
-
-DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[2].parent / "shared" / "data")
-
-
-def needs(rel):
-    p = DATA / rel
-    if not p.exists():
-        pytest.skip(f"real dataset {p} not available (set LGEKF_DATA to the data folder; the data are not shipped)")
-    return p
 
 
 @pytest.fixture(scope="module")
