@@ -107,6 +107,7 @@ class Space3(Space):
     common_names = ("x", "y", "z", "roll", "pitch", "yaw", "vx", "vy", "vz", "wx", "wy", "wz")
     common_doc = "(x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z)"
     position_names = ("x", "y", "z")
+    monitored = True
 
     def common_of_physical(self, model) -> list:
         """(x, y, z) = ``position``; the attitude from ``attitude`` (Euler angles of R) or, for a model without one,

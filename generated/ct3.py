@@ -15,7 +15,7 @@ from .monitor import maximum, minimum, two_point_into, jacobian_point, initial_c
 # fused steps use FMA contraction only ("contract"); every other IEEE rule holds
 FASTMATH = {"contract"}
 
-__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position3', 'update_position3', 'step_try_position3', 'step_position3', 'measure_position3', 'run_one_position3', 'run_segments_position3', 'run_one_from_position3', 'run_segments_from_position3', 'run_batch_position3', 'measure_batch_position3', 'innovation_into_position3', 'innovation_bank_position3', 'calH_bank_position3', 'run_segments_noise_from_position3', 'lane_position3', 'run_batch_soa_position3', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position3', 'step_store_position3', 'lane_store_position3', 'run_batch_store_soa_position3', 'run_one_store_position3', 'run_batch_store_position3', 'loglik_batch_position3', 'smooth_step_at', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position3_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_position3', 'mix_on_group_at']
+__all__ = ['state_from_physical', 'state_to_physical', 'physical_into', 'group_mean', 'motion_omega', 'motion', 'calC', 'transition', 'process_noise', 'limit_angle_variance', 'predict', 'calH_position3', 'update_position3', 'step_try_position3', 'step_position3', 'measure_position3', 'run_one_position3', 'run_segments_position3', 'run_one_from_position3', 'run_segments_from_position3', 'run_batch_position3', 'measure_batch_position3', 'innovation_into_position3', 'innovation_bank_position3', 'calH_bank_position3', 'run_segments_noise_from_position3', 'rerun_position3', 'recover_position3', 'lane_position3', 'run_batch_soa_position3', 'covariance_is_pd', 'covariance_is_pd_fused', 'repair_pd', 'covariance_is_pd_lane', 'physical_lane', 'propagate', 'position_into', 'simulate_batch', 'states_from_physical', 'propagate_rows', 'propagate_positions', 'world_velocity', 'world_velocity_into', 'world_velocities', 'row_speeds', 'common_to_state', 'common_jacobian', 'common_to_states', 'common_jacobians', 'reinit_into', 'speed_std_at', 'speed_stds', 'first_alarm', 'tangent_error', 'retract', 'between', 'right_jacobian', 'right_jacobian_inv', 'predict_bank', 'retract_bank', 'right_jacobian_bank', 'innovation_logdet_position3', 'step_store_position3', 'lane_store_position3', 'run_batch_store_soa_position3', 'run_one_store_position3', 'run_batch_store_position3', 'loglik_batch_position3', 'smooth_step_at', 'lane_smooth', 'physical_smooth_lane', 'smooth_batch_soa', 'smooth_one', 'smooth_batch', 'physical_to_common', 'physical_to_common_jacobian', 'common_missing', 'state_from_physical_into', 'transition_into', 'calH_position3_into', 'common_to_state_into', 'common_jacobian_into', 'between_into', 'right_jacobian_into', 'right_jacobian_inv_into', 'physical_to_common_into', 'physical_to_common_jacobian_into', 'between_add', 'mix_transport', 'common_of_state', 'state_of_common', 'between_add_at', 'mix_transport_at', 'retract_at', 'common_of_state_at', 'state_of_common_at', 'step_ll_position3', 'mix_on_group_at']
 
 
 @nb.njit(cache=True)
@@ -1192,6 +1192,143 @@ def run_segments_noise_from_position3(z, t, first, lengths, s0, p0, q, r, out_x,
         run_one_from_position3(z[a:b], dts[:b - a], s0[i], p0[i], q[i], r[i], out_x[a:b], out_p[a:b], out_nis[a:b])
 
 
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def rerun_position3(zm, t, a, b, s1, p1, q, r, scale, q1, r1, x, p, nis):
+    """Filter rows a .. b - 1 from the internal state s1 (1, ni) and packed covariance p1 (1, n(n+1)/2) of row a - 1, every
+    noise std times ``scale`` (q1, r1 (1, nq), (1, nr) scratch), into x, p, nis; s1, p1 are left at row b - 1."""
+    for j in range(q.shape[0]):
+        q1[0, j] = q[j] * scale
+    for j in range(r.shape[0]):
+        r1[0, j] = r[j] * scale
+    run_segments_noise_from_position3(zm, t, np.full(1, a, np.int64), np.full(1, b - a, np.int64), s1, p1, q1, r1, x, p, nis)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def recover_position3(
+        x, p, nis, flag, seg_obj, seg_first, seg_end, run_first, run_s, run_p, run_scale0, limits, m, window, short, clip, thr,
+        thr_short, n_sigma, max_reinit, repeat, max_inflation, rerun_rows, count, scale, last, zm, t, q, r, t_all, z_all,
+        heading_all, offset, obj_first, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, carry_s,
+        carry_p, carry_scale, carry_reached):
+    """The divergence monitor and recovery of ``lgekf.apps.divergence.recover``, segment after segment, compiled.
+
+    Segment i is rows seg_first[i] .. seg_end[i] - 1 of object seg_obj[i]. Where run_first[i] >= 0 its rows run_first[i]
+    .. seg_end[i] - 1 are filtered first, from the internal state run_s[i] and covariance run_p[i] of the row before, the
+    noise stds times run_scale0[i] (the first pass of ``lgekf.apps.track.track_monitored``: one library with the
+    filter's step per model instead of two); else they are in x, p, nis already. Each
+    round scans rows for the first alarm (``first_alarm``); at an alarm the row is re-initialised (``reinit_into``, the
+    measurements of global row + ``offset`` of t_all, z_all, heading_all; obj_first (B,) global) and the filter is
+    run again over a window of ``rerun_rows`` rows that doubles until the next alarm or the segment's end, each window
+    going on from the previous one's last state and scanned from max(window, short) rows before it. count, scale,
+    last (B,): the objects' memory, updated in place; flag (N,) int8 set on the alarms' rows. carry_s, carry_p,
+    carry_scale, carry_reached (B,): the filter's state, covariance and noise inflation after the segment's last row
+    where a re-initialisation or a rerun reached it (carry_reached True). Returns the alarms (A, 8): obj, row, kind,
+    value, limit, updates, reinitialised (1.0 / 0.0), scale, object after object, each object's in order."""
+    N = x.shape[0]
+    n = x.shape[1]
+    over = np.zeros(N, np.bool_)
+    absurd = np.zeros(N, np.bool_)
+    bad = np.zeros(N, np.bool_)
+    sp = np.empty(N)
+    rows = np.empty(N, np.int64)
+    xh = np.empty((1, n))
+    grad = np.empty(n)
+    reach = max(window, short)
+    found = np.empty((16, 8))  # the alarms: obj, row, kind, value, limit, updates, reinitialised, scale (rows grow)
+    na = 0
+    s1 = np.empty((1, carry_s.shape[1]))
+    p1 = np.empty((1, p.shape[1]))
+    q1 = np.empty((1, q.shape[0]))
+    r1 = np.empty((1, r.shape[0]))
+    x0 = np.empty((1, n))
+    p0 = np.empty(p.shape[1])
+    nc = z_all.shape[1] * (z_all.shape[1] + 1)  # the space's common coordinates: 2d + d(d - 1) (6 in the plane, 12 in 3-D)
+    c1 = np.empty((1, nc))
+    var1 = np.empty(nc)
+    cj1 = np.empty((1, nc))
+    J1 = np.empty((1, n, nc))
+    P1 = np.empty((n, n))
+    for si in range(seg_obj.shape[0]):
+        o = seg_obj[si]
+        first = seg_first[si]
+        end = seg_end[si]
+        scan_from = first
+        scan_end = end
+        run_scale = scale[o]  # the noise inflation of the run being scanned
+        reached = False  # a run or a re-initialisation reached the segment's last row
+        if run_first[si] >= 0:  # the first pass
+            copy_row(run_s, si, s1, 0)
+            copy_row(run_p, si, p1, 0)
+            run_scale = run_scale0[si]
+            rerun_position3(zm, t, run_first[si], end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+            reached = True
+        while True:
+            g, kind, val, start, lim = first_alarm(x, p, nis, scan_from, scan_end, limits[o], window, short, clip, thr, thr_short,
+                                                   n_sigma, over, absurd, bad, sp, rows, xh, grad)
+            if g < 0:
+                if scan_end >= end:
+                    break
+                # no alarm in this window: the next, twice as wide, goes on from where the run stopped
+                new_end = min(end, first + 2 * (scan_end - first))
+                rerun_position3(zm, t, scan_end, new_end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+                scan_from = max(first, scan_end - reach)
+                scan_end = new_end
+                reached = scan_end == end
+                continue
+            count[o] += 1
+            if kind == 1 and g - last[o] <= repeat * window:  # soon after the last re-initialisation: the noise is too small
+                scale[o] *= minimum(math.sqrt(maximum(val / m, 1.0)), max_inflation)
+            ok = count[o] <= max_reinit
+            if na == found.shape[0]:
+                more = np.empty((2 * na, 8))
+                for i in range(na):
+                    for j in range(8):
+                        more[i, j] = found[i, j]
+                found = more
+            found[na, 0] = o
+            found[na, 1] = g
+            found[na, 2] = kind
+            found[na, 3] = val
+            found[na, 4] = lim
+            found[na, 5] = g - start + 1 if kind == 1 else 0
+            found[na, 6] = 1.0 if ok else 0.0
+            found[na, 7] = scale[o]
+            na += 1
+            # the NIS of an update tests the estimate before it: flag from the row before the alarm's first update (not
+            # before the segment's first row) through the alarm row
+            for k in range(max(max(start, first) - 1, 0), g + 1):
+                flag[k] = 1
+            if not ok:  # max_reinit used up: no more monitoring; the run goes on to the segment's end
+                if scan_end < end:
+                    rerun_position3(zm, t, scan_end, end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+                    reached = True
+                break
+            last[o] = g
+            reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
+                        sideslip, baseline, angles, c1, var1, cj1, J1, P1, x0, p0)
+            copy_row(x0, 0, x, g)
+            for j in range(p0.shape[0]):
+                p[g, j] = p0[j]
+            nis[g] = np.nan
+            states_from_physical(x0, s1)
+            for j in range(p0.shape[0]):
+                p1[0, j] = p0[j]
+            run_scale = scale[o]
+            if g + 1 >= end:  # the re-initialised row is the segment's last
+                reached = True
+                break
+            first = g + 1
+            scan_from = first
+            scan_end = min(end, first + rerun_rows)
+            rerun_position3(zm, t, first, scan_end, s1, p1, q, r, run_scale, q1, r1, x, p, nis)
+            reached = scan_end == end
+        if reached:
+            copy_row(s1, 0, carry_s, o)
+            copy_row(p1, 0, carry_p, o)
+            carry_scale[o] = run_scale
+            carry_reached[o] = True
+    return found[:na]
+
+
 @nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_position3(W, j, sigma_a, sigma_alpha, sigma_z, r):
     """step_position3 on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
@@ -1839,8 +1976,8 @@ def propagate_rows(x, dts, out_x):
 
 @nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
 def propagate_positions(x, dts, out_xy):
-    """The position (the first two physical coordinates) of ``propagate_rows``'s rows, bit for bit, into
-    out_xy (N, 2): the other coordinates are not converted (the noise search's one-step errors)."""
+    """The position (the first d physical coordinates, d the space's dimension) of ``propagate_rows``'s rows, bit for bit, into
+    out_xy (N, d): the other coordinates are not converted (the noise search's one-step errors)."""
     s = np.empty(7)
     for i in range(x.shape[0]):
         state_from_physical_into(x[i], s)
@@ -1880,7 +2017,7 @@ def world_velocity_into(x, out):
 
 @nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
-    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    """world_velocity of every row of X (N, n) into out (N, 3) (the space's dimension)."""
     for i in range(X.shape[0]):
         world_velocity_into(X[i], out[i])
 
@@ -1889,10 +2026,10 @@ def world_velocities(X, out):
 def row_speeds(X, rows, out):
     """Speed |world_velocity| of the rows X[rows[i]] of physical states X (N, n) into out (R,): no per-row
     allocation nor gathered copy of X (the divergence monitor's speeds)."""
-    v = np.empty(2)
+    v = np.empty(3)
     for i in range(rows.shape[0]):
         world_velocity_into(X[rows[i]], v)
-        out[i] = math.hypot(v[0], v[1])
+        out[i] = math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])
 
 
 @nb.njit(cache=True)
@@ -2051,6 +2188,79 @@ def common_jacobians(c, out):
         for i in range(out.shape[1]):
             for j in range(out.shape[2]):
                 out[b, i, j] = J[i, j]
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def reinit_into(
+        t_all, z_all, heading_all, g, a, scale, meas_std, omega_std, heading_std, heading_cap, sideslip, baseline, angles, c, var,
+        cj, J, P, x_out, p_out):
+    """The re-initialisation at (global) row g of an object starting at row a: the two-point estimate from g and the
+    latest row at least ``baseline`` s earlier, the measurement std times ``scale``: physical x_out (1, n) and packed
+    p_out (n(n+1)/2,); c, cj (1, n_c), var (n_c,), J (1, n, n_c), P (n, n) scratch (n_c the space's common coordinates)."""
+    two_point_into(t_all, z_all, heading_all, reinit_earlier_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
+                   heading_cap, sideslip, c[0], var)
+    jacobian_point(c[0], var, cj[0])
+    common_to_states(c, x_out)
+    common_jacobians(cj, J)
+    initial_covariance_into(J[0], var, angles, P)
+    pack_into(P, p_out)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def speed_std_at(x, p, k, xh, grad):
+    """The std of the speed |world_velocity| of row k of physical states x (N, n) with packed covariances p: its
+    gradient by central differences (steps 1e-6 max(1, |x_i|)) through ``speed_std_from``; xh (1, n), grad (n,) scratch."""
+    n = x.shape[1]
+    one = np.zeros(1, np.int64)
+    spd = np.empty(1)
+    for i in range(n):
+        h = 1e-6 * max(1.0, abs(x[k, i]))
+        for j in range(n):
+            xh[0, j] = x[k, j]
+        xh[0, i] = x[k, i] + h
+        row_speeds(xh, one, spd)
+        up = spd[0]
+        xh[0, i] = x[k, i] - h
+        row_speeds(xh, one, spd)
+        grad[i] = (up - spd[0]) / (2 * h)
+    return speed_std_from(grad, p[k], n)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def speed_stds(x, p, out):
+    """``speed_std_at`` of every row of x (N, n), p (N, n(n+1)/2) into out (N,)."""
+    xh = np.empty((1, x.shape[1]))
+    grad = np.empty(x.shape[1])
+    for k in range(x.shape[0]):
+        out[k] = speed_std_at(x, p, k, xh, grad)
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
+def first_alarm(
+        x, p, nis, a, e, limit, window, short, clip, thr, thr_short, n_sigma, over, absurd, bad, sp, rows, xh, grad):
+    """The first alarm of rows [a, e) of one object: (row or -1, kind (1 NIS, 2 speed, 3 non-finite), value (the
+    window's mean NIS, the speed), first flagged row, limit (of the mean NIS, of the speed)); ``limit`` the object's
+    speed limit. over, absurd, bad (N,) bool, sp (N,), rows (N,) int64, xh (1, n), grad (n,): scratch."""
+    if e <= a:  # no row
+        return -1, 0, 0.0, 0, limit
+    R = e - a
+    for k in range(R):
+        rows[k] = a + k
+    row_speeds(x, rows[:R], sp[:R])
+    for k in range(a, e):
+        fin = finite_row(x, p, k)
+        bad[k] = not fin
+        ov = fin and sp[k - a] > limit
+        over[k] = ov
+        absurd[k] = ov and sp[k - a] - n_sigma * speed_std_at(x, p, k, xh, grad) > limit
+    g, kind, val, start = scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_short)
+    if kind == 2:
+        val = sp[g - a]
+    if kind == 1:
+        lim = thr_short / short if g - start + 1 == short else thr / window
+    else:
+        lim = limit
+    return g, kind, val, start, lim
 
 
 @nb.njit(cache=True)

@@ -9,7 +9,7 @@ import math
 import numba as nb
 import numpy as np
 
-__all__ = ['maximum', 'minimum', 'two_point_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'copy_row', 'pack_into', 'reinit_earlier_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'reinit_earlier_rows']
+__all__ = ['maximum', 'minimum', 'two_point_into', 'two_point3_into', 'two_points', 'jacobian_point', 'initial_covariance_into', 'copy_row', 'pack_into', 'reinit_earlier_row', 'finite_row', 'largest_eigenvalue', 'speed_std_from', 'scan_segment', 'initial_covariances', 'jacobian_points', 'reinit_earlier_rows']
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
@@ -31,8 +31,13 @@ def minimum(a, b):
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
     """The two-point estimate at row i1 from the measurements i0 and i1 (``lgekf.core.initiation.two_point``, one row):
-    common coordinates c (6,) = (x, y, θ, v_x, v_y, ω) and their variances var (6,). ``heading`` (N,) or empty (no
-    heading column)."""
+    common coordinates c and their variances var of the space of the positions z (N, d): in the plane (d = 2) c (6,) =
+    (x, y, θ, v_x, v_y, ω) and ``heading`` (N,) or empty (no heading column); in 3-D space (d = 3, ``two_point3_into``)
+    c (12,) = (x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z) and ``heading`` the (roll, pitch, yaw) of
+    every row flattened (3N,) or empty."""
+    if z.shape[1] == 3:
+        two_point3_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var)
+        return
     dt = t[i1] - t[i0]
     v0 = (z[i1, 0] - z[i0, 0]) / dt
     v1 = (z[i1, 1] - z[i0, 1]) / dt
@@ -64,27 +69,83 @@ def two_point_into(t, z, heading, i0, i1, meas_std, omega_std, heading_std, head
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
+def two_point3_into(t, z, attitude, i0, i1, meas_std, omega_std, attitude_std, angle_cap, sideslip, c, var):
+    """The two-point estimate of 3-D space (``two_point_into`` for z (N, 3)): c (12,) = (x, y, z, roll, pitch, yaw,
+    v_x, v_y, v_z, ω_x, ω_y, ω_z) (Z-Y-X Euler angles, R = R_z(yaw) R_y(pitch) R_x(roll); body-frame velocity and rate,
+    ``derive/space.py``) and their variances var (12,), from the world velocity w = (z_i1 − z_i0)/Δt, var σ_v² = 2r²/Δt²
+    per axis.
+
+    Without an attitude column (``attitude`` empty) the body's x axis is put along w: yaw = atan2(w_y, w_x) (the
+    course), pitch = −atan2(w_z, |w_h|) (nose up for a climb), roll = 0, body velocity (|w|, 0, 0); var yaw =
+    min(σ_v²/|w_h|², cap²), var pitch = min(σ_v²/|w|², cap²), var roll = cap² (the positions say nothing of it),
+    var v_y = max(σ_v² − |w_h|² var yaw, (f σ_v)²), var v_z = max(σ_v² − |w|² var pitch, (f σ_v)²) (the velocity
+    error across the motion the angles cannot take; f = ``sideslip``), as the plane's rule does for θ and v_y.
+    With ``attitude`` (3N,) = the (roll, pitch, yaw) of every row: those angles (var ``attitude_std``² each), body
+    velocity (w·R e_x, 0, 0), var v_y = var v_z = (f σ_v)². The rates are 0 with var ``omega_std``²."""
+    dt = t[i1] - t[i0]
+    w0 = (z[i1, 0] - z[i0, 0]) / dt
+    w1 = (z[i1, 1] - z[i0, 1]) / dt
+    w2 = (z[i1, 2] - z[i0, 2]) / dt
+    hs = math.hypot(w0, w1)
+    speed = math.hypot(hs, w2)
+    r2 = meas_std ** 2
+    var_v = 2.0 * r2 / dt ** 2
+    floor = (sideslip ** 2) * var_v
+    for k in range(12):
+        c[k] = 0.0
+    for k in range(3):
+        c[k] = z[i1, k]
+        var[k] = r2
+        var[9 + k] = omega_std ** 2
+    var[6] = var_v
+    cap = angle_cap ** 2
+    if attitude.shape[0] == 0:
+        c[5] = math.atan2(w1, w0) if hs > 0 else 0.0
+        c[4] = -math.atan2(w2, hs) if speed > 0 else 0.0
+        c[6] = speed
+        var_yaw = var_v / hs ** 2 if hs > 0 else np.inf
+        var_pitch = var_v / speed ** 2 if speed > 0 else np.inf
+        var[3] = cap
+        var[4] = var_pitch if var_pitch <= cap or var_pitch != var_pitch else cap
+        var[5] = var_yaw if var_yaw <= cap or var_yaw != var_yaw else cap
+        var[7] = maximum(var_v - hs ** 2 * var[5], floor)
+        var[8] = maximum(var_v - speed ** 2 * var[4], floor)
+    else:
+        for k in range(3):
+            a = attitude[3 * i1 + k]
+            c[3 + k] = math.atan2(math.sin(a), math.cos(a))
+            var[3 + k] = attitude_std ** 2
+        cp, sp_, cy, sy = math.cos(c[4]), math.sin(c[4]), math.cos(c[5]), math.sin(c[5])
+        c[6] = w0 * cy * cp + w1 * sy * cp - w2 * sp_  # w · R e_x, R e_x = (cos yaw cos pitch, sin yaw cos pitch, −sin pitch)
+        var[7] = floor
+        var[8] = floor
+
+
+@nb.njit(cache=True, nogil=True, error_model="numpy")
 def two_points(t, z, heading, i0, i1, meas_std, omega_std, heading_std, heading_cap, sideslip, c, var):
-    """``two_point_into`` of every row: rows i1 (R,) from i0 (R,), measurement std per row (R,); c, var (R, 6)."""
+    """``two_point_into`` of every row: rows i1 (R,) from i0 (R,), measurement std per row (R,); c, var (R, n_c)."""
     for k in range(i1.shape[0]):
         two_point_into(t, z, heading, i0[k], i1[k], meas_std[k], omega_std, heading_std, heading_cap, sideslip, c[k], var[k])
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def jacobian_point(c, var, out):
-    """The common coordinates at which the initial covariance's Jacobian is taken: c with its speed c[3] moved
-    just off zero (at least 1e-9 of its std, keeping its sign) where a heading-of-motion coordinate is singular."""
-    for k in range(6):
+    """The common coordinates at which the initial covariance's Jacobian is taken: c with its forward speed v_x moved
+    just off zero (at least 1e-9 of its std, keeping its sign) where a heading-of-motion coordinate is singular. v_x is
+    the first coordinate of c's second half (position, attitude | velocity, rate): c[3] in the plane, c[6] in 3-D."""
+    nc = c.shape[0]
+    for k in range(nc):
         out[k] = c[k]
-    tiny = 1e-9 * math.sqrt(var[3])
-    if abs(c[3]) < tiny:
-        out[3] = -tiny if c[3] < 0 else tiny
+    s = nc // 2
+    tiny = 1e-9 * math.sqrt(var[s])
+    if abs(c[s]) < tiny:
+        out[s] = -tiny if c[s] < 0 else tiny
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def initial_covariance_into(J, var, angles, P):
     """P = J diag(var) Jᵀ, symmetrised, each angle's variance capped at π² (its row and column scaled):
-    the initial covariance in filter coordinates from the common-coordinate variances (J (n, 6))."""
+    the initial covariance in filter coordinates from the common-coordinate variances (J (n, n_c))."""
     n = J.shape[0]
     for i in range(n):
         for k in range(n):
@@ -273,14 +334,14 @@ def scan_segment(nis, absurd, over, bad, a, e, window, short, clip, thr, thr_sho
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def initial_covariances(J, var, angles, out):
-    """``initial_covariance_into`` of every row: J (B, n, 6), var (B, 6) into out (B, n, n)."""
+    """``initial_covariance_into`` of every row: J (B, n, n_c), var (B, n_c) into out (B, n, n)."""
     for b in range(J.shape[0]):
         initial_covariance_into(J[b], var[b], angles, out[b])
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def jacobian_points(c, var, out):
-    """``jacobian_point`` of every row of c, var (B, 6) into out (B, 6)."""
+    """``jacobian_point`` of every row of c, var (B, n_c) into out (B, n_c)."""
     for b in range(c.shape[0]):
         jacobian_point(c[b], var[b], out[b])
 

@@ -17,7 +17,7 @@ SPACES = {'2d': {'dim': 2,
         'common_names': ('x', 'y', 'z', 'roll', 'pitch', 'yaw', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz'),
         'position_names': ('x', 'y', 'z'),
         'mixes': False,
-        'monitored': False}}
+        'monitored': True}}
 
 #: the space of the commands' defaults (the paper's plane)
 DEFAULT_SPACE = '2d'

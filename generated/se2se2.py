@@ -1338,11 +1338,12 @@ def recover_pose(
     r1 = np.empty((1, r.shape[0]))
     x0 = np.empty((1, n))
     p0 = np.empty(p.shape[1])
-    c6 = np.empty((1, 6))
-    var6 = np.empty(6)
-    cj6 = np.empty((1, 6))
-    J6 = np.empty((1, n, 6))
-    P6 = np.empty((n, n))
+    nc = z_all.shape[1] * (z_all.shape[1] + 1)  # the space's common coordinates: 2d + d(d - 1) (6 in the plane, 12 in 3-D)
+    c1 = np.empty((1, nc))
+    var1 = np.empty(nc)
+    cj1 = np.empty((1, nc))
+    J1 = np.empty((1, n, nc))
+    P1 = np.empty((n, n))
     for si in range(seg_obj.shape[0]):
         o = seg_obj[si]
         first = seg_first[si]
@@ -1400,7 +1401,7 @@ def recover_pose(
                 break
             last[o] = g
             reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
-                        sideslip, baseline, angles, c6, var6, cj6, J6, P6, x0, p0)
+                        sideslip, baseline, angles, c1, var1, cj1, J1, P1, x0, p0)
             copy_row(x0, 0, x, g)
             for j in range(p0.shape[0]):
                 p[g, j] = p0[j]
@@ -2697,11 +2698,12 @@ def recover_position(
     r1 = np.empty((1, r.shape[0]))
     x0 = np.empty((1, n))
     p0 = np.empty(p.shape[1])
-    c6 = np.empty((1, 6))
-    var6 = np.empty(6)
-    cj6 = np.empty((1, 6))
-    J6 = np.empty((1, n, 6))
-    P6 = np.empty((n, n))
+    nc = z_all.shape[1] * (z_all.shape[1] + 1)  # the space's common coordinates: 2d + d(d - 1) (6 in the plane, 12 in 3-D)
+    c1 = np.empty((1, nc))
+    var1 = np.empty(nc)
+    cj1 = np.empty((1, nc))
+    J1 = np.empty((1, n, nc))
+    P1 = np.empty((n, n))
     for si in range(seg_obj.shape[0]):
         o = seg_obj[si]
         first = seg_first[si]
@@ -2759,7 +2761,7 @@ def recover_position(
                 break
             last[o] = g
             reinit_into(t_all, z_all, heading_all, g + offset, obj_first[o], scale[o], meas_std, omega_std, heading_std, heading_cap,
-                        sideslip, baseline, angles, c6, var6, cj6, J6, P6, x0, p0)
+                        sideslip, baseline, angles, c1, var1, cj1, J1, P1, x0, p0)
             copy_row(x0, 0, x, g)
             for j in range(p0.shape[0]):
                 p[g, j] = p0[j]
@@ -3457,8 +3459,8 @@ def propagate_rows(x, dts, out_x):
 
 @nb.njit(cache=True, nogil=True)  # serial and nogil: threads may run it at once (lgekf.apps.search)
 def propagate_positions(x, dts, out_xy):
-    """The position (the first two physical coordinates) of ``propagate_rows``'s rows, bit for bit, into
-    out_xy (N, 2): the other coordinates are not converted (the noise search's one-step errors)."""
+    """The position (the first d physical coordinates, d the space's dimension) of ``propagate_rows``'s rows, bit for bit, into
+    out_xy (N, d): the other coordinates are not converted (the noise search's one-step errors)."""
     s = np.empty(9)
     for i in range(x.shape[0]):
         state_from_physical_into(x[i], s)
@@ -3496,7 +3498,7 @@ def world_velocity_into(x, out):
 
 @nb.njit(cache=True, nogil=True)
 def world_velocities(X, out):
-    """world_velocity of every row of X (N, n) into out (N, 2)."""
+    """world_velocity of every row of X (N, n) into out (N, 2) (the space's dimension)."""
     for i in range(X.shape[0]):
         world_velocity_into(X[i], out[i])
 
@@ -3580,7 +3582,7 @@ def reinit_into(
         cj, J, P, x_out, p_out):
     """The re-initialisation at (global) row g of an object starting at row a: the two-point estimate from g and the
     latest row at least ``baseline`` s earlier, the measurement std times ``scale``: physical x_out (1, n) and packed
-    p_out (n(n+1)/2,); c, cj (1, 6), var (6,), J (1, n, 6), P (n, n) scratch."""
+    p_out (n(n+1)/2,); c, cj (1, n_c), var (n_c,), J (1, n, n_c), P (n, n) scratch (n_c the space's common coordinates)."""
     two_point_into(t_all, z_all, heading_all, reinit_earlier_row(t_all, g, a, baseline), g, meas_std * scale, omega_std, heading_std,
                    heading_cap, sideslip, c[0], var)
     jacobian_point(c[0], var, cj[0])

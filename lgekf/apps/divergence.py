@@ -47,7 +47,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ..core.initiation import SIDESLIP_FRACTION
+from ..core.initiation import SIDESLIP_FRACTION, attitude_rows
 from ..core.registry import get_model
 from .noise import CHORD_S, chi2_quantile, chord_speeds
 
@@ -313,7 +313,7 @@ def recover(model: str, x, p, nis, starts, limits, m: int, cfg: MonitorConfig, r
     carry = Carry.empty(model, B) if carry is None else carry
     clip, thr, thr_short = cfg.nis_thresholds(m)
     rs = restart
-    heading = np.empty(0) if rs.heading is None else np.ascontiguousarray(rs.heading, dtype=float)
+    heading = attitude_rows(rs.heading)
     t_all = np.ascontiguousarray(rs.t, dtype=float)
     rows = slice(int(rs.offset), int(rs.offset) + x.shape[0])  # the outputs' rows of t, zm
     kernel = spec.kernel("recover", rs.measurement)

@@ -47,16 +47,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.registry import MODELS, get_model
+from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, get_model, models_of
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
-from .track import DEFAULT_ACCEL_STD, TrackConfig, Tracked, smoothing_inputs, track_arrays
+from .track import DEFAULT_ACCEL_STD, TrackConfig, Tracked, own_measurement, smoothing_inputs, speed_course, track_arrays
 from .track_imm import IMM_FILTER, common_world_velocity, imm_track_common
 
 __all__ = [
     "evaluate_dataset", "run_filters", "track_rmse", "world_velocity", "tune_split", "DatasetResult",
-    "FILTERS", "TURNING", "BASELINE",
+    "FILTERS", "TURNING", "BASELINE", "filters_of", "baseline_of", "motion_errors", "MOTION_METRICS", "COURSE_MIN_SPEED",
 ]
 
 FILTERS = tuple(MODELS)
@@ -65,12 +65,39 @@ TUNE_RATIOS = tuple(float(2.0**e) for e in np.arange(-6.0, 3.01, 1.0))
 TURNING = tuple(m for m, spec in MODELS.items() if "w" in spec.matched_noise)  # models with a rotational noise std
 BASELINE = "cv"  # the paired differences are against this filter (the paper's simplest baseline)
 TUNE_FRACTION = 0.3
+#: the motion errors of a 3-D dataset (``motion_errors``): name -> unit
+MOTION_METRICS = {"speed": "m/s", "course": "rad", "climb": "m/s", "turn_rate": "rad/s", "attitude": "rad"}
+COURSE_MIN_SPEED = 1.0  # m/s: the course (and the turn rate) is scored where the truth's horizontal speed is at least this
+
+
+def filters_of(ds: Dataset) -> tuple:
+    """The filters evaluated on a dataset: every registered model of its space (``FILTERS`` in the plane)."""
+    return tuple(models_of(ds.space))
+
+
+def baseline_of(space: str) -> str:
+    """The baseline of the paired differences in ``space``: CV, or the model of that space that lifts it (CV3)."""
+    return next(m for m, spec in models_of(space).items() if BASELINE in (m, spec.lifts))
+
+
+def _seed_means(err: np.ndarray) -> np.ndarray:
+    """Each track's mean over the seeds of its finite values: (S, J) -> (J,), nan for a track with none (a car at rest
+    has no course to score)."""
+    ok = np.isfinite(err)
+    n = ok.sum(axis=0)
+    return np.where(n > 0, np.where(ok, err, 0.0).sum(axis=0) / np.maximum(n, 1), np.nan)
+
+
+def _turning(model: str) -> bool:
+    """Whether the model has a rotational noise std (the grid search's ρ applies to it)."""
+    return "w" in get_model(model).matched_noise
 
 
 # ------------------------------------------------------------------------------------ datasets
 def world_velocity(model: str, x: np.ndarray) -> np.ndarray:
-    """World-frame velocity (N, 2) from a model's physical states (N, n) (generated world_velocity)."""
-    out = np.empty((x.shape[0], 2))
+    """World-frame velocity (N, d) from a model's physical states (N, n) (generated world_velocity; d = 2 in the plane,
+    3 in 3-D space)."""
+    out = np.empty((x.shape[0], SPACES[get_model(model).space]["dim"]))
     get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), out)
     return out
 
@@ -79,26 +106,75 @@ def _seed_rng(seed, stream, name):
     return np.random.default_rng([int(seed), int(stream), zlib.crc32(name.encode())])
 
 
-def _per_track_rmse(ds: Dataset, err2: np.ndarray) -> np.ndarray:
-    """RMSE per track over rows k >= 2 of each track."""
+def _per_track_rmse(ds: Dataset, err2: np.ndarray, rows=None) -> np.ndarray:
+    """RMSE per track over rows k >= 2 of each track (and among ``rows`` (N,) bool when given: the rows where the
+    quantity is scored; a track without such a row: nan)."""
     J = ds.n_tracks
     obj = np.repeat(np.arange(J), np.diff(ds.starts))
     k = np.arange(ds.t.size) - ds.starts[obj]
     w = (k >= 2).astype(float)
+    if rows is not None:
+        w = w * rows
+        err2 = np.where(rows, err2, 0.0)
     num = np.bincount(obj, weights=err2 * w, minlength=J)
     den = np.bincount(obj, weights=w, minlength=J)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.sqrt(num / den)
 
 
-def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None):
-    """Every model on the noisy measurements ``zs`` (one (N, 2) array per seed) of the tracks of ``ds``.
+def motion_errors(model: str, x: np.ndarray, ds: Dataset) -> dict:
+    """Squared errors (N,) of a 3-D track's motion against the dataset's truth, and the rows each is scored on:
+    {name: (err2, rows)} for the names of ``MOTION_METRICS``:
+
+    * speed |v| (m/s), climb rate v_z (m/s), turn rate (rad/s, the course's rate: ``lgekf.apps.track.turn_rates``;
+      truth ``ds.w``) and course atan2(v_y, v_x) (rad, wrapped to ±π) from the model's state (``speed_course``), the
+      course and turn rate only where the truth's horizontal speed is at least ``COURSE_MIN_SPEED`` (a car at rest
+      has no course);
+    * attitude: the angle of R_est⁻¹ R_true (rad, the geodesic distance on SO(3)) for a model with an attitude
+      (roll, pitch, yaw in its state), absent for the others.
+    """
+    mot = speed_course(model, x)  # speed, course, climb, turn rate
+    v = ds.v
+    hs = np.hypot(v[:, 0], v[:, 1])
+    moving = hs >= COURSE_MIN_SPEED
+    dchi = np.angle(np.exp(1j * (mot[:, 1] - np.arctan2(v[:, 1], v[:, 0]))))
+    out = {"speed": ((mot[:, 0] - np.sqrt(np.sum(v ** 2, axis=1))) ** 2, None), "course": (dchi ** 2, moving),
+           "climb": ((mot[:, 2] - v[:, 2]) ** 2, None)}
+    if ds.w is not None:
+        out["turn_rate"] = ((mot[:, 3] - ds.w) ** 2, moving & np.isfinite(mot[:, 3]))
+    names = list(get_model(model).state_names)
+    if ds.attitude is not None and all(a in names for a in ("roll", "pitch", "yaw")):
+        est = x[:, [names.index(a) for a in ("roll", "pitch", "yaw")]]
+        out["attitude"] = (_rotation_angle(est, ds.attitude) ** 2, None)
+    return out
+
+
+def _euler_matrices(a: np.ndarray) -> np.ndarray:
+    """R = R_z(yaw) R_y(pitch) R_x(roll) (N, 3, 3) of Euler angles a (N, 3) = (roll, pitch, yaw) (``derive/space.py``)."""
+    cr, sr, cp, sp, cy, sy = (f(a[:, i]) for i in range(3) for f in (np.cos, np.sin))
+    R = np.empty((a.shape[0], 3, 3))
+    R[:, 0] = np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], axis=1)
+    R[:, 1] = np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], axis=1)
+    R[:, 2] = np.stack([-sp, cp * sr, cp * cr], axis=1)
+    return R
+
+
+def _rotation_angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(N,): the angle of the rotation R(a)ᵀ R(b) between two attitudes given as Euler angles (N, 3), in [0, π]."""
+    tr = np.einsum("nij,nij->n", _euler_matrices(a), _euler_matrices(b))  # trace(R_aᵀ R_b)
+    return np.arccos(np.clip(0.5 * (tr - 1.0), -1.0, 1.0))
+
+
+def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None, motion=None):
+    """Every model on the noisy measurements ``zs`` (one (N, d) array per seed) of the tracks of ``ds``.
 
     Returns dict model -> (pos (S, J), vel (S, J) | None), per seed and track. Each track is filtered
     and scored on its own, so the result for a subset of the tracks is the same subset of this one (the
-    Dask runner of ``lgekf.apps.evaluate_dask`` relies on it).
+    Dask runner of ``lgekf.apps.evaluate_dask`` relies on it). ``motion``: a dict filled, for a 3-D dataset with
+    velocity truth, with model -> {name: RMSE (S, J)} of ``motion_errors``.
     """
     S = len(zs)
+    d = ds.p.shape[1]
     out = {m: (np.empty((S, ds.n_tracks)), None if ds.v is None else np.empty((S, ds.n_tracks))) for m in models}
     for si, z in enumerate(zs):
         for m in models:
@@ -112,19 +188,26 @@ def track_rmse(ds: Dataset, zs, cfg: TrackConfig, models=FILTERS, imm=None):
                     from .smooth_track import smoothed_columns
 
                     zm, q, r = smoothing_inputs(base, z, cfg)
-                    x = smoothed_columns(base, "position", ds.t, zm, ds.starts, Tracked(x, p, nis, None, []), q, r)[0][:, :get_model(base).n]
+                    x = smoothed_columns(base, own_measurement(base, "position"), ds.t, zm, ds.starts, Tracked(x, p, nis, None, []),
+                                         q, r)[0][:, :get_model(base).n]
                 vel = world_velocity(base, x) if ds.v is not None else None
-            out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :2] - ds.p) ** 2, axis=1))
+                if motion is not None and d == 3 and ds.v is not None:
+                    for name, (err2, rows) in motion_errors(base, x, ds).items():
+                        motion.setdefault(m, {}).setdefault(name, np.full((S, ds.n_tracks), np.nan))[si] = _per_track_rmse(ds, err2, rows)
+            out[m][0][si] = _per_track_rmse(ds, np.sum((x[:, :d] - ds.p) ** 2, axis=1))
             if ds.v is not None:
                 out[m][1][si] = _per_track_rmse(ds, np.sum((vel - ds.v) ** 2, axis=1))
     return out
 
 
-def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None, imm=None):
+def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, runner=None, imm=None, motion=None):
     """Position (and velocity) RMSE per (model, seed, track): dict model -> (pos (S, J), vel (S, J) | None).
 
-    ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask).
+    ``runner``: None, or a callable with ``track_rmse``'s signature that computes it elsewhere (Dask). ``motion``: a
+    dict filled with the 3-D motion errors (``track_rmse``; not with a runner).
     """
+    if runner is not None and ds.space != DEFAULT_SPACE:
+        raise ValueError("--workers/--scheduler: the evaluation of a 3-D dataset runs in one process (yet)")
     zs = []
     meas = np.empty((len(seeds), ds.n_tracks))
     for si, seed in enumerate(seeds):
@@ -132,7 +215,12 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         z = ds.p + cfg.meas_std * rng.standard_normal(ds.p.shape)
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
-    out = (runner or track_rmse)(ds, zs, cfg, models) if imm is None else track_rmse(ds, zs, cfg, (*models, IMM_FILTER), imm)
+    if imm is not None and not SPACES[ds.space]["mixes"]:
+        raise ValueError("--imm: the IMM mixes planar models only (yet); the dataset is in 3-D space")
+    if runner is not None and imm is None:
+        out = runner(ds, zs, cfg, models)
+    else:
+        out = track_rmse(ds, zs, cfg, models if imm is None else (*models, IMM_FILTER), imm, motion)
     out["measurements"] = (meas, None)
     return out
 
@@ -140,14 +228,14 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
 def accel_std_for(model, k=1.0, rho=1.0):
     """k · default accel_std, the turn-rate entry (the last one of the LG and CTRV models) also times ρ."""
     q = [k * v for v in DEFAULT_ACCEL_STD[model]]
-    if model in TURNING:
+    if _turning(model):
         q[-1] *= rho
     return tuple(q)
 
 
 def _scaled(scale: dict, meas_std):
     """TrackConfig from {model: (k, ρ)}."""
-    return TrackConfig({m: accel_std_for(m, *scale.get(m, (1.0, 1.0))) for m in FILTERS}, meas_std).validate()
+    return TrackConfig({m: accel_std_for(m, *scale.get(m, (1.0, 1.0))) for m in scale}, meas_std).validate()
 
 
 def tune_split(n_tracks: int):
@@ -169,10 +257,11 @@ class DatasetResult:
     accel: dict | None = None  # model -> accel_std when learned (tune_method "mle"), else k·default (scale)
     fits: dict = field(default_factory=dict)  # model -> NoiseFit, or why it could not be learned (tune_method "mle")
     imm_sets: list = field(default_factory=list)  # the fitted IMM's candidate mode sets: (text, ImmFit or why not, kept)
+    motion: dict = field(default_factory=dict)  # model -> {name: RMSE (S, J)} (3-D datasets: ``motion_errors``)
 
     def summary(self):
         rows = []
-        base = np.nanmean(self.rmse[BASELINE][0], axis=0)
+        base = np.nanmean(self.rmse[baseline_of(self.dataset.space)][0], axis=0)
         for m_row, (pos, vel) in self.rmse.items():
             m = m_row.split(":")[0]  # a smoothed row's settings are its model's
             per_track = np.nanmean(pos, axis=0)
@@ -200,6 +289,10 @@ class DatasetResult:
             else:
                 row["vel_rmse"] = row["vel_ci_lo"] = row["vel_ci_hi"] = float("nan")
                 row["vel_n"] = 0
+            for name in MOTION_METRICS if self.dataset.space != DEFAULT_SPACE else ():
+                err = self.motion.get(m_row, {}).get(name)  # (S, J)
+                per = _seed_means(err) if err is not None else np.full(1, np.nan)
+                row[f"{name}_rmse"] = float(np.mean(per[np.isfinite(per)])) if np.isfinite(per).any() else float("nan")
             rows.append(row)
         return rows
 
@@ -242,29 +335,38 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     if imm is not None and runner is not None:
         raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
     seed_list = [base_seed + s for s in range(seeds)]
-    default = {m: (1.0, 1.0) for m in FILTERS}
-    models = FILTERS + (tuple(f"{m}:smoothed" for m in FILTERS) if smooth else ())
+    filters = filters_of(ds)  # the models of the dataset's space
+    turning = tuple(m for m in filters if _turning(m))
+    default = {m: (1.0, 1.0) for m in filters}
+    models = filters + (tuple(f"{m}:smoothed" for m in filters) if smooth else ())
+
+    def run(d, cfg, stream=0, models=models, imm=imm):  # run_filters with the 3-D motion errors kept
+        motion = {}
+        rmse = run_filters(d, cfg, seed_list, stream, models=models, runner=runner, imm=imm, motion=None if runner else motion)
+        return rmse, motion
+
     if not tune:
-        return [DatasetResult(ds, "default", default, run_filters(ds, _scaled(default, meas_std), seed_list, 0, models=models, runner=runner, imm=imm))]
+        rmse, motion = run(ds, _scaled(default, meas_std))
+        return [DatasetResult(ds, "default", default, rmse, motion=motion)]
     tune_idx, eval_idx = tune_split(ds.n_tracks)
     dtune, deval = ds.subset(tune_idx), ds.subset(eval_idx)
     if tune_method in ("mle", "em"):
         from .smooth_track import learn_on_dataset
 
-        fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, FILTERS, method="em" if tune_method == "em" else "lbfgs")
-        accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in FILTERS}
+        fits = learn_on_dataset(dtune, meas_std, seed_list, _seed_rng, filters, method="em" if tune_method == "em" else "lbfgs")
+        accel = {m: DEFAULT_ACCEL_STD[m] if isinstance(fits[m], str) else fits[m].accel_std for m in filters}
         cfg = TrackConfig(dict(accel), meas_std).validate()
         imm_tuned, imm_fit, imm_sets = _imm_fitted(imm, dtune, meas_std, seed_list, cfg.omega_std, fits)
         if progress:
             progress(1)
-        out = [DatasetResult(deval, "default", default, run_filters(deval, _scaled(default, meas_std), seed_list, 0, models=models,
-                                                                    runner=runner, imm=imm), [], len(tune_idx))]
-        out.append(DatasetResult(deval, "tuned", default, run_filters(deval, cfg, seed_list, 0, models=models, runner=runner,
-                                                                      imm=imm_tuned), [],
-                                 len(tune_idx), accel, dict(fits, imm=imm_fit) if imm_fit is not None else fits, imm_sets))
+        rmse, motion = run(deval, _scaled(default, meas_std))
+        out = [DatasetResult(deval, "default", default, rmse, [], len(tune_idx), motion=motion)]
+        rmse, motion = run(deval, cfg, imm=imm_tuned)
+        out.append(DatasetResult(deval, "tuned", default, rmse, [], len(tune_idx), accel,
+                                 dict(fits, imm=imm_fit) if imm_fit is not None else fits, imm_sets, motion=motion))
         return out
     tuning = []
-    best = {m: (float("inf"), (1.0, 1.0)) for m in FILTERS}
+    best = {m: (float("inf"), (1.0, 1.0)) for m in filters}
 
     def score(stage, configs, models):
         """configs: list of {model: (k, ρ)}; evaluates each on the tuning split (noise stream 1)."""
@@ -279,14 +381,14 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
             if progress:
                 progress(stage)
 
-    score(1, [{m: (k, 1.0) for m in FILTERS} for k in TUNE_SCALES], FILTERS)
-    score(2, [{m: (best[m][1][0], r) for m in TURNING} for r in TUNE_RATIOS], TURNING)
-    score(3, [{m: (k, best[m][1][1]) for m in TURNING} for k in TUNE_SCALES], TURNING)
-    chosen = {m: best[m][1] for m in FILTERS}
+    score(1, [{m: (k, 1.0) for m in filters} for k in TUNE_SCALES], filters)
+    score(2, [{m: (best[m][1][0], r) for m in turning} for r in TUNE_RATIOS], turning)
+    score(3, [{m: (k, best[m][1][1]) for m in turning} for k in TUNE_SCALES], turning)
+    chosen = {m: best[m][1] for m in filters}
     out = []
     for noise, scale in (("default", default), ("tuned", chosen)):
-        out.append(DatasetResult(deval, noise, scale, run_filters(deval, _scaled(scale, meas_std), seed_list, 0, models=models, runner=runner, imm=imm), tuning,
-                                 len(tune_idx)))
+        rmse, motion = run(deval, _scaled(scale, meas_std))
+        out.append(DatasetResult(deval, noise, scale, rmse, tuning, len(tune_idx), motion=motion))
     return out
 
 

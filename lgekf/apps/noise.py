@@ -90,8 +90,9 @@ class NoiseEstimate:
 
 
 @nb.njit(cache=True, nogil=True, inline="always")
-def _window_residual(t, z, i, w):
-    """The normalised third divided difference (e_x, e_y) / ‖w‖ of the window of rows i .. i + 3 (``w``: scratch (4,))."""
+def _window_residual(t, z, i, w, e):
+    """The normalised third divided difference e / ‖w‖ of the window of rows i .. i + 3 into e (d,), one entry per
+    coordinate of z (N, d) (``w``: scratch (4,))."""
     s2 = 0.0
     for j in range(4):
         d = 1.0
@@ -101,12 +102,11 @@ def _window_residual(t, z, i, w):
         w[j] = 1.0 / d
         s2 += w[j] * w[j]
     norm = math.sqrt(s2)
-    ex = 0.0
-    ey = 0.0
-    for j in range(4):
-        ex += w[j] * z[i + j, 0]
-        ey += w[j] * z[i + j, 1]
-    return ex / norm, ey / norm
+    for c in range(z.shape[1]):
+        acc = 0.0
+        for j in range(4):
+            acc += w[j] * z[i + j, c]
+        e[c] = acc / norm
 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")  # times too close for the products: inf and NaN, not an exception
@@ -118,15 +118,15 @@ def _dd3(t, z, starts, out):
     w = np.empty(4)
     for b in range(starts.shape[0] - 1):
         for i in range(starts[b], starts[b + 1] - 3):
-            out[n, 0], out[n, 1] = _window_residual(t, z, i, w)
+            _window_residual(t, z, i, w, out[n])
             n += 1
     return n
 
 
 def _third_divided_differences(t, z, starts):
-    """Normalised residuals e/‖w‖ (W, 2) of every 4-point window inside an object."""
-    out = np.empty((max(len(t), 0), 2))
-    n = _dd3(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(z[:, :2], dtype=float),
+    """Normalised residuals e/‖w‖ (W, d) of every 4-point window inside an object (z (N, d), d = 2 or 3)."""
+    out = np.empty((max(len(t), 0), np.shape(z)[1]))
+    n = _dd3(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(z, dtype=float),
              np.asarray(starts, dtype=np.int64), out)
     return out[:n]
 
@@ -139,7 +139,7 @@ _MASK = (1 << _DIGIT) - 1
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def _residual_pass(t, z, starts, mode, prefix, shift, hist, cand):
-    """One pass over |e_x|, |e_y| of every window (the numbers of ``np.abs(_third_divided_differences(...))``),
+    """One pass over |e_x|, |e_y| (and |e_z| in 3-D) of every window (the numbers of ``np.abs(_third_divided_differences(...))``),
     each keyed by its bits read as an unsigned integer (for numbers >= 0, and NaN after +inf, in their order).
 
     mode 1: ``hist[(key >> shift) & 0xFFFF] += 1`` over the values whose
@@ -152,14 +152,15 @@ def _residual_pass(t, z, starts, mode, prefix, shift, hist, cand):
     sh = np.uint64(shift)
     top = np.uint64(min(shift + _DIGIT, 63))
     every = shift + _DIGIT >= 64
-    one = np.empty(2)
+    d = z.shape[1]
+    one = np.empty(d)
     bits = one.view(np.uint64)
     for b in range(starts.shape[0] - 1):
         for i in range(starts[b], starts[b + 1] - 3):
-            ex, ey = _window_residual(t, z, i, w)
-            one[0] = abs(ex)
-            one[1] = abs(ey)
-            for c in range(2):
+            _window_residual(t, z, i, w, one)
+            for c in range(d):
+                one[c] = abs(one[c])
+            for c in range(d):
                 key = bits[c]
                 if mode == 1:
                     if every or (key >> top) == prefix:
@@ -179,7 +180,7 @@ def _as_float(key) -> float:
 
 def _median_abs_residual(t, z, starts) -> tuple:
     """(``np.median(np.abs(_third_divided_differences(t, z, starts)))``, number of windows): the same number,
-    without holding the 2W values (16 MB at 10⁶ rows).
+    without holding the dW values (16 MB at 10⁶ rows in the plane).
 
     The bits of numbers >= 0 read as unsigned integers sort as the numbers do. Counting passes over the windows
     (each computes every residual again) fix the median's leading 16 bits at a time until the values sharing
@@ -190,7 +191,7 @@ def _median_abs_residual(t, z, starts) -> tuple:
     ``np.median``.
     """
     windows = int(np.maximum(np.diff(starts) - 3, 0).sum())  # 4-point windows inside the objects
-    total = 2 * windows
+    total = np.shape(z)[1] * windows
     if total == 0:
         return float("nan"), 0
     hist = np.zeros(1 << _DIGIT, np.int64)
@@ -232,21 +233,21 @@ def measurement_std(t, z, starts) -> NoiseEstimate:
     ----------
     t : ndarray, (N,)
         Times sorted within each object (s).
-    z : ndarray, (N, 2)
-        Positions (m).
+    z : ndarray, (N, d)
+        Positions (m), d = 2 (the plane) or 3 (3-D space).
     starts : ndarray, (B + 1,)
         Object offsets.
 
     Returns
     -------
     NoiseEstimate
-        ``meas_std`` = MAD of the normalised third divided differences, pooled over both axes, at least
+        ``meas_std`` = MAD of the normalised third divided differences, pooled over the d axes, at least
         ``MIN_MEAS_STD``; ``windows`` = 0 (and ``meas_std`` nan) when no object has four measurements;
         ``nonfinite`` (and ``meas_std`` nan) when the residuals' median is not finite: times so close (about
         1e-103 s apart) that a window's weights overflow, or positions so large that the residuals do. Use
         ``usable`` before ``meas_std``.
     """
-    med, windows = _median_abs_residual(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
+    med, windows = _median_abs_residual(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)),
                                         np.asarray(starts, np.int64))
     if windows == 0:
         return NoiseEstimate(float("nan"), 0)
@@ -263,18 +264,20 @@ OBJECT_WINDOWS = 4096  # an object's own measurement std uses at most its first 
 
 @nb.njit(cache=True, nogil=True, error_model="numpy")
 def _object_median_abs(t, z, starts, cap, med, count):
-    """med[b] = the median of |e_x|, |e_y| over the first ``cap`` 4-point windows of object b (nan without any),
-    count[b] = the windows used."""
+    """med[b] = the median of |e_x|, |e_y| (, |e_z|) over the first ``cap`` 4-point windows of object b (nan without
+    any), count[b] = the windows used."""
     w = np.empty(4)
-    buf = np.empty(2 * cap)
+    d = z.shape[1]
+    buf = np.empty(d * cap)
+    e = np.empty(d)
     for b in range(starts.shape[0] - 1):
         n = min(max(starts[b + 1] - starts[b] - 3, 0), cap)
         for j in range(n):
-            ex, ey = _window_residual(t, z, starts[b] + j, w)
-            buf[2 * j] = abs(ex)
-            buf[2 * j + 1] = abs(ey)
+            _window_residual(t, z, starts[b] + j, w, e)
+            for c in range(d):
+                buf[d * j + c] = abs(e[c])
         count[b] = n
-        med[b] = np.median(buf[:2 * n]) if n > 0 else np.nan
+        med[b] = np.median(buf[:d * n]) if n > 0 else np.nan
 
 
 def object_measurement_stds(t, z, starts, cap: int = OBJECT_WINDOWS) -> tuple:
@@ -282,7 +285,7 @@ def object_measurement_stds(t, z, starts, cap: int = OBJECT_WINDOWS) -> tuple:
     for an object with fewer than 4 measurements or non-finite residuals) and the windows behind it (B,)."""
     B = len(starts) - 1
     med, count = np.empty(B), np.empty(B, dtype=np.int64)
-    _object_median_abs(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
+    _object_median_abs(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)),
                        np.asarray(starts, np.int64), int(cap), med, count)
     with np.errstate(invalid="ignore"):
         r = np.where(np.isfinite(med), np.maximum(med / MAD_SCALE, MIN_MEAS_STD), np.nan)
@@ -304,13 +307,16 @@ def _chords(t, z, starts, lag, out):
                 j = i + 1
             while j < e - 1 and t[j] - t[i] < lag:
                 j += 1
-            out[i] = math.hypot(z[j, 0] - z[i, 0], z[j, 1] - z[i, 1]) / (t[j] - t[i])
+            s2 = 0.0
+            for c in range(z.shape[1]):
+                s2 += (z[j, c] - z[i, c]) ** 2
+            out[i] = math.sqrt(s2) / (t[j] - t[i])
 
 
 def chord_speeds(t, z, starts, lag: float = CHORD_S) -> np.ndarray:
     """Chord speed (N,) of each row over at least ``lag`` s (nan on each object's last row)."""
     out = np.empty(len(t))
-    _chords(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)[:, :2]),
+    _chords(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(np.asarray(z, float)),
             np.asarray(starts, dtype=np.int64), float(lag), out)
     return out
 
@@ -431,10 +437,14 @@ def one_step_errors(model: str, t, z, x, starts) -> np.ndarray:
     # in another object (an object's rows 0 and 1) are set to nan afterwards
     dts = np.diff(np.asarray(t, dtype=float))
     dts[first[first > 0] - 1] = 1.0  # across an object boundary: any positive step (its row is discarded)
-    pred = np.empty((N - 1, 2))  # the positions of propagate_rows only (propagate_positions): serial, nogil (the search's threads)
+    d = np.shape(z)[1]
+    pred = np.empty((N - 1, d))  # the positions of propagate_rows only (propagate_positions): serial, nogil (the search's threads)
     spec.kernels.propagate_positions(np.ascontiguousarray(x[:-1], dtype=float), dts, pred)
-    e = z[1:, :2] - pred
-    out[1:] = e[:, 0] * e[:, 0] + e[:, 1] * e[:, 1]
+    e = z[1:, :d] - pred
+    err2 = e[:, 0] * e[:, 0]
+    for c in range(1, d):
+        err2 += e[:, c] * e[:, c]
+    out[1:] = err2
     out[first] = np.nan
     out[np.minimum(first + 1, N - 1)] = np.nan
     return out

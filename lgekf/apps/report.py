@@ -7,16 +7,42 @@ import io
 import math
 from pathlib import Path
 
-from ..core.registry import MODELS
+from ..core.registry import ALL_MODELS, SPACES
 from ..experiments.statistics import MIN_TRACKS_CI
-from .evaluate import BASELINE, FILTERS
+from .evaluate import MOTION_METRICS, baseline_of
 
-__all__ = ["SUMMARY_FIELDS", "format_table", "markdown_table", "evaluation_figure", "interval_text"]
+__all__ = ["SUMMARY_FIELDS", "MOTION_FIELDS", "summary_fields", "format_table", "markdown_table", "motion_table", "evaluation_figure",
+           "interval_text"]
+
+BASELINES = {baseline_of(s) for s in SPACES}  # the filter of each space the Δ column is against
+MOTION_FIELDS = [f"{name}_rmse" for name in MOTION_METRICS]  # the rows of a 3-D dataset (``DatasetResult.summary``)
 
 
 SUMMARY_FIELDS = ["dataset", "filter", "noise", "scale", "turn_ratio", "accel_std", "tracks", "skipped_short", "seeds", "diverged",
                   "pos_rmse", "pos_ci_lo", "pos_ci_hi", "pos_median", "dpos_vs_cv", "dpos_ci_lo", "dpos_ci_hi",
                   "vel_rmse", "vel_ci_lo", "vel_ci_hi"]
+
+
+def summary_fields(rows) -> list:
+    """The columns of summary.csv: ``SUMMARY_FIELDS``, and ``MOTION_FIELDS`` when a row has them (3-D datasets; empty
+    in the other rows)."""
+    return SUMMARY_FIELDS + (MOTION_FIELDS if any(MOTION_FIELDS[0] in r for r in rows) else [])
+
+
+def motion_table(rows) -> str:
+    """The Markdown table of the motion errors of the 3-D datasets' rows (mean over tracks of the per-track RMSE):
+    position, velocity, speed, course, climb, turn rate, attitude; "" when no row has them."""
+    rows = [r for r in rows if MOTION_FIELDS[0] in r and r["filter"] != "measurements"]
+    if not rows:
+        return ""
+    units = {"pos": "m", "vel": "m/s", **MOTION_METRICS}
+    names = ["pos", "vel", *MOTION_METRICS]
+    head = "| dataset | filter | noise | " + " | ".join(f"{n.replace('_', ' ')} ({units[n]})" for n in names) + " |"
+    lines = [head, "|" + "---|" * (3 + len(names))]
+    for r in rows:
+        vals = [r["pos_rmse"], r["vel_rmse"], *(r[f] for f in MOTION_FIELDS)]
+        lines.append(f"| {r['dataset']} | {r['filter']} | {r['noise']} | " + " | ".join("–" if math.isnan(v) else f"{v:.3f}" for v in vals) + " |")
+    return "\n".join(lines)
 
 
 def _fmt(v, nd=4):
@@ -49,7 +75,7 @@ def format_table(rows) -> str:
     lines = [head, "-" * len(head)]
     for r in rows:
         pos = interval_text(r, "pos")
-        dlt = "" if r["filter"] in (BASELINE, "measurements") else interval_text(r, "dpos", signed=True)
+        dlt = "" if r["filter"] in (*BASELINES, "measurements") else interval_text(r, "dpos", signed=True)
         line = f"{r['dataset']:<10} {r['filter']:<12} {r['noise']:<8} {r['accel_std']:<16} {r['tracks']:>6}  {pos:<26} {r['pos_median']:>6.3f}  {dlt:<28}"
         if has_vel:
             line += " " + ("" if math.isnan(r["vel_rmse"]) else interval_text(r, "vel"))
@@ -65,7 +91,7 @@ def markdown_table(rows) -> str:
     for r in rows:
         noise = "-" if r["filter"] == "measurements" else f"{r['noise']} ({r['accel_std'].replace(';', ', ')})"
         pos = interval_text(r, "pos")
-        dlt = "" if r["filter"] in (BASELINE, "measurements") else interval_text(r, "dpos", signed=True)
+        dlt = "" if r["filter"] in (*BASELINES, "measurements") else interval_text(r, "dpos", signed=True)
         line = f"| {r['dataset']} | {r['filter']} | {noise} | {r['tracks']} | {pos} | {r['pos_median']:.3f} | {dlt} |"
         if has_vel:
             line += " " + ("" if math.isnan(r["vel_rmse"]) else interval_text(r, "vel")) + " |"
@@ -78,7 +104,7 @@ def _csv_text(fieldnames, rows) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(fieldnames)
     for r in rows:
-        w.writerow([_fmt(r[k], 6) if isinstance(r[k], float) else r[k] for k in fieldnames])
+        w.writerow([_fmt(r.get(k, ""), 6) if isinstance(r.get(k), float) else r.get(k, "") for k in fieldnames])
     return buf.getvalue()
 
 
@@ -91,13 +117,13 @@ def evaluation_figure(rows, path: Path, noise: str):
     rows = [r for r in rows if r["noise"] in (noise, "-")]
     datasets = list(dict.fromkeys(r["dataset"] for r in rows))
     vel_sets = [d for d in datasets if any(r["dataset"] == d and not math.isnan(r["vel_rmse"]) for r in rows)]
-    names = [*FILTERS, "measurements"]
+    names = [m for m in (*ALL_MODELS, "measurements") if any(r["filter"] == m for r in rows)]  # the space's filters
     panels = [("pos", datasets, "m")] + ([("vel", vel_sets, "m/s")] if vel_sets else [])
     widths = [len(d) + 0.6 for _, d, _ in panels]
     # at least 7 in wide: the legend and the two-line title must fit even for a single dataset
     fig, axes = plt.subplots(1, len(panels), figsize=(max(1.0 * sum(widths) + 1.5, 7.0), 4.6), squeeze=False,
                              gridspec_kw={"width_ratios": widths})
-    colors = {**{name: spec.color for name, spec in MODELS.items()}, "measurements": "0.7", "imm": "tab:brown"}
+    colors = {**{name: spec.color for name, spec in ALL_MODELS.items()}, "measurements": "0.7", "imm": "tab:brown"}
     for ax, (key, sets, unit) in zip(axes[0], panels):
         width = 0.8 / len(names)
         for i, m in enumerate(names):

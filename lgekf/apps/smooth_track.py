@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..core.covariance import unpack
-from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
+from ..core.registry import base_measurement, get_measurement, get_model
 from ..estimators.smoother import smooth_segments
 from ..estimators.noise.em import em_or_lbfgs, learn_noise_em
 from ..estimators.noise.tuning import NoiseFit, learn_noise
@@ -152,9 +152,10 @@ def learn_on_dataset(ds, meas_std: float, seeds, seed_rng, models, method="lbfgs
     tracks = noisy_tracks(ds, meas_std, seeds, seed_rng)
     out = {}
     for m in models:
+        meas = base_measurement(get_model(m).space)  # the positions of the model's space (position, position3)
         try:
-            learn = learn_noise_em if em_or_lbfgs(m, BASE_MEASUREMENT, method) == "em" else learn_noise
-            out[m] = learn(m, tracks, meas_std=meas_std)
+            learn = learn_noise_em if em_or_lbfgs(m, meas, method) == "em" else learn_noise
+            out[m] = learn(m, tracks, meas_std=meas_std, measurement=meas)
         except ValueError as e:  # too few points: the caller keeps the default noise and says why
             out[m] = str(e)
     return out

@@ -56,7 +56,7 @@ from ..core.covariance import pack, packed_diagonal
 from ..core.initiation import (  # noqa: F401
     DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, SIDESLIP_FRACTION, initial_estimates, moving_backwards, two_point,
 )
-from ..core.registry import MODELS, get_model
+from ..core.registry import ALL_MODELS, SPACES, get_model, measurement_in, models_of
 from ..core.validate import positive_scalar
 from .divergence import FirstPass, MonitorConfig, Restart, recover, speed_limits
 from .windows import WINDOW_ROWS, filter_windows
@@ -66,12 +66,28 @@ from ..io.grouping import objects_subset, row_objects
 from ..io.parquet import ParquetRows
 
 __all__ = [
-    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
+    "DEFAULT_ACCEL_STD", "DEFAULT_MEAS_STD", "DEFAULT_MODELS", "default_model", "own_measurement", "motion_columns", "turn_rates",
+    "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "TrackConfig",
     "initial_common", "initial_estimates", "two_point", "track_arrays", "track_monitored", "Tracked", "output_columns",
     "output_path", "write_model", "Written", "SMOOTH_FAILED", "ClassConfigs", "track_chunk", "TRACK_HEADING_CAP", "REINIT_BASELINE", "smoothing_inputs", "restart_inputs", "track_windows",
 ]
 
-DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in MODELS.items()}  # from each definition
+DEFAULT_ACCEL_STD = {name: spec.default_accel_std for name, spec in ALL_MODELS.items()}  # from each definition
+#: ``lgekf track``'s model when none is given, per space of the input's positions (for a measurement it cannot take: the
+#: first model of the space that takes it, ``default_model``): in the plane SE(2)×SE(2); in 3-D CT3, the best of the
+#: three with the noise from the data on 3-D positions of a car (KITTI), a drone's helix and a climbing turn
+#: (docs/space3d.md, "Which model by default"); given roll, pitch, yaw (pose3) SE(3)×R⁶, the only one that takes them
+DEFAULT_MODELS = {"2d": "se2se2", "3d": "ct3"}
+
+
+def default_model(space: str, measurement: str) -> str:
+    """``lgekf track``'s model of ``space`` for ``measurement`` (as that space measures it): ``DEFAULT_MODELS[space]``
+    if it takes it, else the first registered model of the space that does."""
+    table = models_of(space)
+    meas = measurement_in(space, measurement)
+    if meas in table[DEFAULT_MODELS[space]].measurements:
+        return DEFAULT_MODELS[space]
+    return next((m for m, spec in table.items() if meas in spec.measurements), DEFAULT_MODELS[space])
 DEFAULT_MEAS_STD = 0.3
 TRACK_HEADING_CAP = 0.3  # `lgekf track`'s cap on the initial heading std (rad); see two_point
 REINIT_BASELINE = 0.5  # a re-initialisation's two measurements are at least this far apart (s), if the object allows
@@ -118,12 +134,18 @@ def initial_common(t, z, starts, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=
     return two_point(t, z, np.asarray(starts)[:-1] + 1, meas_std, omega_std, heading, heading_std, heading_cap)
 
 
+def own_measurement(model: str, measurement: str) -> str:
+    """``measurement`` as the model's space measures it (``measurement_in``): the library's default "position" is
+    position3 for a model of 3-D space, "pose" its pose3."""
+    return measurement_in(get_model(model).space, measurement)
+
+
 def _measurement_inputs(spec, z, heading, cfg, measurement):
     """(measurements (N, m), noise stds r) of the measurement model."""
     meas = spec.measurement(measurement)
     if meas.has_angle and heading is None:
         raise ValueError(f"--measure {measurement}: the input needs a heading column")
-    return (np.ascontiguousarray(meas.columns(z[:, :2], heading)),
+    return (np.ascontiguousarray(meas.columns(z[:, :position_dims(spec.name)], heading)),
             np.array(meas.stds(float(cfg.meas_std), cfg.heading_std), dtype=float))
 
 
@@ -154,6 +176,7 @@ def track_arrays(model, t, z, starts, cfg: TrackConfig, heading=None, x0=None, P
     as the measured angle (noise stds meas_std, meas_std, heading_std in the tangent of SE(2)).
     No divergence monitoring: that is ``track_monitored``.
     """
+    measurement = own_measurement(model, measurement)
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
@@ -178,7 +201,7 @@ def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
     out_nis = np.full(N, np.nan)
     i0 = starts[:-1]
     out_x[i0] = x0
-    out_x[i0, :2] = z[i0]
+    out_x[i0, :z.shape[1]] = z[i0]  # every model's state starts with the position (x, y or x, y, z)
     out_x[i0 + 1] = x0
     out_p[i0] = p0
     out_p[i0 + 1] = p0
@@ -188,6 +211,7 @@ def _started(model, t, z, starts, cfg: TrackConfig, heading, x0, P0):
 def smoothing_inputs(model, z, cfg: TrackConfig, heading=None, measurement="position"):
     """(zm, q, r): the measurements and noise stds that ``lgekf.apps.smooth_track.smoothed_columns`` needs besides the
     filter's output (``Tracked``), as ``track_arrays`` / ``track_monitored`` used them."""
+    measurement = own_measurement(model, measurement)
     zm, r = _measurement_inputs(get_model(model), z, heading, cfg, measurement)
     return zm, cfg.q(model), r
 
@@ -226,6 +250,7 @@ def track_monitored(model, t, z, starts, cfg: TrackConfig, heading=None, measure
     z, heading and cfg (they do not depend on the process noise: the noise search makes them once for its
     ~22 runs, ``lgekf.apps.defaults``); default (None): made here.
     """
+    measurement = own_measurement(model, measurement)
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
@@ -256,6 +281,7 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
     the alarms detected since the previous one (object 0), their rows counted from the object's first row (not
     from a) and possibly among the rows of the next piece (held back for its flags).
     """
+    measurement = own_measurement(model, measurement)
     spec = get_model(model)
     t = np.ascontiguousarray(t, dtype=float)
     z = np.ascontiguousarray(z, dtype=float)
@@ -272,15 +298,60 @@ def track_windows(model, t, z, cfg: TrackConfig, heading=None, measurement="posi
 
 # ------------------------------------------------------------------------------------------ CLI
 ORIGIN_COLUMNS = ("origin_lat", "origin_lon")
+
+
+def origin_columns(model: str) -> tuple:
+    """The origin columns of a track file from lat, lon (, alt) input: origin_lat, origin_lon (, origin_alt in 3-D)."""
+    return ORIGIN_COLUMNS + (("origin_alt",) if position_dims(model) == 3 else ())
 MOTION_COLUMNS = ("speed", "course")  # beside every model's own state (``speed_course``)
+MOTION_COLUMNS_3D = MOTION_COLUMNS + ("climb", "turn_rate")  # ... of a model of 3-D space
+TURN_RATE_STEP = 1e-3  # s: the half step of the turn rate's central difference of the course along the model's motion
+
+
+def position_dims(model: str) -> int:
+    """The coordinates of the model's position (its space's dimension: 2 or 3)."""
+    return SPACES[get_model(model).space]["dim"]
+
+
+def motion_columns(model: str) -> tuple:
+    """The motion columns of a track file of ``model`` beside its own state (``speed_course``)."""
+    return MOTION_COLUMNS_3D if position_dims(model) == 3 else MOTION_COLUMNS
 
 
 def speed_course(model: str, x: np.ndarray) -> np.ndarray:
-    """(N, 2): the speed |v| (m/s) and the course atan2(v_y, v_x) (rad, the direction of motion in the world frame) of
-    physical states x (N, n), v the world velocity of the model's definition (``world_velocity``)."""
-    v = np.empty((x.shape[0], 2))
-    get_model(model).kernels.world_velocities(np.ascontiguousarray(x, dtype=float), v)
-    return speed_and_course(v)
+    """(N, k): the speed |v| (m/s) and the course atan2(v_y, v_x) (rad, the direction of motion in the world frame) of
+    physical states x (N, n), v the world velocity of the model's definition (``world_velocity``); for a model of
+    3-D space also the climb rate v_z (m/s, up) and the turn rate (rad/s, the rate of change of the course along the
+    model's own noise-free motion, ``turn_rates``): the columns ``motion_columns(model)``."""
+    d = position_dims(model)
+    x = np.ascontiguousarray(x, dtype=float)
+    v = np.empty((x.shape[0], d))
+    get_model(model).kernels.world_velocities(x, v)
+    if d == 2:
+        return speed_and_course(v)
+    return np.column_stack([np.linalg.norm(v, axis=1), np.arctan2(v[:, 1], v[:, 0]), v[:, 2], turn_rates(model, x)])
+
+
+def turn_rates(model: str, x: np.ndarray, h: float = TURN_RATE_STEP) -> np.ndarray:
+    """(N,): the turn rate dχ/dt (rad/s) of physical states x (N, n), χ = atan2(v_y, v_x) the course: the central
+    difference (χ(x(h)) − χ(x(−h)))/(2h) (wrapped to ±π) of the course along the model's noise-free motion x(τ)
+    (the generated ``propagate_rows``), the same rule for every model: ω of the horizontal turn for CT3, the course's
+    rate of a screw motion for SE(3)×R⁶ (not its body rate ω_z when the body is pitched or rolled), 0 for CV3.
+    Nan where the horizontal speed is 0 (no course)."""
+    k = get_model(model).kernels
+    N = x.shape[0]
+    d = position_dims(model)
+    course = []
+    for dt in (h, -h):
+        xs = np.empty_like(x)
+        k.propagate_rows(x, np.full(N, dt), xs)
+        v = np.empty((N, d))
+        k.world_velocities(xs, v)
+        course.append(np.arctan2(v[:, 1], v[:, 0]))
+    dchi = np.angle(np.exp(1j * (course[0] - course[1])))
+    v = np.empty((N, d))
+    k.world_velocities(x, v)
+    return np.where(np.hypot(v[:, 0], v[:, 1]) > 0, dchi / (2 * h), np.nan)
 
 
 def speed_and_course(v: np.ndarray) -> np.ndarray:
@@ -302,11 +373,11 @@ def output_columns(model, full_cov=False, origin=False, smooth=False):
     """
     spec = get_model(model)
     names = list(spec.state_names)
-    cols = ["id", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS]
+    cols = ["id", "t", *names, *(f"std_{s}" for s in names), *motion_columns(model)]
     if full_cov:
         i, j = np.triu_indices(spec.n)
         cols += [f"cov_{a}_{b}" for a, b in zip(i, j)]
-    cols = cols + ["nis"] + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"]
+    cols = cols + ["nis"] + (list(origin_columns(model)) if origin else []) + ["flag"]
     if smooth:  # `--smooth`: smooth_<state>, smooth_std_<state> (lgekf.apps.smooth_track)
         cols += [f"smooth_{s}" for s in names] + [f"smooth_std_{s}" for s in names]
     return cols
@@ -416,9 +487,10 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
         fh.write((",".join(columns) + "\n").encode())
     lab = label_bytes(meas.labels)
     diag = packed_diagonal(spec.n)
-    m = spec.n * 2 + len(MOTION_COLUMNS) + (spec.n_packed if full_cov else 0) + 1
+    m = spec.n * 2 + len(motion_columns(model)) + (spec.n_packed if full_cov else 0) + 1
+    n_origin = len(origin_columns(model))
     col_digits, t_digits = output_digits(columns[2:], digits, meas.z, meas.t)  # digits None: positions to 0.1 mm, t to 1 µs
-    col_digits[m:m + (2 if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
+    col_digits[m:m + (n_origin if origin else 0)] = 17  # the origin exactly: to_latlon(x, y, origin_lat, origin_lon) inverts it
 
     def emit(parts, row_obj, a, b):  # the writer thread: chunk rows a..b as text (or row groups)
         def block(lo, hi):  # the output values of the chunk's rows lo..hi-1 (r.p at 1: its diagonal's stds)
@@ -452,7 +524,7 @@ def write_model(fh, model, meas, starts, cfg, full_cov, digits, bar, measurement
             flagged += int((r.flag & 1).sum())
             parts = [r.x, r.p, speed_course(model, r.x)] + ([r.p] if full_cov else []) + [r.nis[:, None]]  # r.p at 1: stds
             if origin:
-                parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, 2)))
+                parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (b - a, n_origin)))
             parts.append(r.flag[:, None])
             parts.extend(extra)
             row_obj = row_objects(starts, o, o2) if o2 > o + 1 else np.full(b - a, o, dtype=np.int64)  # meas.obj of grouped rows

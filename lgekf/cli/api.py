@@ -63,10 +63,11 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
     ----------
     data : str, path, pandas.DataFrame or mapping of column -> array
         A measurement file (CSV, gzip, Parquet, the pedestrian format), or the columns themselves: ``t``, ``x``,
-        ``y`` (or ``lat``, ``lon``) and optionally ``id`` and ``heading`` (the CLI's input columns).
+        ``y`` (or ``lat``, ``lon``), ``z`` (or ``alt``) for 3-D positions, and optionally ``id`` and ``heading`` (the
+        CLI's input columns; 3-D poses: ``roll``, ``pitch``, ``yaw``).
     model : str, optional
-        ``--model``: a registry model, ``all`` (then a dict {model: DataFrame} is returned) or ``imm``; default the
-        CLI's (se2se2).
+        ``--model``: a registry model, ``all`` (then a dict {model: DataFrame} of the models of the input's space is
+        returned) or ``imm``; default the CLI's (se2se2; ct3 on 3-D positions).
     measure : {"position", "pose"}, optional
     tune, smooth, multi : bool
         ``--tune``, ``--smooth``, ``--multi``.
@@ -93,8 +94,6 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
     from . import UsageError
     from .track import cmd_track
     from .track_parquet import is_parquet
-    from ..apps.track import output_path
-    from ..core.registry import MODELS
 
     with tempfile.TemporaryDirectory(prefix="lgekf-track-") as tmp:
         tmp = Path(tmp)
@@ -105,8 +104,9 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
             _write_input(data, Path(source))
         out = os.fspath(output) if output is not None else str(tmp / "tracks.csv")
         argv = _argv(source, out, model, measure, tune, smooth, multi, quiet, options)
+        written = {}
         try:
-            status = cmd_track(argv)
+            status = cmd_track(argv, written)
         except UsageError as e:  # a bad option: the CLI's one line
             raise ValueError(str(e)) from None
         if status:
@@ -114,6 +114,6 @@ def track(data, model: str | None = None, measure: str | None = None, tune: bool
         def read(path):
             return pd.read_parquet(path) if is_parquet(path) else pd.read_csv(path, dtype={"id": str, "track": str})
 
-        if model == "all":
-            return {m: read(output_path(out, m, True)) for m in MODELS}
+        if model == "all":  # the models of the input's space (the plane's, or 3-D space's for a z column)
+            return {m: read(path) for m, path in written.items()}
         return read(out)

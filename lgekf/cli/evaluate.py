@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..apps.evaluate import FILTERS, TUNE_RATIOS, TUNE_SCALES, evaluate_dataset
-from ..apps.report import SUMMARY_FIELDS, _csv_text, _fmt, evaluation_figure, format_table, markdown_table
+from ..apps.evaluate import TUNE_RATIOS, TUNE_SCALES, evaluate_dataset, filters_of
+from ..apps.report import _csv_text, _fmt, evaluation_figure, format_table, markdown_table, motion_table, summary_fields
 from ..apps.track import DEFAULT_ACCEL_STD
 from ..experiments.statistics import BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED, MIN_TRACKS_CI
 from ..core.validate import positive_scalar
@@ -104,7 +104,7 @@ def _evaluate(a, runner=None) -> int:
             if res.noise == "tuned":
                 tuning += [{"dataset": ds.name, "filter": m, "stage": st, "scale": k, "turn_ratio": rho, "tune_pos_rmse": sc,
                             "chosen": False, "tune_tracks": res.n_tune_tracks} for m, st, k, rho, sc in res.tuning]
-                for m in FILTERS:  # mark the first row that reached the chosen value
+                for m in filters_of(ds):  # mark the first row that reached the chosen value
                     mine = [r for r in tuning if r["dataset"] == ds.name and r["filter"] == m]
                     if mine:  # (none with --tune-method mle)
                         min(mine, key=lambda r: r["tune_pos_rmse"])["chosen"] = True
@@ -134,7 +134,7 @@ def _evaluate(a, runner=None) -> int:
         rows = [r for r in rows if not (r["filter"] == "measurements" and (r["dataset"] in seen or seen.add(r["dataset"])))]
     out = a.out
     with staged_directory(out) as stage:
-        write_atomic(stage / "summary.csv", _csv_text(SUMMARY_FIELDS, rows))
+        write_atomic(stage / "summary.csv", _csv_text(summary_fields(rows), rows))
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(["dataset", "noise", "track", "seed", "filter", "pos_rmse", "vel_rmse"])
@@ -167,6 +167,8 @@ def _evaluate(a, runner=None) -> int:
         print(out)
         return 0
     print(markdown_table(rows) if a.markdown else format_table(rows))
+    if motion_table(rows):  # the 3-D datasets' motion errors
+        print("\n" + motion_table(rows))
     print(f"95 % intervals: expanded percentile bootstrap over tracks ({BOOTSTRAP_RESAMPLES} resamples, fixed seed); "
           f"n/a with fewer than {MIN_TRACKS_CI} tracks", file=sys.stderr)
     for d in datasets:

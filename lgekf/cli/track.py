@@ -13,9 +13,12 @@ import numpy as np
 from ..apps.defaults import plan_noise_by_class
 from ..apps.divergence import MonitorConfig
 from ..apps.track import (
-    DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, output_path, write_model,
+    DEFAULT_HEADING_STD, TRACK_HEADING_CAP, ClassConfigs, TrackConfig, default_model, output_path, write_model,
 )
-from ..core.registry import BASE_MEASUREMENT, MODELS, get_measurement
+from ..core.registry import (
+    ALL_MODELS, DEFAULT_SPACE, MODELS, base_measurement, get_measurement, get_model, measurement_in, measurements_of, models_of,
+    space_of_positions,
+)
 from ..io.files import AtomicFiles, check_output_path, is_stdio
 from ..io.grouping import objects_subset
 from ..io.readers import COLUMN_OPTIONS
@@ -23,7 +26,7 @@ from .alarms import MAX_DIVERGENCE_LINES, divergence_warnings, smooth_failure_wa
 from .cluster import check_cluster_options, cluster_requested
 from .progress import compile_notice, progress_bar, stderr_is_terminal
 from .track_options import check_estimator_options, column_names, track_parser
-from .track_pipeline import TrackEstimator, frame_note
+from .track_pipeline import SPACE_HINTS, SPACE_WORDS, TrackEstimator, frame_note, input_space
 from .track_parquet import check_parquet_arguments, is_parquet
 from .warmup import compile_estimate, track_jobs, warm_up
 
@@ -32,8 +35,9 @@ __all__ = ["cmd_track", "parse_accel_std", "MAX_DIVERGENCE_LINES"]
 BAR_MIN_ROWS = 1 << 17  # rows x models above which a run draws a progress bar (on a terminal)
 
 
-def parse_accel_std(items, models):
-    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable).
+def parse_accel_std(items, models, known=MODELS):
+    """``--accel-std`` values: ``A,B,C`` (for a single model) or ``MODEL=A,B,C`` (repeatable); ``known``: the models
+    of the input's space (``models_of``; default the plane's).
 
     Returns {model: stds} for the models given (the others get their noise from the data)."""
     table = {}
@@ -41,8 +45,8 @@ def parse_accel_std(items, models):
         if "=" in item:
             name, text = item.split("=", 1)
             name = name.strip()
-            if name not in MODELS:
-                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(MODELS)}")
+            if name not in known:
+                raise ValueError(f"--accel-std: unknown model {name!r}; choose one of {', '.join(known)}")
             targets = [name]
         else:
             if len(models) > 1:
@@ -53,10 +57,10 @@ def parse_accel_std(items, models):
         except ValueError:
             raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
         for m in targets:
-            need = len(MODELS[m].noise_names)
+            need = len(known[m].noise_names)
             if len(vals) != need:
                 raise ValueError(
-                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(MODELS[m].noise_names)}), got {len(vals)}"
+                    f"--accel-std: {m} takes {need} value{'s' if need > 1 else ''} ({', '.join(known[m].noise_names)}), got {len(vals)}"
                 )
             if any((not math.isfinite(v)) or v < 0 for v in vals):
                 raise ValueError(f"--accel-std: noise stds must be non-negative numbers, got {text!r}")
@@ -98,25 +102,69 @@ class ModelsTrack(TrackEstimator):
 
     def __init__(self, a, say):
         super().__init__(a, say)
-        self.models = list(MODELS) if a.model == "all" else [a.model]
+        self.space = None  # the space of the input's positions (``input_space``): it selects the models
+        self.models = []
 
     def check(self) -> None:
         """The models' own argument errors before any reading (one line each; the shared ones:
-        ``check_track_arguments``)."""
-        a, models = self.a, self.models
-        self.given_q = parse_accel_std(a.accel_std, models)
+        ``check_track_arguments``). The space of the input (x, y or x, y, z: ``input_space``, from its header) selects
+        the models and the measurement; from stdin, whose header cannot be read twice, the space of ``--model`` (the
+        plane for none or ``all``) is assumed until the rows are read (``adopt_space``)."""
+        space = input_space(self.a)
+        self.space_known = space is not None
+        guess = get_model(self.a.model).space if self.a.model in ALL_MODELS else DEFAULT_SPACE
+        self.resolve(space or guess, announce=self.space_known)
+        check_cluster_options(self.a)
+        if self.space != DEFAULT_SPACE and cluster_requested(self.a):
+            raise ValueError("--workers/--scheduler: tracks in the plane only (yet); the input has 3-D positions")
+
+    def resolve(self, space: str, announce: bool = True) -> None:
+        """The models (``--model``, its default ``DEFAULT_MODELS[space]``, or ``all``: every model of ``space``), their
+        measurement (``--measure`` as ``space`` measures it: ``measurement_in``) and given noise, for an input of
+        ``space``; a model of another space is one error line naming the models that fit."""
+        a = self.a
+        table = models_of(space)
+        if a.model is None:
+            models = [default_model(space, a.measure)]
+        elif a.model == "all":
+            models = list(table)
+        elif a.model not in table:
+            other = get_model(a.model).space
+            raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[other]}, and the input has {SPACE_HINTS[space]}; "
+                             f"the models that fit: {', '.join(table)}")
+        else:
+            models = [a.model]
+        self.space, self.models = space, models
+        self.given_q = parse_accel_std(a.accel_std, models, table)
         # validate the given values before any reading (the estimated ones are valid by construction)
         TrackConfig(self.given_q, 1.0 if a.meas_std is None else a.meas_std, a.omega_std,
                     DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std).validate()
-        measure = {m: a.measure if a.measure in MODELS[m].measurements else None for m in models}
-        if a.model != "all" and measure[a.model] is None:
-            MODELS[a.model].measurement(a.measure)  # raises with the definition's reason
+        own = get_measurement(a.measure).space
+        if own not in (space, DEFAULT_SPACE):  # position3 / pose3 named on a file of 2-D positions
+            raise ValueError(f"--measure {a.measure}: observes {SPACE_WORDS[own]}, and the input has {SPACE_HINTS[space]}; "
+                             f"choose {' or '.join(measurements_of(space))}")
+        asked = measurement_in(space, a.measure)  # position, pose: as the input's space measures them
+        base = base_measurement(space)
+        measure = {m: asked if asked in table[m].measurements else None for m in models}
+        if a.model not in (None, "all") and measure[a.model] is None:
+            table[a.model].measurement(asked)  # raises with the definition's reason
         for m in models:
             if measure[m] is None:
-                measure[m] = BASE_MEASUREMENT
-                self.say(f"{m} cannot take {a.measure} measurements: it gets {BASE_MEASUREMENT} only")
+                measure[m] = base
+                if announce:
+                    self.say(f"{m} cannot take {asked} measurements: it gets {base} only")
         self.measure = measure
-        check_cluster_options(a)
+
+    def adopt_space(self, meas) -> None:
+        """After reading: the input's space from its positions (z (N, d)); an input whose space its header did not
+        say (stdin) re-resolves the models, unless ``--model all`` already named its output files."""
+        space = space_of_positions(meas.z.shape[1])
+        if space == self.space:
+            return
+        if self.a.model == "all":
+            raise ValueError(f"--model all: the input (stdin) has {SPACE_HINTS[space]}; its output files are "
+                             f"named before reading: give the input as a file, or one --model")
+        self.resolve(space)  # a model of the other space: one line naming those that fit
 
     def run_on_cluster(self) -> int | None:
         """``--workers/--scheduler``: the same output computed on Dask in partitions of whole objects (its exit status);
@@ -211,11 +259,12 @@ class ModelsTrack(TrackEstimator):
         return [(m, f", {flagged[m]} rows flagged" if flagged[m] else "") for m in self.models]
 
 
-def cmd_track(argv) -> int:
+def cmd_track(argv, written: dict | None = None) -> int:
     """``lgekf track``: one pipeline for every estimator (``lgekf.cli.track_pipeline``): check → read → plan the noise →
     estimate (with the monitor, and smoothing) → write → report. The estimator is ``ModelsTrack`` (``--model
     MODEL|all``), ``ImmTrack`` (``--model imm``, ``lgekf.cli.track_imm``) or ``MultiTrack`` (``--multi``,
-    ``lgekf.cli.track_multi``); one parser for all (``lgekf.cli.track_options``)."""
+    ``lgekf.cli.track_multi``); one parser for all (``lgekf.cli.track_options``). ``written``: a dict filled with
+    {model: output path} of the files written (``lgekf.track``)."""
     a = track_parser().parse_args(argv)
     check_estimator_options(a)
     say = (lambda text: print(f"lgekf track: {text}", file=sys.stderr)) if not a.quiet else (lambda text: None)
@@ -236,6 +285,7 @@ def cmd_track(argv) -> int:
     if status is not None:
         return status
     meas, starts = est.read()
+    est.adopt_space(meas)
     t_read = time.perf_counter() - t0
     if meas.origin is not None:
         say(frame_note(meas))
@@ -251,6 +301,8 @@ def cmd_track(argv) -> int:
         with progress_bar(total, "lgekf track", show_bar, unit="rows") as bar:
             what = est.write(handles, meas, starts, monitor, bar)
         files.commit()
+    if written is not None:
+        written.update(zip(est.models, outs))
     if not a.quiet:
         report = sys.stderr if is_stdio(a.output) else sys.stdout  # stdout is the data then
         for line in est.report(outs, what, meas):

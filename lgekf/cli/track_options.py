@@ -7,9 +7,9 @@ estimator given to another are errors, not silently ignored: ``check_estimator_o
 
 from __future__ import annotations
 
-from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD
+from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MODELS, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
-from ..core.registry import BASE_MEASUREMENT, MEASUREMENTS, MODELS
+from ..core.registry import ALL_MEASUREMENTS, ALL_MODELS, BASE_MEASUREMENT, MEASUREMENTS, MODELS, models_of
 from ..estimators.multitarget.clutter import CLUTTER_SOURCES, DEFAULT_CLUTTER_SOURCE
 from ..estimators.multitarget.pmbm import PMBM_DEFAULTS
 from ..estimators.multitarget.tracker import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS,
@@ -22,6 +22,7 @@ from .cluster import add_cluster_options
 __all__ = ["track_parser", "add_column_options", "column_names", "check_estimator_options", "check_imm_options",
            "MULTI_DEFAULTS", "DEFAULT_MAX_SPEED", "SPEED_WARN_FRACTION"]
 
+DEFAULT_PLANAR_MODEL = DEFAULT_MODELS["2d"]
 SPEED_WARN_FRACTION = 0.8  # --multi: a confirmed track this close to the default --max-speed is warned about
 DEFAULT_MAX_SPEED = 30.0  # m/s
 # the multi-target options (their parser default is None, so that "given" can be told from "default")
@@ -45,6 +46,7 @@ COLUMN_HELP = {
     "t": "the time column (default: t, time or timestamp); numbers (seconds, or --time-unit) or ISO-8601 date-times",
     "x": "the x column in m (default: x)",
     "y": "the y column in m (default: y)",
+    "z": "the z column in m, up (default: z; or alt/altitude beside lat, lon): a file with one holds 3-D positions",
     "heading": "the heading column (default: heading or yaw)",
 }
 
@@ -94,12 +96,16 @@ def track_parser():
     g.add_argument("--use-heading", action="store_true", help="initialise the heading from the 'heading' column (rad)")
 
     g = ap.add_argument_group("model and noise")
-    g.add_argument("--model", default="se2se2", choices=[*MODELS, "all", "imm"],
-                   help="filter (default se2se2); all: one output per model; imm: an IMM of --imm-modes")
-    g.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(MEASUREMENTS),
+    g.add_argument("--model", default=None, choices=[*ALL_MODELS, "all", "imm"],
+                   help="filter (default se2se2 on x, y; on 3-D positions (a z or alt column) ct3, or se3r6 with --measure "
+                        "pose (roll, pitch, yaw); the models of the "
+                        "plane: " + ", ".join(MODELS) + "; of 3-D space: " + ", ".join(models_of("3d")) + "); all: one "
+                        "output per model of the input's space; imm: an IMM of --imm-modes (plane)")
+    g.add_argument("--measure", default=BASE_MEASUREMENT, choices=list(ALL_MEASUREMENTS),
                    help=f"measurement model (default {BASE_MEASUREMENT}): "
                    + "; ".join(f"{m}: {s.description}" for m, s in MEASUREMENTS.items())
-                   + " (angles from the heading column; noise: --meas-std for positions, --heading-std for angles)")
+                   + " (angles from the heading column; noise: --meas-std for positions, --heading-std for angles); "
+                   "on 3-D positions position and pose are position3 and pose3 (the attitude from roll, pitch, yaw columns)")
     g.add_argument("--meas-std", type=float, default=None,
                    help="measurement std per axis in m (default: estimated from the data, local quadratic residuals; printed)")
     g.add_argument("--accel-std", action="append", default=[], metavar="[MODEL=]LIST",
@@ -107,7 +113,8 @@ def track_parser():
                    + "); repeatable MODEL=LIST (default: from the data, see docs/track.md)")
     g.add_argument("--omega-std", type=float, default=DEFAULT_OMEGA_STD,
                    help=f"initial angular-velocity std in rad/s (default {DEFAULT_OMEGA_STD})")
-    g.add_argument("--heading-std", type=float, default=None, help=f"std of the heading column in rad (default {DEFAULT_HEADING_STD})")
+    g.add_argument("--heading-std", type=float, default=None,
+                   help=f"std of the heading column (3-D: of each of roll, pitch, yaw) in rad (default {DEFAULT_HEADING_STD})")
     g.add_argument("--tune", action="store_true",
                    help="learn each model's process noise (and the measurement std unless --meas-std) by maximum likelihood "
                         "on the file's own tracks (per class of objects), print it with 95 %% intervals, then track with it")
@@ -204,6 +211,16 @@ def check_estimator_options(a) -> None:
     option of the labelled-object estimators with it, an IMM option without ``--model imm``; then the multi-target
     defaults filled in."""
     check_imm_options(a)
+    if a.multi or a.model == "imm":  # the multi-target tracker and the IMM mix and track in the plane only (yet)
+        what = "--multi" if a.multi else "--model imm"
+        if a.model in ALL_MODELS and a.model not in MODELS:
+            raise ValueError(f"{what}: tracks in the plane only (yet); {a.model} is a model of 3-D space: "
+                             f"choose one of {', '.join(MODELS)}")
+        if a.measure not in MEASUREMENTS:
+            raise ValueError(f"{what}: tracks in the plane only (yet); --measure {a.measure} observes 3-D space: "
+                             f"choose one of {', '.join(MEASUREMENTS)}")
+        if a.model is None:
+            a.model = DEFAULT_PLANAR_MODEL
     if a.multi:
         given = [name for attr, default, name in SINGLE_ONLY if getattr(a, attr) != default]
         if a.model == "all":

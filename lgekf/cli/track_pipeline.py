@@ -12,18 +12,26 @@ from __future__ import annotations
 
 import sys
 
-from ..core.registry import get_measurement
+import numpy as np
+
+from ..core.registry import DEFAULT_SPACE, get_measurement, models_of, space_of_positions
 from ..io.cleaning import drop_invalid, skipped_summary, sort_within_objects
 from ..io.files import is_stdio
 from ..io.geo import max_scale_error, to_latlon
 from ..io.grouping import grouped_consuming
-from ..io.readers import named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning
+from ..io.readers import (
+    csv_header, header_keys, named_columns, parse_delimiter, read_measurements, skipping_nonfinite_rows, unused_columns_warning,
+)
 from ..io.units import heading_in_radians, object_warnings, to_seconds, unit_warnings
 from .memory import single_heap
 from .track_options import column_names
 from .track_parquet import is_parquet, read_parquet
 
-__all__ = ["TrackEstimator", "read_track_input", "frame_note", "check_time_unit"]
+__all__ = ["TrackEstimator", "read_track_input", "frame_note", "check_time_unit", "input_space", "SPACE_WORDS", "SPACE_HINTS"]
+
+#: the spaces as the messages name them
+SPACE_WORDS = {"2d": "the plane", "3d": "3-D space"}
+SPACE_HINTS = {"2d": "2-D positions (no z or alt column)", "3d": "3-D positions (a z or alt column)"}
 
 
 class TrackEstimator:
@@ -39,6 +47,14 @@ class TrackEstimator:
 
     def read(self):
         return read_track_input(self.a)
+
+    def adopt_space(self, meas) -> None:
+        """After reading: refuse an input whose space the estimator does not track (the IMM and the multi-target
+        tracker: the plane only, yet); ``ModelsTrack`` selects its models by the space."""
+        space = space_of_positions(meas.z.shape[1])
+        if space != DEFAULT_SPACE:
+            raise ValueError(f"{'--multi' if self.a.multi else '--model imm'}: tracks in the plane only (yet); the input "
+                             f"has {SPACE_HINTS[space]}: use --model {', '.join(models_of(space))}")
 
     def data_warnings(self, meas, starts) -> list:
         """The unit checks over the file and per object (``lgekf.io.units``)."""
@@ -64,9 +80,13 @@ class TrackEstimator:
 
 def frame_note(meas) -> str:
     """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
-    lat0, lon0 = meas.origin
+    lat0, lon0 = meas.origin[:2]
     lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
     err = 100.0 * max_scale_error(lat, lat0)
+    if len(meas.origin) == 3:
+        return (f"lat, lon, alt projected to x, y, z in metres east, north and up of ({lat0!r}, {lon0!r}, {meas.origin[2]!r}) "
+                f"(the first row; local equirectangular on WGS84, scale error at most {err:.2g} % here); the output's "
+                f"origin_lat, origin_lon, origin_alt columns hold it")
     return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
             f"equirectangular on WGS84, scale error at most {err:.2g} % here); the output's origin_lat, origin_lon columns hold it")
 
@@ -75,6 +95,26 @@ def check_time_unit(meas, time_unit: str) -> None:
     """ISO-8601 stamps are read as seconds: a --time-unit beside them is an error (one line)."""
     if meas.time_iso and time_unit != "s":
         raise ValueError(f"--time-unit {time_unit}: the t column holds ISO-8601 date-times, read as seconds; leave --time-unit out")
+
+
+def input_space(a):
+    """The space of the input's positions from its header, before reading its rows: "3d" with a z column (or lat, lon,
+    alt), else "2d"; None when the header cannot be read now (stdin, a bad file: the reading then says why)."""
+    if a.format != "csv":
+        return "2d"  # the pedestrian format: x, y
+    if is_stdio(a.input):
+        return None
+    try:
+        with named_columns(column_names(a)):
+            if is_parquet(a.input):
+                import pyarrow.parquet as pq
+
+                keys = header_keys(str(a.input), pq.read_schema(a.input).names)
+            else:
+                keys = csv_header(a.input, delimiter=parse_delimiter(a.delimiter))[1]
+    except Exception:  # noqa: BLE001 - any failure is reported by the reading itself, with its line
+        return None
+    return "3d" if ("z" in keys or "alt" in keys) else "2d"
 
 
 def read_track_input(a):
@@ -101,7 +141,10 @@ def read_track_input(a):
             print(f"lgekf track: warning: {line}", file=sys.stderr)
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
-    if meas.heading is not None:
+    if meas.heading is not None and meas.heading.ndim == 2:  # 3-D: roll, pitch, yaw; the unit is told by the yaw
+        yaw = meas.heading[:, 2]
+        meas.heading = meas.heading if heading_in_radians(yaw, a.heading_unit, meas.z, starts) is yaw else np.radians(meas.heading)
+    elif meas.heading is not None:
         meas.heading = heading_in_radians(meas.heading, a.heading_unit, meas.z, starts)
     return meas, starts
 

@@ -25,9 +25,10 @@ import numba as nb
 import numpy as np
 
 from ..generated.monitor import initial_covariances, jacobian_points, two_points
-from .registry import get_model
+from .registry import SPACES, get_model, space_of_positions
 
-__all__ = ["two_point", "initial_estimates", "moving_backwards", "DEFAULT_OMEGA_STD", "DEFAULT_HEADING_STD", "SIDESLIP_FRACTION",
+__all__ = ["two_point", "initial_estimates", "moving_backwards", "common_size", "attitude_rows", "DEFAULT_OMEGA_STD",
+           "DEFAULT_HEADING_STD", "SIDESLIP_FRACTION",
            "LOOKAHEAD_S", "LOOKAHEAD_NOISE"]
 
 DEFAULT_OMEGA_STD = 0.5
@@ -40,8 +41,10 @@ LOOKAHEAD_NOISE = 3.0  # ... and is longer than this many √2 σ
 def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, heading_std=DEFAULT_HEADING_STD,
               heading_cap=math.pi, first=None):
     """The two-point estimate at each of ``rows`` (R,) from the measurements ``first`` (default rows - 1)
-    and rows (the rules of the module docstring): common coordinates c (R, 6) and diagonal variances (R, 6).
-    ``meas_std`` is a number or one per row.
+    and rows (the rules of the module docstring): common coordinates c (R, n_c) and diagonal variances (R, n_c) of
+    the space of z (N, d): n_c = 6 in the plane, 12 in 3-D (``common_size``; the 3-D rule: the generated
+    ``two_point3_into``: yaw = atan2(v_y, v_x), pitch = −atan2(v_z, |v_h|), roll 0). ``meas_std`` is a number or
+    one per row; ``heading`` (N,) in the plane, (N, 3) roll, pitch, yaw in 3-D, or None.
 
     ``heading_cap``: the largest heading std of the prior; the lateral velocity variance the heading does
     not take goes to v_y (π: the rule of the module docstring; ``lgekf track`` uses ``TRACK_HEADING_CAP``).
@@ -52,12 +55,25 @@ def two_point(t, z, rows, meas_std, omega_std=DEFAULT_OMEGA_STD, heading=None, h
     i0 = i1 - 1 if first is None else np.ascontiguousarray(first, dtype=np.int64)
     R = i1.shape[0]
     stds = np.ascontiguousarray(np.broadcast_to(np.asarray(meas_std, dtype=float), (R,)))
-    c = np.empty((R, 6))
-    var = np.empty((R, 6))
-    h = np.empty(0) if heading is None else np.ascontiguousarray(heading, dtype=float)
+    nc = common_size(z)
+    c = np.empty((R, nc))
+    var = np.empty((R, nc))
+    h = attitude_rows(heading)
     two_points(np.ascontiguousarray(t, dtype=float), np.ascontiguousarray(z, dtype=float), h, i0, i1, stds, float(omega_std),
                float(heading_std), float(heading_cap), SIDESLIP_FRACTION, c, var)
     return c, var
+
+
+def common_size(z) -> int:
+    """The number of common coordinates of the space of positions z (N, d) (``derive/space.py``: position, attitude,
+    velocity, rate): 6 in the plane, 12 in 3-D."""
+    return len(SPACES[space_of_positions(np.shape(z)[1])]["common_names"])
+
+
+def attitude_rows(heading) -> np.ndarray:
+    """The measured attitude as the generated ``two_points`` reads it: the heading (N,) in the plane, the (roll, pitch,
+    yaw) rows (N, 3) of 3-D space flattened to (3N,); empty for none."""
+    return np.empty(0) if heading is None else np.ascontiguousarray(np.asarray(heading, dtype=float).reshape(-1))
 
 
 @nb.njit(cache=True, nogil=True)
@@ -100,7 +116,7 @@ def initial_estimates(model, c, var, backwards=None):
     var = np.ascontiguousarray(var, dtype=float)
     B = c.shape[0]
     x0 = np.empty((B, spec.n))
-    J = np.empty((B, spec.n, 6))
+    J = np.empty((B, spec.n, c.shape[1]))
     cj = np.empty_like(c)
     jacobian_points(c, var, cj)
     k.common_to_states(c, x0)  # common_to_state / common_jacobian of every row

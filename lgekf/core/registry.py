@@ -16,7 +16,8 @@ from ..generated.registry import MEASUREMENTS as _MEASUREMENTS
 from ..generated.registry import MODELS as _TABLE
 
 __all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "ALL_MODELS", "MEASUREMENTS", "ALL_MEASUREMENTS", "BASE_MEASUREMENT",
-           "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "rotation_dims", "get_model", "get_measurement",
+           "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "rotation_dims", "space_of_positions",
+           "measurement_in", "get_model", "get_measurement",
            "imm_kernel"]
 
 
@@ -156,6 +157,29 @@ def rotation_dims(space: str) -> int:
     """Rotational coordinates of the space (1 in the plane: θ and ω; 3 in 3-D: the attitude and the body rate): its
     common coordinates are position, attitude, velocity, rate."""
     return (len(SPACES[space]["common_names"]) - 2 * SPACES[space]["dim"]) // 2
+
+
+def space_of_positions(d: int) -> str:
+    """The space whose positions have d coordinates (2: the plane, 3: 3-D space): what a measurement file's columns
+    select (``lgekf track``: x, y or x, y, z)."""
+    for name, sp in SPACES.items():
+        if sp["dim"] == d:
+            return name
+    raise ValueError(f"positions with {d} coordinates: no space of that dimension; the spaces: "
+                     + ", ".join(f"{n} ({sp['dim']} coordinates)" for n, sp in SPACES.items()))
+
+
+def measurement_in(space: str, name: str) -> str:
+    """The measurement of ``space`` that measures what ``name`` measures: ``name`` itself if it observes that space,
+    else the one of ``space`` that, like it, measures positions only or positions and the attitude (``has_angle``):
+    ``lgekf track --measure pose`` on a file of 3-D positions is pose3. A ValueError when the space has none."""
+    meas = get_measurement(name)
+    if meas.space == space:
+        return name
+    same = [m for m, spec in measurements_of(space).items() if spec.has_angle == meas.has_angle]
+    if not same:
+        raise ValueError(f"measurement: {name} has no counterpart in {space} space; choose one of {', '.join(measurements_of(space))}")
+    return min(same, key=lambda m: ALL_MEASUREMENTS[m].dim)
 
 
 def base_measurement(space: str) -> str:

@@ -5,7 +5,8 @@ folder; never shipped with the package; ``PRESET_SOURCES`` says where each comes
 ---------------------------------------------------------------------------------------------------------
 ``eth`` (biwi_eth, 10 frames = 0.6667 s), ``hotel``, ``zara1``, ``zara2``, ``univ`` (students001 + 003;
 10 frames = 0.4 s) from eth_ucy_trajectronpp/; ``kitti`` (kitti_oxts/, car GPS/IMU, 0.1035 s steps (see ``load_kitti``), planar
-Mercator position, velocity truth from ve/vn); ``cyclists`` (vru_cyclists_moving/, LiDAR at 12.5 Hz);
+Mercator position, velocity truth from ve/vn); ``kitti3d`` (the same files in 3-D: east, north, up of lat, lon, alt,
+attitude, velocity, climb and turn-rate truth; ``load_kitti3d``); ``cyclists`` (vru_cyclists_moving/, LiDAR at 12.5 Hz);
 ``dut`` (dut_vehicles/raw, cars from a drone at 23.98 fps, pixels / ratio -> m). ``ethucy`` is the five
 pedestrian scenes. Any other argument is a path read with ``--format csv`` (t,x,y[,id][,vx,vy]) or
 ``--format pedestrian --frame-dt S``.
@@ -23,14 +24,15 @@ import numpy as np
 
 from .readers import DataError, read_csv, read_pedestrian
 
-__all__ = ["Dataset", "load_dataset", "data_root", "load_kitti", "load_cyclists", "load_dut", "load_pedestrian", "load_smartloc",
+__all__ = ["Dataset", "load_dataset", "data_root", "load_kitti", "load_kitti3d", "load_cyclists", "load_dut", "load_pedestrian", "load_smartloc",
            "load_csv_dataset", "PRESETS", "GROUPS", "PRESET_SOURCES", "KITTI_DT", "DEFAULT_DATA_ROOT"]
 
 
 @dataclass
 class Dataset:
-    """Tracks sorted by object: t (N,), p (N, 2) truth positions, v (N, 2) truth velocity or None,
-    w (N,) truth turn rate (rad/s) or None."""
+    """Tracks sorted by object: t (N,), p (N, d) truth positions (d = 2 in the plane, 3 in 3-D space), v (N, d)
+    truth world velocity or None, w (N,) truth turn rate (rad/s, the rate of the course) or None, attitude (N, 3)
+    truth roll, pitch, yaw (rad, Z-Y-X Euler angles as ``derive/space.py``; 3-D only) or None."""
 
     name: str
     t: np.ndarray
@@ -41,10 +43,16 @@ class Dataset:
     skipped: int = 0
     description: str = ""
     w: np.ndarray | None = None
+    attitude: np.ndarray | None = None
 
     @property
     def n_tracks(self) -> int:
         return len(self.labels)
+
+    @property
+    def space(self) -> str:
+        """The space of the positions: "2d" or "3d" (``lgekf.core.registry.SPACES``)."""
+        return "3d" if self.p.shape[1] == 3 else "2d"
 
     def subset(self, tracks):
         tracks = np.asarray(tracks, dtype=np.int64)
@@ -54,12 +62,12 @@ class Dataset:
         np.cumsum(lens, out=starts[1:])
         return Dataset(self.name, self.t[rows], self.p[rows], None if self.v is None else self.v[rows], starts,
                        [self.labels[i] for i in tracks], self.skipped, self.description,
-                       None if self.w is None else self.w[rows])
+                       None if self.w is None else self.w[rows], None if self.attitude is None else self.attitude[rows])
 
 
 def _concat(name, parts, min_length, description):
-    """parts: list of (label, t, p, v|None[, w|None]) tracks -> a Dataset (short tracks skipped)."""
-    parts = [q if len(q) == 5 else (*q, None) for q in parts]
+    """parts: list of (label, t, p, v|None[, w|None[, attitude|None]]) tracks -> a Dataset (short tracks skipped)."""
+    parts = [(*q, *([None] * (6 - len(q)))) for q in parts]
     keep = [q for q in parts if len(q[1]) >= min_length]
     skipped = len(parts) - len(keep)
     if not keep:
@@ -71,7 +79,8 @@ def _concat(name, parts, min_length, description):
     p = np.concatenate([q[2] for q in keep])
     v = np.concatenate([q[3] for q in keep]) if has_v else None
     w = np.concatenate([q[4] for q in keep]) if all(q[4] is not None for q in keep) else None
-    return Dataset(name, t, p, v, starts, [q[0] for q in keep], skipped, description, w)
+    att = np.concatenate([q[5] for q in keep]) if all(q[5] is not None for q in keep) else None
+    return Dataset(name, t, p, v, starts, [q[0] for q in keep], skipped, description, w, att)
 
 
 def _from_measurements(meas, prefix=""):
@@ -130,6 +139,30 @@ def load_kitti(folder, name="kitti", min_length=5, description="", dt=KITTI_DT):
         p = np.column_stack([x - x[0], y - y[0]])
         v = np.column_stack([a[:, 7], a[:, 6]])  # (ve, vn): east = Mercator x, north = y
         parts.append((f.stem, dt * np.arange(len(a)), p, v, a[:, 22]))  # wu: yaw rate about the vertical
+    return _concat(name, parts, min_length, description)
+
+
+def load_kitti3d(folder, name="kitti3d", min_length=5, description="", dt=KITTI_DT):
+    """KITTI tracking OXTS in 3-D space: one sequence per file (``SOURCES.md`` §6 of the data folder).
+
+    Truth: position = lat, lon, alt (columns 0-2) in metres east, north and up of each sequence's first fix
+    (``lgekf.io.geo.to_local_enu``, the frame ``lgekf track`` makes of lat, lon, alt columns); attitude = roll, pitch,
+    yaw (columns 3-5: 0 = level, roll positive = left side up, pitch positive = front down, yaw 0 = east,
+    counter-clockwise), which is R = R_z(yaw) R_y(pitch) R_x(roll) of the body frame x forward, y left, z up, the
+    convention of lgekf's 3-D space (and of the KITTI devkit's ``convertOxtsToPose``); world velocity = (ve, vn,
+    vu) (columns 7, 6, 10: east, north, up; its z entry is the climb rate); turn rate = wu (column 22, the rate about
+    the vertical, the course's rate for a car). Steps of ``KITTI_DT`` s (``load_kitti``).
+    """
+    from .geo import to_local_enu
+
+    parts = []
+    for f in _files(Path(folder), "*.txt"):
+        a = np.loadtxt(f, ndmin=2)
+        if a.shape[1] < 30:
+            raise DataError(f"{f}: expected 30 columns of OXTS data, got {a.shape[1]}")
+        x, y, z = to_local_enu(a[:, 0], a[:, 1], a[:, 2], a[0, 0], a[0, 1], a[0, 2])
+        v = np.column_stack([a[:, 7], a[:, 6], a[:, 10]])  # (ve, vn, vu)
+        parts.append((f.stem, dt * np.arange(len(a)), np.column_stack([x, y, z]), v, a[:, 22], a[:, 3:6].copy()))
     return _concat(name, parts, min_length, description)
 
 
@@ -215,6 +248,8 @@ PRESETS = {
     "zara2": ("pedestrian", [f"{PED}/crowds_zara02.txt"], 0.04, "UCY zara2 pedestrians, 0.4 s per step"),
     "univ": ("pedestrian", [f"{PED}/students001.txt", f"{PED}/students003.txt"], 0.04, "UCY univ (students001+003), 0.4 s per step"),
     "kitti": ("kitti", ["kitti_oxts"], None, "KITTI car GPS/IMU (OXTS), 0.1035 s per step, velocity truth"),
+    "kitti3d": ("kitti3d", ["kitti_oxts"], None, "KITTI car GPS/IMU (OXTS) in 3-D: lat, lon, alt, attitude, velocity, "
+                                                 "climb and turn-rate truth, 0.1035 s per step"),
     "cyclists": ("cyclists", ["vru_cyclists_moving"], None, "VRU cyclists (LiDAR), 12.5 Hz"),
     "dut": ("dut", ["dut_vehicles/raw"], None, "DUT cars at an intersection/roundabout (drone), 23.98 Hz"),
 }
@@ -227,6 +262,7 @@ PRESET_SOURCES = {
     "pedestrian": (PED, "the ETH/UCY text files of github.com/StanfordASL/Trajectron-plus-plus, "
                         "experiments/pedestrians/raw/raw/all_data/"),
     "kitti": ("kitti_oxts", "the KITTI tracking OXTS files of github.com/crowdbotp/OpenTraj, datasets/KITTI/data/oxts/"),
+    "kitti3d": ("kitti_oxts", "the KITTI tracking OXTS files of github.com/crowdbotp/OpenTraj, datasets/KITTI/data/oxts/"),
     "cyclists": ("vru_cyclists_moving", "the VRU cyclist tracks of github.com/crowdbotp/OpenTraj, datasets/VRU/cyclists/moving/"),
     "dut": ("dut_vehicles/raw", "the DUT *_traj_veh.csv and *_ratio_pixel2meter.txt files of "
                                 "github.com/dongfang-steven-yang/vci-dataset-dut, data/trajectories/ and data/ratios/"),
@@ -281,7 +317,7 @@ def load_dataset(spec: str, *, root=None, fmt=None, frame_dt=None, min_length=5)
                 raise DataError(_missing_data_message(spec, kind, p, root))
         if kind == "pedestrian":
             return load_pedestrian(paths, fdt, spec, min_length, desc)
-        loader = {"kitti": load_kitti, "cyclists": load_cyclists, "dut": load_dut}[kind]
+        loader = {"kitti": load_kitti, "kitti3d": load_kitti3d, "cyclists": load_cyclists, "dut": load_dut}[kind]
         return loader(paths[0], spec, min_length, desc)
     path = Path(spec)
     if not path.exists():

@@ -28,7 +28,7 @@ DEFAULT_DIGITS = 10  # significant digits of the output's numbers when --precisi
 POSITION_RESOLUTION = 1e-4  # m: without --precision, positions are written to at least 0.1 mm
 TIME_RESOLUTION = 1e-6  # s: t is written to at least 1 µs (epoch seconds: 16 digits)
 T_DIGITS = 15  # t's digits at least (as always)
-POSITION_COLUMNS = ("x", "y", "smooth_x", "smooth_y")
+POSITION_COLUMNS = ("x", "y", "z", "smooth_x", "smooth_y", "smooth_z")
 
 PARALLEL_ROWS = 1 << 13  # format_rows uses one thread per this many rows (at most one per CPU)
 PARTS_PER_THREAD = 4  # the rows are cut into this many parts per thread (load balance; see _formatted_parts)

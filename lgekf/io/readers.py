@@ -7,7 +7,10 @@ Readers
   whose rows may be interleaved, optional ``heading`` (rad; also ``yaw``), read only when asked.
   Instead of ``x, y``: ``lat, lon`` in degrees (also ``latitude``, ``longitude``/``lng``/``long``),
   projected to metres east/north of the first row's position (``lgekf.io.geo``; the origin is kept in
-  ``Measurements.origin``). Ids are text, compared exactly as written (surrounding spaces removed):
+  ``Measurements.origin``). A ``z`` column beside x, y (or ``alt``/``altitude`` in metres beside lat, lon) makes
+  the positions 3-D (z (N, 3); lat, lon, alt: metres east, north and up of the first row's fix, ``origin`` then
+  (lat0, lon0, alt0), ``lgekf.io.geo.to_local_enu``); the measured attitude of a 3-D pose is then the ``roll``,
+  ``pitch`` and ``yaw`` (or ``heading``) columns. Ids are text, compared exactly as written (surrounding spaces removed):
   ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
   or spaces) unless given. Other columns are ignored (with no id column they are listed in
   ``Measurements.unused``: ``unused_columns_warning``). Blank lines are skipped. Within ``named_columns``
@@ -69,9 +72,16 @@ COLUMN_ALIASES = {
     "heading": ("heading", "yaw"),
     "lat": ("lat", "latitude"),
     "lon": ("lon", "lng", "long", "longitude"),
+    "z": ("z",),
+    "alt": ("alt", "altitude"),
+    "roll": ("roll",),
+    "pitch": ("pitch",),
 }
+#: the vertical coordinate of each horizontal pair: a file with it holds 3-D positions (x, y, z or lat, lon, alt)
+VERTICAL = {"x": "z", "lat": "alt"}
 # the options naming a column (``lgekf track --id-column NAME`` ...): key -> option
-COLUMN_OPTIONS = {"id": "--id-column", "t": "--time-column", "x": "--x-column", "y": "--y-column", "heading": "--heading-column"}
+COLUMN_OPTIONS = {"id": "--id-column", "t": "--time-column", "x": "--x-column", "y": "--y-column", "z": "--z-column",
+                  "heading": "--heading-column"}
 # separators tried on the header line, in this order (None: runs of spaces/tabs)
 AUTO_DELIMITERS = (",", ";", "\t", "|", None)
 DELIMITER_NAMES = {"tab": "\t", "\\t": "\t", "space": None, "whitespace": None, "comma": ",", "semicolon": ";"}
@@ -85,12 +95,13 @@ class DataError(ValueError):
 class Measurements:
     """Rows of a measurement file (in file order).
 
-    t (N,), z (N, 2), heading (N,) or None; obj (N,) object index per row, objects numbered in order of
+    t (N,), z (N, 2) (or (N, 3) from a z or alt column: 3-D space), heading (N,) (in 3-D (N, 3): roll, pitch, yaw)
+    or None; obj (N,) object index per row, objects numbered in order of
     first appearance; labels[i] the text of object i's id (as written in the output);
     line (N,) int64, the 1-based line number of each row in ``source`` (header = line 1; a table's row number counted
     from 1 when ``line_word`` is "row"), kept through sorting, cleaning and grouping for messages; extra: other
     numeric columns asked for (name -> (N,)); origin: (lat0, lon0) in degrees when z was projected
-    from lat, lon columns (``lgekf.io.geo.to_local``), else None.
+    from lat, lon columns (``lgekf.io.geo.to_local``; (lat0, lon0, alt0) with an alt column), else None.
     """
 
     t: np.ndarray
@@ -459,9 +470,14 @@ def _resolve_columns(source, header, want_heading, auto):
     if "x" in where and "y" in where:
         where.pop("lat", None)
         where.pop("lon", None)
+        where.pop("alt", None)
     elif "lat" in where and "lon" in where:
         where.pop("x", None)
         where.pop("y", None)
+        if "alt" in where:  # lat, lon, alt: the altitude is the vertical (a z column beside them is not read)
+            where.pop("z", None)
+        elif "z" in where:
+            where["alt"] = where.pop("z")
     missing = [k for k in ("t",) if k not in where]
     if not (("x" in where and "y" in where) or ("lat" in where and "lon" in where)):
         pair = ("lat", "lon") if ("lat" in where or "lon" in where) and not ("x" in where or "y" in where) else ("x", "y")
@@ -479,9 +495,18 @@ def _resolve_columns(source, header, want_heading, auto):
             f"{source}: missing column{'s' if len(missing) > 1 else ''} {', '.join(repr(m) for m in missing)}; "
             f"the header has: {shown}{hint}; expected t, x, y (or t, lat, lon in degrees) and optionally id, heading"
         )
-    if want_heading and "heading" not in where:
+    if want_heading and ("z" in where or "alt" in where):  # 3-D positions: the attitude is roll, pitch, yaw
+        missing = [k for k in ("roll", "pitch", "heading") if k not in where]
+        if missing:
+            raise DataError(f"{source}: a pose in 3-D needs roll, pitch and yaw (or heading) columns (rad); missing "
+                            f"{', '.join(repr('yaw' if m == 'heading' else m) for m in missing)}; the header has: "
+                            f"{', '.join(h.strip() for h in header)}")
+    elif want_heading and "heading" not in where:
         raise DataError(f"{source}: --use-heading needs a 'heading' column (rad, or --heading-column NAME); the header has: "
                         f"{', '.join(h.strip() for h in header)}")
+    if not (want_heading and ("z" in where or "alt" in where)):
+        where.pop("roll", None)
+        where.pop("pitch", None)
     return where
 
 
@@ -540,7 +565,8 @@ def header_keys(source, names, use_heading: bool = False, auto: bool = False) ->
         Key (``t``, ``x``, ``y`` or ``lat``, ``lon``, ``id``, ``heading``) -> index in ``names``.
     """
     where = _resolve_columns(source, list(names), use_heading, auto)
-    return {k: where[k] for k in ("t", "x", "y", "lat", "lon", "id", "heading") if k in where and (k != "heading" or use_heading)}
+    return {k: where[k] for k in ("t", "x", "y", "z", "lat", "lon", "alt", "id", "roll", "pitch", "heading")
+            if k in where and (k != "heading" or use_heading)}
 
 
 def _header_columns(source, first: str, use_heading: bool, extra, delimiter):
@@ -826,20 +852,28 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
         obj, labels = _objects_from_texts(cols["id"])
     else:
         obj, labels = np.zeros(lines.size, dtype=np.int64), ["0"]
+    vertical = cols.get("alt" if "lat" in cols else "z")
     if "lat" in cols:
         _check_degrees(source, cols, lines)
         if origin is None:
-            origin = (float(cols["lat"][0]), float(cols["lon"][0]))
+            origin = (float(cols["lat"][0]), float(cols["lon"][0])) + (() if vertical is None else (float(vertical[0]),))
         try:
-            x, y = to_local(cols["lat"], cols["lon"], *origin)
+            x, y = to_local(cols["lat"], cols["lon"], *origin[:2])
         except ValueError as e:
             raise DataError(f"{source} line {int(lines[0])}: {e}") from None
-        z = np.column_stack([x, y])
+        # lat, lon, alt: east, north, up of the first fix (``lgekf.io.geo.to_local_enu``)
+        z = np.column_stack([x, y] if vertical is None else [x, y, vertical - origin[2]])
     else:
         origin = None
-        z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
+        if vertical is not None:
+            z = np.column_stack([cols["x"], cols["y"], vertical] if positions is None else [positions, vertical])
+        else:
+            z = np.column_stack([cols["x"], cols["y"]]) if positions is None else positions
+    heading = cols.get("heading") if use_heading else None
+    if heading is not None and vertical is not None:  # 3-D: the attitude (roll, pitch, yaw), Z-Y-X Euler angles
+        heading = np.column_stack([cols["roll"], cols["pitch"], heading])
     ext = {n: cols[n] for n in extra if n in cols}
-    return Measurements(cols["t"], z, cols.get("heading") if use_heading else None, obj, labels, lines, source, ext, origin,
+    return Measurements(cols["t"], z, heading, obj, labels, lines, source, ext, origin,
                         skipped=skipped, unused=tuple(unused), time_iso=time_iso, line_word=line_word)
 
 

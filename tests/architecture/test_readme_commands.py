@@ -155,6 +155,10 @@ README_TO_RUN = {
     "lgekf track data.csv --model imm --tune --smooth -o out.csv": [
         "lgekf track detections.csv --model imm --imm-modes cv,cv:calm,cv:manoeuvre --tune --smooth -o out.csv",
         "lgekf track detections.csv --model imm --smooth -o out.csv"],
+    # KITTI in 3-D (docs/space3d.md): one run for both (--tune adds the likelihood's kernels of three 3-D models, ~40 s
+    # of compiling on a cold cache, for no other code path than the planar --tune's)
+    "lgekf evaluate kitti3d": None,
+    "lgekf evaluate kitti3d --tune": ["lgekf evaluate kitti3d"],
     "lgekf evaluate ethucy kitti cyclists dut --imm": None,
     "lgekf evaluate ethucy kitti cyclists dut --imm --tune": None,
     # the quick start: the shipped example input (copied into the working folder)

@@ -42,14 +42,15 @@ def test_planar_measurements_are_refused_with_the_reason(name):
         assert "position3" in planar.refused
 
 
-def test_the_imm_loop_and_the_monitor_stay_in_the_plane():
-    """The IMM's generated loop mixes the models of a space that declares it (derive.space.Space.mixes), the monitor
-    serves a space that declares it: the 3-D models neither compile into the IMM's dispatch nor carry monitor kernels."""
+def test_the_imm_loop_stays_in_the_plane_and_the_monitor_serves_both_spaces():
+    """The IMM's generated loop mixes the models of a space that declares it (derive.space.Space.mixes): the 3-D models
+    do not compile into the IMM's dispatch. The divergence monitor serves every space that declares it
+    (``Space.monitored``, its two-point restart generic over the space): every model has its ``recover_<meas>``."""
     assert not set(dispatch.MODEL_NAMES) & set(THREE) and set(dispatch.MODEL_NAMES) == set(MODELS)
     assert "position3" not in imm.MEASUREMENT_NAMES
-    for name in THREE:
-        assert not hasattr(get_model(name).kernels, "recover_position3")
-    assert all(hasattr(get_model(m).kernels, "recover_position") for m in MODELS)
+    assert SPACES["3d"]["monitored"] and SPACES["2d"]["monitored"]
+    for name, spec in ALL_MODELS.items():
+        assert all(hasattr(spec.kernels, f"recover_{m}") for m in spec.measurements), name
 
 
 def _common(rng):

@@ -4,7 +4,6 @@ loaders of the real datasets (skipped when ../shared/data or $LGEKF_DATA is abse
 import csv
 import os
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -15,18 +14,8 @@ from lgekf.apps.report import evaluation_figure, format_table, markdown_table
 from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_quantile
 from lgekf.io.datasets import Dataset, data_root, load_dataset
 from lgekf.apps.track import TrackConfig, track_arrays
+from _real_data import DATA, needs
 from _synthetic_tracks import synthetic_tracks, write_synthetic
-
-DATA = Path(os.environ.get("LGEKF_DATA") or Path(__file__).resolve().parents[2].parent / "shared" / "data")
-
-
-def needs(rel):
-    p = DATA / rel
-    if not p.exists():
-        pytest.skip(f"real dataset {p} not available (set LGEKF_DATA to the data folder; the data are not shipped)")
-    return p
-
-
 
 
 def evaluate(*args, cwd=None, env=None):

@@ -61,6 +61,8 @@ def kernels(model, measurements: dict, built) -> list:
     out.append(("simulation", ("simulate_batch", SIMULATE_TEMPLATE.format(
         n=model.n, nq=nn, nargs=arg_list("noise[b, k]", nn).replace("noise[b, k][", "noise[b, k, "),
         zeros=", ".join(["0.0"] * nn), ni=len(model.internal)))))
-    out.append(("velocity", ("world_velocities", WORLD_VELOCITY_TEMPLATE)))
+    d = model.space.dim  # |v| over the space's d axes (math.hypot in the plane, as ever)
+    speed = "math.hypot(v[0], v[1])" if d == 2 else "math.sqrt(" + " + ".join(f"v[{k}] * v[{k}]" for k in range(d)) + ")"
+    out.append(("velocity", ("world_velocities", WORLD_VELOCITY_TEMPLATE.replace("{d}", str(d)).replace("{speed}", speed))))
     out.append(("common", ("common_to_states", COMMON_BATCH_TEMPLATE)))
     return out

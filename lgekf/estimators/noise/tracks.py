@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ...core.registry import ModelSpec
+from ...core.registry import SPACES, ModelSpec
 
 __all__ = ["TrackBatch", "batch_tracks", "two_point_prior"]
 
@@ -96,9 +96,10 @@ def two_point_prior(spec: ModelSpec, batch: TrackBatch, angle_index: int | None 
     z = batch.z01.reshape(2 * B, m)
     rows = np.arange(1, 2 * B, 2)
     heading = None if angle_index is None else z[:, angle_index]
+    d = SPACES[spec.space]["dim"]  # the position's coordinates: z's first d entries
 
     def estimates(r: float, r_angle: float | None = None):
-        c, var = two_point(t, z[:, :2], rows, r, omega_std, heading, DEFAULT_HEADING_STD if r_angle is None else r_angle,
+        c, var = two_point(t, z[:, :d], rows, r, omega_std, heading, DEFAULT_HEADING_STD if r_angle is None else r_angle,
                            heading_cap)
         return initial_estimates(spec.name, c, var)
 
