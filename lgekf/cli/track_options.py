@@ -11,9 +11,8 @@ from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MODELS, DEFAULT_OMEGA_STD
 from ..apps.track_dask import PARTITION_ROWS
 from ..core.registry import ALL_MEASUREMENTS, ALL_MODELS, BASE_MEASUREMENT, MEASUREMENTS, MODELS, models_of
 from ..estimators.multitarget.clutter import CLUTTER_SOURCES, DEFAULT_CLUTTER_SOURCE
-from ..estimators.multitarget.pmbm import PMBM_DEFAULTS
-from ..estimators.multitarget.tracker import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS,
-                                             SPEED_STD_FRACTION)
+from ..estimators.multitarget.settings import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS,
+                                              PMBM_DEFAULTS, SPEED_STD_FRACTION)
 from ..io.readers import COLUMN_OPTIONS
 from ..io.units import TIME_UNITS
 from . import ArgumentParser

@@ -87,6 +87,10 @@ README_TO_RUN = {
          f"--duration 2 --out results_clutter_{s}" for s in ("base", "burst")],
     "lgekf track detections.csv --multi -o tracks.csv --clutter scan": None,
     "lgekf track detections.csv --multi --association jpdastar -o tracks.csv": None,
+    "lgekf track detections.csv --multi --association pmbm -o tracks.csv [--max-hypotheses 50] [--hypothesis-prune 1e-3]":
+        ["lgekf track detections.csv --multi --association pmbm -o tracks_pmbm.csv --max-hypotheses 50 --hypothesis-prune 1e-3"],
+    "lgekf study --multi --models se2r3,cv --association jpda,gnn,pmbm":
+        ["lgekf study --multi --models cv --association jpda,pmbm --runs 1 --duration 2 --out results_pmbm"],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 3 --noise data":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv "
          "--association gnn --noise data --out results_noise_data"],

@@ -58,17 +58,19 @@ def test_cold_cache_says_so_warm_cache_does_not(tmp_path):
 
     def track(cache, *extra):
         env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / cache))
-        r = subprocess.run([*cli_command(), "track", str(inp), "-o", str(tmp_path / "o.csv"), "--model", "cv", *extra],
+        # the noise given and no monitor: the notice is the same, the cold compile half as long (14 s against 26 s)
+        r = subprocess.run([*cli_command(), "track", str(inp), "-o", str(tmp_path / "o.csv"), "--model", "cv", "--meas-std", "0.1",
+                            "--accel-std", "1", "--no-monitor", *extra],
                            capture_output=True, text=True, env=env)
         assert r.returncode == 0, r.stderr
         return r.stderr
 
     assert "lgekf track: compiling kernels, once, about" in track("cache1")
     assert "compiling" not in track("cache1")  # warm: loaded from the cache
-    # cold but quiet: a copy of the warm cache without the CV filter's kernels, which the run compiles again (a cold
+    # cold but quiet: a copy of the warm cache without two of the CV filter's kernels, which the run compiles again (a cold
     # cache of its own cost a third compile of everything; any compilation is what the notice reacts to)
     shutil.copytree(tmp_path / "cache1", tmp_path / "cache2")
-    dropped = sorted((tmp_path / "cache2").rglob("cv.*.nbi"))
+    dropped = sorted((tmp_path / "cache2").rglob("cv.*.nbi"))[:2]
     assert dropped, "the CV filter's kernels are not in the cache"
     for p in dropped:
         p.unlink()

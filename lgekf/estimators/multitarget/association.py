@@ -48,10 +48,10 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from .jpda import MAX_EVENTS, jpda_marginals
+from .settings import MARGINAL_ASSOCIATIONS as ASSOCIATIONS
 
 __all__ = ["ASSOCIATIONS", "association_weights", "association_marginals", "existence_and_weights", "gnn_assignment"]
 
-ASSOCIATIONS = ("jpda", "jpdastar", "pda", "gnn")
 GNN_FORBIDDEN = 1e18
 
 

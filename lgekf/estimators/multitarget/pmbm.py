@@ -68,10 +68,10 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from .murty import k_best_assignments
+from .settings import PMBM_DEFAULTS
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
 
-PMBM_DEFAULTS = {"max_hypotheses": 50, "hypothesis_prune": 1e-3}  # measured: docs/multi_target.md
 BEST_HYSTERESIS = 3.0  # the reported global hypothesis's continuation is kept unless another is 3x as likely
 
 

@@ -72,25 +72,20 @@ import numpy as np
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
 from ...core.registry import get_measurement, get_model
 from ...core.validate import positive_scalar
-from .association import ASSOCIATIONS as MARGINAL_ASSOCIATIONS
 from .association import association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
 from .clutter import ClutterEstimator, ConstantClutter, clutter_estimator
 from .gating import gate_threshold
 from .jpda import MAX_EVENTS
-from .pmbm import PMBM, PMBM_DEFAULTS
+from .pmbm import PMBM
+from .settings import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIATIONS, PMBM_DEFAULTS,
+                       SPEED_STD_FRACTION)
 
 __all__ = ["MultiTargetTracker", "ScanReport", "Track", "ASSOCIATIONS", "IMM_MODEL", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
            "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
 
 IMM_MODEL = "imm"  # ``model`` of a tracker whose per-track filters are IMMs (``IMMBank``)
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
-INITIATIONS = ("one-point", "two-point")
-ASSOCIATIONS = MARGINAL_ASSOCIATIONS + ("pmbm",)  # the marginals of association.py, and the PMBM filter (pmbm.py)
-DEFAULT_INITIATION = {"jpda": "one-point", "jpdastar": "one-point", "gnn": "one-point", "pda": "two-point",  # measured
-                      "pmbm": "one-point"}  # the PMBM's own: its Poisson part
-BIRTH_EXISTENCE = {"one-point": 0.02, "two-point": 0.1}  # a new track's existence without birth_density
-SPEED_STD_FRACTION = 1.0 / 3.0  # one-point: the velocity prior's std per axis is max_speed/3
 UNUSED_BELOW = 0.5  # a detection with Σ_i p_ij below this is unused (can start a track)
 HELD_FROM = 0.5  # a track holds detection j when β_ij (the probability that j is its, given that it exists) ≥ this
 
