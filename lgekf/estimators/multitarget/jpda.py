@@ -86,8 +86,9 @@ def _enumerate_events(sw0, sW, opt, nopt, mode, best, acc0, acc):
     """Depth-first over every feasible joint event of a cluster (each track "missed" or an unused gated detection),
     with the event weight v = Π_k w_{k,θ(k)}; returns Σ v over the events counted.
 
-    mode 0: every event counts (JPDA). mode 1: record in ``best`` the largest weight of each (detected tracks, used
-    detections) key, count nothing. mode 2: count only the event of largest weight of its key (JPDA*; the first of
+    ``best`` None: every event counts (JPDA; numba prunes the JPDA* branch from that specialisation, so plain JPDA
+    allocates no dict). With a dict, mode 1: record in ``best`` the largest weight of each (detected tracks, used
+    detections) key, count nothing; mode 2: count only the event of largest weight of its key (JPDA*; the first of
     equal ones), using the ``best`` of mode 1."""
     nt, nm = sW.shape
     choice = np.full(nt, -1)  # -1: not started; 0: missed; k >= 1: option k - 1
@@ -115,7 +116,7 @@ def _enumerate_events(sw0, sW, opt, nopt, mode, best, acc0, acc):
         pw[i + 1] = pw[i] * w
         if i == nt - 1:
             v = pw[nt]
-            if mode != 0:
+            if best is not None:
                 key = _event_key(choice, opt, nt)
                 if mode == 1:
                     if key not in best or v > best[key]:
@@ -169,13 +170,13 @@ def exact_cluster_marginals(w0, W, gated, p0, P, star=False):
                 nopt[i] += 1
     acc0 = np.zeros(nt)
     acc = np.zeros((nt, nm))
-    best = {(0, 0): 0.0}
     applied = star and nt < 63 and nm < 63
     if applied:
+        best = {(0, 0): 0.0}
         _enumerate_events(sw0, sW, opt, nopt, 1, best, acc0, acc)
         total = _enumerate_events(sw0, sW, opt, nopt, 2, best, acc0, acc)
     else:
-        total = _enumerate_events(sw0, sW, opt, nopt, 0, best, acc0, acc)
+        total = _enumerate_events(sw0, sW, opt, nopt, 0, None, acc0, acc)
     for i in range(nt):
         p0[i] = acc0[i] / total
         for j in range(nm):
