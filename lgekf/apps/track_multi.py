@@ -76,9 +76,9 @@ from dataclasses import dataclass, field
 import numba as nb
 import numpy as np
 
+from ..core.initiation import DEFAULT_OMEGA_STD
 from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
 from ..estimators.multitarget.clutter import ClutterMap, bounding_box_density
-from ..core.initiation import DEFAULT_OMEGA_STD
 from ..estimators.multitarget.tracker import HEADING_CAP, IMM_MODEL, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
 from .defaults import NoisePlan, plan_noise
@@ -591,10 +591,8 @@ def study_process_noise(times, detections, tracker_args: dict, meas_std: float, 
     t = np.concatenate([np.full(len(Z), float(tk)) for tk, Z in zip(times, detections)])
     Z = np.vstack([np.asarray(Z, dtype=float) for Z in detections])
     sc = scans(t, 0.0)
-    omega = tracker_args.get("omega_std", DEFAULT_OMEGA_STD)
-    args = {k: v for k, v in tracker_args.items() if k != "omega_std"}
-    _, fit = fit_noise(t, Z, sc, args, meas_std=meas_std, accel_std=None, heading_std=heading_std, omega_std=omega,
-                       monitor=False)
+    _, fit = fit_noise(t, Z, sc, tracker_args, meas_std=meas_std, accel_std=None, heading_std=heading_std,
+                       omega_std=tracker_args.get("omega_std", DEFAULT_OMEGA_STD), monitor=False)
     if tracker_args["model"] == IMM_MODEL:
         return {"imm_modes": fit.accel_std}, " ".join(f"{m.name}:{','.join(f'{v:.3g}' for v in m.accel_std)}"
                                                       for m in fit.accel_std)

@@ -16,8 +16,8 @@ __all__ = ["cmd_study_multi", "study_multi_parser"]
 
 def study_multi_parser():
     from ..core.registry import MODELS
-    from ..estimators.multitarget.association import ASSOCIATIONS
-    from ..estimators.multitarget.tracker import ASSOCIATIONS as ALL_ASSOCIATIONS
+    from ..estimators.multitarget.settings import ASSOCIATIONS as ALL_ASSOCIATIONS
+    from ..estimators.multitarget.settings import MARGINAL_ASSOCIATIONS as ASSOCIATIONS
     from ..experiments.clutter_scenarios import CLUTTER_SCENARIOS
 
     ap = ArgumentParser(prog="lgekf study --multi",
@@ -77,7 +77,8 @@ def _names(option, text, allowed):
 
 def cmd_study_multi(argv) -> int:
     from ..core.registry import MODELS
-    from ..estimators.multitarget.tracker import ASSOCIATIONS, IMM_MODEL, INITIATIONS
+    from ..estimators.multitarget.settings import ASSOCIATIONS, INITIATIONS
+    from ..estimators.multitarget.tracker import IMM_MODEL
     from ..experiments.clutter_scenarios import STUDY_CLUTTERS
     from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
 

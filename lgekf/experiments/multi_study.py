@@ -22,8 +22,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.registry import MEASUREMENTS, get_measurement, get_model
-from ..estimators.multitarget.association import ASSOCIATIONS
-from ..estimators.multitarget.tracker import IMM_MODEL, INITIATIONS, MultiTargetTracker
+from ..estimators.multitarget.settings import INITIATIONS, MARGINAL_ASSOCIATIONS
+from ..estimators.multitarget.tracker import IMM_MODEL, MultiTargetTracker
 from .clutter_scenarios import CLUTTER_SCENARIOS, STUDY_CLUTTERS, clutter_scenario, study_clutter
 from .gospa import gospa_series
 from ..io.datasets import load_dataset
@@ -41,7 +41,7 @@ class MultiStudyConfig:
     """The protocol of ``lgekf study --multi`` (defaults: the table of docs/multi_target.md)."""
 
     models: tuple = ("se2se2", "se2r3", "se2r2", "ctrv", "cv")
-    associations: tuple = ASSOCIATIONS
+    associations: tuple = MARGINAL_ASSOCIATIONS
     initiations: tuple = (None,)  # None: the tracker's default for the association (DEFAULT_INITIATION)
     runs: int = 5
     seed: int = 2016
