@@ -19,8 +19,9 @@ density is a Poisson part (targets never detected) times a mixture of multi-Bern
   (P_G the gate probability; the tracker's JPDA weighs its joint events with the same factors);
 * **global hypotheses**: one local hypothesis per Bernoulli (or "does not exist", e.g. a new Bernoulli whose
   detection went to another target), each with a weight. The update of a global hypothesis h of weight w_h: the
-  k_h = ⌈N_h w_h⌉ best assignments of the scan's detections (N_h = ``max_hypotheses``; ``murty.k_best_assignments``
-  on the cost matrix detections × (Bernoullis, one new-target-or-clutter column per detection), costs
+  k_h = ⌈N_h w_h⌉ best assignments of the scan's detections (N_h = ``max_hypotheses``; ``murty``, compiled with the rest of
+  the arithmetic in ``global_hypotheses``) on the cost matrix detections × (Bernoullis, one new-target-or-clutter
+  column per detection), costs
   −log(r P_D N / ((1 − r P_D P_G) λ)) and −log((e + λ)/λ), forbidden outside the gates); the new weight is
   w_h Π_b (1 − r_b P_D P_G) × exp(−cost) (up to the factor Π_j λ_j common to all). Then normalise, prune the
   global hypotheses of weight below ``hypothesis_prune``, keep at most ``max_hypotheses``, drop the local
@@ -67,7 +68,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
-from .murty import k_best_assignments
+from .global_hypotheses import NOBODY, update_global_hypotheses
 from .settings import PMBM_DEFAULTS
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
@@ -263,15 +264,13 @@ class PMBM:
         cl_comp = comp[:C]
         n_cl = np.bincount(cl_comp, minlength=C + M)
         n_det = np.bincount(det_comp, minlength=C + M)
-        self._children = {}  # (parent row, j) -> child index; parent −1: born from detection j
-        self._child_parent, self._child_det = [], []
         # detections in no gate: a Bernoulli each, in a cluster of its own (``_apply``)
         self._lone = np.flatnonzero(n_cl[det_comp] == 0)
         # one Bernoulli, one hypothesis, no detection: missed, the cluster as it was
         quiet_mask = shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 0)
         quiet = np.flatnonzero(quiet_mask)  # (< S)
         # one Bernoulli, one hypothesis, one detection that no other gate takes, the miss's weight below the pruning
-        # threshold: the hard update with it is the only global hypothesis kept (what ``_single`` gives), in bulk
+        # threshold: the hard update with it is the only global hypothesis kept (what the enumeration of its hypotheses gives), in bulk
         pair = np.flatnonzero(shape11 & (n_cl[cl_comp] == 1) & (n_det[cl_comp] == 1))
         det_of_comp = np.full(C + M, -1, dtype=np.int64)
         det_of_comp[det_comp] = np.arange(M)
@@ -281,8 +280,8 @@ class PMBM:
         self._sure = (pair[sure], prow[sure], pj[sure])  # their children are registered after the others (``_apply``)
         busy_mask = ~quiet_mask
         busy_mask[pair[sure]] = False
-        new_clusters = []  # (ids-or-None list, child-index table, lw, detections)
         busy = np.flatnonzero(busy_mask)
+        groups = []  # per group of merged clusters: ids, the hypotheses' rows, log-weights, flags; detections
         if busy.size:
             order = np.argsort(cl_comp[busy], kind="stable")
             ks_sorted = busy[order]
@@ -293,9 +292,8 @@ class PMBM:
             for ks in np.split(ks_sorted, cuts):
                 cc = cl_comp[ks[0]]
                 lo, hi = np.searchsorted(dcomp, cc), np.searchsorted(dcomp, cc, side="right")
-                dets = np.sort(dorder[lo:hi])
-                new_clusters.append(self._update_group([self._cluster(k) for k in ks], dets, logW, gated, logw0, log_new))
-        return self._apply(t, Z, lamv, e, new_clusters, quiet, d2)
+                groups.append(self._product([self._cluster(k) for k in ks]) + (np.sort(dorder[lo:hi]),))
+        return self._apply(t, Z, lamv, e, self._update_groups(groups, M, logW, gated, logw0, log_new), quiet, d2)
 
     def _cluster(self, k):
         """Cluster k of ``scan``'s numbering as a ``Cluster``."""
@@ -304,24 +302,16 @@ class PMBM:
             return self.multi[k - S]
         return Cluster(self.s_ids[k:k + 1], self.s_rows[k:k + 1, None], np.zeros(1))
 
-    def _child(self, parent, j):
-        key = (parent, j)
-        c = self._children.get(key)
-        if c is None:
-            c = len(self._child_parent)
-            self._children[key] = c
-            self._child_parent.append(parent)
-            self._child_det.append(j)
-        return c
-
-    def _update_group(self, clusters, dets, logW, gated, logw0, log_new):
-        """The new global hypotheses of the merged clusters with detections ``dets``: a (ids, child table, lw, born
-        detections) tuple (module docstring)."""
-        if len(clusters) == 1 and clusters[0].rows.shape == (1, 1) and clusters[0].rows[0, 0] >= 0:
-            return self._single(clusters[0].ids, int(clusters[0].rows[0, 0]), dets, logW, gated, log_new)
+    def _product(self, clusters):
+        """The merged clusters' global hypotheses: the product of their hypotheses, capped at ``max_hypotheses``
+        (the most likely kept): (ids, rows (H, B), log-weights (H,) not normalised, flags (H,): descends from the
+        reported one)."""
+        c0 = clusters[0]
+        if len(clusters) == 1:
+            return c0.ids, c0.rows, c0.lw, c0.chosen_flags()
         ids = np.concatenate([c.ids for c in clusters])
-        rows, lw, fl = clusters[0].rows, clusters[0].lw, clusters[0].chosen_flags()
-        for c in clusters[1:]:  # the product of the clusters' hypotheses, capped
+        rows, lw, fl = c0.rows, c0.lw, c0.chosen_flags()
+        for c in clusters[1:]:
             H1, H2 = lw.size, c.lw.size
             rows = np.hstack([np.repeat(rows, H2, axis=0), np.tile(c.rows, (H1, 1))])
             lw = (lw[:, None] + c.lw[None, :]).reshape(-1)
@@ -329,73 +319,47 @@ class PMBM:
             if lw.size > self.max_hypotheses:
                 keep = np.argsort(-lw, kind="stable")[:self.max_hypotheses]
                 rows, lw, fl = rows[keep], lw[keep], fl[keep]
-        lw = lw - _logsumexp(lw)
-        B, d = ids.size, dets.size
-        if B == 1 and lw.size == 1 and rows[0, 0] >= 0:
-            return self._single(ids, int(rows[0, 0]), dets, logW, gated, log_new)
-        out_rows, out_lw, out_fl = [], [], []
-        for h in range(lw.size):
-            rh = rows[h]
-            exists = rh >= 0
-            base = lw[h] + float(logw0[rh[exists]].sum())
-            if d == 0:
-                sols = [(np.zeros(0, dtype=np.int64), 0.0)]
-            else:
-                cost = np.full((d, B + d), np.inf)
-                ex = np.flatnonzero(exists)
-                sub = gated[np.ix_(rh[ex], dets)]
-                cost[:, ex] = np.where(sub, -logW.block(rh[ex], dets), np.inf).T
-                cost[np.arange(d), B + np.arange(d)] = -log_new[dets]
-                k = max(1, math.ceil(self.max_hypotheses * math.exp(lw[h])))
-                sols = k_best_assignments(cost, k)
-            for sol, c in sols:
-                table = np.full(B + d, -1, dtype=np.int64)
-                given = np.full(B, -1, dtype=np.int64)
-                for a in range(d):
-                    col = sol[a]
-                    if col < B:
-                        given[col] = dets[a]
-                    else:
-                        table[B + a] = self._child(-1, int(dets[a]))
-                for b in np.flatnonzero(exists):
-                    table[b] = self._child(int(rh[b]), int(given[b]))
-                out_rows.append(table)
-                out_lw.append(base - c)
-                out_fl.append(fl[h])
-        T = np.array(out_rows)
-        w = np.array(out_lw)
-        w -= _logsumexp(w)
-        order = np.argsort(-w, kind="stable")
-        order = order[w[order] >= math.log(self.hypothesis_prune)][:self.max_hypotheses]
-        if order.size == 0:
-            order = np.argsort(-w, kind="stable")[:1]
-        T, w = T[order], w[order] - _logsumexp(w[order])
-        return list(ids) + [None] * d, T, w, [int(j) for j in dets], np.array(out_fl, dtype=bool)[order]
+        return ids, rows, lw, fl
 
-    def _single(self, ids, row, dets, logW, gated, log_new):
-        """``_update_group`` of one Bernoulli with one local hypothesis (row) and detections ``dets``: its d + 1 global
-        hypotheses enumerated (the miss and every detection in its gate, the other detections new targets or clutter),
-        the same as Murty's d + 1 best (no other assignment exists)."""
-        d = dets.size
-        g = gated[row, dets]
-        hit = np.flatnonzero(g)
-        lw = np.empty(1 + hit.size)
-        lw[0] = 0.0  # the miss, then each gated detection (relative to all detections new targets or clutter)
-        lw[1:] = logW.pairs(np.full(hit.size, row), dets[hit]) - log_new[dets[hit]]
-        lw -= lw.max()
-        lw -= math.log(np.exp(lw).sum())
-        order = np.argsort(-lw, kind="stable")
-        n = int(np.count_nonzero(lw >= math.log(self.hypothesis_prune)))
-        order = order[:max(1, min(n, self.max_hypotheses))]
-        T = np.full((order.size, 1 + d), -1, dtype=np.int64)
-        for a, o in enumerate(order):
-            j_own = -1 if o == 0 else int(hit[o - 1])
-            T[a, 0] = self._child(row, int(dets[j_own]) if j_own >= 0 else -1)
-            for k in range(d):
-                if k != j_own:
-                    T[a, 1 + k] = self._child(-1, int(dets[k]))
-        w = lw[order] - _logsumexp(lw[order]) if order.size > 1 else np.zeros(1)
-        return list(ids) + [None] * d, T, w, [int(j) for j in dets], np.ones(order.size, dtype=bool)
+    def _update_groups(self, groups, M, logW, gated, logw0, log_new):
+        """The new global hypotheses of every group (``global_hypotheses.update_global_hypotheses``, one call) and
+        their children: (parent row, detection) pairs numbered in order of first use (parent −1: born from the
+        detection; detection −1: the miss). Sets ``_child_parent``, ``_child_det``; returns per group (ids, table
+        of child indices (H', B + d), normalised log-weights (H',), flags (H',))."""
+        G = len(groups)
+        if G == 0:
+            self._child_parent = self._child_det = np.zeros(0, dtype=np.int64)
+            return []
+        n_bern = np.array([g[0].size for g in groups], dtype=np.int64)
+        n_hyp = np.array([g[2].size for g in groups], dtype=np.int64)
+        n_det = np.array([g[4].size for g in groups], dtype=np.int64)
+        h_off = np.concatenate([[0], np.cumsum(n_hyp)])
+        r_off = np.concatenate([[0], np.cumsum(n_hyp * n_bern)])
+        d_off = np.concatenate([[0], np.cumsum(n_det)])
+        rows = np.concatenate([g[1].reshape(-1) for g in groups]).astype(np.int64)
+        lw = np.concatenate([g[2] for g in groups]).astype(float)
+        fl = np.concatenate([g[3] for g in groups])
+        dets = np.concatenate([g[4] for g in groups]).astype(np.int64)
+        o_off, w, fl, t_off, parent, det = update_global_hypotheses(
+            h_off, rows, r_off, lw, fl, n_bern, d_off, dets, logW.ll, gated, logW.a, logW.b, logw0, log_new,
+            self.max_hypotheses, math.log(self.hypothesis_prune))
+        valid = parent != NOBODY
+        vp, vd = parent[valid], det[valid]
+        _, first, inv = np.unique((vp + 1) * (M + 1) + (vd + 1), return_index=True, return_inverse=True)
+        order = np.argsort(first, kind="stable")  # children in order of first use
+        rank = np.empty(order.size, dtype=np.int64)
+        rank[order] = np.arange(order.size)
+        table = np.full(parent.size, -1, dtype=np.int64)
+        table[valid] = rank[inv.reshape(-1)]
+        self._child_parent, self._child_det = vp[first[order]], vd[first[order]]
+        self._entry_w = np.repeat(w, np.repeat(n_bern + n_det, np.diff(o_off)))  # each table entry's hypothesis weight
+        self._table = table
+        out = []
+        for g, (ids, _, _, _, gd) in enumerate(groups):
+            W = ids.size + gd.size
+            T = table[t_off[g]:t_off[g + 1]].reshape(-1, W)
+            out.append((list(ids) + [None] * gd.size, T, w[o_off[g]:o_off[g + 1]], fl[o_off[g]:o_off[g + 1]]))
+        return out
 
     def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
         """The bank operations of all children at once, then the clusters in bank rows, deletion and splitting."""
@@ -404,8 +368,8 @@ class PMBM:
         pdg = trk.pd * trk.pg
         sure_k, sure_row, sure_det = self._sure  # the sure hard updates: children n0, n0 + 1, ... (unique keys)
         n0 = len(self._child_parent)
-        parent = np.concatenate([np.asarray(self._child_parent, dtype=np.int64), sure_row])
-        det = np.concatenate([np.asarray(self._child_det, dtype=np.int64), sure_det])
+        parent = np.concatenate([self._child_parent, sure_row])
+        det = np.concatenate([self._child_det, sure_det])
         sure_child = n0 + np.arange(sure_k.size)
         n = parent.size
         child_row = np.full(n, -1, dtype=np.int64)
@@ -485,14 +449,14 @@ class PMBM:
         target = np.zeros(Z.shape[0])
         target[lone] = r_new[lone]
         target[sure_det] = 1.0
-        for ids, T, w, dets, fl in new_clusters:
-            hh, cc = np.nonzero(T >= 0)
-            ch = T[hh, cc]
+        if new_clusters:
+            ent = self._table >= 0
+            ch = self._table[ent]
             jj = det[ch]
             on = jj >= 0
-            np.add.at(target, jj[on], np.exp(w[hh[on]]) * np.where(parent[ch[on]] < 0, r_new[jj[on]], 1.0))
+            np.add.at(target, jj[on], np.exp(self._entry_w[ent][on]) * np.where(parent[ch[on]] < 0, r_new[jj[on]], 1.0))
         self.detection_target = target
-        for ids, T, w, dets, fl in new_clusters:
+        for ids, T, w, fl in new_clusters:
             R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
             rr = trk.r[np.maximum(R, 0)]
             faint = (R >= 0) & ~(rr >= trk.r_delete)  # (NaN included)
