@@ -32,9 +32,46 @@ import numpy as np
 
 from .murty import k_best_into
 
-__all__ = ["update_global_hypotheses", "NOBODY"]
+__all__ = ["update_global_hypotheses", "cluster_components", "NOBODY"]
 
 NOBODY = -2  # a table entry without a child
+
+
+@nb.njit(cache=True)
+def _root(parent, v):
+    while parent[v] != v:
+        parent[v] = parent[parent[v]]
+        v = parent[v]
+    return v
+
+
+@nb.njit(cache=True)
+def cluster_components(row_cluster, gated, C):
+    """The groups of a scan: connected components of the graph of C clusters and M detections (nodes 0..C−1 and
+    C..C+M−1) with an edge where a row of cluster ``row_cluster[i]`` (−1: none) gates detection j. Labels (C + M,)
+    numbered in order of each component's smallest node (as scipy's ``connected_components``)."""
+    N, M = gated.shape
+    parent = np.arange(C + M)
+    for i in range(N):
+        c = row_cluster[i]
+        if c < 0:
+            continue
+        for j in range(M):
+            if gated[i, j]:
+                a = _root(parent, c)
+                b = _root(parent, C + j)
+                if a != b:
+                    parent[max(a, b)] = min(a, b)
+    label = np.full(C + M, -1, dtype=np.int64)
+    comp = np.empty(C + M, dtype=np.int64)
+    n = 0
+    for v in range(C + M):
+        r = _root(parent, v)
+        if label[r] < 0:
+            label[r] = n
+            n += 1
+        comp[v] = label[r]
+    return comp
 
 
 @nb.njit(cache=True)

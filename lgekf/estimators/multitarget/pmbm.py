@@ -65,10 +65,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-
-from .global_hypotheses import NOBODY, update_global_hypotheses
+from .global_hypotheses import NOBODY, cluster_components, update_global_hypotheses
 from .settings import PMBM_DEFAULTS
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
@@ -245,7 +242,6 @@ class PMBM:
         # (ll is −inf outside the gates: so is logW; formed where needed, ``LogWeights``)
         with np.errstate(divide="ignore"):
             logW = LogWeights(ll, np.log(r * trk.pd) - logw0, -np.log(lamv / trk.angle_volume))
-        ai, aj = np.nonzero(gated)
         # clusters touching common detections -> groups (connected components of clusters and detections)
         # (cluster k < S: the one-Bernoulli cluster s_rows[k]; k ≥ S: multi[k − S])
         S = self.s_rows.size
@@ -256,10 +252,7 @@ class PMBM:
         shape11[:S] = True
         for k, c in enumerate(self.multi):
             row_cluster[c.rows[c.rows >= 0]] = S + k
-        sel = row_cluster[ai] >= 0
-        gc, gj = row_cluster[ai[sel]], aj[sel]
-        graph = coo_matrix((np.ones(gc.size), (gc, C + gj)), shape=(C + M, C + M))
-        _, comp = connected_components(graph, directed=False)
+        comp = cluster_components(row_cluster, gated, C)
         det_comp = comp[C:]
         cl_comp = comp[:C]
         n_cl = np.bincount(cl_comp, minlength=C + M)
@@ -419,6 +412,13 @@ class PMBM:
             trk.r[old], trk.ids[old], trk.on_prior[old] = 0.0, -1, False
         trk.r[missed] = r_parent[missed] * (1.0 - pdg) / (1.0 - r_parent[missed] * pdg)
         trk.r[child_row[hit]] = 1.0
+        # quiet Bernoullis missed below the deletion threshold (e.g. last scan's new Bernoullis of false alarms): gone
+        # before the new Bernoullis take rows (the bank's peak size, hence its gates' cost, stays near the live rows)
+        keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
+        faint_quiet = quiet_rows[~keep]
+        if faint_quiet.size:
+            bank.remove(faint_quiet)
+            trk.r[faint_quiet], trk.ids[faint_quiet], trk.on_prior[faint_quiet] = 0.0, -1, False
         lone_rows = np.zeros(0, dtype=np.int64)
         if born_det.size:  # new Bernoullis: the one-point prior at their detection, existence e/(e + λ)
             zj = Z[born_det]
@@ -433,7 +433,6 @@ class PMBM:
             trk.ids[new] = -1  # an id when a kept global hypothesis has it (below)
         self.undetected *= 1.0 - trk.pd
         # the clusters in rows; new Bernoullis get their ids; deletion; splitting
-        keep = (trk.r[quiet_rows] >= trk.r_delete) & np.isfinite(trk.r[quiet_rows])
         s_rows = [quiet_rows[keep], child_row[sure_child]]
         s_ids = [self.s_ids[quiet[keep]], self.s_ids[sure_k]]
         lone_rows = lone_rows[trk.r[lone_rows] >= trk.r_delete]  # (else removed below: no hypothesis uses them)
