@@ -50,3 +50,32 @@ def test_infeasible_and_empty():
     assert len(got) == 1 and got[0][1] == 0.0
     with pytest.raises(ValueError, match="R ≤ C"):
         k_best_assignments(np.zeros((3, 2)), 1)
+
+
+def test_best_assignment_is_scipys():
+    """The compiled shortest augmenting path (a transcription of scipy's) gives scipy's assignment, ties and forbidden
+    pairs included, and +inf where scipy finds none."""
+    from scipy.optimize import linear_sum_assignment
+
+    from lgekf.estimators.multitarget.murty import best_assignment
+
+    rng = np.random.default_rng(7)
+    for t in range(400):
+        R = int(rng.integers(1, 6))
+        C = int(rng.integers(R, 9))
+        cost = rng.normal(size=(R, C))
+        if t % 3 == 0:
+            cost = cost.round(0)  # many ties
+        cost[rng.random((R, C)) < 0.3 * (t % 2)] = np.inf
+        col = np.empty(R, dtype=np.int64)
+        got = best_assignment(cost, col)
+        try:
+            rows, ref = linear_sum_assignment(cost)
+        except ValueError:  # infeasible
+            assert got == np.inf
+            continue
+        if not np.isfinite(cost[rows, ref].sum()):
+            assert got == np.inf
+            continue
+        np.testing.assert_array_equal(col, ref)
+        assert got == pytest.approx(cost[rows, ref].sum(), abs=1e-12)

@@ -317,11 +317,13 @@ class PMBM:
     def _update_groups(self, groups, M, logW, gated, logw0, log_new):
         """The new global hypotheses of every group (``global_hypotheses.update_global_hypotheses``, one call) and
         their children: (parent row, detection) pairs numbered in order of first use (parent −1: born from the
-        detection; detection −1: the miss). Sets ``_child_parent``, ``_child_det``; returns per group (ids, table
-        of child indices (H', B + d), normalised log-weights (H',), flags (H',))."""
+        detection; detection −1: the miss). Sets ``_child_parent``, ``_child_det`` and ``_table`` (every group's
+        tables of child indices, (H', B + d) row-major, −1: none); returns per group (the B old Bernoullis' ids, its
+        tables' (start, end) in ``_table``, normalised log-weights (H',), flags (H',))."""
         G = len(groups)
         if G == 0:
-            self._child_parent = self._child_det = np.zeros(0, dtype=np.int64)
+            self._child_parent = self._child_det = self._table = np.zeros(0, dtype=np.int64)
+            self._entry_w = np.zeros(0)
             return []
         n_bern = np.array([g[0].size for g in groups], dtype=np.int64)
         n_hyp = np.array([g[2].size for g in groups], dtype=np.int64)
@@ -349,9 +351,7 @@ class PMBM:
         self._table = table
         out = []
         for g, (ids, _, _, _, gd) in enumerate(groups):
-            W = ids.size + gd.size
-            T = table[t_off[g]:t_off[g + 1]].reshape(-1, W)
-            out.append((list(ids) + [None] * gd.size, T, w[o_off[g]:o_off[g + 1]], fl[o_off[g]:o_off[g + 1]]))
+            out.append((ids, (t_off[g], t_off[g + 1]), w[o_off[g]:o_off[g + 1]], fl[o_off[g]:o_off[g + 1]]))
         return out
 
     def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
@@ -455,28 +455,27 @@ class PMBM:
             on = jj >= 0
             np.add.at(target, jj[on], np.exp(self._entry_w[ent][on]) * np.where(parent[ch[on]] < 0, r_new[jj[on]], 1.0))
         self.detection_target = target
-        for ids, T, w, fl in new_clusters:
-            R = np.where(T >= 0, child_row[np.maximum(T, 0)], -1)
-            rr = trk.r[np.maximum(R, 0)]
-            faint = (R >= 0) & ~(rr >= trk.r_delete)  # (NaN included)
-            deleted = bool(faint.any())
-            if deleted:  # a local hypothesis below the deletion threshold: the Bernoulli does not exist there
-                R[faint] = -1
-            keep_col = []
-            for b in range(R.shape[1]):
-                col = R[:, b]
-                ex = col >= 0
-                if not ex.any():
-                    continue
-                if ids[b] is None:
-                    ids[b] = trk.next_id
-                    trk.next_id += 1
-                trk.ids[col[ex]] = ids[b]
-                keep_col.append(b)
-            if not keep_col:
+        # the tables in bank rows (−1: does not exist); a local hypothesis below the deletion threshold: the Bernoulli
+        # does not exist there
+        R_all = np.where(self._table >= 0, child_row[np.maximum(self._table, 0)], -1)
+        faint_all = (R_all >= 0) & ~(trk.r[np.maximum(R_all, 0)] >= trk.r_delete)  # (NaN included)
+        R_all[faint_all] = -1
+        for ids, (t0, t1), w, fl in new_clusters:
+            B, W = ids.size, (t1 - t0) // w.size  # (at least one hypothesis per group)
+            R = R_all[t0:t1].reshape(-1, W)
+            deleted = bool(faint_all[t0:t1].any())
+            exists = (R >= 0).any(axis=0)
+            if not exists.any():
                 continue
-            R = R[:, keep_col]
-            cid = np.array([ids[b] for b in keep_col], dtype=np.int64)
+            cid = np.empty(W, dtype=np.int64)  # the Bernoullis' ids: old ones, then new ones in column order
+            cid[:B] = ids
+            fresh = np.flatnonzero(exists[B:])
+            cid[B + fresh] = np.arange(trk.next_id, trk.next_id + fresh.size)
+            trk.next_id += fresh.size
+            keep_col = np.flatnonzero(exists)
+            R, cid = R[:, keep_col], cid[keep_col]
+            on = R >= 0
+            trk.ids[R[on]] = np.broadcast_to(cid, R.shape)[on]
             if R.shape[0] == 1:
                 s_rows.append(R[0])
                 s_ids.append(cid)
