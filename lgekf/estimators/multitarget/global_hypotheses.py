@@ -30,19 +30,12 @@ import math
 import numba as nb
 import numpy as np
 
+from .jpda import _find as _root  # the union-find's root, with path halving
 from .murty import k_best_into
 
 __all__ = ["update_global_hypotheses", "cluster_components", "NOBODY"]
 
 NOBODY = -2  # a table entry without a child
-
-
-@nb.njit(cache=True)
-def _root(parent, v):
-    while parent[v] != v:
-        parent[v] = parent[parent[v]]
-        v = parent[v]
-    return v
 
 
 @nb.njit(cache=True)

@@ -19,10 +19,10 @@ density is a Poisson part (targets never detected) times a mixture of multi-Bern
   (P_G the gate probability; the tracker's JPDA weighs its joint events with the same factors);
 * **global hypotheses**: one local hypothesis per Bernoulli (or "does not exist", e.g. a new Bernoulli whose
   detection went to another target), each with a weight. The update of a global hypothesis h of weight w_h: the
-  k_h = ⌈N_h w_h⌉ best assignments of the scan's detections (N_h = ``max_hypotheses``; ``murty``, compiled with the rest of
-  the arithmetic in ``global_hypotheses``) on the cost matrix detections × (Bernoullis, one new-target-or-clutter
-  column per detection), costs
-  −log(r P_D N / ((1 − r P_D P_G) λ)) and −log((e + λ)/λ), forbidden outside the gates); the new weight is
+  k_h = ⌈N_h w_h⌉ best assignments of the scan's detections (N_h = ``max_hypotheses``; Murty's algorithm, ``murty``,
+  compiled with the rest of this arithmetic in ``global_hypotheses``) on the cost matrix detections × (Bernoullis, one
+  new-target-or-clutter column per detection), costs −log(r P_D N / ((1 − r P_D P_G) λ)) and −log((e + λ)/λ),
+  forbidden outside the gates); the new weight is
   w_h Π_b (1 − r_b P_D P_G) × exp(−cost) (up to the factor Π_j λ_j common to all). Then normalise, prune the
   global hypotheses of weight below ``hypothesis_prune``, keep at most ``max_hypotheses``, drop the local
   hypotheses no global hypothesis uses, and the Bernoullis whose existence is below ``delete_existence`` in every
