@@ -381,3 +381,24 @@ def test_dense_clutter_scene_as_the_python_implementation():
         rows += rep.ids.size
     assert float(np.mean(dist)) == pytest.approx(1.4828969866129447, abs=1e-9)
     assert (rows, trk.next_id, trk.pmbm.n_hypotheses()) == (488, 3314, 99)
+
+
+def test_compiled_merge_of_equal_hypotheses_is_np_unique():
+    """Equal global hypotheses merged by the compiled split (after a deletion) as by np.unique over the rows: the same
+    rows in the same order, weights log-summed, flags or-ed."""
+    from lgekf.estimators.multitarget.global_hypotheses import _merge_equal_hypotheses
+    from lgekf.estimators.multitarget.pmbm import _merge_duplicates
+
+    rng = np.random.default_rng(11)
+    merged = 0
+    for _ in range(200):
+        H, B = int(rng.integers(1, 9)), int(rng.integers(1, 4))
+        R = rng.integers(-1, 3, size=(H, B))
+        lw, fl = rng.normal(size=H), rng.random(H) < 0.3
+        R1, w1, f1 = _merge_equal_hypotheses(R, lw, fl)
+        R2, w2, f2 = _merge_duplicates(R, lw, fl)
+        merged += R2.shape[0] < H
+        np.testing.assert_array_equal(R1, R2)
+        np.testing.assert_allclose(w1, w2, rtol=0, atol=1e-12)
+        np.testing.assert_array_equal(f1, f2)
+    assert merged > 50

@@ -268,3 +268,155 @@ def update_global_hypotheses(h_off, rows, r_off, lw_in, fl_in, n_bern, d_off, de
         parent[m_out[g]:m_out[g] + u * W] = out_parent[t_off[g]:t_off[g] + u * W]
         det[m_out[g]:m_out[g] + u * W] = out_det[t_off[g]:t_off[g] + u * W]
     return n_out, lw, fl, m_out, parent, det
+
+
+@nb.njit(cache=True)
+def _rows_less(R, a, b):
+    """Row a of R before row b in lexicographic order (np.unique's order of rows)."""
+    for c in range(R.shape[1]):
+        if R[a, c] != R[b, c]:
+            return R[a, c] < R[b, c]
+    return False
+
+
+@nb.njit(cache=True)
+def _merge_equal_hypotheses(R, lw, fl):
+    """Global hypotheses with equal rows as one (weights added, flags or-ed), in np.unique's order of rows; unchanged
+    when all differ (``pmbm._merge_duplicates``)."""
+    H = R.shape[0]
+    order = np.arange(H)
+    for a in range(1, H):  # stable insertion sort by rows
+        k = order[a]
+        b = a - 1
+        while b >= 0 and _rows_less(R, k, order[b]):
+            order[b + 1] = order[b]
+            b -= 1
+        order[b + 1] = k
+    first = np.zeros(H, dtype=np.bool_)
+    n = 0
+    for a in range(H):
+        if a == 0 or _rows_less(R, order[a - 1], order[a]):
+            first[a] = True
+            n += 1
+    if n == H:
+        return R, lw, fl
+    R2 = np.empty((n, R.shape[1]), dtype=np.int64)
+    lw2 = np.empty(n)
+    fl2 = np.zeros(n, dtype=np.bool_)
+    u = -1
+    start = 0
+    for a in range(H + 1):
+        if a == H or first[a]:
+            if u >= 0:  # members order[start:a], summed in their original order
+                members = np.sort(order[start:a])
+                lw2[u] = _log_sum_exp(lw[members])
+                for k in members:
+                    fl2[u] = fl2[u] or fl[k]
+            if a == H:
+                break
+            u += 1
+            start = a
+            R2[u] = R[order[a]]
+    return R2, lw2, fl2
+
+
+@nb.njit(cache=True)
+def split_clusters(R_all, faint, t_off, o_off, n_bern, ids, ids_off, lw, fl, next_id, row_ids, log_bonus):
+    """The new clusters of G groups from their tables in bank rows (``update_global_hypotheses``' tables, children
+    replaced by their rows, −1 where the Bernoulli does not exist; ``faint``: set to −1 by the deletion threshold):
+    columns that exist nowhere dropped, the new Bernoullis' ids (from next_id, in column order) written to
+    ``row_ids``, equal hypotheses merged (only after a deletion), and every column with the same local hypothesis in
+    all hypotheses split off as a one-Bernoulli cluster (exact: the weights do not depend on it). The reported
+    hypothesis: argmax of lw + log_bonus·(descends from the last reported one) (``pmbm._choose``).
+
+    Returns (single rows, single ids, multi ids, multi id offsets, multi rows (H, B) row-major, multi row offsets,
+    multi lw, multi lw offsets, multi chosen, next_id)."""
+    G = n_bern.size
+    cap = R_all.size
+    s_rows = np.empty(cap, dtype=np.int64)
+    s_ids = np.empty(cap, dtype=np.int64)
+    m_ids = np.empty(cap, dtype=np.int64)
+    m_rows = np.empty(cap, dtype=np.int64)
+    m_lw = np.empty(lw.size)
+    m_ids_off = np.zeros(G + 1, dtype=np.int64)
+    m_rows_off = np.zeros(G + 1, dtype=np.int64)
+    m_lw_off = np.zeros(G + 1, dtype=np.int64)
+    m_chosen = np.empty(G, dtype=np.int64)
+    ns = 0
+    nm = 0
+    for g in range(G):
+        H = o_off[g + 1] - o_off[g]
+        W = (t_off[g + 1] - t_off[g]) // H
+        B = n_bern[g]
+        R = R_all[t_off[g]:t_off[g + 1]].reshape((H, W))
+        deleted = False
+        for x in faint[t_off[g]:t_off[g + 1]]:
+            deleted = deleted or x
+        keep = np.zeros(W, dtype=np.int64)
+        cid = np.empty(W, dtype=np.int64)
+        nk = 0
+        for c in range(W):
+            ex = False
+            for h in range(H):
+                ex = ex or R[h, c] >= 0
+            if not ex:
+                continue
+            if c < B:
+                cid[nk] = ids[ids_off[g] + c]
+            else:
+                cid[nk] = next_id
+                next_id += 1
+            keep[nk] = c
+            nk += 1
+        if nk == 0:
+            continue
+        Rk = np.empty((H, nk), dtype=np.int64)
+        for h in range(H):
+            for a in range(nk):
+                Rk[h, a] = R[h, keep[a]]
+                if Rk[h, a] >= 0:
+                    row_ids[Rk[h, a]] = cid[a]
+        if H == 1:
+            for a in range(nk):
+                s_rows[ns] = Rk[0, a]
+                s_ids[ns] = cid[a]
+                ns += 1
+            continue
+        w = lw[o_off[g]:o_off[g + 1]].copy()
+        f = fl[o_off[g]:o_off[g + 1]].copy()
+        if deleted:  # (distinct assignments give distinct children: equal hypotheses only after a deletion)
+            Rk, w, f = _merge_equal_hypotheses(Rk, w, f)
+            H = Rk.shape[0]
+        w = w - _log_sum_exp(w)
+        multi = np.empty(nk, dtype=np.int64)
+        nmc = 0
+        for a in range(nk):
+            const = Rk[0, a] >= 0
+            for h in range(1, H):
+                const = const and Rk[h, a] == Rk[0, a]
+            if const:
+                s_rows[ns] = Rk[0, a]
+                s_ids[ns] = cid[a]
+                ns += 1
+            else:
+                multi[nmc] = a
+                nmc += 1
+        if nmc == 0:
+            continue
+        m_ids_off[nm + 1] = m_ids_off[nm] + nmc
+        m_rows_off[nm + 1] = m_rows_off[nm] + H * nmc
+        m_lw_off[nm + 1] = m_lw_off[nm] + H
+        for a in range(nmc):
+            m_ids[m_ids_off[nm] + a] = cid[multi[a]]
+        for h in range(H):
+            for a in range(nmc):
+                m_rows[m_rows_off[nm] + h * nmc + a] = Rk[h, multi[a]]
+        best = 0
+        for h in range(H):
+            m_lw[m_lw_off[nm] + h] = w[h]
+            if w[h] + log_bonus * f[h] > w[best] + log_bonus * f[best]:
+                best = h
+        m_chosen[nm] = best
+        nm += 1
+    return (s_rows[:ns], s_ids[:ns], m_ids, m_ids_off[:nm + 1], m_rows, m_rows_off[:nm + 1], m_lw, m_lw_off[:nm + 1],
+            m_chosen[:nm], next_id)

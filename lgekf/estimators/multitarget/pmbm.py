@@ -65,7 +65,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from .global_hypotheses import NOBODY, cluster_components, update_global_hypotheses
+from .global_hypotheses import NOBODY, cluster_components, split_clusters, update_global_hypotheses
 from .settings import PMBM_DEFAULTS
 
 __all__ = ["PMBM", "Cluster", "PMBM_DEFAULTS", "BEST_HYSTERESIS"]
@@ -324,7 +324,7 @@ class PMBM:
         if G == 0:
             self._child_parent = self._child_det = self._table = np.zeros(0, dtype=np.int64)
             self._entry_w = np.zeros(0)
-            return []
+            return None
         n_bern = np.array([g[0].size for g in groups], dtype=np.int64)
         n_hyp = np.array([g[2].size for g in groups], dtype=np.int64)
         n_det = np.array([g[4].size for g in groups], dtype=np.int64)
@@ -349,10 +349,8 @@ class PMBM:
         self._child_parent, self._child_det = vp[first[order]], vd[first[order]]
         self._entry_w = np.repeat(w, np.repeat(n_bern + n_det, np.diff(o_off)))  # each table entry's hypothesis weight
         self._table = table
-        out = []
-        for g, (ids, _, _, _, gd) in enumerate(groups):
-            out.append((ids, (t_off[g], t_off[g + 1]), w[o_off[g]:o_off[g + 1]], fl[o_off[g]:o_off[g + 1]]))
-        return out
+        ids = np.concatenate([g[0] for g in groups]).astype(np.int64)
+        return ids, np.concatenate([[0], np.cumsum(n_bern)]), t_off, o_off, w, fl, n_bern
 
     def _apply(self, t, Z, lamv, e, new_clusters, quiet, d2):
         """The bank operations of all children at once, then the clusters in bank rows, deletion and splitting."""
@@ -448,7 +446,7 @@ class PMBM:
         target = np.zeros(Z.shape[0])
         target[lone] = r_new[lone]
         target[sure_det] = 1.0
-        if new_clusters:
+        if new_clusters is not None:
             ent = self._table >= 0
             ch = self._table[ent]
             jj = det[ch]
@@ -460,35 +458,18 @@ class PMBM:
         R_all = np.where(self._table >= 0, child_row[np.maximum(self._table, 0)], -1)
         faint_all = (R_all >= 0) & ~(trk.r[np.maximum(R_all, 0)] >= trk.r_delete)  # (NaN included)
         R_all[faint_all] = -1
-        for ids, (t0, t1), w, fl in new_clusters:
-            B, W = ids.size, (t1 - t0) // w.size  # (at least one hypothesis per group)
-            R = R_all[t0:t1].reshape(-1, W)
-            deleted = bool(faint_all[t0:t1].any())
-            exists = (R >= 0).any(axis=0)
-            if not exists.any():
-                continue
-            cid = np.empty(W, dtype=np.int64)  # the Bernoullis' ids: old ones, then new ones in column order
-            cid[:B] = ids
-            fresh = np.flatnonzero(exists[B:])
-            cid[B + fresh] = np.arange(trk.next_id, trk.next_id + fresh.size)
-            trk.next_id += fresh.size
-            keep_col = np.flatnonzero(exists)
-            R, cid = R[:, keep_col], cid[keep_col]
-            on = R >= 0
-            trk.ids[R[on]] = np.broadcast_to(cid, R.shape)[on]
-            if R.shape[0] == 1:
-                s_rows.append(R[0])
-                s_ids.append(cid)
-                continue
-            if deleted:  # (distinct assignments give distinct children: equal hypotheses only after a deletion)
-                R, w, fl = _merge_duplicates(R, w, fl)
-            w = w - _logsumexp(w)
-            const = np.all(R == R[:1], axis=0)
-            split = const & (R[0] >= 0)  # the same local hypothesis in every global hypothesis: a cluster of its own
-            s_rows.append(R[0, split])
-            s_ids.append(cid[split])
-            if not split.all():
-                clusters.append(Cluster(cid[~split], R[:, ~split], w, _choose(w, fl)))
+        if new_clusters is not None:
+            ids, ids_off, t_off, o_off, w, fl, n_bern = new_clusters
+            (g_rows, g_ids, m_ids, m_ids_off, m_rows, m_rows_off, m_lw, m_lw_off, m_chosen,
+             trk.next_id) = split_clusters(R_all, faint_all, t_off, o_off, n_bern, ids, ids_off, w, fl, trk.next_id,
+                                           trk.ids, math.log(BEST_HYSTERESIS))
+            s_rows.append(g_rows)
+            s_ids.append(g_ids)
+            for k in range(m_chosen.size):
+                H = m_lw_off[k + 1] - m_lw_off[k]
+                clusters.append(Cluster(m_ids[m_ids_off[k]:m_ids_off[k + 1]],
+                                        m_rows[m_rows_off[k]:m_rows_off[k + 1]].reshape(H, -1),
+                                        m_lw[m_lw_off[k]:m_lw_off[k + 1]], int(m_chosen[k])))
         self.multi = clusters
         self.s_rows = np.concatenate(s_rows).astype(np.int64)
         self.s_ids = np.concatenate(s_ids).astype(np.int64)
