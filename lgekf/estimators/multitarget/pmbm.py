@@ -274,19 +274,38 @@ class PMBM:
         busy_mask = ~quiet_mask
         busy_mask[pair[sure]] = False
         busy = np.flatnonzero(busy_mask)
-        groups = []  # per group of merged clusters: ids, the hypotheses' rows, log-weights, flags; detections
-        if busy.size:
-            order = np.argsort(cl_comp[busy], kind="stable")
-            ks_sorted = busy[order]
-            comps = cl_comp[ks_sorted]
-            cuts = np.flatnonzero(np.diff(comps)) + 1
-            dorder = np.argsort(det_comp, kind="stable")
-            dcomp = det_comp[dorder]
-            for ks in np.split(ks_sorted, cuts):
-                cc = cl_comp[ks[0]]
-                lo, hi = np.searchsorted(dcomp, cc), np.searchsorted(dcomp, cc, side="right")
-                groups.append(self._product([self._cluster(k) for k in ks]) + (np.sort(dorder[lo:hi]),))
-        return self._apply(t, Z, lamv, e, self._update_groups(groups, M, logW, gated, logw0, log_new), quiet, d2)
+        # the groups: busy clusters sorted by component (the detections of a component follow in index order)
+        order = np.argsort(cl_comp[busy], kind="stable")
+        ks_sorted = busy[order]
+        comps = cl_comp[ks_sorted]
+        starts = np.concatenate([[0], np.flatnonzero(np.diff(comps)) + 1]) if busy.size else np.zeros(0, dtype=np.int64)
+        dorder = np.argsort(det_comp, kind="stable")
+        dcomp = det_comp[dorder]
+        g_comp = comps[starts]
+        n_det = np.searchsorted(dcomp, g_comp, side="right") - np.searchsorted(dcomp, g_comp)
+        dets = dorder[np.isin(dcomp, g_comp)]
+        groups = self._groups(ks_sorted, starts)
+        return self._apply(t, Z, lamv, e, self._update_groups(groups, dets, n_det, M, logW, gated, logw0, log_new),
+                           quiet, d2)
+
+    def _groups(self, ks_sorted, starts):
+        """Per group of merged clusters (cluster numbers ``ks_sorted[starts[g]:starts[g + 1]]``, ``scan``'s
+        numbering): (ids, rows (H, B), log-weights (H,), flags (H,)), the product of the clusters' hypotheses."""
+        S = self.s_rows.size
+        ends = np.append(starts[1:], ks_sorted.size)
+        one, flag = np.zeros(1), np.ones(1, dtype=bool)
+        out = []
+        for a, b in zip(starts.tolist(), ends.tolist()):
+            if b - a == 1:
+                k = int(ks_sorted[a])
+                if k < S:  # a one-Bernoulli one-hypothesis cluster, from its arrays
+                    out.append((self.s_ids[k:k + 1], self.s_rows[k:k + 1], one, flag))
+                else:
+                    c = self.multi[k - S]
+                    out.append((c.ids, c.rows, c.lw, c.chosen_flags()))
+            else:
+                out.append(self._product([self._cluster(k) for k in ks_sorted[a:b]]))
+        return out
 
     def _cluster(self, k):
         """Cluster k of ``scan``'s numbering as a ``Cluster``."""
@@ -314,8 +333,9 @@ class PMBM:
                 rows, lw, fl = rows[keep], lw[keep], fl[keep]
         return ids, rows, lw, fl
 
-    def _update_groups(self, groups, M, logW, gated, logw0, log_new):
-        """The new global hypotheses of every group (``global_hypotheses.update_global_hypotheses``, one call) and
+    def _update_groups(self, groups, dets, n_det, M, logW, gated, logw0, log_new):
+        """The new global hypotheses of every group (``_groups``; their detections ``dets``, n_det of each, in group
+        order) (``global_hypotheses.update_global_hypotheses``, one call) and
         their children: (parent row, detection) pairs numbered in order of first use (parent −1: born from the
         detection; detection −1: the miss). Sets ``_child_parent``, ``_child_det`` and ``_table`` (every group's
         tables of child indices, (H', B + d) row-major, −1: none); returns per group (the B old Bernoullis' ids, its
@@ -327,14 +347,14 @@ class PMBM:
             return None
         n_bern = np.array([g[0].size for g in groups], dtype=np.int64)
         n_hyp = np.array([g[2].size for g in groups], dtype=np.int64)
-        n_det = np.array([g[4].size for g in groups], dtype=np.int64)
         h_off = np.concatenate([[0], np.cumsum(n_hyp)])
         r_off = np.concatenate([[0], np.cumsum(n_hyp * n_bern)])
         d_off = np.concatenate([[0], np.cumsum(n_det)])
         rows = np.concatenate([g[1].reshape(-1) for g in groups]).astype(np.int64)
         lw = np.concatenate([g[2] for g in groups]).astype(float)
         fl = np.concatenate([g[3] for g in groups])
-        dets = np.concatenate([g[4] for g in groups]).astype(np.int64)
+        dets = dets.astype(np.int64)
+        n_det = n_det.astype(np.int64)
         o_off, w, fl, t_off, parent, det = update_global_hypotheses(
             h_off, rows, r_off, lw, fl, n_bern, d_off, dets, logW.ll, gated, logW.a, logW.b, logw0, log_new,
             self.max_hypotheses, math.log(self.hypothesis_prune))
