@@ -141,7 +141,12 @@ def read_track_input(a):
             print(f"lgekf track: warning: {line}", file=sys.stderr)
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
-    if meas.heading is not None and meas.heading.ndim == 2:  # 3-D: roll, pitch, yaw; the unit is told by the yaw
+    if meas.quaternion and a.heading_unit == "deg":
+        raise ValueError("--heading-unit deg: the attitude is a quaternion (qw, qx, qy, qz), which has no unit; leave "
+                         "--heading-unit out")
+    if meas.quaternion:
+        pass  # roll, pitch, yaw of the quaternion (``lgekf.io.attitude``): radians
+    elif meas.heading is not None and meas.heading.ndim == 2:  # 3-D: roll, pitch, yaw; the unit is told by the yaw
         yaw = meas.heading[:, 2]
         meas.heading = meas.heading if heading_in_radians(yaw, a.heading_unit, meas.z, starts) is yaw else np.radians(meas.heading)
     elif meas.heading is not None:
