@@ -145,7 +145,7 @@ def track_parser():
     g.add_argument("--detection-prob", type=float, default=None,
                    help=f"probability of detecting an object in a scan (default {MULTI_DEFAULTS['detection_prob']})")
     g.add_argument("--clutter-density", type=float, default=None,
-                   help="expected false alarms per m² per scan, the same everywhere and always (default: estimated from "
+                   help="expected false alarms per m² (per m³ on 3-D detections) per scan, the same everywhere and always (default: estimated from "
                         "the data, --clutter)")
     g.add_argument("--clutter", default=None, choices=list(CLUTTER_SOURCES),
                    help="without --clutter-density, how the tracker estimates it: map = a spatial clutter map times the "

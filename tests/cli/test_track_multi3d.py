@@ -168,3 +168,23 @@ def test_bad_multi_3d_input_is_one_line_and_exit_2(tmp_path, capsys, case):
     lines = err.strip().splitlines()
     assert len(lines) == 1 and msg in lines[0], err
     assert not out.exists()
+
+
+def test_bank_gate_of_a_pose3_detection_is_the_filter_nis():
+    """The multi-target bank's d² = eᵀS⁻¹e of a pose3 detection (R = diag(r_p² I₃, r_a² I₃) from the two stds, by
+    ``noise_inputs``) equals the NIS of the single-object se3r6 filter's update from the same state (the class API:
+    an independent code path)."""
+    from lgekf.estimators.multitarget.bank import ModelBank
+
+    rng = np.random.default_rng(0)
+    x0 = np.array([1, 2, 3, 0.2, -0.1, 0.7, 5, 0.3, -0.2, 0.1, 0.2, -0.1])
+    A = rng.standard_normal((12, 12))
+    P0 = 0.01 * (A @ A.T) + 0.01 * np.eye(12)
+    z = np.array([1.3, 2.2, 2.9, 0.25, -0.05, 0.75])
+    f = lgekf.make_filter("se3r6", dt=0.1, accel_std=(0.5, 1.0), meas_std=(0.3, 0.1), x0=x0, P0=P0, measurement="pose3")
+    f.update(z)
+    bank = ModelBank("se3r6", "pose3", (0.5, 1.0), (0.3, 0.1), capacity=2)
+    bank.add(x0[None], P0[None])
+    bank.gate(z[None], 100.0)
+    np.testing.assert_allclose(np.diag(bank.R), [0.09] * 3 + [0.01] * 3)
+    assert bank.d2[0, 0] == pytest.approx(f.nis, rel=1e-12)
