@@ -49,8 +49,8 @@ class TrackEstimator:
         return read_track_input(self.a)
 
     def adopt_space(self, meas) -> None:
-        """After reading: refuse an input whose space the estimator does not track (the IMM and the multi-target
-        tracker: the plane only, yet); ``ModelsTrack`` selects its models by the space."""
+        """After reading: refuse an input whose space the estimator does not track (the IMM: the plane only, yet);
+        ``ModelsTrack`` and ``MultiTrack`` select their models by the space."""
         space = space_of_positions(meas.z.shape[1])
         if space != DEFAULT_SPACE:
             raise ValueError(f"{'--multi' if self.a.multi else '--model imm'}: tracks in the plane only (yet); the input "

@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 from scipy import integrate, stats
+from _cli import track_error_line
 
 import lgekf
 from lgekf.apps.track_multi import nearest_distance_quartile
@@ -159,15 +160,7 @@ BAD = {
 @pytest.mark.parametrize("case", sorted(BAD))
 def test_bad_multi_3d_input_is_one_line_and_exit_2(tmp_path, capsys, case):
     text, args, msg = BAD[case]
-    src = tmp_path / "in.csv"
-    src.write_text(text)
-    out = tmp_path / "out.csv"
-    status = main(["track", str(src), "--multi", "-o", str(out), *args])
-    err = capsys.readouterr().err
-    assert status == 2, err
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and msg in lines[0], err
-    assert not out.exists()
+    assert msg in track_error_line(tmp_path, capsys, text, ["--multi", *args])
 
 
 def test_bank_gate_of_a_pose3_detection_is_the_filter_nis():

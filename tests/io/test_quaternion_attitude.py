@@ -12,9 +12,9 @@ import math
 import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
+from _cli import track_error_line
 
 import lgekf
-from lgekf.cli import main
 from lgekf.io.attitude import euler_of_quaternion
 from lgekf.io.readers import DataError, read_csv
 
@@ -118,15 +118,7 @@ BAD = {
 @pytest.mark.parametrize("case", sorted(BAD))
 def test_malformed_quaternions_are_one_line_and_exit_2(tmp_path, capsys, case):
     text, args, msg = BAD[case]
-    src = tmp_path / "in.csv"
-    src.write_text(text)
-    out = tmp_path / "out.csv"
-    status = main(["track", str(src), "-o", str(out), "--measure", "pose", *args])
-    err = capsys.readouterr().err
-    assert status == 2, err
-    lines = err.strip().splitlines()
-    assert len(lines) == 1 and msg in lines[0], err
-    assert not out.exists()
+    assert msg in track_error_line(tmp_path, capsys, text, ["--measure", "pose", *args])
 
 
 def test_reader_refuses_a_zero_quaternion_naming_its_line(tmp_path):
