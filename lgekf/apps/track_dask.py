@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..io.attitude import QUATERNION_COLUMNS
 from ..io.files import is_stdio, source_name
 from ..io.geo import max_scale_error
 from ..io.readers import DataError, csv_header, header_keys, measurements_from_columns, parse_number_column
@@ -42,7 +43,8 @@ __all__ = ["TrackSource", "open_source", "plan_partitions", "track_partitions", 
 
 PARTITION_ROWS = 1 << 18
 SAMPLE_ROWS = 1 << 13
-NUMERIC = ("t", "x", "y", "lat", "lon", "heading")
+# the numeric columns read (3-D: z or alt, and a pose's attitude: roll, pitch, heading (yaw) or a quaternion)
+NUMERIC = ("t", "x", "y", "z", "lat", "lon", "alt", "roll", "pitch", "heading", *QUATERNION_COLUMNS)
 PARQUET_SUFFIXES = (".parquet", ".pq")
 MIN_BLOCK_BYTES = 1 << 10
 MAX_BLOCK_BYTES = 1 << 28
@@ -175,25 +177,26 @@ def _scan(df, kind: str):
 
 
 def _first_row(src: TrackSource):
-    """(lat, lon) of the file's first data row, as ``read_csv`` takes the origin of its projection."""
+    """(lat, lon) of the file's first data row, as ``read_csv`` takes the origin of its projection; (lat, lon, alt)
+    with an alt column (3-D: east, north, up of the first fix)."""
     import csv
 
     from ..io.files import open_input
 
+    keys = ("lat", "lon", "alt") if "alt" in src.columns else ("lat", "lon")
     if src.kind == "parquet":
         import pyarrow.dataset as pads
 
-        head = pads.dataset(src.path, format="parquet").head(1, columns=[src.columns["lat"], src.columns["lon"]])
-        return float(head.column(0)[0].as_py()), float(head.column(1)[0].as_py())
+        head = pads.dataset(src.path, format="parquet").head(1, columns=[src.columns[k] for k in keys])
+        return tuple(float(head.column(i)[0].as_py()) for i in range(len(keys)))
     with open_input(src.path, DataError) as f:
         f.readline()
         for n, line in enumerate(f, src.first_line):
             if line.strip():
                 fields = line.split() if src.delimiter is None else next(csv.reader([line], delimiter=src.delimiter))
                 lines = np.array([n])
-                lat, lon = (fields[src.columns[k]] if src.columns[k] < len(fields) else "" for k in ("lat", "lon"))
-                return (float(parse_number_column(src.source, "lat", [lat], lines)[0]),
-                        float(parse_number_column(src.source, "lon", [lon], lines)[0]))
+                return tuple(float(parse_number_column(src.source, k, [fields[src.columns[k]] if src.columns[k] < len(fields)
+                                                                       else ""], lines)[0]) for k in keys)
     raise DataError(f"{src.source}: no measurements (the file has only a header line)")
 
 

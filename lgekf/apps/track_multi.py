@@ -1,6 +1,7 @@
 """`lgekf track --multi`: many objects from unlabelled detections with clutter and misses.
 
-Input: the rows of a detection file (``t, x, y`` [, ``heading``]; an ``id`` column is ignored), ordered by
+Input: the rows of a detection file (``t, x, y`` [, ``heading``]; in 3-D ``t, x, y, z`` (or ``lat, lon, alt``) [, the
+attitude]; an ``id`` column is ignored), ordered by
 t (stably). Every scan goes through ``lgekf.estimators.multitarget.tracker.MultiTargetTracker``. Output: one row per
 confirmed track per scan, ``track, t, <state>, std_<state>, existence`` (t the scan's time, the model's
 physical state, the stds of its tangent coordinates, the existence probability).
@@ -45,7 +46,7 @@ detections is near the truth). Hence:
 
 1. s starts at an over-estimate from the data (``provisional_meas_std``): the lower quartile of the
    distance from a detection to the nearest one of the previous scan, over 1.07 (the lower quartile of that
-   distance for a still object without clutter, 2σ·√(ln 4/3)); motion and misses make it larger, and false
+   distance for a still object without clutter, 2σ·√(ln 4/3); 1.56σ in 3-D: ``nearest_distance_quartile``); motion and misses make it larger, and false
    alarms, which are mostly farther from their nearest neighbour, too (the quartile, not the median, so that
    scenes with more false alarms than target detections stay within a few times the truth);
 2. each pass tracks at (s, q) and estimates e from the held detections, and the process noise q from the
@@ -77,7 +78,7 @@ import numba as nb
 import numpy as np
 
 from ..core.initiation import DEFAULT_OMEGA_STD
-from ..core.registry import BASE_MEASUREMENT, get_measurement, get_model
+from ..core.registry import BASE_MEASUREMENT, SPACES, get_measurement, get_model
 from ..estimators.multitarget.clutter import ClutterMap, bounding_box_density
 from ..estimators.multitarget.tracker import HEADING_CAP, IMM_MODEL, MultiTargetTracker
 from ..io.formatting import format_rows, label_bytes, output_digits
@@ -85,12 +86,12 @@ from .defaults import NoisePlan, plan_noise
 from .divergence import KIND_NAMES
 from .multi_monitor import MultiMonitor, track_speed_course
 from .noise import MIN_MEAS_STD, chord_speeds, measurement_std
-from .track import MOTION_COLUMNS
+from .track import MOTION_COLUMNS, motion_columns
 
 __all__ = [
     "Scans", "scans", "scan_window_from_data", "estimated_clutter_density", "provisional_meas_std", "MultiRun",
     "track_scans", "NoiseFit", "fit_noise", "no_track_reason", "fastest_track_speed", "multi_alarm_line", "clutter_line",
-    "multi_output_columns",
+    "multi_output_columns", "volume_unit", "nearest_distance_quartile",
     "write_multi", "SCAN_GAP_RATIO", "MAX_PASSES", "AGREE", "RESTART", "MIN_HELD",
 ]
 
@@ -100,11 +101,24 @@ SCAN_CHECK_GROUPS = 200  # scan_window_from_data: groups whose nearest-neighbour
 SCAN_CHECK_ROWS = 256  # ... and rows of each group
 SCAN_SPACING_RATIO = 2.0  # ... a group's detections this much farther apart than from the previous group's: scans
 PROVISIONAL_PAIRS = 2000  # provisional_meas_std: consecutive scan pairs looked at, at most (evenly spread)
-RAYLEIGH_QUARTILE = 2.0 * math.sqrt(math.log(4.0 / 3.0))  # lower quartile of |z1 − z0|/σ, z0, z1 ~ N(·, σ² I₂): 1.0727
 MAX_PASSES = 5  # fit_noise: tracking passes at most
 AGREE = 1.25  # fit_noise: e within s/AGREE .. s·AGREE: s agrees with the data
 RESTART = 4.0  # fit_noise: s below the truth: start again from RESTART·e
 MIN_HELD = 4  # a confirmed track's held detections enter the noise estimate from this many on (one 4-point window)
+
+
+def nearest_distance_quartile(dim: int) -> float:
+    """The lower quartile of |z1 − z0|/σ for z0, z1 ~ N(·, σ² I_d): |z1 − z0|/(√2 σ) is χ-distributed with d degrees
+    of freedom, so √2·√(χ²_d quantile of 1/4) = √(4 P⁻¹(d/2, 1/4)) (P the regularised lower incomplete gamma
+    function): 2√(ln 4/3) = 1.0727 in the plane (the Rayleigh quartile), 1.5572 in 3-D."""
+    from scipy.special import gammaincinv
+
+    return math.sqrt(4.0 * float(gammaincinv(0.5 * dim, 0.25)))
+
+
+def volume_unit(dim: int) -> str:
+    """The unit of a clutter density's volume: m² in the plane, m³ in 3-D space."""
+    return {2: "m²", 3: "m³"}[dim]
 
 
 @dataclass
@@ -169,27 +183,27 @@ def scans(t: np.ndarray, window: float = 0.0) -> Scans:
 def _nearest_medians(ts, zs, first_row, sample):
     """Median distance from a detection to the nearest detection of *another time in its own group* and median
     distance from a detection to the nearest detection of the *previous group*, over the groups ``sample``
-    (rows sorted by time ts, positions zs (N, 2), group g = rows first_row[g]:first_row[g + 1]; of a group
+    (rows sorted by time ts, positions zs (N, d), group g = rows first_row[g]:first_row[g + 1]; of a group
     longer than ``SCAN_CHECK_ROWS`` rows its first ones, of the previous group its last ones)."""
     within, between = [], []
     for g in sample:
         a, b = first_row[g], min(first_row[g + 1], first_row[g] + SCAN_CHECK_ROWS)
         z, tt = zs[a:b], ts[a:b]
-        d = np.hypot(z[:, None, 0] - z[None, :, 0], z[:, None, 1] - z[None, :, 1])
+        d = np.linalg.norm(z[:, None, :] - z[None, :, :], axis=2)
         d[tt[:, None] == tt[None, :]] = np.inf  # the same time: not another detection of the scan
         near = d.min(axis=1)
         within.append(near[np.isfinite(near)])
         if g > 0:
             p = zs[max(first_row[g - 1], a - SCAN_CHECK_ROWS):a]
-            between.append(np.hypot(z[:, None, 0] - p[None, :, 0], z[:, None, 1] - p[None, :, 1]).min(axis=1))
+            between.append(np.linalg.norm(z[:, None, :] - p[None, :, :], axis=2).min(axis=1))
     w = np.concatenate(within) if within else np.zeros(0)
     v = np.concatenate(between) if between else np.zeros(0)
     return (float(np.median(w)) if w.size else math.nan), (float(np.median(v)) if v.size else math.nan)
 
 
 def scan_window_from_data(t: np.ndarray, z: np.ndarray) -> float:
-    """The default scan window (s) from the detection times t (N,) and positions z (N, ≥2) (module docstring): 0
-    when the data show no scan structure coarser than their distinct times."""
+    """The default scan window (s) from the detection times t (N,) and positions z (N, d) (module docstring; d = 2 in
+    the plane, 3 in 3-D space): 0 when the data show no scan structure coarser than their distinct times."""
     t = np.asarray(t, dtype=float)
     u = np.unique(t)
     g = np.diff(u)
@@ -198,7 +212,7 @@ def scan_window_from_data(t: np.ndarray, z: np.ndarray) -> float:
     gs = np.sort(g)
     ratio = gs[1:] / gs[:-1]
     order = np.argsort(t, kind="stable")
-    ts, zs = t[order], np.asarray(z, dtype=float)[order, :2]
+    ts, zs = t[order], np.asarray(z, dtype=float)[order]
     row_of_time = np.searchsorted(ts, u)  # first row of each distinct time
     for k in np.flatnonzero(ratio >= SCAN_GAP_RATIO)[::-1][:MAX_BREAKS]:  # largest break value first
         tau, d = gs[k], gs[k + 1]
@@ -217,14 +231,15 @@ def scan_window_from_data(t: np.ndarray, z: np.ndarray) -> float:
 
 
 def estimated_clutter_density(sc: Scans, z: np.ndarray) -> float:
-    """Mean detections per scan / area of the detections' bounding box (per m² per scan, module docstring;
-    ``lgekf.estimators.multitarget.clutter.bounding_box_density``)."""
-    return bounding_box_density(z, sc.count)
+    """Mean detections per scan / area of the detections' bounding box (per m² per scan, per m³ for positions z
+    (N, 3); module docstring; ``lgekf.estimators.multitarget.clutter.bounding_box_density``)."""
+    return bounding_box_density(z, sc.count, z.shape[1])
 
 
-def provisional_meas_std(sc: Scans, z: np.ndarray) -> float | None:
+def provisional_meas_std(sc: Scans, z: np.ndarray, dim: int = 2) -> float | None:
     """The first pass's measurement std (m): the lower quartile of the distance from a detection to the nearest
-    detection of the previous scan, over ``RAYLEIGH_QUARTILE`` (module docstring), from at most
+    detection of the previous scan (positions: the first ``dim`` columns of z), over its value for a still object
+    without clutter (``nearest_distance_quartile``: 1.07 in the plane; module docstring), from at most
     ``PROVISIONAL_PAIRS`` consecutive scan pairs spread evenly over the data; None when no two consecutive scans
     both hold detections."""
     from scipy.spatial import cKDTree
@@ -235,13 +250,13 @@ def provisional_meas_std(sc: Scans, z: np.ndarray) -> float | None:
     pick = np.unique(np.linspace(0, K - 2, min(K - 1, PROVISIONAL_PAIRS)).astype(np.int64))
     dist = []
     for k in pick:
-        a = z[sc.order[sc.starts[k]:sc.starts[k + 1]], :2]
-        b = z[sc.order[sc.starts[k + 1]:sc.starts[k + 2]], :2]
+        a = z[sc.order[sc.starts[k]:sc.starts[k + 1]], :dim]
+        b = z[sc.order[sc.starts[k + 1]:sc.starts[k + 2]], :dim]
         if a.shape[0] and b.shape[0]:
             dist.append(cKDTree(a).query(b)[0])
     if not dist:
         return None
-    return max(float(np.quantile(np.concatenate(dist), 0.25)) / RAYLEIGH_QUARTILE, MIN_MEAS_STD)
+    return max(float(np.quantile(np.concatenate(dist), 0.25)) / nearest_distance_quartile(dim), MIN_MEAS_STD)
 
 
 @dataclass
@@ -269,7 +284,7 @@ class MultiRun:
     mu : ndarray, (R, M) or None
         With the IMM (``model="imm"``): the mode probabilities of each output row.
     clutter : ndarray, (K,)
-        The mean clutter density of every scan (``MultiTargetTracker.clutter_density``; per m² per scan).
+        The mean clutter density of every scan (``MultiTargetTracker.clutter_density``; per m² (m³ in 3-D) per scan).
     """
 
     ids: np.ndarray
@@ -403,9 +418,10 @@ class NoiseFit:
         if self.meas_source == "given":
             meas = f"meas-std {self.meas_std:.3g} m (given)"
         else:
+            dim = 2 if model == IMM_MODEL else SPACES[get_model(model).space]["dim"]
             first = ("no two consecutive scans hold detections" if self.provisional is None else
                      f"the first at the provisional {self.provisional:.3g} m: lower quartile of the distance to the previous "
-                     "scan's nearest detection / 1.07")
+                     f"scan's nearest detection / {nearest_distance_quartile(dim):.3g}")
             meas = f"meas-std {self.meas_std:.3g} m (not estimated; {n} tracking pass{'es' if n != 1 else ''}, {first})"
         if model == IMM_MODEL:  # the modes' noise: given as numbers or the models' defaults × their levels
             accel = "of the IMM's modes " + ", ".join(f"{m.name} {','.join(f'{v:.3g}' for v in m.accel_std)}"
@@ -433,11 +449,14 @@ def _held_plan(run: MultiRun, models: list, measurement: str, meas_std, accel_st
     stds}); None when no confirmed track holds ``MIN_HELD`` detections."""
     if run.held_starts.size < 2:
         return None
-    est = measurement_std(run.held_t, run.held_z, run.held_starts)
+    d = run.tracker.dim  # the detections' position coordinates; a pose's angles after them
+    est = measurement_std(run.held_t, run.held_z[:, :d], run.held_starts)
     if not est.usable:
         return None
-    heading = run.held_z[:, 2] if get_measurement(measurement).has_angle else None
-    plan = plan_noise(run.held_t, run.held_z[:, :2], run.held_starts, models, meas_std=est.meas_std if meas_std is None else meas_std,
+    heading = None
+    if get_measurement(measurement).has_angle:  # the plane's heading (H,), 3-D roll, pitch, yaw (H, 3)
+        heading = run.held_z[:, d] if run.held_z.shape[1] == d + 1 else run.held_z[:, d:]
+    plan = plan_noise(run.held_t, run.held_z[:, :d], run.held_starts, models, meas_std=est.meas_std if meas_std is None else meas_std,
                       accel_std=accel_std, omega_std=omega_std, heading_std=heading_std,
                       heading_cap=HEADING_CAP, heading=heading, measurement={m: measurement for m in models}, workers=1)
     plan.meas_source, plan.meas_estimate = ("data" if meas_std is None else "given"), est
@@ -519,7 +538,7 @@ def fit_noise(t, Z, sc: Scans, tracker_args: dict, *, meas_std: float | None = N
     args = {k: v for k, v in tracker_args.items() if k != "imm_modes"}
     provisional = None
     if meas_std is None:
-        provisional = provisional_meas_std(sc, Z)
+        provisional = provisional_meas_std(sc, Z, SPACES[get_measurement(measurement).space]["dim"])
         s = 1.0 if provisional is None else provisional  # fewer than two scans hold detections: nothing to track anyway
     else:
         s = float(meas_std)
@@ -650,7 +669,7 @@ def fastest_track_speed(run: MultiRun) -> float:
     held detections; 0 when there are none."""
     if run.held_starts.size < 2:
         return 0.0
-    c = chord_speeds(run.held_t, run.held_z[:, :2], run.held_starts)
+    c = chord_speeds(run.held_t, run.held_z[:, :run.tracker.dim], run.held_starts)
     best = 0.0
     for a, b in zip(run.held_starts[:-1], run.held_starts[1:]):
         v = c[a:b]
@@ -675,16 +694,18 @@ def clutter_line(run: MultiRun) -> str:
     """One line about the clutter density a run estimated (``MultiRun.clutter``, the tracker's ``ScanClutter`` or
     ``ClutterMap``): what it is, the median and range of the per-scan level, a map's densest cell, how to fix it."""
     est, lam = run.tracker.clutter, run.clutter
-    level = (f"median {np.median(lam):.3g} per m² per scan (range {lam.min():.3g} to {lam.max():.3g} over {lam.size} "
+    unit = volume_unit(run.tracker.dim)
+    level = (f"median {np.median(lam):.3g} per {unit} per scan (range {lam.min():.3g} to {lam.max():.3g} over {lam.size} "
              f"scan{'s' if lam.size != 1 else ''})") if lam.size else "no scan"
     peak = f", the densest cell {est.peak():.3g}x the mean" if isinstance(est, ClutterMap) and lam.size else ""
     return (f"clutter density from the data: {est.describe()} over the detections' bounding box "
-            f"({est.surveillance_area:.3g} m²), {level}{peak}; --clutter-density fixes it")
+            f"({est.surveillance_area:.3g} {unit}), {level}{peak}; --clutter-density fixes it")
 
 
 def multi_output_columns(model: str, modes=None) -> list:
     """The header: track, t, the model's state, std_<state>, speed, course (``multi_monitor.track_speed_course``: the
-    world velocity's size and direction, whatever the model's state), existence, flag (1 on a divergence alarm's rows,
+    world velocity's size and direction, whatever the model's state; a model of 3-D space also climb and turn_rate:
+    ``lgekf.apps.track.motion_columns``), existence, flag (1 on a divergence alarm's rows,
     ``lgekf.apps.multi_monitor``). The IMM (``IMM_MODEL``): the combined estimate in the common coordinates x, y, theta,
     vx, vy, omega (the state names of se2r3, as ``lgekf track --model imm``), and the mode probabilities mu_<mode> of
     its ``modes`` after course."""
@@ -692,10 +713,10 @@ def multi_output_columns(model: str, modes=None) -> list:
         from ..core.common import COMMON_NAMES
         from .track_imm import mode_columns
 
-        names, mu = list(COMMON_NAMES), mode_columns(modes)
+        names, mu, motion = list(COMMON_NAMES), mode_columns(modes), MOTION_COLUMNS  # the IMM: in the plane
     else:
-        names, mu = list(get_model(model).state_names), []
-    return ["track", "t", *names, *(f"std_{s}" for s in names), *MOTION_COLUMNS, *mu, "existence", "flag"]
+        names, mu, motion = list(get_model(model).state_names), [], motion_columns(model)
+    return ["track", "t", *names, *(f"std_{s}" for s in names), *motion, *mu, "existence", "flag"]
 
 
 def write_multi(fh, model: str, run: MultiRun, digits: int | None, z=None) -> None:

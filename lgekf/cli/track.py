@@ -115,8 +115,6 @@ class ModelsTrack(TrackEstimator):
         guess = get_model(self.a.model).space if self.a.model in ALL_MODELS else DEFAULT_SPACE
         self.resolve(space or guess, announce=self.space_known)
         check_cluster_options(self.a)
-        if self.space != DEFAULT_SPACE and cluster_requested(self.a):
-            raise ValueError("--workers/--scheduler: tracks in the plane only (yet); the input has 3-D positions")
 
     def resolve(self, space: str, announce: bool = True) -> None:
         """The models (``--model``, its default ``DEFAULT_MODELS[space]``, or ``all``: every model of ``space``), their

@@ -17,6 +17,7 @@ from ..io.readers import parse_delimiter
 from ..io.units import unit_warnings
 from .cluster import cluster_label
 from .progress import progress_bar, stderr_is_terminal
+from .track_pipeline import projection_line
 
 __all__ = ["cmd_track_dask"]
 
@@ -52,9 +53,7 @@ def cmd_track_dask(a, models, cfg, outs, measure, say, monitor=None) -> int:
                 bar.update(res.rows * len(models))
             files.commit()
     if src.projected:
-        say(f"lat, lon projected to x, y in metres east and north of ({plan.origin[0]!r}, {plan.origin[1]!r}) (the first row; local "
-            f"equirectangular on WGS84, scale error at most {100.0 * scale_error:.2g} % here); the output's origin_lat, origin_lon "
-            "columns hold it")
+        say(projection_line(plan.origin, scale_error))
     t, z, starts = _joined(samples)
     for w in unit_warnings(t, z, starts, a.time_unit, projected=src.projected, fmt="csv"):
         print(f"lgekf track: warning: {w} (from a sample of {t.size} rows)", file=sys.stderr)

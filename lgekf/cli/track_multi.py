@@ -11,12 +11,12 @@ import sys
 
 import numpy as np
 
-from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD
+from ..apps.track import DEFAULT_HEADING_STD, DEFAULT_MEAS_STD, default_model
 from ..apps.track_multi import (
     AGREE, clutter_line, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason, scan_window_from_data, scans,
-    write_multi,
+    volume_unit, write_multi,
 )
-from ..core.registry import MODELS, get_measurement
+from ..core.registry import ALL_MODELS, DEFAULT_SPACE, SPACES, get_measurement, get_model, measurement_in, models_of, space_of_positions
 from ..core.validate import positive_scalar
 from ..estimators.multitarget.clutter import DEFAULT_CLUTTER_SOURCE, clutter_from_data
 from ..estimators.multitarget.tracker import IMM_MODEL
@@ -26,7 +26,7 @@ from ..io.readers import named_columns, parse_delimiter, read_measurements, skip
 from ..io.units import to_seconds
 from .track_options import DEFAULT_MAX_SPEED, SPEED_WARN_FRACTION, column_names
 from .track_parquet import is_parquet
-from .track_pipeline import TrackEstimator, check_time_unit
+from .track_pipeline import SPACE_HINTS, SPACE_WORDS, TrackEstimator, check_time_unit, input_space
 from .alarms import misfit_line  # the same rule and words as `lgekf track`
 
 __all__ = ["MultiTrack", "read_multi_input"]
@@ -48,9 +48,10 @@ def _accel_std(items, model):
         raise ValueError(f"--accel-std: expected comma-separated numbers, got {text!r}") from None
 
 
-def _check_arguments(a):
+def _check_arguments(a, measure):
     """The multi-target options' errors before any reading (one line each, exit 2; --precision and the paths are
-    the pipeline's, ``lgekf.cli.track.check_track_arguments``; the IMM's modes and their measurement: the tracker's)."""
+    the pipeline's, ``lgekf.cli.track.check_track_arguments``; the IMM's modes and their measurement: the tracker's);
+    ``measure``: the measurement as the input's space measures it (``measurement_in``)."""
     if a.meas_std is not None:
         positive_scalar("meas-std", a.meas_std)
     if a.max_speed is not None:
@@ -65,7 +66,7 @@ def _check_arguments(a):
                              "e.g. se2r3:0.2/0.2/0.5)")
         return None
     q = _accel_std(a.accel_std, a.model)
-    MODELS[a.model].measurement(a.measure)
+    get_model(a.model).measurement(measure)
     return q
 
 
@@ -98,17 +99,43 @@ class MultiTrack(TrackEstimator):
 
     def __init__(self, a, say):
         super().__init__(a, say)
+        self.model_given = a.model is not None
         self.models = [a.model]  # one output file
 
     def check(self) -> None:
-        """Every argument error before any reading (one line each, exit 2); the tracker built once to check them."""
+        """Every argument error before any reading (one line each, exit 2); the tracker built once to check them. The
+        space of the input (x, y or x, y, z: ``input_space``, from its header) selects the default model and the
+        measurement; from stdin the space of ``--model`` (the plane without one) is assumed until the rows are read
+        (``adopt_space``)."""
         a = self.a
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--multi: Parquet input or output is not supported (yet); use CSV")
-        self.q = _check_arguments(a)
+        guess = get_model(a.model).space if a.model in ALL_MODELS else DEFAULT_SPACE
+        self.resolve(input_space(a) or guess)
+
+    def resolve(self, space: str) -> None:
+        """The model (``--model`` or the default of ``space``: ``default_model``), the measurement (``--measure`` as
+        ``space`` measures it) and the tracker's arguments for an input of ``space``; a model of another space, or the
+        IMM in a space whose models it does not mix (3-D, yet), is one error line."""
+        a = self.a
+        self.space = space
+        if not self.model_given:
+            a.model = default_model(space, a.measure)
+        elif a.model == IMM_MODEL and not SPACES[space]["mixes"]:
+            raise ValueError(f"--multi --model imm: the IMM mixes models of the plane only (yet), and the input has "
+                             f"{SPACE_HINTS[space]}; choose one of {', '.join(models_of(space))}")
+        elif a.model != IMM_MODEL and get_model(a.model).space != space:
+            raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[get_model(a.model).space]}, and the input has "
+                             f"{SPACE_HINTS[space]}; the models that fit: {', '.join(models_of(space))}")
+        self.models = [a.model]
+        own = get_measurement(a.measure).space
+        if own not in (space, DEFAULT_SPACE):  # position3 / pose3 named on a file of 2-D positions
+            raise ValueError(f"--measure {a.measure}: observes {SPACE_WORDS[own]}, and the input has {SPACE_HINTS[space]}")
+        self.measure = measurement_in(space, a.measure)
+        self.q = _check_arguments(a, self.measure)
         self.max_speed = DEFAULT_MAX_SPEED if a.max_speed is None else a.max_speed
         self.heading_std = DEFAULT_HEADING_STD if a.heading_std is None else a.heading_std
-        self.args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=a.measure,
+        self.args = dict(model=a.model, association=a.association, detection_prob=a.detection_prob, measurement=self.measure,
                          gate_prob=a.gate_prob, survival_prob=a.survival_prob, birth_existence=a.birth_existence,
                          initiation=a.initiation, birth_density=a.birth_density,
                          confirm_existence=a.confirm_existence, delete_existence=a.delete_existence,
@@ -124,7 +151,14 @@ class MultiTrack(TrackEstimator):
         from ..estimators.multitarget.tracker import MultiTargetTracker
 
         r = DEFAULT_MEAS_STD if a.meas_std is None else a.meas_std
-        MultiTargetTracker(**self.args, accel_std=self.q, meas_std=get_measurement(a.measure).stds(r, self.heading_std))
+        MultiTargetTracker(**self.args, accel_std=self.q, meas_std=get_measurement(self.measure).stds(r, self.heading_std))
+
+    def adopt_space(self, meas) -> None:
+        """After reading: the input's space from its positions (z (N, d)); an input whose space its header did not say
+        (stdin) re-resolves the model and the measurement."""
+        space = space_of_positions(meas.z.shape[1])
+        if space != self.space:
+            self.resolve(space)
 
     def compile_seconds(self):
         """The compile notice's estimate with the IMM (``lgekf.apps.warmup.imm_compile_seconds``); None otherwise."""
@@ -148,7 +182,7 @@ class MultiTrack(TrackEstimator):
         run is the output)."""
         a, say, args, q = self.a, self.say, self.args, self.q
         t = meas.t
-        self.Z = get_measurement(a.measure).columns(meas.z, meas.heading)
+        self.Z = get_measurement(self.measure).columns(meas.z, meas.heading)
         window = scan_window_from_data(t, meas.z) if a.scan_window is None else a.scan_window
         self.sc = sc = scans(t, window)
         if a.scan_window is None and window > 0:
@@ -156,14 +190,15 @@ class MultiTrack(TrackEstimator):
                 f"{np.unique(t).size} distinct times, {sc.count} scans, period {sc.period:.3g} s); --scan-window sets it")
         source = None if a.clutter_density is not None else a.clutter or DEFAULT_CLUTTER_SOURCE
         if source is not None:
-            args["clutter_density"] = clutter_from_data(source, meas.z, sc.count)
+            args["clutter_density"] = clutter_from_data(source, meas.z, sc.count, meas.z.shape[1])
         if source == "file":
-            say(f"clutter density {args['clutter_density']:.3g} per m² per scan (estimated: detections per scan / "
-                "bounding-box area; give --clutter-density to set it)")
+            box = "area" if meas.z.shape[1] == 2 else "volume"
+            say(f"clutter density {args['clutter_density']:.3g} per {volume_unit(meas.z.shape[1])} per scan (estimated: "
+                f"detections per scan / bounding-box {box}; give --clutter-density to set it)")
         fit_args = dict(heading_std=self.heading_std, omega_std=a.omega_std, monitor=monitor is not None)
         self.run, fit = fit_noise(t, self.Z, sc, args, meas_std=a.meas_std, accel_std=q, **fit_args)
         if a.meas_std is None or not self.noise_fixed:
-            say(fit.describe(a.model, q is not None, self.heading_std if get_measurement(a.measure).has_angle else None,
+            say(fit.describe(a.model, q is not None, self.heading_std if get_measurement(self.measure).has_angle else None,
                              a.heading_std is not None))
         if source in ("scan", "map"):
             say(clutter_line(self.run))

@@ -21,7 +21,6 @@ from .cluster import add_cluster_options
 __all__ = ["track_parser", "add_column_options", "column_names", "check_estimator_options", "check_imm_options",
            "MULTI_DEFAULTS", "DEFAULT_MAX_SPEED", "SPEED_WARN_FRACTION"]
 
-DEFAULT_PLANAR_MODEL = DEFAULT_MODELS["2d"]
 SPEED_WARN_FRACTION = 0.8  # --multi: a confirmed track this close to the default --max-speed is warned about
 DEFAULT_MAX_SPEED = 30.0  # m/s
 # the multi-target options (their parser default is None, so that "given" can be told from "default")
@@ -146,7 +145,7 @@ def track_parser():
     g.add_argument("--detection-prob", type=float, default=None,
                    help=f"probability of detecting an object in a scan (default {MULTI_DEFAULTS['detection_prob']})")
     g.add_argument("--clutter-density", type=float, default=None,
-                   help="expected false alarms per m² per scan, the same everywhere and always (default: estimated from "
+                   help="expected false alarms per m² (per m³ on 3-D detections) per scan, the same everywhere and always (default: estimated from "
                         "the data, --clutter)")
     g.add_argument("--clutter", default=None, choices=list(CLUTTER_SOURCES),
                    help="without --clutter-density, how the tracker estimates it: map = a spatial clutter map times the "
@@ -210,16 +209,11 @@ def check_estimator_options(a) -> None:
     option of the labelled-object estimators with it, an IMM option without ``--model imm``; then the multi-target
     defaults filled in."""
     check_imm_options(a)
-    if a.multi or a.model == "imm":  # the multi-target tracker and the IMM mix and track in the plane only (yet)
-        what = "--multi" if a.multi else "--model imm"
-        if a.model in ALL_MODELS and a.model not in MODELS:
-            raise ValueError(f"{what}: tracks in the plane only (yet); {a.model} is a model of 3-D space: "
-                             f"choose one of {', '.join(MODELS)}")
+    if a.model == "imm":  # the IMM mixes and tracks in the plane only (yet)
         if a.measure not in MEASUREMENTS:
-            raise ValueError(f"{what}: tracks in the plane only (yet); --measure {a.measure} observes 3-D space: "
+            raise ValueError(f"--model imm: tracks in the plane only (yet); --measure {a.measure} observes 3-D space: "
                              f"choose one of {', '.join(MEASUREMENTS)}")
-        if a.model is None:
-            a.model = DEFAULT_PLANAR_MODEL
+    # --multi without --model: the default model of the input's space (``MultiTrack.check``, from its header)
     if a.multi:
         given = [name for attr, default, name in SINGLE_ONLY if getattr(a, attr) != default]
         if a.model == "all":

@@ -27,7 +27,7 @@ from .memory import single_heap
 from .track_options import column_names
 from .track_parquet import is_parquet, read_parquet
 
-__all__ = ["TrackEstimator", "read_track_input", "frame_note", "check_time_unit", "input_space", "SPACE_WORDS", "SPACE_HINTS"]
+__all__ = ["TrackEstimator", "read_track_input", "frame_note", "projection_line", "check_time_unit", "input_space", "SPACE_WORDS", "SPACE_HINTS"]
 
 #: the spaces as the messages name them
 SPACE_WORDS = {"2d": "the plane", "3d": "3-D space"}
@@ -49,8 +49,8 @@ class TrackEstimator:
         return read_track_input(self.a)
 
     def adopt_space(self, meas) -> None:
-        """After reading: refuse an input whose space the estimator does not track (the IMM and the multi-target
-        tracker: the plane only, yet); ``ModelsTrack`` selects its models by the space."""
+        """After reading: refuse an input whose space the estimator does not track (the IMM: the plane only, yet);
+        ``ModelsTrack`` and ``MultiTrack`` select their models by the space."""
         space = space_of_positions(meas.z.shape[1])
         if space != DEFAULT_SPACE:
             raise ValueError(f"{'--multi' if self.a.multi else '--model imm'}: tracks in the plane only (yet); the input "
@@ -82,9 +82,16 @@ def frame_note(meas) -> str:
     """The stderr line saying that lat, lon were projected, about which origin and how accurately."""
     lat0, lon0 = meas.origin[:2]
     lat, _ = to_latlon(meas.z[:, 0], meas.z[:, 1], lat0, lon0)
-    err = 100.0 * max_scale_error(lat, lat0)
-    if len(meas.origin) == 3:
-        return (f"lat, lon, alt projected to x, y, z in metres east, north and up of ({lat0!r}, {lon0!r}, {meas.origin[2]!r}) "
+    return projection_line(meas.origin, max_scale_error(lat, lat0))
+
+
+def projection_line(origin, scale_error: float) -> str:
+    """The stderr line saying that lat, lon (, alt) were projected about ``origin`` (lat0, lon0[, alt0]) with a scale
+    error of at most ``scale_error`` (a fraction)."""
+    lat0, lon0 = origin[:2]
+    err = 100.0 * scale_error
+    if len(origin) == 3:
+        return (f"lat, lon, alt projected to x, y, z in metres east, north and up of ({lat0!r}, {lon0!r}, {origin[2]!r}) "
                 f"(the first row; local equirectangular on WGS84, scale error at most {err:.2g} % here); the output's "
                 f"origin_lat, origin_lon, origin_alt columns hold it")
     return (f"lat, lon projected to x, y in metres east and north of ({lat0!r}, {lon0!r}) (the first row; local "
@@ -141,7 +148,12 @@ def read_track_input(a):
             print(f"lgekf track: warning: {line}", file=sys.stderr)
     meas, starts = grouped_consuming(meas, min_length=2)  # the file-order rows released
     meas.t = to_seconds(meas.t, a.time_unit)
-    if meas.heading is not None and meas.heading.ndim == 2:  # 3-D: roll, pitch, yaw; the unit is told by the yaw
+    if meas.quaternion and a.heading_unit == "deg":
+        raise ValueError("--heading-unit deg: the attitude is a quaternion (qw, qx, qy, qz), which has no unit; leave "
+                         "--heading-unit out")
+    if meas.quaternion:
+        pass  # roll, pitch, yaw of the quaternion (``lgekf.io.attitude``): radians
+    elif meas.heading is not None and meas.heading.ndim == 2:  # 3-D: roll, pitch, yaw; the unit is told by the yaw
         yaw = meas.heading[:, 2]
         meas.heading = meas.heading if heading_in_radians(yaw, a.heading_unit, meas.z, starts) is yaw else np.radians(meas.heading)
     elif meas.heading is not None:

@@ -217,8 +217,8 @@ def gospa_series(truth_scans, track_scans, c: float = 10.0, p: float = 2.0, time
                        track_switches(assigned), float(c), float(p))
 
 
-def _table(data, what: str, columns):
-    """A path (CSV), a DataFrame or a mapping of columns -> {column: ndarray} for the columns (id, t, x, y)."""
+def _frame(data, what: str):
+    """A path (CSV), a DataFrame or a mapping of columns as a DataFrame."""
     import os
 
     import pandas as pd
@@ -228,7 +228,11 @@ def _table(data, what: str, columns):
             data = pd.read_csv(data)
         except (OSError, ValueError) as e:
             raise ValueError(f"{what}: cannot read {os.fspath(data)!r}: {e}") from None
-    frame = data if hasattr(data, "columns") else pd.DataFrame(dict(data))
+    return data if hasattr(data, "columns") else pd.DataFrame(dict(data))
+
+
+def _table(frame, what: str, columns):
+    """{"id", "t", "pos" (N, d)} of a DataFrame for the columns (id, t, x, y[, z])."""
     if columns[0] == "id" and "id" not in frame.columns and "track" in frame.columns:
         columns = ("track", *columns[1:])  # `lgekf track --multi` names its track ids `track`
     missing = [c for c in columns if c not in frame.columns]
@@ -236,7 +240,7 @@ def _table(data, what: str, columns):
         raise ValueError(f"{what}: no column {', '.join(map(repr, missing))} (has {', '.join(map(str, frame.columns))}); "
                          f"expected {', '.join(columns)}")
     out = {"id": frame[columns[0]].to_numpy()}
-    for name, col in zip(("t", "x", "y"), columns[1:]):
+    for name, col in zip(("t", *range(len(columns) - 2)), columns[1:]):
         try:
             v = frame[col].to_numpy(dtype=float)
         except (TypeError, ValueError):
@@ -245,11 +249,12 @@ def _table(data, what: str, columns):
         if bad.size:
             raise ValueError(f"{what}: column {col!r} is not finite in row {bad[0] + 1} (of {v.size})")
         out[name] = v
+    out["pos"] = np.stack([out.pop(i) for i in range(len(columns) - 2)], axis=1)
     return out
 
 
 def gospa_tracks(tracks, truth, c: float = 2.0, p: float = 2.0, tolerance: float | None = None,
-                 columns=("id", "t", "x", "y"), truth_columns=None) -> GospaSeries:
+                 columns=None, truth_columns=None) -> GospaSeries:
     """GOSPA of a multi-target tracker's output against the truth, scan by scan, and its track switches
     (public as ``lgekf.gospa``).
 
@@ -268,10 +273,11 @@ def gospa_tracks(tracks, truth, c: float = 2.0, p: float = 2.0, tolerance: float
         A track row belongs to the scan nearest in time when within this many seconds (default: half the smallest
         interval between the truth's times, so each row belongs to one scan at most; rows farther from every scan
         are left out). A scan where no track has a row counts every truth as missed.
-    columns : (id, t, x, y)
-        The column names of ``tracks`` (with the default ``id``, a table without ``id`` but with ``track``, as
-        ``lgekf track --multi`` writes, is read by ``track``).
-    truth_columns : (id, t, x, y), optional
+    columns : (id, t, x, y) or (id, t, x, y, z), optional
+        The column names of ``tracks`` (with ``id``, a table without ``id`` but with ``track``, as ``lgekf track
+        --multi`` writes, is read by ``track``); the position columns after t, 2 in the plane, 3 in 3-D space. Default
+        ``("id", "t", "x", "y")``, and ``"z"`` after them when both tables have a z column (3-D positions).
+    truth_columns : (id, t, x, y[, z]), optional
         Those of ``truth`` (default ``columns``).
 
     Returns
@@ -289,8 +295,14 @@ def gospa_tracks(tracks, truth, c: float = 2.0, p: float = 2.0, tolerance: float
     """
     if not (np.isfinite(c) and c > 0) or not (np.isfinite(p) and p >= 1):
         raise ValueError(f"gospa: need c > 0 and p >= 1, got c = {c}, p = {p}")
+    tracks, truth = _frame(tracks, "gospa: tracks"), _frame(truth, "gospa: truth")
+    if columns is None:
+        columns = ("id", "t", "x", "y") + (("z",) if "z" in tracks.columns and "z" in truth.columns else ())
     est = _table(tracks, "gospa: tracks", tuple(columns))
     tru = _table(truth, "gospa: truth", tuple(truth_columns or columns))
+    if est["pos"].shape[1] != tru["pos"].shape[1]:
+        raise ValueError(f"gospa: the tracks have {est['pos'].shape[1]} position columns and the truth "
+                         f"{tru['pos'].shape[1]}; give columns and truth_columns of the same space")
     scans = np.unique(tru["t"])
     if scans.size == 0:
         raise ValueError("gospa: the truth has no rows")
@@ -312,6 +324,6 @@ def gospa_tracks(tracks, truth, c: float = 2.0, p: float = 2.0, tolerance: float
             dup = next(i for i in ids.tolist() if i in seen or seen.add(i))
             raise ValueError(f"gospa: track {dup!r} has more than one row at the scan t = {scans[s].item()!r} "
                              f"(tolerance {tolerance:g} s); give a smaller tolerance")
-        truth_scans.append((tru["id"][a], np.stack([tru["x"][a], tru["y"][a]], axis=1)))
-        track_scans.append((ids, np.stack([est["x"][b], est["y"][b]], axis=1)))
+        truth_scans.append((tru["id"][a], tru["pos"][a]))
+        track_scans.append((ids, est["pos"][b]))
     return gospa_series(truth_scans, track_scans, c=c, p=p, times=scans)

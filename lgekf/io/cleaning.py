@@ -28,7 +28,8 @@ def take_rows(meas: Measurements, keep: np.ndarray) -> Measurements:
     new[order] = np.arange(order.size)
     return Measurements(meas.t[idx], meas.z[idx], None if meas.heading is None else meas.heading[idx], new[obj],
                         [meas.labels[i] for i in order], meas.line[idx], meas.source, {k: v[idx] for k, v in meas.extra.items()},
-                        meas.origin, dict(meas.skipped), unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word)
+                        meas.origin, dict(meas.skipped), unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word,
+                       quaternion=meas.quaternion)
 
 
 def sort_within_objects(meas: Measurements) -> tuple[Measurements, int]:

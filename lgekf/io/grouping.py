@@ -73,7 +73,8 @@ def grouped_consuming(meas: Measurements, min_length: int = 2):
         extra[k] = _own(v) if in_order else v[order]
         del v
     out = Measurements(t, cols["z"], cols["heading"], None, labels, cols["line"], meas.source, extra, meas.origin,
-                       unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word)
+                       unused=meas.unused, time_iso=meas.time_iso, line_word=meas.line_word,
+                       quaternion=meas.quaternion)
     return out, starts
 
 

@@ -10,7 +10,8 @@ Readers
   ``Measurements.origin``). A ``z`` column beside x, y (or ``alt``/``altitude`` in metres beside lat, lon) makes
   the positions 3-D (z (N, 3); lat, lon, alt: metres east, north and up of the first row's fix, ``origin`` then
   (lat0, lon0, alt0), ``lgekf.io.geo.to_local_enu``); the measured attitude of a 3-D pose is then the ``roll``,
-  ``pitch`` and ``yaw`` (or ``heading``) columns. Ids are text, compared exactly as written (surrounding spaces removed):
+  ``pitch`` and ``yaw`` (or ``heading``) columns, or a unit quaternion ``qw, qx, qy, qz`` (Hamilton, scalar first;
+  normalised, and read as those angles: ``lgekf.io.attitude``). Ids are text, compared exactly as written (surrounding spaces removed):
   ``007`` and ``7`` are two objects. The separator is found from the header line (``,`` ``;`` tab ``|``
   or spaces) unless given. Other columns are ignored (with no id column they are listed in
   ``Measurements.unused``: ``unused_columns_warning``). Blank lines are skipped. Within ``named_columns``
@@ -52,6 +53,7 @@ import numpy as np
 from . import fastcsv
 from .fastcsv import group_order
 from .files import is_stdio, open_input, source_name
+from .attitude import MIN_QUATERNION_NORM, QUATERNION_COLUMNS, euler_of_quaternion, quaternion_norms
 from .geo import to_local
 from .mapped import MAP_MIN_BYTES, MappedFile, parse_mapped
 from .times import ISO_HINT, IsoError, iso_seconds, looks_iso
@@ -76,6 +78,10 @@ COLUMN_ALIASES = {
     "alt": ("alt", "altitude"),
     "roll": ("roll",),
     "pitch": ("pitch",),
+    "qw": ("qw",),
+    "qx": ("qx",),
+    "qy": ("qy",),
+    "qz": ("qz",),
 }
 #: the vertical coordinate of each horizontal pair: a file with it holds 3-D positions (x, y, z or lat, lon, alt)
 VERTICAL = {"x": "z", "lat": "alt"}
@@ -117,6 +123,7 @@ class Measurements:
     unused: tuple = ()  # no id column was found: the header's columns that were not read (named in a warning)
     time_iso: bool = False  # t was read from ISO-8601 date-times (seconds since the epoch)
     line_word: str = "line"  # what ``line`` counts: "line" of a text file (header = line 1), "row" of a table (from 1)
+    quaternion: bool = False  # the 3-D attitude was read from qw, qx, qy, qz (``lgekf.io.attitude``): radians by construction
 
     def where(self, k: int) -> str:
         """Where row k (an index into these rows) came from: ``line 1234`` (or ``row 1233`` of a table); "" without
@@ -179,7 +186,7 @@ class Measurements:
         out = Measurements(
             t, self.z[order], None if self.heading is None else self.heading[order], obj, labels,
             self.line[order], self.source, {k: v[order] for k, v in self.extra.items()}, self.origin,
-            unused=self.unused, time_iso=self.time_iso, line_word=self.line_word,
+            unused=self.unused, time_iso=self.time_iso, line_word=self.line_word, quaternion=self.quaternion,
         )
         return out, starts, dropped
 
@@ -495,19 +502,42 @@ def _resolve_columns(source, header, want_heading, auto):
             f"{source}: missing column{'s' if len(missing) > 1 else ''} {', '.join(repr(m) for m in missing)}; "
             f"the header has: {shown}{hint}; expected t, x, y (or t, lat, lon in degrees) and optionally id, heading"
         )
-    if want_heading and ("z" in where or "alt" in where):  # 3-D positions: the attitude is roll, pitch, yaw
-        missing = [k for k in ("roll", "pitch", "heading") if k not in where]
-        if missing:
-            raise DataError(f"{source}: a pose in 3-D needs roll, pitch and yaw (or heading) columns (rad); missing "
-                            f"{', '.join(repr('yaw' if m == 'heading' else m) for m in missing)}; the header has: "
-                            f"{', '.join(h.strip() for h in header)}")
+    pose3 = want_heading and ("z" in where or "alt" in where)
+    if pose3:  # 3-D positions: the attitude is roll, pitch, yaw, or a quaternion qw, qx, qy, qz (``lgekf.io.attitude``)
+        _attitude_columns(source, header, where)
     elif want_heading and "heading" not in where:
         raise DataError(f"{source}: --use-heading needs a 'heading' column (rad, or --heading-column NAME); the header has: "
                         f"{', '.join(h.strip() for h in header)}")
-    if not (want_heading and ("z" in where or "alt" in where)):
-        where.pop("roll", None)
-        where.pop("pitch", None)
+    if not pose3:
+        for k in ("roll", "pitch", *QUATERNION_COLUMNS):
+            where.pop(k, None)
     return where
+
+
+def _attitude_columns(source, header, where) -> None:
+    """The attitude of a 3-D pose among the columns ``where``: roll, pitch and yaw (or heading), or the quaternion
+    qw, qx, qy, qz; the columns of the other kind dropped. A DataError when neither is complete, or both are."""
+    euler = [k for k in ("roll", "pitch", "heading") if k in where]
+    quat = [k for k in QUATERNION_COLUMNS if k in where]
+    shown = ", ".join(h.strip() for h in header)
+    if len(euler) == 3 and len(quat) == 4:
+        raise DataError(f"{source}: the attitude is given twice, as roll, pitch, yaw and as qw, qx, qy, qz; keep one kind "
+                        f"of column (the header has: {shown})")
+    if len(quat) == 4:
+        for k in euler:
+            where.pop(k)
+        return
+    if len(euler) == 3:
+        for k in quat:
+            where.pop(k)
+        return
+    if quat:
+        missing = [k for k in QUATERNION_COLUMNS if k not in where]
+        raise DataError(f"{source}: a quaternion attitude needs the columns qw, qx, qy, qz; missing "
+                        f"{', '.join(repr(m) for m in missing)}; the header has: {shown}")
+    missing = [k for k in ("roll", "pitch", "heading") if k not in where]
+    raise DataError(f"{source}: a pose in 3-D needs roll, pitch and yaw (or heading) columns (rad), or a quaternion qw, qx, qy, "
+                    f"qz; missing {', '.join(repr('yaw' if m == 'heading' else m) for m in missing)}; the header has: {shown}")
 
 
 def _unused(header, keys: dict, extra=()) -> tuple:
@@ -565,7 +595,7 @@ def header_keys(source, names, use_heading: bool = False, auto: bool = False) ->
         Key (``t``, ``x``, ``y`` or ``lat``, ``lon``, ``id``, ``heading``) -> index in ``names``.
     """
     where = _resolve_columns(source, list(names), use_heading, auto)
-    return {k: where[k] for k in ("t", "x", "y", "z", "lat", "lon", "alt", "id", "roll", "pitch", "heading")
+    return {k: where[k] for k in ("t", "x", "y", "z", "lat", "lon", "alt", "id", "roll", "pitch", "heading", *QUATERNION_COLUMNS)
             if k in where and (k != "heading" or use_heading)}
 
 
@@ -872,9 +902,26 @@ def measurements_from_columns(source, cols: dict, lines, use_heading: bool = Fal
     heading = cols.get("heading") if use_heading else None
     if heading is not None and vertical is not None:  # 3-D: the attitude (roll, pitch, yaw), Z-Y-X Euler angles
         heading = np.column_stack([cols["roll"], cols["pitch"], heading])
+    elif use_heading and vertical is not None and "qw" in cols:  # ... or of a quaternion (``lgekf.io.attitude``)
+        heading = _quaternion_attitude(source, cols, lines, line_word)
     ext = {n: cols[n] for n in extra if n in cols}
     return Measurements(cols["t"], z, heading, obj, labels, lines, source, ext, origin,
-                        skipped=skipped, unused=tuple(unused), time_iso=time_iso, line_word=line_word)
+                        skipped=skipped, unused=tuple(unused), time_iso=time_iso, line_word=line_word,
+                        quaternion=use_heading and vertical is not None and "qw" in cols)
+
+
+def _quaternion_attitude(source, cols, lines, line_word) -> np.ndarray:
+    """roll, pitch, yaw (N, 3) of the quaternion columns qw, qx, qy, qz (Hamilton, scalar first; normalised:
+    ``lgekf.io.attitude.euler_of_quaternion``); a DataError naming the first row whose quaternion is (nearly) zero."""
+    q = np.column_stack([cols[k] for k in QUATERNION_COLUMNS])
+    norm = quaternion_norms(q)
+    short = norm < MIN_QUATERNION_NORM
+    if short.any():
+        k = int(np.flatnonzero(short)[0])
+        raise DataError(f"{source} {line_word} {int(lines[k])}: the quaternion (qw, qx, qy, qz) = "
+                        f"({', '.join(f'{v:g}' for v in q[k])}) has norm {norm[k]:.3g}: no rotation (at least "
+                        f"{MIN_QUATERNION_NORM:g} is needed to normalise it)")
+    return euler_of_quaternion(q)
 
 
 def parse_number_column(source: str, name: str, texts, lines) -> np.ndarray:

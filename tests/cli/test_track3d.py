@@ -168,7 +168,6 @@ BAD3 = {
     "imm_on_3d": (GOOD3, ["--model", "imm"], "--model imm: tracks in the plane only"),
     "position3_on_planar": ("t,x,y\n0,0,0\n1,1,0\n2,2,0\n", ["--measure", "position3"],
                             "--measure position3: observes 3-D space, and the input has 2-D positions"),
-    "multi_with_3d_model": (GOOD3, ["--multi", "--model", "se3r6"], "--multi: tracks in the plane only"),
     "planar_accel_std_on_3d": (GOOD3, ["--accel-std", "cv=1", "--model", "cv3"], "unknown model 'cv'; choose one of ct3, cv3, se3r6"),
 }
 

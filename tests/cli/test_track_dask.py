@@ -4,6 +4,7 @@ every model); bad input still gives one line, exit 2 and no output."""
 
 from __future__ import annotations
 
+import math
 import subprocess
 
 import numpy as np
@@ -123,6 +124,27 @@ def test_latitude_longitude_input(data, tmp_path, dask_scheduler):
     same_files(tmp_path / "one.csv", tmp_path / "many.csv")
     note = [ln for ln in one.stderr.splitlines() if "projected" in ln]
     assert note and note[0] in many.stderr  # the same origin and scale error
+
+
+def test_3d_latitude_longitude_altitude_and_quaternion_input(data, tmp_path, dask_scheduler):
+    """3-D space on a cluster: lat, lon, alt (east, north, up of the first fix) and the attitude as a quaternion
+    (a rotation by the yaw h about z, (cos h/2, 0, 0, sin h/2), which --use-heading starts ct3 from): the same bytes as one
+    process, partitions of whole objects, the same projection line."""
+    _, rows = data
+    text = "t,id,lat,lon,alt,qw,qx,qy,qz\n" + "".join(
+        f"{t!r},{i},{45 + y / 111000!r},{7 + x / 80000!r},{300 + 0.2 * x!r},{math.cos(h / 2)!r},0,0,{math.sin(h / 2)!r}\n"
+        for t, i, x, y, h in rows)
+    (tmp_path / "lla.csv").write_text(text)
+    args = ("--model", "ct3", "--use-heading", "--meas-std", "0.3", "--accel-std", "0.5,1,0.5")
+    one = run("track", "lla.csv", "-o", "one.csv", *args, cwd=tmp_path)
+    many = run("track", "lla.csv", "-o", "many.csv", *args, "--scheduler", dask_scheduler, "--partition-rows", 60, cwd=tmp_path)
+    assert one.returncode == 0 and many.returncode == 0, many.stderr
+    same_files(tmp_path / "one.csv", tmp_path / "many.csv")
+    with open(tmp_path / "many.csv") as f:
+        assert f.readline().rstrip().endswith("nis,origin_lat,origin_lon,origin_alt,flag")
+    note = [ln for ln in one.stderr.splitlines() if "projected" in ln]
+    assert note and "lat, lon, alt projected" in note[0] and note[0] in many.stderr
+    assert "partitions" in many.stderr
 
 
 def test_unit_warning_from_the_sample(tmp_path, dask_scheduler):

@@ -146,7 +146,7 @@ def test_the_passes_recover_from_a_provisional_std_far_off(monkeypatch, factor):
     sc0 = base_scenario(seed=0, targets=BASE_TARGETS[:4], duration=6.0)
     t = np.concatenate([np.full(len(Z), tt) for tt, Z in zip(sc0.times, sc0.detections)])
     Z = np.vstack(sc0.detections)
-    monkeypatch.setattr(tm, "provisional_meas_std", lambda sc, z: 0.3 * factor)
+    monkeypatch.setattr(tm, "provisional_meas_std", lambda sc, z, dim=2: 0.3 * factor)
     sc = tm.scans(t, 0.0)
     run_, fit = tm.fit_noise(t, Z, sc, dict(model="cv", association="gnn", clutter_density=1e-4), heading_std=0.1,
                              omega_std=0.5)

@@ -72,7 +72,8 @@ class ModelBank:
     accel_std : array_like
         The model's process-noise stds (its ``noise_names``).
     meas_std : array_like
-        The measurement's noise stds (its ``noise_names``: ``r`` for position; ``r_x, r_y, r_theta`` for pose).
+        The measurement's noise stds (its ``noise_names``: ``r`` for position; ``r_x, r_y, r_theta`` for pose; ``r_p,
+        r_a`` for pose3), or one number for all.
     capacity : int
         Initial number of rows.
 
@@ -90,8 +91,10 @@ class ModelBank:
         self.q = np.ascontiguousarray(accel_std, dtype=float)
         r = np.ascontiguousarray(meas_std, dtype=float).reshape(-1)
         if r.size == 1 and self.meas.dim > 1:
-            r = np.full(self.meas.dim, r[0])
-        self.R = np.diag(r**2)
+            r = np.full(len(self.meas.noise_names), r[0])
+        # R = diag(σ_k²) with σ_k the std of entry k of z (``noise_inputs``: pose3's (r_p, r_a) serve 3 entries each)
+        inputs = self.meas.noise_inputs if self.meas.noise_inputs is not None else tuple(range(self.meas.dim))
+        self.R = np.diag(r[list(inputs)] ** 2)
         n, m = self.spec.n, self.meas.dim
         self.n, self.m = n, m
         self.periodic = np.asarray(self.spec.periodic_tangent, dtype=np.int64)

@@ -1,5 +1,6 @@
-"""The clutter density λ of the multi-target tracker (expected false alarms per m² per scan): one component with one
-job, next to the association and the track management of ``MultiTargetTracker`` (as Stone Soup composes a tracker
+"""The clutter density λ of the multi-target tracker (expected false alarms per m² per scan in the plane, per m³ in
+3-D space: per unit of the d-dimensional volume of the positions, d = ``dim``; "area" below is that volume): one
+component with one job, next to the association and the track management of ``MultiTargetTracker`` (as Stone Soup composes a tracker
 of initiator, deleter and associator).
 
 The tracker talks to it twice per scan:
@@ -29,11 +30,11 @@ The estimators:
   existence rises (two scans with one-point initiation); a target detected more often than the assumed P_D makes
   λ too high by (P_D,true − P_D) per target and scan.
 * ``ClutterMap``: **in space**, λ(z) = λ_k ρ(c(z)): the per-scan level λ_k (a ``ScanClutter``, which follows a
-  burst within a few scans) times a slow spatial shape ρ on a grid of square cells c of side h (``cell``). Each cell
+  burst within a few scans) times a slow spatial shape ρ on a grid of square cells c of side h (``cell``; cubes in 3-D). Each cell
   keeps a recursive average of the clutter weights w_j of the detections that fell into it, S_c ← a_m S_c +
   Σ_{j in c} w_j (``forgetting``, default 0.99: a memory of 100 scans, as clutter maps keep long memories), and
 
-      ρ_c = K (S_c + m₀) / (Σ_c' S_c' + K m₀),    K = V / h² cells in the surveillance area,
+      ρ_c = K (S_c + m₀) / (Σ_c' S_c' + K m₀),    K = V / h^d cells in the surveillance area,
 
   the share of the clutter in cell c against the uniform share 1/K, with m₀ = ``prior`` (default 1) counts of
   uniform clutter per cell (Laplace smoothing): a cell that has seen few detections stays near the mean level,
@@ -43,7 +44,7 @@ The estimators:
   (``map_cell_from_counts``: a cell's Poisson noise then about 1/√30 = 18 %; smaller cells are noisier, larger
   ones blur a patch); for the tracker alone, which has not seen the data, ``CELL_GATES`` = 8 gate diameters, the
   gate radius √(2γ)·r of a held track (S ≈ 2R) (4, 6, 8 and 12 gate diameters measured: docs/multi_target.md).
-  The grid grows with the detections; beyond ``MAX_CELLS`` cells its cells are doubled (2 × 2 summed).
+  The grid grows with the detections; beyond ``MAX_CELLS`` cells its cells are doubled (2 × 2, or 2 × 2 × 2, summed).
 * ``bounding_box_density(z, scans)``: the per-file estimate of ``lgekf track --multi`` before the estimators
   (``--clutter file``): all detections per scan over the data's bounding-box area (an over-estimate: the targets'
   detections count too).
@@ -70,32 +71,35 @@ __all__ = ["ClutterEstimator", "ConstantClutter", "ScanClutter", "ClutterMap", "
 
 CELL_GATES = 8.0  # ClutterMap: default cell side, in gate diameters (measured: docs/multi_target.md)
 MAX_CELLS = 1_000_000  # ClutterMap: the grid's size at most (8 MB); beyond, the cells are doubled
-MIN_AREA = 1.0  # m²: the surveillance area at least (detections on a line or a point)
+MIN_AREA = 1.0  # m² (m³ in 3-D): the surveillance area at least (detections on a line or a point)
 MAP_COUNTS = 30.0  # clutter_from_data: a map's cells hold this many counts per memory if the detections were even
 
 
-def bounding_box_area(z: np.ndarray) -> float:
-    """The area (m²) of the bounding box of positions z (N, ≥2), at least ``MIN_AREA``."""
-    span = np.ptp(z[:, :2], axis=0) if z.shape[0] else np.zeros(2)
-    return max(float(span[0]) * float(span[1]), MIN_AREA)
+def bounding_box_area(z: np.ndarray, dim: int = 2) -> float:
+    """The area (m²; the volume, m³, for dim = 3) of the bounding box of positions z (N, ≥dim) (their first ``dim``
+    columns), at least ``MIN_AREA``."""
+    span = np.ptp(z[:, :dim], axis=0) if z.shape[0] else np.zeros(dim)
+    return max(float(np.prod(span)), MIN_AREA)
 
 
-def bounding_box_density(z: np.ndarray, scans: int) -> float:
-    """All detections per scan over the area of their bounding box (per m² per scan): the per-file estimate
-    (module docstring), at least 1e-12.
+def bounding_box_density(z: np.ndarray, scans: int, dim: int = 2) -> float:
+    """All detections per scan over the area of their bounding box (per m² per scan; per m³ for dim = 3): the
+    per-file estimate (module docstring), at least 1e-12.
 
     Parameters
     ----------
-    z : ndarray, (N, ≥2)
-        Every detection of the file (positions in the first two columns).
+    z : ndarray, (N, ≥dim)
+        Every detection of the file (positions in the first ``dim`` columns).
     scans : int
         The number of scans.
+    dim : int
+        The positions' coordinates (2 in the plane, 3 in 3-D space).
 
     Returns
     -------
     float
     """
-    return max((z.shape[0] / max(scans, 1)) / bounding_box_area(z), 1e-12)
+    return max((z.shape[0] / max(scans, 1)) / bounding_box_area(z, dim), 1e-12)
 
 
 def _check_forgetting(name: str, a: float) -> float:
@@ -118,13 +122,16 @@ class ClutterEstimator:
 
     name = "?"
     level = math.nan
+    dim = 2  # the positions' coordinates: the density is per m^dim
 
     def fresh(self) -> "ClutterEstimator":
         """An unused estimator with the same settings."""
         return dataclasses.replace(self)
 
-    def configure(self, gate_radius: float) -> None:
-        """The tracker's typical gate radius (m), for defaults that scale with it."""
+    def configure(self, gate_radius: float, dim: int = 2) -> None:
+        """The tracker's typical gate radius (m), for defaults that scale with it, and the coordinates of its
+        positions (``dim``: 2 in the plane, 3 in 3-D space; the first ``dim`` columns of the detections)."""
+        self.dim = int(dim)
 
     def density(self, t: float, Z: np.ndarray, expected: float):
         """λ at the detections Z (M, m) of the scan at time t, given ``expected`` = Σ_i P_D P_G r_i: a float or an
@@ -163,11 +170,14 @@ class ScanClutter(ClutterEstimator):
     forgetting : float
         a in [0, 1): the weight of the previous scans' average (0: each scan on its own).
     area : float, optional
-        The surveillance area V (m²); default the bounding box of the detections seen so far.
+        The surveillance area V (m²; the volume, m³, in 3-D); default the bounding box of the detections seen so far.
+    dim : int
+        The positions' coordinates (2 or 3; the tracker sets it: ``configure``).
     """
 
     forgetting: float = 0.9
     area: float | None = None
+    dim: int = 2
     name = "scan"
 
     def __post_init__(self):
@@ -176,23 +186,30 @@ class ScanClutter(ClutterEstimator):
             self.area = positive_scalar("clutter area", self.area)
         self._sum = 0.0  # Σ a^(k−l) m̂_l
         self._weight = 0.0  # Σ a^(k−l)
-        self._box = np.array([np.inf, -np.inf, np.inf, -np.inf])
+        self._lo = np.full(self.dim, np.inf)  # the bounding box of the detections so far
+        self._hi = np.full(self.dim, -np.inf)
         self.level = math.nan
         self.count = math.nan  # false alarms per scan, the average before dividing by V
 
+    def configure(self, gate_radius: float, dim: int = 2) -> None:
+        if int(dim) != self.dim:
+            self.dim = int(dim)
+            self._lo, self._hi = np.full(self.dim, np.inf), np.full(self.dim, -np.inf)
+
     @property
     def surveillance_area(self) -> float:
-        """V (m²): given, or the bounding box of the detections so far (at least ``MIN_AREA``)."""
+        """V (m², m³ in 3-D): given, or the bounding box of the detections so far (at least ``MIN_AREA``)."""
         if self.area is not None:
             return self.area
-        b = self._box
-        return max(float(b[1] - b[0]) * float(b[3] - b[2]), MIN_AREA) if b[1] >= b[0] else MIN_AREA
+        if not np.all(self._hi >= self._lo):
+            return MIN_AREA
+        return max(float(np.prod(self._hi - self._lo)), MIN_AREA)
 
     def density(self, t, Z, expected):
         if Z.shape[0]:
-            b = self._box
-            b[0], b[1] = min(b[0], Z[:, 0].min()), max(b[1], Z[:, 0].max())
-            b[2], b[3] = min(b[2], Z[:, 1].min()), max(b[3], Z[:, 1].max())
+            P = Z[:, :self.dim]
+            np.minimum(self._lo, P.min(axis=0), out=self._lo)
+            np.maximum(self._hi, P.max(axis=0), out=self._hi)
         a = self.forgetting
         self._sum = a * self._sum + (Z.shape[0] - float(expected))
         self._weight = a * self._weight + 1.0
@@ -220,7 +237,9 @@ class ClutterMap(ClutterEstimator):
     scan_forgetting : float
         The per-scan level's forgetting factor (``ScanClutter``).
     area : float, optional
-        The surveillance area V (m²); default the bounding box of the detections seen so far.
+        The surveillance area V (m²; the volume, m³, in 3-D); default the bounding box of the detections seen so far.
+    dim : int
+        The positions' coordinates (2 or 3): the grid's dimension (the tracker sets it: ``configure``).
 
     Attributes
     ----------
@@ -235,6 +254,7 @@ class ClutterMap(ClutterEstimator):
     prior: float = 1.0
     scan_forgetting: float = 0.9
     area: float | None = None
+    dim: int = 2
     name = "map"
 
     def __post_init__(self):
@@ -242,38 +262,42 @@ class ClutterMap(ClutterEstimator):
         self.prior = positive_scalar("clutter-map prior", self.prior)
         if self.cell is not None:
             self.cell = positive_scalar("clutter-map cell", self.cell)
-        self.scan = ScanClutter(self.scan_forgetting, self.area)
+        self.scan = ScanClutter(self.scan_forgetting, self.area, self.dim)
         # S_c = _stored[c] / _scale (the decay a_m per scan is a growing scale, not a pass over every cell), cell
-        # (ix, iy) = floor(z / h) at _stored[ix − origin[0], iy − origin[1]]; _total = Σ_c _stored[c]
-        self._stored = np.zeros((0, 0))
+        # (ix, iy[, iz]) = floor(z / h) at _stored[ix − origin[0], iy − origin[1], ...]; _total = Σ_c _stored[c]
+        self._stored = np.zeros((0,) * self.dim)
         self._total = 0.0
         self._scale = 1.0
-        self.origin = np.zeros(2, dtype=np.int64)
+        self.origin = np.zeros(self.dim, dtype=np.int64)
         self.coarsened = 0
         self.level = math.nan
 
-    def configure(self, gate_radius: float) -> None:
+    def configure(self, gate_radius: float, dim: int = 2) -> None:
         if self.cell is None:
             self.cell = CELL_GATES * 2.0 * positive_scalar("gate radius", gate_radius)
+        if int(dim) != self.dim:
+            self.dim = int(dim)
+            self.scan.configure(gate_radius, dim)
+            self._stored, self.origin = np.zeros((0,) * self.dim), np.zeros(self.dim, dtype=np.int64)
 
     @property
     def counts(self) -> np.ndarray:
-        """S_c of every cell of the grid (rows x, columns y, from ``origin`` · h)."""
+        """S_c of every cell of the grid (axis k the k-th coordinate, from ``origin`` · h)."""
         return self._stored / self._scale
 
     def _grow(self, lo, hi):
-        """The grid extended to the cells lo..hi (2,) of the current h, coarsened (h doubled, 2 × 2 cells summed)
-        while it would exceed ``MAX_CELLS``."""
+        """The grid extended to the cells lo..hi (dim,) of the current h, coarsened (h doubled, 2 × 2 (× 2) cells
+        summed) while it would exceed ``MAX_CELLS``."""
         if self._stored.size:
             lo = np.minimum(lo, self.origin)
             hi = np.maximum(hi, self.origin + np.array(self._stored.shape) - 1)
         while int(np.prod(hi - lo + 1)) > MAX_CELLS:
             lo, hi = lo // 2, hi // 2
             if self._stored.size:
-                i, j = np.nonzero(self._stored)
+                ij = np.nonzero(self._stored)
                 merged = np.zeros(tuple(np.array(self._stored.shape) // 2 + 2))
                 o = self.origin // 2
-                np.add.at(merged, ((self.origin[0] + i) // 2 - o[0], (self.origin[1] + j) // 2 - o[1]), self._stored[i, j])
+                np.add.at(merged, tuple((self.origin[k] + ij[k]) // 2 - o[k] for k in range(self.dim)), self._stored[ij])
                 self._stored, self.origin = merged, o
             self.cell *= 2.0
             self.coarsened += 1
@@ -281,34 +305,34 @@ class ClutterMap(ClutterEstimator):
         if self._stored.size:
             o = self.origin - lo
             n = np.minimum(np.array(self._stored.shape), np.array(grown.shape) - o)
-            grown[o[0]:o[0] + n[0], o[1]:o[1] + n[1]] = self._stored[:n[0], :n[1]]
+            grown[tuple(slice(o[k], o[k] + n[k]) for k in range(self.dim))] = self._stored[tuple(slice(0, n[k]) for k in range(self.dim))]
         self._stored, self.origin = grown, lo
 
     def _cells(self, Z):
-        """The grid indices (M, 2) of the detections' cells, the grid grown to hold them."""
+        """The grid indices (M, dim) of the detections' cells, the grid grown to hold them."""
         if self.cell is None:
             raise ValueError("clutter map: no cell size (give cell= or let the tracker configure it)")
-        ij = np.floor(Z[:, :2] / self.cell).astype(np.int64)
+        ij = np.floor(Z[:, :self.dim] / self.cell).astype(np.int64)
         if ij.shape[0]:
             lo, hi = ij.min(axis=0), ij.max(axis=0)
             if (not self._stored.size or np.any(lo < self.origin)
                     or np.any(hi >= self.origin + np.array(self._stored.shape))):
                 self._grow(lo, hi)
-                ij = np.floor(Z[:, :2] / self.cell).astype(np.int64)  # h may have doubled
+                ij = np.floor(Z[:, :self.dim] / self.cell).astype(np.int64)  # h may have doubled
         return ij - self.origin
 
     @property
     def surveillance_area(self) -> float:
-        """V (m²) of the per-scan level (``ScanClutter.surveillance_area``)."""
+        """V (m², m³ in 3-D) of the per-scan level (``ScanClutter.surveillance_area``)."""
         return self.scan.surveillance_area
 
     def _cells_in_area(self) -> float:
-        return max(self.surveillance_area / self.cell**2, 1.0)
+        return max(self.surveillance_area / self.cell**self.dim, 1.0)
 
     def shape(self, cells: np.ndarray) -> np.ndarray:
-        """ρ at grid cells (M, 2) (indices into ``counts``)."""
+        """ρ at grid cells (M, dim) (indices into ``counts``)."""
         K = self._cells_in_area()
-        S = self._stored[cells[:, 0], cells[:, 1]] / self._scale if cells.shape[0] else np.zeros(0)
+        S = self._stored[tuple(cells.T)] / self._scale if cells.shape[0] else np.zeros(0)
         return K * (S + self.prior) / (self._total / self._scale + K * self.prior)
 
     def density(self, t, Z, expected):
@@ -328,7 +352,7 @@ class ClutterMap(ClutterEstimator):
                 self._scale = 1.0
         if Z.shape[0]:
             w = np.clip(clutter_weight, 0.0, 1.0) * self._scale
-            np.add.at(self._stored, (self._ij[:, 0], self._ij[:, 1]), w)
+            np.add.at(self._stored, tuple(self._ij.T), w)
             self._total += float(w.sum())
 
     def peak(self) -> float:
@@ -339,7 +363,7 @@ class ClutterMap(ClutterEstimator):
         return float(K * (self._stored.max() / self._scale + self.prior) / (self._total / self._scale + K * self.prior))
 
     def describe(self) -> str:
-        return (f"a map of {self.cell:.3g} m cells (forgetting {self.forgetting:g}) times the per-scan level "
+        return (f"a map of {self.cell:.3g} m {'cubes' if self.dim == 3 else 'cells'} (forgetting {self.forgetting:g}) times the per-scan level "
                 f"(forgetting {self.scan.forgetting:g})")
 
 
@@ -372,29 +396,31 @@ CLUTTER_SOURCES = ("file", "scan", "map")  # what `lgekf track --multi --clutter
 DEFAULT_CLUTTER_SOURCE = "map"  # without --clutter-density and --clutter (measured: docs/multi_target.md)
 
 
-def map_cell_from_counts(z: np.ndarray, scans: int, forgetting: float = 0.99) -> float:
+def map_cell_from_counts(z: np.ndarray, scans: int, forgetting: float = 0.99, dim: int = 2) -> float:
     """The cell side h (m) at which a clutter map of a file would hold ``MAP_COUNTS`` counts per cell over its memory
-    if all the file's detections were clutter spread evenly over their bounding box: h = √(V·n/(M̄/(1 − a))), M̄
-    detections per scan, a the map's forgetting factor.
+    if all the file's detections were clutter spread evenly over their bounding box: h = (V·n/(M̄/(1 − a)))^(1/d), M̄
+    detections per scan, a the map's forgetting factor, d = ``dim`` (V/h^d cells).
 
     Parameters
     ----------
-    z : ndarray, (N, ≥2)
+    z : ndarray, (N, ≥dim)
         Every detection of the file.
     scans : int
         The number of scans.
     forgetting : float
         The map's forgetting factor.
+    dim : int
+        The positions' coordinates (2 or 3).
 
     Returns
     -------
     float
     """
     per_memory = z.shape[0] / max(scans, 1) / (1.0 - forgetting)
-    return math.sqrt(bounding_box_area(z) * MAP_COUNTS / max(per_memory, 1e-12))
+    return (bounding_box_area(z, dim) * MAP_COUNTS / max(per_memory, 1e-12)) ** (1.0 / dim)
 
 
-def clutter_from_data(source: str, z: np.ndarray, scans: int):
+def clutter_from_data(source: str, z: np.ndarray, scans: int, dim: int = 2):
     """The tracker's ``clutter_density`` argument for a file of detections without a given density: "file" the
     per-file ``bounding_box_density`` (a float), "scan" a ``ScanClutter`` and "map" a ``ClutterMap`` (cells of
     ``map_cell_from_counts``), both over the area V of the file's bounding box (the surveillance area as the data
@@ -403,19 +429,21 @@ def clutter_from_data(source: str, z: np.ndarray, scans: int):
     Parameters
     ----------
     source : {"file", "scan", "map"}
-    z : ndarray, (N, ≥2)
+    z : ndarray, (N, ≥dim)
         Every detection of the file.
     scans : int
         The number of scans.
+    dim : int
+        The positions' coordinates (2 in the plane, 3 in 3-D space): the density is per m^dim.
 
     Returns
     -------
     float or ClutterEstimator
     """
     if source == "file":
-        return bounding_box_density(z, scans)
+        return bounding_box_density(z, scans, dim)
     if source not in CLUTTER_ESTIMATORS:
         raise ValueError(f"clutter: one of {', '.join(CLUTTER_SOURCES)}, got {source!r}")
     if source == "map":
-        return ClutterMap(cell=map_cell_from_counts(z, scans), area=bounding_box_area(z))
-    return ScanClutter(area=bounding_box_area(z))
+        return ClutterMap(cell=map_cell_from_counts(z, scans, dim=dim), area=bounding_box_area(z, dim), dim=dim)
+    return ScanClutter(area=bounding_box_area(z, dim), dim=dim)

@@ -70,7 +70,7 @@ import numba as nb
 import numpy as np
 
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ...core.registry import get_measurement, get_model
+from ...core.registry import SPACES, get_measurement, get_model, rotation_dims, space_of_positions
 from ...core.validate import positive_scalar
 from .association import association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
@@ -82,7 +82,7 @@ from .settings import (ASSOCIATIONS, BIRTH_EXISTENCE, DEFAULT_INITIATION, INITIA
                        SPEED_STD_FRACTION)
 
 __all__ = ["MultiTargetTracker", "ScanReport", "Track", "ASSOCIATIONS", "IMM_MODEL", "HEADING_CAP", "INITIATIONS", "DEFAULT_INITIATION", "BIRTH_EXISTENCE",
-           "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence"]
+           "SPEED_STD_FRACTION", "one_point_prior", "one_point_existence", "attitude_volume"]
 
 IMM_MODEL = "imm"  # ``model`` of a tracker whose per-track filters are IMMs (``IMMBank``)
 HEADING_CAP = 0.3  # initial heading std cap (rad), as `lgekf track` (TRACK_HEADING_CAP; see lgekf.apps.track)
@@ -91,9 +91,10 @@ HELD_FROM = 0.5  # a track holds detection j when β_ij (the probability that j 
 
 
 @nb.njit(cache=True)
-def nearest_pairs(new, old, reach):
+def nearest_pairs(new, old, reach, dim):
     """Greedy nearest pairs (i of ``new``, j of ``old``) with distance ≤ reach[j], nearest first, each point used
-    at most once; new (A, ≥2), old (B, ≥2) positions in the first two columns. Returns (K, 2) indices."""
+    at most once; new (A, ≥dim), old (B, ≥dim) positions in the first ``dim`` columns (2 in the plane, 3 in 3-D
+    space). Returns (K, 2) indices."""
     A, B = new.shape[0], old.shape[0]
     ci = np.empty(A * B, dtype=np.int64)
     cj = np.empty(A * B, dtype=np.int64)
@@ -101,9 +102,10 @@ def nearest_pairs(new, old, reach):
     k = 0
     for i in range(A):
         for j in range(B):
-            dx = new[i, 0] - old[j, 0]
-            dy = new[i, 1] - old[j, 1]
-            d2 = dx * dx + dy * dy
+            d2 = 0.0
+            for c in range(dim):
+                dc = new[i, c] - old[j, c]
+                d2 += dc * dc
             if d2 <= reach[j] * reach[j]:
                 ci[k] = i
                 cj[k] = j
@@ -125,36 +127,50 @@ def nearest_pairs(new, old, reach):
     return out[:n]
 
 
-def one_point_prior(Z: np.ndarray, pos_std: float, speed_std: float, omega_std: float, heading_std: float):
-    """The one-point prior of a track started by each detection of Z (B, m) (rows (x, y) or (x, y, θ)), in the common
-    coordinates c = (x, y, θ, v_x, v_y, ω) (body-frame velocity) with diagonal variances:
+def attitude_volume(space: str) -> float:
+    """The volume of the rotations of ``space`` in the measure of their tangent coordinates (the Haar measure that is
+    the Lebesgue measure at the identity): the plane's SO(2) 2π (the heading angle); 3-D space's SO(3) 8π²
+    (rotation vectors in the ball |φ| ≤ π with density 2(1 − cos|φ|)/|φ|²: 4π ∫₀^π 2(1 − cos r) dr = 8π²). A
+    clutter pose uniform in attitude has the density 1/volume there (κ = λ/volume, ``MultiTargetTracker``)."""
+    r = rotation_dims(space)
+    return {1: 2.0 * math.pi, 3: 8.0 * math.pi**2}[r]
 
-    * (x, y) the detection's, variance r² each (r = ``pos_std``);
-    * (v_x, v_y) = 0, variance σ_v² each (σ_v = ``speed_std``): an isotropic velocity, the direction of motion
+
+def one_point_prior(Z: np.ndarray, pos_std: float, speed_std: float, omega_std: float, heading_std: float, dim: int = 2):
+    """The one-point prior of a track started by each detection of Z (B, m) (rows of ``dim`` position coordinates,
+    then a pose's attitude), in the common coordinates of the space of its positions (``derive/space.py``: position,
+    attitude, body-frame velocity, rate; the plane c = (x, y, θ, v_x, v_y, ω), 3-D space c = (x, y, z, roll, pitch,
+    yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z)) with diagonal variances:
+
+    * the position the detection's, variance r² each (r = ``pos_std``);
+    * the velocity 0, variance σ_v² each (σ_v = ``speed_std``): an isotropic velocity, the direction of motion
       unknown;
-    * ω = 0, variance σ_ω² (``omega_std``);
-    * θ: a pose detection's heading (wrapped to (−π, π]) with variance ``heading_std``²; from a position
-      detection θ = 0 with variance ``HEADING_CAP``². With zero speed θ is no direction of motion: a model
+    * the rate 0, variance σ_ω² each (``omega_std``);
+    * the attitude: a pose detection's (each angle wrapped to (−π, π]) with variance ``heading_std``²; from a
+      position detection 0 with variance ``HEADING_CAP``² each. With zero speed θ is no direction of motion: a model
       whose heading is its direction of motion (``ModelSpec.forward_speed``: CTRV's ψ, SE(2)×R²'s θ) gets
       heading variance π² from the isotropic velocity (``initial_estimates`` takes the Jacobian just off
       speed 0 and caps an angle's variance at π²), and SE(2)×SE(2) / SE(2)×R³, whose body velocity (v_x, v_y)
       is free in direction, carry the unknown direction in it, θ being the orientation of the body frame.
 
-    Returns c (B, 6) and var (B, 6) (``lgekf.core.initiation.initial_estimates`` makes any model's x0, P0 of them).
+    Returns c (B, n_c) and var (B, n_c), n_c = 6 in the plane, 12 in 3-D (``lgekf.core.initiation.initial_estimates``
+    makes any model's x0, P0 of them).
     """
     Z = np.asarray(Z, dtype=float)
     B = Z.shape[0]
-    c = np.zeros((B, 6))
-    c[:, :2] = Z[:, :2]
-    var = np.empty((B, 6))
-    var[:, :2] = pos_std**2
-    var[:, 3:5] = speed_std**2
-    var[:, 5] = omega_std**2
-    if Z.shape[1] > 2:
-        c[:, 2] = np.arctan2(np.sin(Z[:, 2]), np.cos(Z[:, 2]))
-        var[:, 2] = heading_std**2
+    d = int(dim)
+    a = rotation_dims(space_of_positions(d))  # attitude (and rate) coordinates: 1 in the plane, 3 in 3-D
+    c = np.zeros((B, 2 * (d + a)))
+    c[:, :d] = Z[:, :d]
+    var = np.empty((B, 2 * (d + a)))
+    var[:, :d] = pos_std**2
+    var[:, d + a:2 * d + a] = speed_std**2
+    var[:, 2 * d + a:] = omega_std**2
+    if Z.shape[1] > d:
+        c[:, d:d + a] = np.arctan2(np.sin(Z[:, d:d + a]), np.cos(Z[:, d:d + a]))
+        var[:, d:d + a] = heading_std**2
     else:
-        var[:, 2] = HEADING_CAP**2
+        var[:, d:d + a] = HEADING_CAP**2
     return c, var
 
 
@@ -241,16 +257,17 @@ class MultiTargetTracker:
     detection_prob : float
         P_D in (0, 1].
     clutter_density : float, str or ClutterEstimator
-        λ > 0, expected false alarms per m² per scan, the same in every scan and place; or "scan" (estimated per
+        λ > 0, expected false alarms per m² (per m³ in 3-D) per scan, the same in every scan and place; or "scan" (estimated per
         scan), "map" (a spatial clutter map times the per-scan level), or an estimator of
         ``lgekf.estimators.multitarget.clutter`` (the tracker uses an unused copy of it: ``fresh``).
     meas_std : float or tuple
-        Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements.
+        Position noise std r (m), or (r_x, r_y, r_θ) for pose measurements ((r_p, r_a) for pose3).
     accel_std : tuple, optional
         The model's process-noise stds (default the model's ``default_accel_std``); not with ``"imm"`` (each
         mode's noise is in ``imm_modes``).
-    measurement : {"position", "pose"}
-        Detections (x, y) or (x, y, θ).
+    measurement : {"position", "pose", "position3", "pose3"}
+        Detections (x, y) or (x, y, θ); in 3-D space (a model of that space) "position3", (x, y, z), or "pose3",
+        (x, y, z, roll, pitch, yaw). The clutter density is then per m³ per scan.
     gate_prob : float
         P_G: the gate is d² ≤ the χ²_m quantile of P_G.
     survival_prob : float
@@ -345,6 +362,9 @@ class MultiTargetTracker:
                 raise ValueError("accel-std: not with the IMM; give each mode's noise in the modes (e.g. "
                                  "se2r3:0.2/0.2/0.5)")
             spec, meas = None, get_measurement(measurement)
+            if not SPACES[meas.space]["mixes"]:
+                raise ValueError(f"measurement: the IMM mixes models of the plane only (yet); {measurement} observes "
+                                 f"{meas.space} space")
         else:
             if imm_modes is not None or imm_switch is not None:
                 raise ValueError("imm-modes/imm-switch: only with the IMM (model imm)")
@@ -417,12 +437,17 @@ class MultiTargetTracker:
         self.r_birth, self.r_confirm = float(birth_existence), float(confirm_existence)
         self.r_report, self.r_delete = float(report_existence), float(delete_existence)
         self.meas_std = r
-        self.pos_std = float(np.sqrt(np.mean(r[:2] ** 2))) if r.size > 1 else float(r[0])
+        self.dim = SPACES[meas.space]["dim"]  # the detections' position coordinates (their first columns)
+        std_of = meas.noise_inputs if meas.noise_inputs is not None else tuple(range(meas.dim))
+        self.pos_std = float(np.sqrt(np.mean(r[list(std_of[:self.dim])] ** 2)))
+        self.angle_std = float(r[std_of[meas.angles[0]]]) if meas.angles else DEFAULT_HEADING_STD
         self.max_events = int(max_events)
-        self.angle_volume = (2.0 * math.pi) ** len(meas.angles)  # κ = λ / (2π) per angle (clutter heading uniform)
+        # κ = λ / volume of the attitudes (clutter uniform in heading or attitude: ``attitude_volume``); 1 for positions
+        self.angle_volume = attitude_volume(meas.space) if meas.angles else 1.0
         self.kappa = self.clutter_density / self.angle_volume
         self.gamma = gate_threshold(self.pg, meas.dim)
-        self.clutter.configure(math.sqrt(2.0 * self.gamma) * self.pos_std)  # a held track's gate radius: S ≈ 2R
+        # a held track's gate radius (S ≈ 2R), and the positions' coordinates: the clutter density is per m^dim
+        self.clutter.configure(math.sqrt(2.0 * self.gamma) * self.pos_std, self.dim)
         if bank is None and spec is None:
             from ..imm.estimator import DEFAULT_MODES, DEFAULT_SWITCH
             from .imm_bank import IMMBank
@@ -457,7 +482,8 @@ class MultiTargetTracker:
 
     # ------------------------------------------------------------------ one scan
     def step(self, t: float, detections) -> ScanReport:
-        """Process the scan at time t with its detections (M, m) (rows (x, y) or (x, y, θ)); M may be 0.
+        """Process the scan at time t with its detections (M, m) (rows (x, y) or (x, y, θ); in 3-D (x, y, z) or
+        (x, y, z, roll, pitch, yaw)); M may be 0.
 
         Parameters
         ----------
@@ -626,28 +652,27 @@ class MultiTargetTracker:
     def _pair_estimates(self, t0, z0, t1, z1):
         """x0, P0 (B, n), (B, n, n) of the two-point rule from detections z0 (B, m) at times t0 (B,) to z1 at t1:
         position z1's, velocity (z1 − z0)/(t1 − t0), variances of ``lgekf.core.initiation.two_point`` (heading std
-        capped at ``HEADING_CAP``; a pose detection's heading from z1)."""
+        capped at ``HEADING_CAP``; a pose detection's heading, or attitude in 3-D, from z1)."""
         B = z0.shape[0]
+        d = self.dim
         tt = np.concatenate([t0, t1])
         zz = np.concatenate([z0, z1])
-        heading = zz[:, 2] if self.meas.angles else None
-        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
-        c, var = two_point(tt, np.ascontiguousarray(zz[:, :2]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
-                           heading, hstd, HEADING_CAP, first=np.arange(B))
+        heading = zz[:, d:] if self.meas.angles else None  # the plane's heading (N, 1), 3-D roll, pitch, yaw (N, 3)
+        c, var = two_point(tt, np.ascontiguousarray(zz[:, :d]), np.arange(B, 2 * B), self.pos_std, self.omega_std,
+                           heading, self.angle_std, HEADING_CAP, first=np.arange(B))
         return self._initial(c, var)
 
     def _initial(self, c, var):
-        """x0 (B, n), P0 (B, n, n) of the bank from common coordinates c (B, 6) and their variances (B, 6): the
+        """x0 (B, n), P0 (B, n, n) of the bank from common coordinates c (B, n_c) and their variances (B, n_c): the
         model's (``initial_estimates``); the IMM's bank takes the common coordinates themselves (each mode converts
         them, ``IMMBank.add``)."""
         if self.spec is None:
-            return c, var[:, :, None] * np.eye(6)
+            return c, var[:, :, None] * np.eye(c.shape[1])
         return initial_estimates(self.model, c, var)
 
     def _one_point_estimates(self, Z):
         """x0, P0 of the bank from the one-point prior (``one_point_prior``) at each detection of Z (U, m)."""
-        hstd = float(self.meas_std[2]) if self.meas.angles else DEFAULT_HEADING_STD
-        return self._initial(*one_point_prior(Z, self.pos_std, self.speed_std, self.omega_std, hstd))
+        return self._initial(*one_point_prior(Z, self.pos_std, self.speed_std, self.omega_std, self.angle_std, self.dim))
 
     def _one_point(self, t, unused, r0=None):
         """A track from each unused detection (U, m): ``one_point_prior``, existence r0 (U,) (default ``r_birth``);
@@ -684,8 +709,8 @@ class MultiTargetTracker:
         if seeds.shape[0] == 0 or unused.shape[0] == 0 or dt <= 0:
             self.seeds, self.seed_t = np.vstack([seeds, unused]), np.concatenate([st, new_t])
             return
-        reach = self.max_speed * (t - st) + 3.0 * math.sqrt(2.0) * self.pos_std
-        pairs = nearest_pairs(unused, seeds, reach)
+        reach = self.max_speed * (t - st) + 3.0 * math.sqrt(2.0) * self.pos_std  # 3σ of a coordinate of z1 − z0
+        pairs = nearest_pairs(unused, seeds, reach, self.dim)
         used_new = np.zeros(unused.shape[0], dtype=bool)
         used_new[pairs[:, 0]] = True
         used_old = np.zeros(seeds.shape[0], dtype=bool)
