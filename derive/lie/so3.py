@@ -36,7 +36,8 @@ import sympy as sp
 from .first_principles import SeriesDerivations
 from .special import cosc2, halfcot2, sinc, sinc3
 
-__all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "sin_axis_and_cos", "so3_angle", "so3_log_with_angle"]
+__all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "sin_axis_and_cos", "so3_angle", "so3_log_with_angle",
+           "rotation_vector", "rotation_vector_entry"]
 
 
 def skew(v) -> sp.Matrix:
@@ -159,3 +160,48 @@ class SO3(SeriesDerivations):
     def right_jacobian_inv(cls, phi) -> sp.Matrix:
         """J_r(φ)^-1 = J_l(-φ)^-1 = I + φ^/2 + halfcot2(t) φ^² (singular at |φ| = 2π)."""
         return cls.left_jacobian_inv([-e for e in phi])
+
+
+class rotation_vector_entry(sp.Function):
+    """φ_k = [log_SO(3)(R)]^∨_k (k = 0, 1, 2) of the rotation R given by its nine entries, row-major: (k, r11, ..., r33).
+
+    Unevaluated, so that a derivation can differentiate a model through the log of a rotation it carries (SE(3)×SE(3)'s
+    turn rate is the rotation vector of the velocity's rotation). Its derivative is the inverse right Jacobian: a right
+    perturbation R·exp(δ^) moves the log by J_r(φ)^-1 δ (Barfoot, *State Estimation for Robotics*, §7.1.5; Solà et al.,
+    *A micro Lie theory*, eq. 145), which ``fdiff`` extends to any direction dR of the nine entries as
+
+        dφ = J_r(φ)^-1 · [(Rᵀ dR − dRᵀ R)/2]^∨        (the skew part of Rᵀ dR; exactly δ for dR = R δ^, RᵀR = I),
+
+    with J_r(φ)^-1 = I + φ^/2 + halfcot2(|φ|) φ^² (Taylor branch near 0). ``closed_form`` is ``SO3.log`` (the angle
+    from atan2, the axis from the antisymmetric part or, near π, the symmetric part): what kernels compute.
+    ``tests/derive/test_lie3.py`` checks both against the matrix logarithm of mpmath.
+    """
+
+    nargs = 10
+
+    def _matrix(self) -> sp.Matrix:
+        return sp.Matrix(3, 3, list(self.args[1:]))
+
+    def fdiff(self, argindex=1):
+        if argindex == 1:
+            return sp.S.Zero
+        R = self._matrix()
+        i, j = divmod(argindex - 2, 3)
+        E = sp.zeros(3, 3)
+        E[i, j] = 1
+        M = R.T * E
+        d = SO3.right_jacobian_inv(rotation_vector(R)) * SO3.vee((M - M.T) / 2)
+        return d[int(self.args[0])]
+
+    def closed_form(self):
+        """[SO3.log(R)]_k, printable (Piecewise of the two axis methods)."""
+        return SO3.log(self._matrix())[int(self.args[0])]
+
+    def _eval_is_real(self):
+        return True
+
+
+def rotation_vector(R: sp.Matrix) -> sp.Matrix:
+    """[log_SO(3)(R)]^∨ as three ``rotation_vector_entry`` (unevaluated, differentiable: the inverse right Jacobian)."""
+    r = [R[i, j] for i in range(3) for j in range(3)]
+    return sp.Matrix([rotation_vector_entry(k, *r) for k in range(3)])

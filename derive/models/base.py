@@ -29,6 +29,7 @@ import sympy as sp
 
 from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
+from ..lie.so3 import rotation_vector, rotation_vector_entry
 from ..lie.special import to_exact, wrap
 from ..space import PLANE, SPACE3, angle_of
 
@@ -73,6 +74,8 @@ class MotionModel:
         (the paper's Monte Carlo study gives every filter its matched noise)
     angles : physical coordinates that are angles (wrapped to (−π, π] on output and in differences)
     carried : (angle, cos symbol, sin symbol) carried in the internal state
+    carried_rotations : ((rotation vector symbols), (its matrix's nine entry symbols, row-major)) carried in the
+        internal state (``derive.lie.so3.rotation_vector``: its log is the vector)
     bounds : {physical index: largest representable |value|}, with ``bound_reason``
     lifts : the name of the planar model this model lifts to 3-D space ("" for none): the study compares a 3-D model
         where the paper compares the planar one
@@ -96,6 +99,7 @@ class MotionModel:
     matched_noise: tuple = ()
     angles: tuple = ()
     carried: tuple = ()
+    carried_rotations: tuple = ()
     bounds: dict = {}
     bound_reason: str = ""
     forward_speed: tuple = ()
@@ -189,12 +193,18 @@ class MotionModel:
 
     @cached_property
     def carried_identities(self) -> dict:
-        """atan2(s, c) → a: the carried angle is the log of its own rotation, so this is exact."""
-        return {sp.atan2(s, c): a for a, c, s in self.carried}
+        """atan2(s, c) → a: the carried angle is the log of its own rotation, so this is exact; likewise the log of a
+        carried rotation matrix (``carried_rotations``) → its carried rotation vector."""
+        out = {sp.atan2(s, c): a for a, c, s in self.carried}
+        for vec, entries in self.carried_rotations:
+            out.update(zip(rotation_vector(sp.Matrix(3, 3, list(entries))), vec))
+        return out
 
     def to_internal(self, e):
-        """An expression with the carried substitutions and identities applied."""
-        return sp.sympify(e).subs(self.carried_substitutions).xreplace(self.carried_identities)
+        """An expression with the carried substitutions and identities applied; a log of a rotation that is not
+        carried (``rotation_vector_entry`` of a computed matrix) in its closed form, as kernels compute it."""
+        e = sp.sympify(e).subs(self.carried_substitutions).xreplace(self.carried_identities)
+        return e.replace(lambda a: isinstance(a, rotation_vector_entry), lambda a: a.closed_form())
 
     @cached_property
     def Omega(self) -> sp.Matrix:
