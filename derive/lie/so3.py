@@ -37,7 +37,8 @@ from .first_principles import SeriesDerivations
 from .special import cosc2, halfcot2, sinc, sinc3
 
 __all__ = ["SO3", "skew", "angle_of_norm", "quadratic_in_hat", "sin_axis_and_cos", "so3_angle", "so3_log_with_angle",
-           "rotation_vector", "rotation_vector_entry"]
+           "rotation_vector", "rotation_vector_entry", "orthonormal_reduce",
+           "rotation_matrix", "rotation_matrix_entry"]
 
 
 def skew(v) -> sp.Matrix:
@@ -205,3 +206,64 @@ def rotation_vector(R: sp.Matrix) -> sp.Matrix:
     """[log_SO(3)(R)]^∨ as three ``rotation_vector_entry`` (unevaluated, differentiable: the inverse right Jacobian)."""
     r = [R[i, j] for i in range(3) for j in range(3)]
     return sp.Matrix([rotation_vector_entry(k, *r) for k in range(3)])
+
+
+def orthonormal_reduce(expr, entries):
+    """``expr`` with RᵀR = I applied, R the rotation of the nine ``entries`` (row-major symbols).
+
+    Differentiating the log of a right-perturbed rotation R·(I + δ^) through ``rotation_vector_entry`` gives
+    J_r(φ)^-1 [(RᵀR δ^ − δ^ᵀRᵀR)/2]^∨, which is J_r(φ)^-1 δ only once RᵀR = I is used. Written as a polynomial in the
+    entries, each coefficient (a function of the other symbols) must multiply whole Gram entries
+    g_ij = Σ_k r_ki r_kj, the inner products of R's columns; then the polynomial is Σ c_ij g_ij = Σ_i c_ii. An
+    expression that is not of that form is returned unchanged.
+    """
+    r = list(entries)
+    R = sp.Matrix(3, 3, r)
+    expr = sp.expand(sp.sympify(expr))
+    if not expr.free_symbols & set(r):
+        return expr
+    poly = sp.Poly(expr, *r)
+    if poly.total_degree() != 2 or any(sum(m) not in (0, 2) for m in poly.monoms()):
+        return expr
+    constant = poly.coeff_monomial(1)
+    reduced, rebuilt = constant, constant
+    for i in range(3):
+        for j in range(i, 3):
+            c = poly.coeff_monomial(R[0, i] * R[0, j])
+            g = sum(R[k, i] * R[k, j] for k in range(3))
+            rebuilt += c * g
+            reduced += c if i == j else 0
+    return reduced if sp.expand(rebuilt - expr) == 0 else expr
+
+
+class rotation_matrix_entry(sp.Function):
+    """[exp_SO(3)(φ^)]_ij (i, j, φx, φy, φz), unevaluated, so that a derivation can differentiate a rotation built from
+    a rotation vector without dividing by |φ|.
+
+    Its derivative is the right Jacobian: exp((φ + dφ)^) = exp(φ^)·exp((J_r(φ) dφ)^) to first order (Barfoot,
+    *State Estimation for Robotics*, §7.1.5), so ∂R/∂φ_k = R·(J_r(φ) e_k)^ with J_r(φ) = I − cosc2(|φ|) φ^ +
+    sinc3(|φ|) φ^² (Taylor branches near 0), where differentiating the closed form of exp through |φ| would print
+    sinc'(|φ|)·φ_k/|φ|, 0/0 at φ = 0. ``closed_form`` is ``SO3.exp``.
+    """
+
+    nargs = 5
+
+    def fdiff(self, argindex=1):
+        if argindex <= 2:
+            return sp.S.Zero
+        i, j = int(self.args[0]), int(self.args[1])
+        phi = list(self.args[2:])
+        R = rotation_matrix(phi)
+        return (R * skew(SO3.right_jacobian(phi)[:, argindex - 3]))[i, j]
+
+    def closed_form(self):
+        """[SO3.exp(φ)]_ij."""
+        return SO3.exp(list(self.args[2:]))[int(self.args[0]), int(self.args[1])]
+
+    def _eval_is_real(self):
+        return True
+
+
+def rotation_matrix(phi) -> sp.Matrix:
+    """exp_SO(3)(φ^) as nine ``rotation_matrix_entry`` (unevaluated, differentiable: the right Jacobian)."""
+    return sp.Matrix(3, 3, lambda i, j: rotation_matrix_entry(i, j, *phi))

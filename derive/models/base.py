@@ -29,7 +29,7 @@ import sympy as sp
 
 from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
-from ..lie.so3 import rotation_vector, rotation_vector_entry
+from ..lie.so3 import orthonormal_reduce, rotation_matrix, rotation_vector, rotation_vector_entry
 from ..lie.special import to_exact, wrap
 from ..space import PLANE, SPACE3, angle_of
 
@@ -311,14 +311,31 @@ class MotionModel:
         """∂ε/∂c at the mean: the tangent coordinates ε (X = μ·exp ε) w.r.t. the common coordinates c.
 
         To first order log(μ⁻¹ X(c + d)) = [μ⁻¹ X(c + d) − I]^∨, so J = ∂/∂d of that at d = 0; P = J P_c Jᵀ.
+        A carried rotation (``carried_rotations``) enters as ``derive.lie.so3.rotation_matrix`` of its rotation vector,
+        so its derivative is R·(J_r(ω) dω)^ (no division by |ω|); RᵀR = I is applied (``orthonormal_reduce``) before
+        the closed form of exp replaces it.
         """
         common = self.space.common
         d = sp.symbols(f"_d0:{len(common)}", real=True)
-        mu = self.mean_of_common
+        mu = self._mean_with_differentiable_rotations().subs(dict(zip(self.physical, self.from_common())), simultaneous=True)
         Xd = mu.subs({c: c + di for c, di in zip(common, d)}, simultaneous=True)
         E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
         J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
+        for vec, entries in self.carried_rotations:
+            vec = [sp.sympify(e).subs(dict(zip(self.physical, self.from_common())), simultaneous=True) for e in vec]
+            R = rotation_matrix(vec)
+            J = J.xreplace({R[k // 3, k % 3]: q for k, q in enumerate(entries)})
+            J = J.applyfunc(lambda e, entries=entries: orthonormal_reduce(e, entries))
+            J = J.xreplace({q: R[k // 3, k % 3].closed_form() for k, q in enumerate(entries)})
         return J.applyfunc(_tidy)
+
+    def _mean_with_differentiable_rotations(self) -> sp.Matrix:
+        """``mean_physical`` with each carried rotation as ``rotation_matrix`` of its rotation vector (unevaluated)."""
+        if not self.carried_rotations:
+            return self.mean_physical
+        carried = {q: e for vec, entries in self.carried_rotations for q, e in zip(entries, rotation_matrix(list(vec)))}
+        sub = {s: carried.get(s, e) for s, e in zip(self.internal, self.internal_from_physical()) if s not in self.physical}
+        return self.mean().subs(sub, simultaneous=True)
 
     @cached_property
     def common_of_physical(self) -> list:
@@ -336,24 +353,35 @@ class MotionModel:
         return tuple(i for i, c in enumerate(self.space.common) if c not in used)
 
     @cached_property
-    def physical_jacobian(self) -> sp.Matrix:
-        """∂ε/∂x at the mean: the tangent coordinates ε (X = μ·exp ε) w.r.t. the physical state x (n × n)."""
-        d = sp.symbols(f"_d0:{self.n}", real=True)
-        mu = self.mean_physical
-        Xd = mu.subs({p: p + di for p, di in zip(self.physical, d)}, simultaneous=True)
-        E = self.group.inverse(mu) * Xd - sp.eye(mu.shape[0])
-        J = self.group.vee(E).jacobian(sp.Matrix(d)).subs({di: 0 for di in d})
-        return J.applyfunc(_tidy)
+    def physical_of_tangent_jacobian(self) -> sp.Matrix:
+        """∂x/∂ε at the mean (n × n): the physical state x of X = μ·exp(ε) differentiated at ε = 0.
+
+        Computed forward, x(μ·(I + ε^)) through ``internal_of`` and ``physical_from_internal`` (exp(ε^) = I + ε^ to
+        first order), not by inverting ∂ε/∂x: a carried rotation vector (``carried_rotations``) then differentiates
+        through ``derive.lie.so3.rotation_vector_entry`` to J_r(ω)^-1 in closed form (``orthonormal_reduce`` applies
+        RᵀR = I), where a symbolic inverse of SE(3)×SE(3)'s 12 × 12 ∂ε/∂x does not finish. Output wrapping of angles
+        (``wrap``) has derivative 1 and is dropped.
+        """
+        eps = list(self.EPS)
+        X = self.mean() * (sp.eye(self.group.matrix_size) + self.group.hat(eps))
+        perturbed = dict(zip(self.internal, self.internal_of(X)))
+        x = sp.Matrix(self.physical_from_internal()).replace(lambda a: isinstance(a, wrap), lambda a: a.args[0])
+        J = x.subs(perturbed, simultaneous=True).jacobian(sp.Matrix(eps)).subs({e: 0 for e in eps})
+        J = J.applyfunc(self.to_internal)
+        for _, entries in self.carried_rotations:
+            J = J.applyfunc(lambda e, entries=entries: orthonormal_reduce(e, entries))
+        rest = {s: e for s, e in zip(self.internal, self.internal_from_physical()) if s not in self.physical}
+        return J.subs(rest, simultaneous=True).applyfunc(_tidy)
 
     @cached_property
     def common_of_physical_jacobian(self) -> sp.Matrix:
         """∂c/∂ε at the mean (n_common × n): a covariance P of ε maps to the common coordinates as A P Aᵀ.
 
-        A = ∂c/∂x · (∂ε/∂x)⁻¹ (chain rule through the physical coordinates x); rows of ``common_missing``
-        are zero.
+        A = ∂c/∂x · ∂x/∂ε (chain rule through the physical coordinates x, ``physical_of_tangent_jacobian``); rows of
+        ``common_missing`` are zero.
         """
         c = sp.Matrix(self.common_of_physical)
-        A = c.jacobian(sp.Matrix(self.physical)) * self.physical_jacobian.inv()
+        A = c.jacobian(sp.Matrix(self.physical)) * self.physical_of_tangent_jacobian
         return A.applyfunc(_tidy)
 
     def periodic_tangent(self) -> tuple:

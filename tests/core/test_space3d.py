@@ -20,7 +20,7 @@ THREE = models_of("3d")
 
 def test_the_registry_knows_both_spaces_and_keeps_the_commands_in_the_plane():
     assert DEFAULT_SPACE == "2d" and SPACES["2d"]["dim"] == 2 and SPACES["3d"]["dim"] == 3
-    assert set(THREE) == {"se3r6", "ct3", "cv3"}
+    assert set(THREE) == {"se3r6", "se3se3", "ct3", "cv3"}
     assert not set(THREE) & set(MODELS)  # the planar commands (track, sweep, evaluate) offer the plane's models
     assert set(ALL_MODELS) == set(MODELS) | set(THREE)
     assert base_measurement("3d") == "position3" and base_measurement("2d") == "position"
@@ -76,7 +76,7 @@ def _world_velocity(c):
 
 @pytest.mark.parametrize("name", sorted(THREE))
 def test_common_coordinates_round_trip(name):
-    """physical_to_common(state_from_common(c)): se3r6 gives c back; the others keep what they carry: the position
+    """physical_to_common(state_from_common(c)): se3r6 and se3se3 (whose state is c) give c back; the others keep what they carry: the position
     and the world velocity (CV3), and CT3's course, horizontal and vertical speed."""
     k = get_model(name).kernels
     rng = np.random.default_rng(11)
@@ -86,7 +86,7 @@ def test_common_coordinates_round_trip(name):
         back = np.asarray(k.physical_to_common(x))
         np.testing.assert_allclose(back[:3], c[:3], atol=1e-12)
         w, wb = _world_velocity(c), _world_velocity(back)
-        if name == "se3r6":
+        if name in ("se3r6", "se3se3"):
             np.testing.assert_allclose(back, c, atol=1e-12)
         else:
             np.testing.assert_allclose(wb, w, atol=1e-12)  # a model without attitude: velocity along its x axis
