@@ -1154,7 +1154,7 @@ def calH_pose3(s):
     return out
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def update_pose3(s, p, z_x, z_y, z_z, z_roll, z_pitch, z_yaw, r_p, r_a):
     """Fused update with a pose3 measurement (3-D pose z = (x, y, z, roll, pitch, yaw) in SE(3) with noise stds (r_p, r_a) in its tangent (position, rotation vector; body frame)), in place.
     z = (z_x, z_y, z_z, z_roll, z_pitch, z_yaw), noise stds (r_p, r_a); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
@@ -5456,7 +5456,7 @@ def measure_batch_pose3(X, noise, out):
             out[i, j] = z[j]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def innovation_into_pose3(s, z_x, z_y, z_z, z_roll, z_pitch, z_yaw, out):
     """The pose3 innovation e = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K) of the state s for the measured z, written into out (6,).
     """
@@ -5760,7 +5760,7 @@ def recover_pose3(
     return found[:na]
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_pose3 on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
     """
@@ -12524,7 +12524,7 @@ def first_alarm(
     return g, kind, val, start, lim
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def tangent_error(s, c):
     """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
     in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
@@ -12768,7 +12768,7 @@ def retract(s, eps):
     s[17] = eps11 + omega_z
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between(s, t):
     """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
     angle coordinates of a Euclidean model wrapped to (-π, π].
@@ -15688,7 +15688,7 @@ def step_store_pose3(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, z_roll, z_pi
     return nis, -math.log(rdet)
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_store_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_store_pose3 on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
     """
@@ -22606,7 +22606,7 @@ def smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dt):
     s_sm[k, 17] = de11_0 + omega_z
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_smooth(W, j):
     """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
     """
@@ -25044,7 +25044,7 @@ def common_jacobian_into(c, out):
     out[11, 11] = 1.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between_into(s, t, out):
     """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
     angle coordinates of a Euclidean model wrapped to (-π, π].
@@ -25539,7 +25539,7 @@ def physical_to_common_jacobian_into(xp, out):
     out[11, 11] = 1.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between_add(s, t, w, acc):
     """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
     """
@@ -25705,7 +25705,7 @@ def between_add(s, t, w, acc):
     acc[11] = acc11 + d11*w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def mix_transport(s, t, pt, w, acc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)

@@ -1487,7 +1487,7 @@ def calH_pose3(s):
     return out
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def update_pose3(s, p, z_x, z_y, z_z, z_roll, z_pitch, z_yaw, r_p, r_a):
     """Fused update with a pose3 measurement (3-D pose z = (x, y, z, roll, pitch, yaw) in SE(3) with noise stds (r_p, r_a) in its tangent (position, rotation vector; body frame)), in place.
     z = (z_x, z_y, z_z, z_roll, z_pitch, z_yaw), noise stds (r_p, r_a); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
@@ -6447,7 +6447,7 @@ def measure_batch_pose3(X, noise, out):
             out[i, j] = z[j]
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def innovation_into_pose3(s, z_x, z_y, z_z, z_roll, z_pitch, z_yaw, out):
     """The pose3 innovation e = [log_G'(h(μ)⁻¹ Z)]^∨ (eq:K) of the state s for the measured z, written into out (6,).
     """
@@ -6751,7 +6751,7 @@ def recover_pose3(
     return found[:na]
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_pose3 on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
     """
@@ -9278,7 +9278,7 @@ def calH_position3(s):
     return out
 
 
-@nb.njit(cache=True, fastmath=FASTMATH)
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def update_position3(s, p, z_x, z_y, z_z, r):
     """Fused update with a position3 measurement (3-D position z = (x, y, z) with isotropic noise std r), in place.
     z = (z_x, z_y, z_z), noise stds (r); Z = h(μ)·exp(m), m ~ N(0, R) in the tangent of G'.
@@ -12372,7 +12372,7 @@ def recover_position3(
     return found[:na]
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_position3(W, j, sigma_a, sigma_alpha, r):
     """step_position3 on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
     """
@@ -14524,7 +14524,7 @@ def physical_lane(W, j, out, b, k):
     out[b, k, 11] = omega_z
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def propagate(s, dt, n0, n1, n2, n3, n4, n5):
     """Exact motion X ← X exp([Ω(X) + G n]^∧) (eq:model) for one noise sample n, in place.
     """
@@ -15130,7 +15130,7 @@ def first_alarm(
     return g, kind, val, start, lim
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def tangent_error(s, c):
     """ε = [log_G(μ^-1 X)]^∨: the error of the estimate μ (internal state s) w.r.t. a true common state c,
     in the coordinates of P (for NEES = εᵀ P^-1 ε); angle coordinates wrapped to (-π, π].
@@ -15421,7 +15421,7 @@ def tangent_error(s, c):
     return out
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def retract(s, eps):
     """μ ← μ·exp([ε]^∧) in place (right perturbation; the update's eq:up_mu for a given ε).
     """
@@ -15659,7 +15659,7 @@ def retract(s, eps):
     s[26] = (_t114*_t136 if _t130 else (_t143*_t151 if _t146 else (_t149*_t154 if _t150 else _t152*_t153)))
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between(s, t):
     """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
     angle coordinates of a Euclidean model wrapped to (-π, π].
@@ -19302,7 +19302,7 @@ def step_store_pose3(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, z_roll, z_pi
     return nis, -math.log(rdet)
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_store_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_store_pose3 on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
     """
@@ -23810,7 +23810,7 @@ def step_store_position3(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, r, sq, p
     return nis, -math.log(rdet)
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_store_position3(W, j, sigma_a, sigma_alpha, r):
     """step_store_position3 on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
     """
@@ -28002,7 +28002,7 @@ def smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dt):
     s_sm[k, 26] = (_t771*_t793 if _t787 else (_t800*_t808 if _t803 else (_t806*_t811 if _t807 else _t809*_t810)))
 
 
-@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
+@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
 def lane_smooth(W, j):
     """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
     """
@@ -31265,7 +31265,7 @@ def common_jacobian_into(c, out):
     out[11, 11] = -_t20 - _t23 + 1.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between_into(s, t, out):
     """[log_G(μ_s^-1 μ_t)]^∨: the tangent ε with μ_t = μ_s·exp(ε) (s ⊖: μ_s, t: μ_t, internal states);
     angle coordinates of a Euclidean model wrapped to (-π, π].
@@ -32128,7 +32128,7 @@ def physical_to_common_jacobian_into(xp, out):
     out[11, 11] = -_t29 - _t36 + 1.0
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def between_add(s, t, w, acc):
     """acc += w·[log_G(μ_s^-1 μ_t)]^∨ (a term of the iterated mean μ ← μ·exp(Σ w_i d_i); d as ``between``).
     """
@@ -32394,7 +32394,7 @@ def between_add(s, t, w, acc):
     acc[11] = acc11 + d11*w
 
 
-@nb.njit(cache=True)
+@nb.njit(cache=True, error_model="numpy")
 def mix_transport(s, t, pt, w, acc):
     """acc (packed upper triangle) += w·[Φ(d)^-1 P_t Φ(d)^-T + d dᵀ], d = [log_G(μ_s^-1 μ_t)]^∨, P_t = unpack(pt):
     one source's term of a mixture's covariance about the mean μ_s (X = μ_t·exp ε_t = μ_s·exp(d + Φ(d)^-1 ε_t)

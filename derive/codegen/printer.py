@@ -262,8 +262,11 @@ def render_kernel(k: Kernel) -> str:
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
-    if k.error_model:
-        deco = deco[:-1] + f', error_model="{k.error_model}")'
+    # CSE hoists the parts of every branch of a Piecewise (log of SO(3) near π beside its generic branch) out of the
+    # condition, so a branch that is not taken may divide by zero: IEEE division then (inf, not an exception)
+    error_model = k.error_model or ("numpy" if any(sp.sympify(e).has(sp.Piecewise) for e in all_exprs) else None)
+    if error_model:
+        deco = deco[:-1] + f', error_model="{error_model}")'
     lines.append(deco)
     lines.append(f"def {k.name}({', '.join(k.params)}):")
     doc = k.doc.strip("\n")

@@ -54,7 +54,7 @@ def study_parser():
     ap.add_argument("--steps", type=int, default=100, help="measurements per trajectory (default 100)")
     ap.add_argument("--space", default=None, metavar="2d|3d",
                     help="the space of motion: 2d (the paper's plane, default) or 3d (the protocol lifted to SE(3): "
-                         "truth se3r6, filters se3r6, ct3, cv3, 3-D position measurements)")
+                         "truth se3r6, filters se3r6, se3se3, ct3, cv3, 3-D position measurements)")
     ap.add_argument("--v0", default=None, help="initial body velocity v_x,v_y (3d: v_x,v_y,v_z) in m/s (default 3,0 / 3,0,0)")
     ap.add_argument("--w0", default=None, help="initial angular velocity in rad/s (3d: ω_x,ω_y,ω_z) (default 0)")
     ap.add_argument("--sigma-v", type=float, default=0.1, help="std of n_x, n_y (default 0.1)")
@@ -65,7 +65,7 @@ def study_parser():
     from ..core.registry import SPACES
 
     truths = [t for sp_ in SPACES for t in truth_models(sp_)]
-    ap.add_argument("--truth", default=None, choices=truths, help="truth motion model (default se2se2; 3d: se3r6)")
+    ap.add_argument("--truth", default=None, choices=truths, help="truth motion model (default se2se2; 3d: se3r6, or se3se3)")
     ap.add_argument("--filters", default=None, metavar="LIST",
                     help=f"comma-separated filters to run (default: all of the space, {','.join(MODELS)})")
     ap.add_argument("--measure", default=None, choices=list(ALL_MEASUREMENTS),

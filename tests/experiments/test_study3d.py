@@ -1,5 +1,5 @@
-"""`lgekf study --space 3d`: the paper's protocol lifted to SE(3) (truth se3r6, filters se3r6, ct3, cv3, 3-D position
-measurements), its claims through the lifted models, and its bad input."""
+"""`lgekf study --space 3d`: the paper's protocol lifted to SE(3) (truth se3r6, filters se3r6, se3se3, ct3, cv3, 3-D
+position measurements), its claims through the lifted models, and its bad input."""
 
 from __future__ import annotations
 
@@ -22,7 +22,7 @@ def reduced3d():
 def test_the_3d_protocol(reduced3d):
     cfg = reduced3d.config
     assert cfg.space == "3d" and cfg.truth == "se3r6" and cfg.measurement == "position3"
-    assert set(cfg.filters) == {"se3r6", "ct3", "cv3"}
+    assert set(cfg.filters) == {"se3r6", "se3se3", "ct3", "cv3"}
     # 3-D position noise N(0, 0.5² I): per-trajectory RMSE √3·0.5 up to O(1/K)
     m = reduced3d.mean("measurements")
     assert np.all(np.abs(m - 0.5 * np.sqrt(3)) < 0.03), m
@@ -40,7 +40,8 @@ def test_the_lg_filter_on_se3_beats_the_measurements_and_the_baselines_when_the_
 def test_claims_speak_of_the_lifted_models(reduced3d):
     claims = claims_check(reduced3d)
     assert claims and any("se3r6" in c.text for c in claims)
-    assert not any("SE(2)xSE(2)" in c.text for c in claims)  # no SE(3)xSE(3) filter: that claim is not made
+    assert not any("SE(2)xSE(2)" in c.text for c in claims)  # the lifted names, not the planar ones
+    assert any("se3se3 and se3r6" in c.text for c in claims)  # SE(3)xSE(3) stands for SE(2)xSE(2)
 
 
 def test_study_3d_cli(tmp_path):
@@ -50,7 +51,7 @@ def test_study_3d_cli(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "se3r6 stands for se2r3" in r.stdout
     rows = list(csv.DictReader((out / "summary.csv").open()))
-    assert {row["filter"] for row in rows} == {"se3r6", "ct3", "cv3", "measurements"}
+    assert {row["filter"] for row in rows} == {"se3r6", "se3se3", "ct3", "cv3", "measurements"}
     meta = json.loads((out / "meta.json").read_text())
     assert meta["protocol"]["space"] == "3d" and meta["protocol"]["v0"] == [3.0, 0.0, 0.0]
 
