@@ -196,17 +196,25 @@ def _closed_form(f, x):
 _BELOW = [1 - 1e-9] + [1 - k * 1e-3 / 63 for k in range(1, 64)]
 
 
+#: relative error allowed of each branch just below tau: the Taylor branch (truncation below 1e-17, the rest rounding
+#: of a Horner evaluation) within 2 ulp, the closed form within the "few ulp" that chose tau (4.5 ulp)
+ULP = 2.220446049250313e-16
+TAYLOR_TOL, CLOSED_TOL = 2 * ULP, 1e-15
+
+
 @pytest.mark.parametrize("f", S.ANGLE_FUNCTIONS, ids=lambda f: f.__name__)
 def test_threshold_taylor_and_closed_form_agree(f):
-    """Just below tau the kernel's Taylor branch and the closed form `stable` agree to 1e-15 relative.
+    """Just below tau both branches are accurate against a 50-digit reference, so they agree at the switch.
 
     derive/lie/special.py: "tau is the smallest angle above which the float64 closed form stays within
     a few ulp of a 50-digit mpmath reference, and the Taylor order is the smallest whose truncation
-    error at tau is below 1e-17 relative".  If the two branches differ by more than ~4.5 ulp just
-    below tau, one of them is inaccurate at the switch (the error columns say which).
+    error at tau is below 1e-17 relative". Each branch is checked against the reference (the Taylor branch within
+    2 ulp, the closed form within 4.5 ulp), not their difference alone: a difference of 4.6 ulp made of the closed
+    form's 4 ulp and one ulp of the compiled Horner's rounding (which can vary with LLVM's instruction selection)
+    is not an inaccurate branch.
     """
     g = getattr(gspecial, f.__name__)
-    worst = (0.0, None, 0.0, 0.0)
+    worst_t, worst_c = (0.0, None), (0.0, None)
     with mp.workdps(DIGITS + 10):
         for sign in (1.0, -1.0):
             for k in _BELOW:
@@ -215,17 +223,12 @@ def test_threshold_taylor_and_closed_form_agree(f):
                 taylor = g(x, math.sin(x), math.cos(x))  # |x| < tau: the Taylor branch
                 closed = _closed_form(f, x)
                 true = to_mp(f(Q(x)))
-                diff = float(abs(mp.mpf(taylor) - mp.mpf(closed)) / abs(true))
-                if diff > worst[0]:
-                    e_t = float(abs(mp.mpf(taylor) - true) / abs(true))
-                    e_c = float(abs(mp.mpf(closed) - true) / abs(true))
-                    worst = (diff, x, e_t, e_c)
-    diff, x, e_t, e_c = worst
-    assert diff <= 1e-15, (
-        f"{f.__name__} (tau={f.tau}, order={f.order}): at x={x!r} |taylor - closed|/|f| = {diff:.2e}; "
-        f"relative error of the Taylor branch {e_t:.2e}, of the closed form {e_c:.2e} "
-        f"({e_c / 2.220446049250313e-16:.0f} ulp)"
-    )
+                e_t = float(abs(mp.mpf(taylor) - true) / abs(true))
+                e_c = float(abs(mp.mpf(closed) - true) / abs(true))
+                worst_t, worst_c = max(worst_t, (e_t, x)), max(worst_c, (e_c, x))
+    what = f"{f.__name__} (tau={f.tau}, order={f.order})"
+    assert worst_t[0] <= TAYLOR_TOL, f"{what}: the Taylor branch is {worst_t[0] / ULP:.1f} ulp off at x={worst_t[1]!r}"
+    assert worst_c[0] <= CLOSED_TOL, f"{what}: the closed form is {worst_c[0] / ULP:.1f} ulp off at x={worst_c[1]!r}"
 
 
 @pytest.mark.parametrize("f", S.ANGLE_FUNCTIONS, ids=lambda f: f.__name__)

@@ -48,7 +48,7 @@ def test_kitti3d_truth_is_consistent(kitti3d):
 def test_motion_errors_of_cv3_against_the_truth(kitti3d):
     """CV3's turn rate is 0, so its turn-rate RMSE per track is the RMS of the truth's wu over the scored rows (rows k ≥ 2
     moving at ≥ 1 m/s); it has no attitude. The 3-D filters and baseline of the space."""
-    assert filters_of(kitti3d) == ("ct3", "cv3", "se3r6") and baseline_of("3d") == "cv3"
+    assert filters_of(kitti3d) == ("ct3", "cv3", "se3r6", "se3se3") and baseline_of("3d") == "cv3"
     ds = kitti3d.subset([0, 7])
     z = ds.p + 0.3 * np.random.default_rng(0).standard_normal(ds.p.shape)
     motion = {}
