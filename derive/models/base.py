@@ -31,7 +31,7 @@ from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
 from ..lie.so3 import orthonormal_reduce, rotation_matrix, rotation_vector, rotation_vector_entry
 from ..lie.special import to_exact, wrap
-from ..space import PLANE, SPACE3, angle_of
+from ..space import PLANE, SPACE3, angle_of, euler_rotation
 
 __all__ = [
     "MotionModel", "VectorModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
@@ -439,6 +439,33 @@ class VectorModel(MotionModel):
     def Omega_of(self, X):
         s = self.group.log(X)
         return self.f(list(s)) - s
+
+
+class PoseBodyVelocity3:
+    """What the 3-D models whose physical state is the common state (pose, body velocity and rate: se3r6, se3se3)
+    share: the pose is the first SE(3) factor (position its translation, attitude its rotation), the body-frame
+    velocity turns into the world by the Z-Y-X Euler rotation, and the noise is white linear and angular acceleration
+    (σ_a on v, σ_α on ω, through G = [T²/2 I; T I])."""
+
+    def noise_input(self):
+        return dwna_G(6)
+
+    def noise_stds(self):
+        sa, sal = self.noise_symbols
+        return [sa] * 3 + [sal] * 3
+
+    def position(self, X):
+        return X[0, 3], X[1, 3], X[2, 3]
+
+    def attitude(self, X):
+        return X[:3, :3]
+
+    def from_common(self):
+        return list(SPACE3.common)
+
+    def world_velocity(self):
+        roll, pitch, yaw, vx, vy, vz = SPACE3.common[3:9]
+        return euler_rotation(roll, pitch, yaw) * sp.Matrix([vx, vy, vz])
 
 
 #: entries with more operations than this are emitted as they are (CSE shares their parts); simplifying them takes

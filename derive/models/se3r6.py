@@ -11,14 +11,14 @@ rotation is carried as its matrix, so a step needs no Euler angles (singular at 
 import sympy as sp
 
 from ..space import SPACE3, euler_of_rotation, euler_rotation
-from .base import SE3, MotionModel, Product, Rn, dt, dwna_G
+from .base import SE3, MotionModel, PoseBodyVelocity3, Product, Rn, dt
 
 x, y, z, roll, pitch, yaw, vx, vy, vz, wx, wy, wz = SPACE3.common
 R_ENTRIES = sp.symbols("r_11 r_12 r_13 r_21 r_22 r_23 r_31 r_32 r_33", real=True)
 RMAT = sp.Matrix(3, 3, R_ENTRIES)
 
 
-class SE3R6(MotionModel):
+class SE3R6(PoseBodyVelocity3, MotionModel):
     display_name = "SE(3)×R⁶ LG-EKF"
     description = "LG-EKF on SE(3)xR^6 (pose + body twist as a vector), the paper's SE(2)xR^3 in 3-D"
     color = "tab:orange"
@@ -49,25 +49,6 @@ class SE3R6(MotionModel):
     def Omega_of(self, X):
         V = X[4:11, 4:11]
         return sp.Matrix([dt * V[i, 6] for i in range(6)] + [0] * 6)
-
-    def noise_input(self):
-        return dwna_G(6)
-
-    def noise_stds(self):
-        sa, sal = self.noise_symbols
-        return [sa] * 3 + [sal] * 3
-
-    def position(self, X):
-        return X[0, 3], X[1, 3], X[2, 3]
-
-    def attitude(self, X):
-        return X[:3, :3]
-
-    def from_common(self):
-        return list(SPACE3.common)
-
-    def world_velocity(self):
-        return euler_rotation(roll, pitch, yaw) * sp.Matrix([vx, vy, vz])
 
 
 MODEL = SE3R6()

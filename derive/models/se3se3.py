@@ -17,7 +17,7 @@ import sympy as sp
 
 from ..lie.so3 import SO3, rotation_vector
 from ..space import SPACE3, euler_of_rotation, euler_rotation
-from .base import SE3, MotionModel, Product, dt, dwna_G
+from .base import SE3, MotionModel, PoseBodyVelocity3, Product, dt
 
 x, y, z, roll, pitch, yaw, vx, vy, vz, wx, wy, wz = SPACE3.common
 R_ENTRIES = sp.symbols("r_11 r_12 r_13 r_21 r_22 r_23 r_31 r_32 r_33", real=True)
@@ -30,7 +30,7 @@ def _entries(M) -> list:
     return [M[i, j] for i in range(3) for j in range(3)]
 
 
-class SE3SE3(MotionModel):
+class SE3SE3(PoseBodyVelocity3, MotionModel):
     display_name = "SE(3)×SE(3) LG-EKF"
     description = "LG-EKF on SE(3)xSE(3) (pose + body-frame velocity as a second SE(3) element), the paper's SE(2)xSE(2) in 3-D"
     color = "tab:blue"
@@ -66,25 +66,6 @@ class SE3SE3(MotionModel):
     def Omega_of(self, X):
         Td = X[4:8, 4:8]
         return sp.Matrix([dt * Td[0, 3], dt * Td[1, 3], dt * Td[2, 3]] + list(dt * rotation_vector(Td[:3, :3])) + [0] * 6)
-
-    def noise_input(self):
-        return dwna_G(6)
-
-    def noise_stds(self):
-        sa, sal = self.noise_symbols
-        return [sa] * 3 + [sal] * 3
-
-    def position(self, X):
-        return X[0, 3], X[1, 3], X[2, 3]
-
-    def attitude(self, X):
-        return X[:3, :3]
-
-    def from_common(self):
-        return list(SPACE3.common)
-
-    def world_velocity(self):
-        return euler_rotation(roll, pitch, yaw) * sp.Matrix([vx, vy, vz])
 
 
 MODEL = SE3SE3()
