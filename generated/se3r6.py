@@ -5760,7 +5760,7 @@ def recover_pose3(
     return found[:na]
 
 
-@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_pose3 on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).
     """
@@ -15688,7 +15688,7 @@ def step_store_pose3(s, p, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, z_roll, z_pi
     return nis, -math.log(rdet)
 
 
-@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_store_pose3(W, j, sigma_a, sigma_alpha, r_p, r_a):
     """step_store_pose3 on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD); 1/det S in a row of W.
     """
@@ -22606,7 +22606,7 @@ def smooth_step_at(s_filt, p_filt, s_pred, p_pred, s_sm, p_sm, k, dt):
     s_sm[k, 17] = de11_0 + omega_z
 
 
-@nb.njit(cache=True, fastmath=FASTMATH, error_model="numpy")
+@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")
 def lane_smooth(W, j):
     """smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).
     """

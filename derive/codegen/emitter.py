@@ -114,7 +114,7 @@ def registry_entry(model, measurements: dict, refused: dict) -> dict:
         "matched_noise": tuple(model.matched_noise),
         "angles": tuple(model.angles),
         "periodic_tangent": tuple(model.periodic_tangent()),
-        "bounds": {int(k): float(v) for k, v in model.bounds.items()},
+        "bounds": {tuple(int(i) for i in (k if isinstance(k, tuple) else (k,))): float(v) for k, v in model.bounds.items()},
         "bound_reason": model.bound_reason,
         "forward_speed": tuple(model.forward_speed),
         "lifts": model.lifts,

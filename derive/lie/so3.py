@@ -169,13 +169,16 @@ class rotation_vector_entry(sp.Function):
     Unevaluated, so that a derivation can differentiate a model through the log of a rotation it carries (SE(3)×SE(3)'s
     turn rate is the rotation vector of the velocity's rotation). Its derivative is the inverse right Jacobian: a right
     perturbation R·exp(δ^) moves the log by J_r(φ)^-1 δ (Barfoot, *State Estimation for Robotics*, §7.1.5; Solà et al.,
-    *A micro Lie theory*, eq. 145), which ``fdiff`` extends to any direction dR of the nine entries as
+    *A micro Lie theory*, eq. 145). ``fdiff`` writes that for a direction dR of the nine entries as
 
         dφ = J_r(φ)^-1 · [(Rᵀ dR − dRᵀ R)/2]^∨        (the skew part of Rᵀ dR; exactly δ for dR = R δ^, RᵀR = I),
 
-    with J_r(φ)^-1 = I + φ^/2 + halfcot2(|φ|) φ^² (Taylor branch near 0). ``closed_form`` is ``SO3.log`` (the angle
-    from atan2, the axis from the antisymmetric part or, near π, the symmetric part): what kernels compute.
-    ``tests/derive/test_lie3.py`` checks both against the matrix logarithm of mpmath.
+    with J_r(φ)^-1 = I + φ^/2 + halfcot2(|φ|) φ^² (Taylor branch near 0). It is the derivative along directions that
+    keep R a rotation (dR = R δ^, what every derivation here differentiates along), not the derivative of the closed
+    form along an arbitrary entry (which leaves the rotations: the log is not defined there). ``closed_form`` is
+    ``SO3.log`` (the angle from atan2, the axis from the antisymmetric part or, near π, the symmetric part): what
+    kernels compute. ``tests/derive/test_carried_rotations.py`` checks the derivative against finite differences of
+    SciPy's rotation vector.
     """
 
     nargs = 10
@@ -198,6 +201,11 @@ class rotation_vector_entry(sp.Function):
         """[SO3.log(R)]_k, printable (Piecewise of the two axis methods)."""
         return SO3.log(self._matrix())[int(self.args[0])]
 
+    def _eval_evalf(self, prec):
+        if all(a.is_number for a in self.args):
+            return self.closed_form().evalf(prec)
+        return None
+
     def _eval_is_real(self):
         return True
 
@@ -219,12 +227,16 @@ def orthonormal_reduce(expr, entries):
     """
     r = list(entries)
     R = sp.Matrix(3, 3, r)
-    expr = sp.expand(sp.sympify(expr))
-    if not expr.free_symbols & set(r):
-        return expr
-    poly = sp.Poly(expr, *r)
+    original = sp.sympify(expr)
+    if not original.free_symbols & set(r):
+        return original
+    expr = sp.expand(original)
+    try:
+        poly = sp.Poly(expr, *r)
+    except sp.PolynomialError:  # the entries inside a function: not a polynomial in them
+        return original
     if poly.total_degree() != 2 or any(sum(m) not in (0, 2) for m in poly.monoms()):
-        return expr
+        return original
     constant = poly.coeff_monomial(1)
     reduced, rebuilt = constant, constant
     for i in range(3):
@@ -233,7 +245,7 @@ def orthonormal_reduce(expr, entries):
             g = sum(R[k, i] * R[k, j] for k in range(3))
             rebuilt += c * g
             reduced += c if i == j else 0
-    return reduced if sp.expand(rebuilt - expr) == 0 else expr
+    return reduced if sp.expand(rebuilt - expr) == 0 else original
 
 
 class rotation_matrix_entry(sp.Function):
@@ -259,6 +271,11 @@ class rotation_matrix_entry(sp.Function):
     def closed_form(self):
         """[SO3.exp(φ)]_ij."""
         return SO3.exp(list(self.args[2:]))[int(self.args[0]), int(self.args[1])]
+
+    def _eval_evalf(self, prec):
+        if all(a.is_number for a in self.args):
+            return self.closed_form().evalf(prec)
+        return None
 
     def _eval_is_real(self):
         return True

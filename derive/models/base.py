@@ -34,8 +34,8 @@ from ..lie.special import to_exact, wrap
 from ..space import PLANE, SPACE3, angle_of, euler_rotation
 
 __all__ = [
-    "MotionModel", "VectorModel", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON", "COMMON_NAMES",
-    "dwna_G", "rotation", "angle_of", "SE2", "SE3", "Rn", "Product", "PLANE", "SPACE3",
+    "MotionModel", "VectorModel", "PoseBodyVelocity3", "x", "y", "theta", "vx", "vy", "omega", "dt", "COMMON",
+    "COMMON_NAMES", "dwna_G", "rotation", "angle_of", "SE2", "SE3", "Rn", "Product", "PLANE", "SPACE3",
 ]
 
 x, y, theta = sp.symbols("x y theta", real=True)
@@ -76,7 +76,8 @@ class MotionModel:
     carried : (angle, cos symbol, sin symbol) carried in the internal state
     carried_rotations : ((rotation vector symbols), (its matrix's nine entry symbols, row-major)) carried in the
         internal state (``derive.lie.so3.rotation_vector``: its log is the vector)
-    bounds : {physical index: largest representable |value|}, with ``bound_reason``
+    bounds : {physical index, or a tuple of indices (their Euclidean norm): largest representable |value|}, with
+        ``bound_reason``
     lifts : the name of the planar model this model lifts to 3-D space ("" for none): the study compares a 3-D model
         where the paper compares the planar one
     forward_speed : (heading index, speed index) of a model that moves along its heading at a signed scalar speed
@@ -232,9 +233,18 @@ class MotionModel:
 
     @cached_property
     def calC(self) -> sp.Matrix:
-        """𝒞 = ∂Ω(μ·exp ε)/∂ε at ε = 0 (eq:C), every singular entry through directional limits."""
+        """𝒞 = ∂Ω(μ·exp ε)/∂ε at ε = 0 (eq:C), every singular entry through directional limits.
+
+        With a carried rotation (``carried_rotations``) the log of its perturbed matrix differentiates to
+        J_r(ω)⁻¹·[(RᵀR δ^ − δ^ᵀRᵀR)/2]^∨; RᵀR = I is applied (``orthonormal_reduce``), leaving J_r(ω)⁻¹ δ.
+        """
         self.limit_report_C = []
-        return jacobian_at_zero(self.Omega_perturbed, self.EPS, report=self.limit_report_C)
+        C = jacobian_at_zero(self.Omega_perturbed, self.EPS, report=self.limit_report_C)
+        if self.carried_rotations:
+            C = C.applyfunc(self.to_internal)
+            for _, entries in self.carried_rotations:
+                C = C.applyfunc(lambda e, entries=entries: orthonormal_reduce(e, entries))
+        return C
 
     def F_of(self, C: sp.Matrix) -> sp.Matrix:
         """F = Ad_G(exp(−Ω)) + Φ_G(Ω)·𝒞 for a given 𝒞 (paper, below eq:pred_cov)."""
@@ -444,8 +454,9 @@ class VectorModel(MotionModel):
 class PoseBodyVelocity3:
     """What the 3-D models whose physical state is the common state (pose, body velocity and rate: se3r6, se3se3)
     share: the pose is the first SE(3) factor (position its translation, attitude its rotation), the body-frame
-    velocity turns into the world by the Z-Y-X Euler rotation, and the noise is white linear and angular acceleration
-    (σ_a on v, σ_α on ω, through G = [T²/2 I; T I])."""
+    velocity turns into the world by the Z-Y-X Euler rotation, and the noise n = (n_a, n_α) is white linear and
+    angular acceleration (σ_a, σ_α) entering the velocity factor's tangent through G = [T²/2 I; T I] (for se3r6 the
+    twist itself; for se3se3 the tangent of T_d, so ω moves by J_r(ω)⁻¹·T·n_α and v by R_ω-rotated T·n_a)."""
 
     def noise_input(self):
         return dwna_G(6)

@@ -45,7 +45,7 @@ class SE3SE3(PoseBodyVelocity3, MotionModel):
     default_accel_std = (0.5, 1.0)
     matched_noise = ("v", "w")
     angles = (3, 4, 5)
-    bounds = {9: math.pi, 10: math.pi, 11: math.pi}
+    bounds = {(9, 10, 11): math.pi}
     bound_reason = "ω is the rotation vector of T_d's rotation (|ω| <= π); use the se3r6 model for faster rotations"
 
     def mean(self):

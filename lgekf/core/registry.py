@@ -74,7 +74,7 @@ class ModelSpec:
     matched_noise: tuple  # per noise std: "v" or "w" (the simulated truth's σ_v or σ_ω)
     angles: tuple  # physical coordinates that are angles
     periodic_tangent: tuple
-    bounds: dict
+    bounds: dict  # {(indices,): bound}: the Euclidean norm of those physical coordinates is at most the bound
     bound_reason: str
     noise_inputs: tuple  # for each entry of the noise n, the index of its std in accel_std
     measurements: tuple  # the measurement models this model supports
@@ -111,14 +111,36 @@ class ModelSpec:
         E.g. SE(2)×SE(2): ω is the angle of T_d's rotation, so only |ω| ≤ π rad/s exists; a larger turn
         rate would silently alias to ω − 2π (the bound and its reason come from the definition).
         """
-        for i, bound in self.bounds.items():
-            w = np.asarray(x, dtype=float)[..., int(i)]
-            bad = np.abs(w) > bound * (1 + 1e-12)
+        x = np.asarray(x, dtype=float)
+        for idx, bound in self.bounds.items():
+            norm = self.bounded_norm(x, idx)
+            bad = norm > bound * (1 + 1e-12)
             if np.any(bad):
+                what = self.state_names[idx[0]] if len(idx) == 1 else f"|({', '.join(self.state_names[i] for i in idx)})|"
                 raise ValueError(
-                    f"{name}: {self.state_names[int(i)]} = {float(w[bad].flat[0]):.6g} is not representable in the "
+                    f"{name}: {what} = {float(norm[bad].flat[0]):.6g} is not representable in the "
                     f"{self.name} model: {self.bound_reason}"
                 )
+
+    @staticmethod
+    def bounded_norm(x: np.ndarray, idx: tuple) -> np.ndarray:
+        """|x_i| for a bound on one coordinate, the Euclidean norm of the coordinates ``idx`` for a bound on several
+        (SE(3)×SE(3)'s turn rate, a rotation vector), over the last axis of x."""
+        return np.linalg.norm(np.asarray(x, dtype=float)[..., list(idx)], axis=-1)
+
+    def wrap_bounded(self, x: np.ndarray) -> np.ndarray:
+        """x with each bounded coordinate (or vector) brought inside its bound as the model would alias it: a
+        coordinate to (−b, b] modulo 2b, a rotation vector of norm t > b to the same rotation's vector of norm
+        2b − t (φ·(1 − 2b/t), b = π)."""
+        x = np.array(x, dtype=float)
+        for idx, b in self.bounds.items():
+            if len(idx) == 1:
+                x[..., idx[0]] = (x[..., idx[0]] + b) % (2 * b) - b
+                continue
+            v = x[..., list(idx)]
+            t = np.linalg.norm(v, axis=-1, keepdims=True)
+            x[..., list(idx)] = v * np.where(t > b, 1 - 2 * b / np.where(t > 0, t, 1.0), 1.0)
+        return x
 
     def measurement_or_base(self, name: str) -> str:
         """``name`` if this model takes that measurement, else ``BASE_MEASUREMENT`` (e.g. CV given poses gets

@@ -82,8 +82,8 @@ def simulate(
     z = np.empty((B * steps, meas.dim))
     spec.kernel("measure_batch", measurement)(np.ascontiguousarray(out[:, 1:].reshape(-1, spec.n)), mn, z)
     wrapped = np.zeros(B, bool)
-    for i, bound in spec.bounds.items():
-        wrapped |= np.any(np.abs(np.diff(out[:, :, int(i)], axis=1)) > bound, axis=1)
+    for idx, bound in spec.bounds.items():
+        wrapped |= np.any(spec.bounded_norm(np.diff(out, axis=1), idx) > bound, axis=1)
     return Simulation(out, z.reshape(B, steps, meas.dim), float(dt), wrapped, measurement)
 
 

@@ -107,8 +107,8 @@ class StudyConfig:
         if self.truth not in truth_models(self.space):
             raise ValueError(f"truth: unknown truth model {self.truth!r}; choose one of {', '.join(truth_models(self.space))}")
         truth = get_model(self.truth)
-        for i, bound in truth.bounds.items():
-            if abs(self.start[int(i)]) > bound:
+        for idx, bound in truth.bounds.items():
+            if truth.bounded_norm(np.asarray(self.start), idx) > bound:
                 raise ValueError(f"w0: not representable by the {self.truth} truth ({truth.bound_reason}); got w0 = {self.w0}")
         if self.seed < 0:
             raise ValueError(f"seed: must be a non-negative integer, got {self.seed}")
@@ -218,8 +218,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
             continue
         spec = get_model(name)
         e0 = est0.copy()
-        for i, bound in spec.bounds.items():  # a filter that cannot represent the estimate starts wrapped
-            e0[:, int(i)] = (e0[:, int(i)] + bound) % (2 * bound) - bound
+        e0 = spec.wrap_bounded(e0)  # a filter that cannot represent the estimate starts wrapped
         x0 = state_from_common(name, e0)
         P0 = covariance_from_common(name, e0, P0_phys)
         # a zero init std makes P0 singular: keep it positive definite with a tiny floor
@@ -242,8 +241,9 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
         wrapped[i] = int(sim.wrapped.sum())
         rmse["measurements"][i] = position_rmse(sim.z, pos, cfg.dim)
         for name in aliased:
-            b = get_model(name).bounds
-            aliased[name][i] = int(np.any([np.abs(sim.truth[:, :, int(j)]) > v for j, v in b.items()], axis=(0, 2)).sum())
+            spec = get_model(name)
+            aliased[name][i] = int(np.any([spec.bounded_norm(sim.truth, j) > v for j, v in spec.bounds.items()],
+                                          axis=(0, 2)).sum())
         for name in cfg.filters:
             if name == IMM_FILTER:
                 rmse[name][i] = imm_study_rmse(cfg, imm, sim, sw, est0, P0_phys, pos, imm_chains)

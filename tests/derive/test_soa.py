@@ -109,3 +109,23 @@ def test_filter_batch_picks_the_simd_kernel_with_the_same_results(monkeypatch):
     for a, b in zip(simd, scalar):
         assert np.array_equal(np.isnan(a), np.isnan(b))
         assert np.nanmax(np.abs(a - b) / np.maximum(1.0, np.nanmax(np.abs(b)))) < 1e-12
+
+
+def test_every_lane_is_inlined_into_its_simd_loop():
+    """The lanes (``derive.codegen.families.soa.as_lane``) carry the lanes' decorator, inlined into the loop over a
+    block of trajectories, whatever decorator the printer gave the scalar kernel they come from (a Piecewise makes it
+    add error_model: the lanes once lost their inlining to a string match)."""
+    import re
+    from pathlib import Path
+
+    import lgekf.generated
+    from lgekf.derive.codegen.families.soa import _DECO
+
+    gen = Path(lgekf.generated.__file__).resolve().parent
+    seen = 0
+    for path in sorted(gen.glob("*.py")):
+        src = path.read_text(encoding="utf-8")
+        for m in re.finditer(r"^(@nb\.njit\(.*\))\ndef ((?:\w+_)?lane(?:_\w+)?)\(", src, flags=re.M):
+            assert m.group(1) == _DECO, (path.name, m.group(2), m.group(1))
+            seen += 1
+    assert seen > 20, seen

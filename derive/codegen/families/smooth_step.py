@@ -226,7 +226,7 @@ def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
     import re
 
     from ..printer import render_kernel
-    from .soa import _DECO, LANES, _vectorise
+    from .soa import LANES, _vectorise, as_lane
 
     ni, npk = len(model.internal), model.n * (model.n + 1) // 2
     rows = {}
@@ -244,14 +244,14 @@ def smooth_soa_kernels(model, step: Kernel, physical: Kernel) -> list:
     lane = replace(step, name="lane_smooth", params=["W", "j"], inputs=[(s, row(src)) for s, src in step.inputs],
                    outputs=[(row(t), e) for t, e in step.outputs],
                    doc="smooth_step on lane j of the work array W (rows: derive/codegen/smooth_step.py), without branches (SIMD).")
-    src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
+    src = as_lane(_vectorise(render_kernel(lane)))
     # the smoothed physical state of lane j, read from the rows ss (physical_into on the work array)
     phys_in = [(s, re.sub(r"^s\[(\d+)\]$", lambda mm: f"W[{(rows['ss'] + int(mm.group(1))) * LANES} + j]", src))
                for s, src in physical.inputs]
     phys = replace(physical, name="physical_smooth_lane", params=["W", "j", "out", "b", "k"], inputs=phys_in,
                    outputs=[(re.sub(r"out\[(\d+)\]", r"out[b, k, \1]", tt), e) for tt, e in physical.outputs],
                    doc="The physical state of lane j of the smoothed rows of the work array W into out[b, k] (SIMD).")
-    psrc = _vectorise(render_kernel(phys)).replace("@nb.njit(cache=True)", _DECO, 1)
+    psrc = as_lane(_vectorise(render_kernel(phys)))
     driver = SOA_SMOOTH_TEMPLATE.format(lanes=LANES, rows=at, n=model.n, R=ni + npk, **{k.upper(): v for k, v in rows.items()})
     return [("lane_smooth", src), ("physical_smooth_lane", psrc), ("smooth_batch_soa", driver)]
 
@@ -266,7 +266,7 @@ def store_soa_kernels(model, meas, store: Kernel) -> list:
     import re
 
     from ..printer import render_kernel
-    from .soa import _DECO, LANES, Layout, _soa_sources, _vectorise
+    from .soa import LANES, Layout, _soa_sources, _vectorise, as_lane
 
     lay = Layout(model, meas.m)
     SQ, PQ = lay.rows, lay.rows + lay.ni
@@ -286,7 +286,7 @@ def store_soa_kernels(model, meas, store: Kernel) -> list:
                    inputs=_soa_sources(store.inputs, lay, extra), outputs=outputs, epilogue=[], ret="nis", error_model=None,
                    doc=(f"step_store_{meas.name} on lane j of the work array W (rows: derive/codegen/smooth_step.py), without "
                         "branches (SIMD); 1/det S in a row of W."))
-    src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
+    src = as_lane(_vectorise(render_kernel(lane)))
     args = lambda pre, k: ", ".join(f"{pre}[{i}]" for i in range(k))  # noqa: E731
     m = meas.m
     zload = "\n".join(f"                W[{lay.Z + i} * {LANES} + j] = z[lo + j, k, {i}]" for i in range(m))

@@ -39,6 +39,15 @@ VECTOR_NAMES = ["sin_v", "cos_v", "atan2_v", "wrap_v", "wrap_sum_v", "gain_dampi
 _DECO = '@nb.njit(inline="always", fastmath={"contract"}, error_model="numpy")'
 
 
+def as_lane(src: str) -> str:
+    """A rendered kernel with its decorator (the first line, whatever ``render_kernel`` chose) replaced by the lanes'
+    ``_DECO``: inlined into the SIMD loop, contracted, IEEE division."""
+    head, sep, rest = src.partition("\n")
+    if not head.startswith("@nb.njit("):
+        raise ValueError(f"expected a numba decorator on the first line, got {head!r}")
+    return _DECO + sep + rest
+
+
 def _horner(coeffs, var="x2"):
     s = repr(float(coeffs[-1]))
     for c in reversed(coeffs[:-1]):
@@ -131,7 +140,7 @@ def soa_model_kernels(model, physical_kernel) -> list:
     phys = replace(physical_kernel, name="physical_lane", params=["W", "j", "out", "b", "k"],
                    inputs=_soa_sources(shifted, lay),
                    outputs=[(re.sub(r"out\[(\d+)\]", r"out[b, k, \1]", t), e) for t, e in physical_kernel.outputs])
-    src = _vectorise(render_kernel(phys)).replace("@nb.njit(cache=True)", _DECO, 1)
+    src = as_lane(_vectorise(render_kernel(phys)))
     return [("covariance_is_pd_lane", "\n".join(lines) + "\n"), ("physical_lane", src)]
 
 
@@ -159,7 +168,7 @@ def soa_measurement_kernels(model, meas, step_kernel) -> list:
     lane = replace(step_kernel, name=f"lane_{meas.name}", params=["W", "j", *params],
                    inputs=_soa_sources(step_kernel.inputs, lay, extra), outputs=outputs, epilogue=[], error_model=None,
                    doc=f"step_{meas.name} on lane j of the work array W (rows: derive/codegen/soa.py Layout), without branches (SIMD).")
-    src = _vectorise(render_kernel(lane)).replace("@nb.njit(cache=True, fastmath=FASTMATH)", _DECO, 1)
+    src = as_lane(_vectorise(render_kernel(lane)))
     args = lambda pre, k: ", ".join(f"{pre}[{i}]" for i in range(k))  # noqa: E731
     zload = "\n".join(f"                W[{lay.Z + i} * {LANES} + j] = z[lo + j, k, {i}]" for i in range(m))
     driver = SOA_TEMPLATE.format(
