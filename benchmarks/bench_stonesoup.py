@@ -13,8 +13,8 @@ cells run by ``run_multi_study``; each ``--noise`` a set of cells), and Stone So
 streams, scored by the same ``run_tracker_on`` (``gospa_series``, the function under ``lgekf.gospa``; switches
 counted the same way). Stone Soup's association there is ``JPDAwithEHM2``: the exact JPDA marginals (the same
 numbers as ``JPDA``: equal GOSPA, parts and switches on 5 s of the base scenario), by efficient hypothesis
-management per cluster, where ``JPDA`` enumerates the joint events of all tracks at once and did not finish 4 scans
-of the DUT cars in 10 minutes. Its prior velocity std is lgekf's one-point prior, ``--max-speed``/3; gate, P_D, λ, r
+management per cluster, where ``JPDA`` enumerates the joint events of all tracks at once and did not get through the
+fourth scan of the DUT cars (21 tracks) in 2 minutes. Its prior velocity std is lgekf's one-point prior, ``--max-speed``/3; gate, P_D, λ, r
 as lgekf's. One Stone Soup row per ``--stonesoup-q`` (its ``ConstantVelocity`` noise diffusion coefficient q, m²/s³):
 a number, or ``matched``: q = σ_a²·Δt with lgekf cv's default σ_a = 0.5 m/s² and the scene's median scan interval
 Δt, so that both add the same velocity variance per scan. Printed: mean ± the half-width of the 95 % Student-t

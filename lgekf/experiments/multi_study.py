@@ -257,12 +257,12 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
                if cfg.noise == "data" else "")
             + ("; ± the 95 % t-interval over the runs" if cfg.runs > 1 else ""))
     w = 15 if cfg.runs > 1 else 7
-    lines = [head, f"{'model':<9} {'assoc':<8} {'start':<9} {'clutter':<7} " + " ".join(
+    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'clutter':<7} " + " ".join(
         f"{h:>{w}}" for h in ("GOSPA", "loc.", "missed", "false", "switches/run")) + f" {'scans/s':>8}"]
     for c in cells:
         vals = " ".join(f"{format_interval(*c.interval(part), 3):>{w}}" for part in RUN_PARTS[:4])
         sw = format_interval(*c.interval("switches"), 1)
-        lines.append(f"{c.model:<9} {c.association:<8} {c.initiation:<9} {c.clutter:<7} {vals} {sw:>{w}} {c.scans_per_s:8.0f}")
+        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.clutter:<7} {vals} {sw:>{w}} {c.scans_per_s:8.0f}")
     return "\n".join(lines)
 
 
