@@ -209,7 +209,11 @@ def dataset_main(argv) -> int:
 
 def main():
     if "--dataset" in sys.argv[1:] or any(v.startswith("--dataset=") for v in sys.argv[1:]):
-        return dataset_main(sys.argv[1:])
+        try:
+            return dataset_main(sys.argv[1:])
+        except ValueError as e:  # bad options (UsageError) or data (DataError): one line, status 2
+            print(f"bench_stonesoup.py: error: {e}", file=sys.stderr)
+            return 2
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--seed", type=int, default=2016)
