@@ -11,7 +11,7 @@ from ..io.output import write_atomic
 from . import ArgumentParser, UsageError
 from .progress import compile_notice
 
-__all__ = ["cmd_study_multi", "study_multi_parser"]
+__all__ = ["cmd_study_multi", "study_multi_parser", "study_multi_config", "multi_rows"]
 
 
 def study_multi_parser():
@@ -62,6 +62,8 @@ def study_multi_parser():
     ap.add_argument("--dataset", default=None, metavar="NAME",
                     help="real trajectories of `lgekf evaluate` (eth, hotel, zara1, zara2, univ, ...) as detection streams "
                          "(truth + noise + misses + clutter) instead of the simulated scenario")
+    ap.add_argument("--scans", type=int, default=None, metavar="N",
+                    help="with --dataset: only the first N scans of every stream (default all)")
     ap.add_argument("--data-root", default=None, help="folder of the datasets (default $LGEKF_DATA, else ../shared/data)")
     ap.add_argument("--quiet", action="store_true", help="print only the output file")
     return ap
@@ -75,23 +77,44 @@ def _names(option, text, allowed):
     return tuple(dict.fromkeys(names))
 
 
-def cmd_study_multi(argv) -> int:
+def study_multi_config(a):
+    """The study's protocol (``MultiStudyConfig``, validated) from the parsed options of ``study_multi_parser``."""
     from ..core.registry import MODELS
     from ..estimators.multitarget.settings import ASSOCIATIONS, INITIATIONS
     from ..estimators.multitarget.tracker import IMM_MODEL
     from ..experiments.clutter_scenarios import STUDY_CLUTTERS
-    from ..experiments.multi_study import MULTI_COLUMNS, MultiStudyConfig, format_multi_table, run_multi_study
+    from ..experiments.multi_study import MultiStudyConfig
+
+    return MultiStudyConfig(models=_names("--models", a.models, [*MODELS, IMM_MODEL]), imm_modes=a.imm_modes,
+                            associations=_names("--association", a.association, list(ASSOCIATIONS)),
+                            initiations=(None,) if a.initiation is None else _names("--initiation", a.initiation,
+                                                                                    list(INITIATIONS)),
+                            runs=a.runs, seed=a.seed, dt=a.dt, duration=a.duration, detection_prob=a.detection_prob,
+                            clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
+                            dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed,
+                            measurement=a.measure, heading_std=a.heading_std, scenario=a.scenario,
+                            clutters=_names("--clutter", a.clutter, list(STUDY_CLUTTERS)), noise=a.noise,
+                            scans=a.scans).validate()
+
+
+def multi_rows(cells) -> list:
+    """The rows of multi_gospa.csv (``MULTI_COLUMNS``): the means, then the runs and the half-widths of the 95 %
+    t-intervals over them (empty for a single run), switches per run."""
+    def half(c, part):
+        h = c.interval(part)[1]
+        return "" if h != h else f"{h:.6g}"
+
+    return [[c.model, c.association, c.initiation, c.clutter, f"{c.gospa:.6g}", f"{c.localisation:.6g}",
+             f"{c.missed:.6g}", f"{c.false:.6g}", c.switches, f"{c.scans_per_s:.4g}", c.accel_std, len(c.per_run),
+             half(c, "gospa"), half(c, "localisation"), half(c, "missed"), half(c, "false"),
+             f"{c.interval('switches')[0]:.6g}", half(c, "switches")] for c in cells]
+
+
+def cmd_study_multi(argv) -> int:
+    from ..experiments.multi_study import MULTI_COLUMNS, format_multi_table, run_multi_study
 
     a = study_multi_parser().parse_args(argv)
-    cfg = MultiStudyConfig(models=_names("--models", a.models, [*MODELS, IMM_MODEL]), imm_modes=a.imm_modes,
-                           associations=_names("--association", a.association, list(ASSOCIATIONS)),
-                           initiations=(None,) if a.initiation is None else _names("--initiation", a.initiation,
-                                                                                   list(INITIATIONS)),
-                           runs=a.runs, seed=a.seed, dt=a.dt, duration=a.duration, detection_prob=a.detection_prob,
-                           clutter_density=a.clutter_density, meas_std=a.meas_std, c=a.gospa_c, p=a.gospa_p,
-                           dataset=a.dataset, data_root=a.data_root, max_speed=a.max_speed,
-                           measurement=a.measure, heading_std=a.heading_std, scenario=a.scenario,
-                           clutters=_names("--clutter", a.clutter, list(STUDY_CLUTTERS)), noise=a.noise).validate()
+    cfg = study_multi_config(a)
     say = (lambda s: None) if a.quiet else (lambda s: print(s, file=sys.stderr))
     with compile_notice("lgekf study", enabled=not a.quiet):
         fit = None
@@ -103,9 +126,7 @@ def cmd_study_multi(argv) -> int:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(MULTI_COLUMNS)
-    for c in cells:
-        w.writerow([c.model, c.association, c.initiation, c.clutter, f"{c.gospa:.6g}", f"{c.localisation:.6g}", f"{c.missed:.6g}", f"{c.false:.6g}",
-                    c.switches, f"{c.scans_per_s:.4g}", c.accel_std])
+    w.writerows(multi_rows(cells))
     a.out.mkdir(parents=True, exist_ok=True)
     path = a.out / "multi_gospa.csv"
     write_atomic(path, buf.getvalue())

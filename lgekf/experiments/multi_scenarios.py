@@ -64,6 +64,13 @@ class MultiScenario:
     sources: list
     region: tuple
 
+    def head(self, scans: int | None) -> "MultiScenario":
+        """The first ``scans`` scans (all when None); the clutter region unchanged."""
+        if scans is None:
+            return self
+        return MultiScenario(self.times[:scans], self.truth[:scans], self.detections[:scans], self.sources[:scans],
+                             self.region)
+
 
 def truth_trajectories(targets, times, rng, speed_noise: float = 0.2, turn_noise: float = 0.02):
     """Per scan (ids, (x, y, heading)) of the targets (rows like ``BASE_TARGETS``) at ``times``."""

@@ -26,13 +26,16 @@ from ..estimators.multitarget.settings import INITIATIONS, MARGINAL_ASSOCIATIONS
 from ..estimators.multitarget.tracker import IMM_MODEL, MultiTargetTracker
 from .clutter_scenarios import CLUTTER_SCENARIOS, STUDY_CLUTTERS, clutter_scenario, study_clutter
 from .gospa import gospa_series
+from .statistics import t_interval
 from ..io.datasets import load_dataset
 from .multi_scenarios import base_scenario, dataset_scenario
 
-__all__ = ["NOISES", "MultiStudyConfig", "MultiCell", "run_tracker_on", "scenarios", "run_multi_study", "format_multi_table", "MULTI_COLUMNS"]
+__all__ = ["NOISES", "RUN_PARTS", "MultiStudyConfig", "MultiCell", "multi_cell", "run_tracker_on", "score_runs", "scenarios", "run_multi_study", "format_multi_table", "format_interval", "MULTI_COLUMNS"]
 
+RUN_PARTS = ("gospa", "localisation", "missed", "false", "switches")  # what run_tracker_on scores per run
 MULTI_COLUMNS = ("model", "association", "initiation", "clutter", "gospa", "localisation", "missed", "false", "switches",
-                 "scans_per_s", "accel_std")
+                 "scans_per_s", "accel_std", "runs", "gospa_ci95", "localisation_ci95", "missed_ci95", "false_ci95",
+                 "switches_per_run", "switches_per_run_ci95")
 NOISES = ("default", "data")  # the process noise of the cells: the models' defaults, or estimated from each stream
 
 
@@ -61,6 +64,7 @@ class MultiStudyConfig:
     scenario: str = "base"  # or "burst", "patch" (clutter_scenarios; clutter_density is then the background λ₀)
     clutters: tuple = ("true",)  # the clutter densities compared (clutter_scenarios.STUDY_CLUTTERS)
     noise: str = "default"  # the process noise: the models' defaults, or "data" (as lgekf track --multi estimates it)
+    scans: int | None = None  # with dataset: only the first this many scans of every stream (None: all)
 
     def validate(self):
         for m in self.models:
@@ -74,6 +78,8 @@ class MultiStudyConfig:
         bad = [i for i in self.initiations if i is not None and i not in INITIATIONS]
         if bad or not self.initiations:
             raise ValueError(f"--initiation: unknown name {bad[0] if bad else ''!r}; choose from {', '.join(INITIATIONS)}")
+        if self.scans is not None and not (self.dataset and self.scans >= 1):
+            raise ValueError(f"--scans: a positive number of scans, with --dataset only, got {self.scans}")
         if self.runs < 1:
             raise ValueError(f"--runs: must be at least 1, got {self.runs}")
         if self.scenario not in CLUTTER_SCENARIOS:
@@ -101,7 +107,7 @@ class MultiStudyConfig:
 @dataclass
 class MultiCell:
     """One model × association × initiation × clutter: per-scan GOSPA means over all runs and scans, switches summed
-    over runs."""
+    over runs; ``per_run`` keeps each run's values (``RUN_PARTS``) for intervals over seeds (``interval``)."""
 
     model: str
     association: str
@@ -114,6 +120,21 @@ class MultiCell:
     scans_per_s: float
     clutter: str = "true"
     accel_std: str = "default"  # the process noise used: "default", or per run the values estimated from the data
+    per_run: np.ndarray | None = None  # (runs, 5): per run the mean GOSPA, its parts, the switches (RUN_PARTS)
+
+    def interval(self, part: str, level: float = 0.95) -> tuple:
+        """(mean over runs, half-width of its Student-t interval; ``statistics.t_interval``) of one of ``RUN_PARTS``
+        (switches: per run, not summed)."""
+        return t_interval(self.per_run[:, RUN_PARTS.index(part)], level)
+
+
+def multi_cell(model: str, association: str, initiation: str, per_run, wall: float, scans: int, **kw) -> MultiCell:
+    """A ``MultiCell`` from each run's (GOSPA, localisation, missed, false, switches) (``run_tracker_on``), the wall
+    seconds of its ``step`` calls and the scans tracked."""
+    per_run = np.asarray(per_run, dtype=float).reshape(-1, len(RUN_PARTS))
+    g, lo, mi, fa = map(float, per_run[:, :4].mean(axis=0))
+    return MultiCell(model, association, initiation, g, lo, mi, fa, int(per_run[:, 4].sum()),
+                     scans / wall if wall > 0 else float("inf"), per_run=per_run, **kw)
 
 
 def run_tracker_on(scenario, step, c: float, p: float):
@@ -133,9 +154,24 @@ def run_tracker_on(scenario, step, c: float, p: float):
     return s["gospa"], s["localisation"], s["missed"], s["false"], s["switches"], wall
 
 
+def score_runs(scenarios: list, make_step, c: float, p: float) -> tuple:
+    """``run_tracker_on`` on every scenario with a fresh tracker (``make_step(scenario) -> step``).
+
+    Returns (per run (GOSPA, localisation, missed, false, switches) as a (runs, 5) array, wall seconds of the
+    ``step`` calls, scans)."""
+    per_run, wall, scans = [], 0.0, 0
+    for sc in scenarios:
+        *parts, w = run_tracker_on(sc, make_step(sc), c, p)
+        per_run.append(parts)
+        wall += w
+        scans += len(sc.times)
+    return np.array(per_run, dtype=float), wall, scans
+
+
 def scenarios(cfg: MultiStudyConfig) -> list:
     """The detection streams of the study: ``cfg.runs`` seeds of the base scenario, or of the real
-    trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent)."""
+    trajectories of ``cfg.dataset`` (``lgekf.io.datasets.load_dataset``; DataError when the data is absent; their
+    first ``cfg.scans`` scans)."""
     if cfg.scenario != "base":
         r = (cfg.meas_std, cfg.heading_std) if measures_heading(cfg) else cfg.meas_std
         return [clutter_scenario(cfg.scenario, seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration,
@@ -146,7 +182,7 @@ def scenarios(cfg: MultiStudyConfig) -> list:
         if measures_heading(cfg):
             raise ValueError("--measure pose: the real trajectories have no measured heading; use position")
         return [dataset_scenario(ds, seed=cfg.seed + k, detection_prob=cfg.detection_prob, clutter_density=cfg.clutter_density,
-                                 meas_std=cfg.meas_std) for k in range(cfg.runs)]
+                                 meas_std=cfg.meas_std).head(cfg.scans) for k in range(cfg.runs)]
     r = (cfg.meas_std, cfg.heading_std) if measures_heading(cfg) else cfg.meas_std
     return [base_scenario(seed=cfg.seed + k, dt=cfg.dt, duration=cfg.duration, detection_prob=cfg.detection_prob,
                           clutter_density=cfg.clutter_density, meas_std=r, measurement=cfg.measurement)
@@ -174,11 +210,12 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None, noise_fit=None) -> lis
     for model, assoc, init, clutter in itertools.product(cfg.models, cfg.associations, cfg.initiations, cfg.clutters):
         if assoc == "pmbm" and init == "two-point":
             continue  # the PMBM's births are its Poisson part's (one-point)
-        parts, sw, wall, scans, fitted = [], 0, 0.0, 0, []
+        fitted, trackers = [], []
         imm = model == IMM_MODEL
         meas = get_measurement(cfg.measurement if imm else get_model(model).measurement_or_base(cfg.measurement))
         extra = {"imm_modes": cfg.imm_modes} if imm else {}
-        for sc in scen:
+
+        def make_step(sc):  # called within this iteration (score_runs)
             args = dict(model=model, association=assoc, detection_prob=cfg.detection_prob,
                         clutter_density=study_clutter(clutter, sc, cfg.clutter_density), max_speed=cfg.max_speed,
                         measurement=meas.name, initiation=init, **extra)
@@ -188,28 +225,28 @@ def run_multi_study(cfg: MultiStudyConfig, progress=None, noise_fit=None) -> lis
                 args.update(noise)
                 fitted.append(text)
             trk = MultiTargetTracker(meas_std=meas.stds(cfg.meas_std, cfg.heading_std), **args)
+            trackers.append(trk)
 
             def step(t, Z, trk=trk, m=meas.dim):
                 rep = trk.step(t, Z[:, :m])
                 return rep.ids, rep.states[:, :2]
 
-            g, lo, mi, fa, s, w = run_tracker_on(sc, step, cfg.c, cfg.p)
-            parts.append((g, lo, mi, fa))
-            sw += s
-            wall += w
-            scans += len(sc.times)
-        a = np.mean(parts, axis=0)
-        cells.append(MultiCell(model, assoc, trk.initiation, *map(float, a), sw,
-                               scans / wall if wall > 0 else float("inf"), clutter=clutter,
-                               accel_std=" | ".join(fitted) if fitted else "default"))
+            return step
+
+        per_run, wall, scans = score_runs(scen, make_step, cfg.c, cfg.p)
+        cells.append(multi_cell(model, assoc, trackers[-1].initiation, per_run, wall, scans, clutter=clutter,
+                                accel_std=" | ".join(fitted) if fitted else "default"))
         if progress is not None:
             progress(cells[-1])
     return cells
 
 
 def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
-    """The GOSPA table as text (mean per scan over all runs; parts in m^p)."""
+    """The GOSPA table as text: per cell the mean per scan over all runs (parts in m^p) and, over two or more runs,
+    ± the half-width of the 95 % Student-t interval over the runs (``MultiCell.interval``); switches per run."""
     what = f"the {cfg.dataset} trajectories" if cfg.dataset else f"{int(round(cfg.duration / cfg.dt)) + 1} scans"
+    if cfg.dataset and cfg.scans:
+        what += f" (first {cfg.scans} scans)"
     if cfg.scenario != "base":
         what += f" of the {cfg.scenario} scenario"
     lam = "λ" if cfg.scenario == "base" else "background λ"
@@ -217,10 +254,18 @@ def format_multi_table(cells: list, cfg: MultiStudyConfig) -> str:
             f"P_D = {cfg.detection_prob:g}, {lam} = {cfg.clutter_density:g} /m²/scan, r = {cfg.meas_std:g} m"
             + (f", pose (heading std {cfg.heading_std:g} rad; models without a heading get the positions)" if measures_heading(cfg) else "")
             + ("; process noise estimated from each run's detections (as lgekf track --multi), in the accel_std column"
-               if cfg.noise == "data" else ""))
-    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'clutter':<7} {'GOSPA':>7} {'loc.':>7} {'missed':>7} "
-                   f"{'false':>7} {'switches':>8} {'scans/s':>8}"]
+               if cfg.noise == "data" else "")
+            + ("; ± the 95 % t-interval over the runs" if cfg.runs > 1 else ""))
+    w = 15 if cfg.runs > 1 else 7
+    lines = [head, f"{'model':<8} {'assoc':<5} {'start':<9} {'clutter':<7} " + " ".join(
+        f"{h:>{w}}" for h in ("GOSPA", "loc.", "missed", "false", "switches/run")) + f" {'scans/s':>8}"]
     for c in cells:
-        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.clutter:<7} {c.gospa:7.3f} {c.localisation:7.3f} "
-                     f"{c.missed:7.3f} {c.false:7.3f} {c.switches:8d} {c.scans_per_s:8.0f}")
+        vals = " ".join(f"{format_interval(*c.interval(part), 3):>{w}}" for part in RUN_PARTS[:4])
+        sw = format_interval(*c.interval("switches"), 1)
+        lines.append(f"{c.model:<8} {c.association:<5} {c.initiation:<9} {c.clutter:<7} {vals} {sw:>{w}} {c.scans_per_s:8.0f}")
     return "\n".join(lines)
+
+
+def format_interval(mean: float, half: float, digits: int) -> str:
+    """The text "mean ± half" (``mean`` alone when the half-width is nan: a single run)."""
+    return f"{mean:.{digits}f}" if np.isnan(half) else f"{mean:.{digits}f} ± {half:.{digits}f}"

@@ -53,6 +53,41 @@ def test_study_cells_and_table():
     assert "GOSPA (c = 5 m, p = 2" in text and text.count("\ncv ") == 2
 
 
+def test_study_intervals_over_runs(tmp_path):
+    """Two runs: each cell keeps both runs' values (the second is what a one-run study from the next seed gives), the
+    means and the summed switches come from them, and multi_gospa.csv holds the half-widths of the 95 % t-intervals,
+    t_{0.975, 1}·|a − b|/2 with t_{0.975, 1} = 12.706205 (tables), and the switches per run."""
+    import csv
+
+    from lgekf.cli import main
+
+    cfg = MultiStudyConfig(models=("cv",), associations=("gnn",), runs=2, duration=2.0, seed=7)
+    (cell,) = run_multi_study(cfg)
+    (second,) = run_multi_study(MultiStudyConfig(models=("cv",), associations=("gnn",), runs=1, duration=2.0, seed=8))
+    a, b = cell.per_run
+    assert cell.per_run.shape == (2, 5)
+    assert tuple(b) == (second.gospa, second.localisation, second.missed, second.false, second.switches)
+    assert cell.gospa == pytest.approx((a[0] + b[0]) / 2) and cell.switches == a[4] + b[4]
+    assert main(["study", "--multi", "--out", str(tmp_path), "--models", "cv", "--association", "gnn", "--runs", "2",
+                 "--duration", "2", "--seed", "7", "--quiet"]) == 0
+    (row,) = list(csv.DictReader(open(tmp_path / "multi_gospa.csv")))
+    assert row["runs"] == "2"
+    for k, part in enumerate(("gospa", "localisation", "missed", "false")):
+        assert float(row[part]) == pytest.approx((a[k] + b[k]) / 2, rel=1e-5)
+        assert float(row[f"{part}_ci95"]) == pytest.approx(12.706205 * abs(a[k] - b[k]) / 2, rel=1e-5, abs=1e-9)
+    assert float(row["switches_per_run"]) == pytest.approx((a[4] + b[4]) / 2)
+    assert "±" in format_multi_table([cell], cfg)
+
+
+def test_dataset_scenario_head():
+    t = np.array([0.0, 0.4, 0.8, 0.4, 0.8, 1.2])
+    p = np.array([[0, 0], [0.5, 0], [1.0, 0], [5, 5], [5, 5.5], [5, 6.0]], dtype=float)
+    sc = dataset_scenario(Dataset("toy", t, p, None, np.array([0, 3, 6]), ["a", "b"]), seed=0, clutter_density=1e-9)
+    head = sc.head(2)
+    assert head.times.tolist() == [0.0, 0.4] and len(head.truth) == len(head.detections) == len(head.sources) == 2
+    assert head.region == sc.region and sc.head(None) is sc
+
+
 def test_study_compares_initiations_on_the_same_detections():
     """--initiation one-point,two-point: one cell each, in that order, on the same detections (a cell of its own run
     gives the same numbers)."""
@@ -126,6 +161,7 @@ def test_real_trajectories_as_detection_streams():
     (["--gospa-p", "0.5"], "--gospa-p: must be at least 1"),
     (["--initiation", "three-point"], "--initiation: unknown name 'three-point'"),
     (["--noise", "learned"], "--noise: invalid choice: 'learned'"),
+    (["--scans", "50"], "--scans: a positive number of scans, with --dataset only"),
 ])
 def test_study_multi_errors_are_one_line(args, msg, capsys, tmp_path):
     from lgekf.cli import main

@@ -11,7 +11,7 @@ from _cli import cli_command
 
 from lgekf.apps.evaluate import FILTERS, TURNING, evaluate_dataset, run_filters, tune_split, world_velocity
 from lgekf.apps.report import evaluation_figure, format_table, markdown_table
-from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_quantile
+from lgekf.experiments.statistics import MIN_TRACKS_CI, bootstrap_ci, t_interval, t_quantile
 from lgekf.io.datasets import Dataset, data_root, load_dataset
 from lgekf.apps.track import TrackConfig, track_arrays
 from _real_data import DATA, needs
@@ -26,6 +26,19 @@ def test_t_quantile_against_scipy():
     stats = pytest.importorskip("scipy.stats")
     for nu in (1, 2, 3, 5, 10, 20, 100, 1000):
         assert t_quantile(0.975, nu) == pytest.approx(stats.t.ppf(0.975, nu), rel=2e-3 if nu > 2 else 1e-2)
+
+
+def test_t_interval_hand_computed():
+    """1, 2, 3, 4, 5: mean 3, s = √2.5, t_{0.975, 4} = 2.776445 (printed tables): half-width 2.776445·√2.5/√5 = 1.96324;
+    two values 1 and 3: t_{0.975, 1} = 12.706205, s = √2, half 12.706205; one value: no interval."""
+    m, h = t_interval([5.0, 1.0, 4.0, 2.0, 3.0])
+    assert m == 3.0 and h == pytest.approx(2.776445 * np.sqrt(0.5), abs=1e-5)
+    assert h == pytest.approx(1.96324, abs=1e-5)
+    assert t_interval([1.0, 3.0]) == pytest.approx((2.0, 12.706205), abs=1e-6)
+    assert t_interval([1.0, 3.0], level=0.9)[1] == pytest.approx(6.313752, abs=1e-6)  # t_{0.95, 1}
+    m, h = t_interval([4.0])
+    assert m == 4.0 and np.isnan(h)
+    assert all(np.isnan(t_interval([])))
 
 
 def test_bootstrap_ci_never_below_zero_where_the_t_interval_is():
