@@ -163,7 +163,23 @@ class SO3(SeriesDerivations):
         return cls.left_jacobian_inv([-e for e in phi])
 
 
-class rotation_vector_entry(sp.Function):
+class _ClosedFormFunction(sp.Function):
+    """A real function kept unevaluated in derivations (its derivative given by ``fdiff``), evaluated numerically and
+    printed through its ``closed_form``."""
+
+    def closed_form(self):  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def _eval_evalf(self, prec):
+        if all(a.is_number for a in self.args):
+            return self.closed_form().evalf(prec)
+        return None
+
+    def _eval_is_real(self):
+        return True
+
+
+class rotation_vector_entry(_ClosedFormFunction):
     """φ_k = [log_SO(3)(R)]^∨_k (k = 0, 1, 2) of the rotation R given by its nine entries, row-major: (k, r11, ..., r33).
 
     Unevaluated, so that a derivation can differentiate a model through the log of a rotation it carries (SE(3)×SE(3)'s
@@ -201,13 +217,6 @@ class rotation_vector_entry(sp.Function):
         """[SO3.log(R)]_k, printable (Piecewise of the two axis methods)."""
         return SO3.log(self._matrix())[int(self.args[0])]
 
-    def _eval_evalf(self, prec):
-        if all(a.is_number for a in self.args):
-            return self.closed_form().evalf(prec)
-        return None
-
-    def _eval_is_real(self):
-        return True
 
 
 def rotation_vector(R: sp.Matrix) -> sp.Matrix:
@@ -248,7 +257,7 @@ def orthonormal_reduce(expr, entries):
     return reduced if sp.expand(rebuilt - expr) == 0 else original
 
 
-class rotation_matrix_entry(sp.Function):
+class rotation_matrix_entry(_ClosedFormFunction):
     """[exp_SO(3)(φ^)]_ij (i, j, φx, φy, φz), unevaluated, so that a derivation can differentiate a rotation built from
     a rotation vector without dividing by |φ|.
 
@@ -272,13 +281,6 @@ class rotation_matrix_entry(sp.Function):
         """[SO3.exp(φ)]_ij."""
         return SO3.exp(list(self.args[2:]))[int(self.args[0]), int(self.args[1])]
 
-    def _eval_evalf(self, prec):
-        if all(a.is_number for a in self.args):
-            return self.closed_form().evalf(prec)
-        return None
-
-    def _eval_is_real(self):
-        return True
 
 
 def rotation_matrix(phi) -> sp.Matrix:
