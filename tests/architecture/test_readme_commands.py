@@ -100,6 +100,9 @@ README_TO_RUN = {
     "lgekf track DETECTIONS.csv --multi -o OUT.csv --clutter file|scan|map":
         # scan: the command above
         [f"lgekf track detections.csv --multi -o out_clutter_{c}.csv --clutter {c}" for c in ("file", "map")],
+    "lgekf study --multi --dataset NAME ...":
+        ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv "
+         "--scans 20 --out results_dataset"],
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,

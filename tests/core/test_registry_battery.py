@@ -37,6 +37,12 @@ from lgekf.derive.models import load_models
 DEFS = load_models()
 MEAS = load_measurements()
 PAIRS = [(m, k) for m, spec in MODELS.items() for k in spec.measurements]
+#: CI budget (15 min on 2 cores): SE(3)×SE(3)'s batch kernels take about 100 s of CPU to compile cold, so its batch =
+#: class and NEES/NIS checks run with `-m slow3d` only (`pytest -m slow3d tests/core/test_registry_battery.py`, run for
+#: it on 2026-11-29: pass); its dense-reference and log-det checks run always. se3r6 covers the same SE(3) emitter
+#: families (batch, store, fused steps) on both measurements in every run.
+SLOW3D = {"se3se3"}
+BATCH_PAIRS = [pytest.param(m, k, marks=pytest.mark.slow3d) if m in SLOW3D else (m, k) for m, k in PAIRS]
 DT = sp.Symbol("dt", positive=True)
 
 
@@ -262,7 +268,7 @@ def test_predict_and_update_match_the_dense_reference(name, meas):
         assert nis == pytest.approx(nis_ref, rel=1e-6)
 
 
-@pytest.mark.parametrize("name,meas", PAIRS)
+@pytest.mark.parametrize("name,meas", BATCH_PAIRS)
 def test_batch_equals_class(name, meas):
     rng = np.random.default_rng(5)
     B, K = 3, 25
@@ -295,7 +301,7 @@ def _tangent_errors(ref, est, truth, angles):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name,meas", PAIRS)
+@pytest.mark.parametrize("name,meas", BATCH_PAIRS)
 def test_consistent_on_its_own_model(name, meas):
     """Simulated with the model's own exact motion and measurements: mean NEES ≈ n and NIS ≈ m."""
     spec = MODELS[name]
