@@ -106,7 +106,8 @@ README_TO_RUN = {
     "lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1":
         ["lgekf study --multi --dataset eth --meas-std 0.1 --clutter-density 0.01 --max-speed 5 --gospa-c 2 --runs 1 --models cv"],
     "lgekf track detections.csv -o tracks.csv --model se2se2": None,
-    "lgekf track detections.parquet -o tracks.parquet --model all": None,
+    # Parquet in and out with one model (--model all on one file: the pedestrian-text and pose runs)
+    "lgekf track detections.parquet -o tracks.parquet --model all": ["lgekf track detections.parquet -o tracks.parquet --model cv"],
     "lgekf track biwi_eth.txt --format pedestrian --frame-dt 0.06667 -o eth.csv --model all": None,
     "lgekf track phone.csv.gz --time-unit ms -o phone_tracks.csv.gz": None,
     "lgekf track - -o - --model cv < detections.csv > tracks_cv.csv": None,
