@@ -286,8 +286,13 @@ def workdir(tmp_path_factory):
 
 
 # every run is a CLI process (about 1.5 s each, 30 of them): slow, so the quick loop stays under 2 min; CI runs them
+#: CI budget: the IMM bank of --multi compiles every planar model's IMM kernels (about 95 s of CPU cold) and
+#: tests/estimators/test_imm_bank.py::test_cli_multi_model_imm runs the same command line: here with `-m budget` only
+BUDGET = {"lgekf track detections.csv --multi --model imm -o tracks.csv"}
+
+
 @pytest.mark.slow
-@pytest.mark.parametrize("cmd", to_run())
+@pytest.mark.parametrize("cmd", [pytest.param(c, marks=pytest.mark.budget) if c in BUDGET else c for c in to_run()])
 def test_readme_command_runs(workdir, cmd, request):
     if "{scheduler}" in cmd:
         cmd = cmd.replace("{scheduler}", request.getfixturevalue("dask_scheduler"))

@@ -38,17 +38,17 @@ DEFS = load_models()
 MEAS = load_measurements()
 PAIRS = [(m, k) for m, spec in MODELS.items() for k in spec.measurements]
 #: CI budget (15 min on 2 cores): the SE(3) models' pose kernels and SE(3)×SE(3)'s batch kernels take minutes of CPU to
-#: compile cold. These pairs run with `-m slow3d` only (`pytest -m slow3d tests/core/test_registry_battery.py`):
+#: compile cold. These pairs run with `-m budget` only (`pytest -m budget tests/core/test_registry_battery.py`):
 #: SE(3)×SE(3)'s batch = class and NEES/NIS checks, its dense-reference check with poses, and SE(3)×R⁶'s batch = class
 #: with poses. What runs always: every model's dense-reference check with positions and se3r6's with poses, se3r6's
 #: batch = class and NEES/NIS with positions and NEES/NIS with poses, and every log-det check.
-SLOW3D_BATCH = {("se3se3", "position3"), ("se3se3", "pose3"), ("se3r6", "pose3")}
-SLOW3D_CONSISTENT = {("se3se3", "position3"), ("se3se3", "pose3")}
-SLOW3D_REFERENCE = {("se3se3", "pose3")}
+BUDGET_BATCH = {("se3se3", "position3"), ("se3se3", "pose3"), ("se3r6", "pose3")}
+BUDGET_CONSISTENT = {("se3se3", "position3"), ("se3se3", "pose3")}
+BUDGET_REFERENCE = {("se3se3", "pose3")}
 
 
 def _pairs(slow: set) -> list:
-    return [pytest.param(m, k, marks=pytest.mark.slow3d) if (m, k) in slow else (m, k) for m, k in PAIRS]
+    return [pytest.param(m, k, marks=pytest.mark.budget) if (m, k) in slow else (m, k) for m, k in PAIRS]
 
 
 DT = sp.Symbol("dt", positive=True)
@@ -254,7 +254,7 @@ def _rel(a, b):
     return float(np.max(np.abs(np.asarray(a) - b)) / max(1e-300, np.max(np.abs(b))))
 
 
-@pytest.mark.parametrize("name,meas", _pairs(SLOW3D_REFERENCE))
+@pytest.mark.parametrize("name,meas", _pairs(BUDGET_REFERENCE))
 def test_predict_and_update_match_the_dense_reference(name, meas):
     ref = Reference(name)
     rng = np.random.default_rng(abs(hash((name, meas))) % 2**32)
@@ -276,7 +276,7 @@ def test_predict_and_update_match_the_dense_reference(name, meas):
         assert nis == pytest.approx(nis_ref, rel=1e-6)
 
 
-@pytest.mark.parametrize("name,meas", _pairs(SLOW3D_BATCH))
+@pytest.mark.parametrize("name,meas", _pairs(BUDGET_BATCH))
 def test_batch_equals_class(name, meas):
     rng = np.random.default_rng(5)
     B, K = 3, 25
@@ -309,7 +309,7 @@ def _tangent_errors(ref, est, truth, angles):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name,meas", _pairs(SLOW3D_CONSISTENT))
+@pytest.mark.parametrize("name,meas", _pairs(BUDGET_CONSISTENT))
 def test_consistent_on_its_own_model(name, meas):
     """Simulated with the model's own exact motion and measurements: mean NEES ≈ n and NIS ≈ m."""
     spec = MODELS[name]
