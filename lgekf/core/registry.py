@@ -130,7 +130,7 @@ class ModelSpec:
 
     def wrap_bounded(self, x: np.ndarray) -> np.ndarray:
         """x with each bounded coordinate (or vector) brought inside its bound as the model would alias it: a
-        coordinate to (−b, b] modulo 2b, a rotation vector of norm t > b to the same rotation's vector of norm
+        coordinate to [−b, b) modulo 2b, a rotation vector of norm t > b to the same rotation's vector of norm
         2b − t (φ·(1 − 2b/t), b = π)."""
         x = np.array(x, dtype=float)
         for idx, b in self.bounds.items():

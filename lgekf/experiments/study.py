@@ -217,8 +217,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
         if name == IMM_FILTER:
             continue
         spec = get_model(name)
-        e0 = est0.copy()
-        e0 = spec.wrap_bounded(e0)  # a filter that cannot represent the estimate starts wrapped
+        e0 = spec.wrap_bounded(est0)  # a copy: a filter that cannot represent the estimate starts wrapped
         x0 = state_from_common(name, e0)
         P0 = covariance_from_common(name, e0, P0_phys)
         # a zero init std makes P0 singular: keep it positive definite with a tiny floor
