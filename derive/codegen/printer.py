@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 
 import sympy as sp
 
+from ..dag import dag_atoms, dag_free_symbols, dag_has, dag_replace, dag_xreplace
 from ..lie.special import ANGLE_FUNCTIONS, RUNTIME_FUNCTIONS, AngleFunction
 
 #: the generated special function that returns (sinc, cosc, sinc2, cosc2) of one angle with shared reciprocals
@@ -180,7 +181,7 @@ class Kernel:
 
 def _prune_dead(stages, outputs, ret):
     """Drop intermediate definitions that no output (nor the returned name) depends on."""
-    needed = {x.name for _, e in outputs for x in sp.sympify(e).free_symbols}
+    needed = {x.name for x in dag_free_symbols([e for _, e in outputs])}
     if ret is not None:
         needed |= set(re.findall(r"[A-Za-z_]\w*", ret))
     kept = []
@@ -190,8 +191,7 @@ def _prune_dead(stages, outputs, ret):
             kept.append(st)
             continue
         keep = [(s, e) for s, e in st if getattr(s, "name", s) in needed]
-        for _, e in keep:
-            needed |= {x.name for x in sp.sympify(e).free_symbols}
+        needed |= {x.name for x in dag_free_symbols([e for _, e in keep])}
         kept.append(keep)
     return [st for st in reversed(kept) if isinstance(st, RawStage) or st]
 
@@ -203,9 +203,8 @@ def _sort_key(e):
 def _angle_atoms(exprs):
     """All sin(a), cos(a), f(a) atoms (f an angle function) in ``exprs``, grouped by argument a."""
     by_arg: dict = {}
-    for ex in exprs:
-        for atom in sp.sympify(ex).atoms(sp.sin, sp.cos, *ANGLE_FUNCTIONS):
-            by_arg.setdefault(atom.args[0], set()).add(atom)
+    for atom in dag_atoms(exprs, sp.sin, sp.cos, *ANGLE_FUNCTIONS):
+        by_arg.setdefault(atom.args[0], set()).add(atom)
     return sorted(by_arg.items(), key=lambda kv: _sort_key(kv[0]))
 
 
@@ -217,18 +216,22 @@ def _hoisted(defs, names):
     kinds = (sp.sin, sp.cos, *ANGLE_FUNCTIONS)
     repl = {}
     pre = []
+    nested: dict = {}  # argument -> whether it holds an angle function
     for _, ex in defs:
-        ex = sp.sympify(ex)
-        if not ex.has(*ANGLE_FUNCTIONS):  # nothing can be nested in it (most expressions: one quick traversal)
+        atoms = dag_atoms([ex], *kinds)
+        if not any(isinstance(a, ANGLE_FUNCTIONS) for a in atoms):  # nothing can be nested in it (most expressions)
             continue
-        for atom in sorted(ex.atoms(*kinds), key=_sort_key):
+        for atom in sorted(atoms, key=_sort_key):
             arg = atom.args[0]
-            if arg not in repl and arg.atoms(*ANGLE_FUNCTIONS):
+            if arg not in nested:
+                nested[arg] = dag_has(arg, *ANGLE_FUNCTIONS)
+            if arg not in repl and nested[arg]:
                 repl[arg] = next(names)
                 pre.append((repl[arg], arg))
     if not repl:
         return [], defs
-    new = [(t, sp.sympify(e).replace(lambda a: isinstance(a, kinds) and a.args[0] in repl, lambda a: a.func(repl[a.args[0]])))
+    memo: dict = {}
+    new = [(t, dag_replace(e, lambda a: isinstance(a, kinds) and a.args[0] in repl, lambda a: a.func(repl[a.args[0]]), memo))
            for t, e in defs]
     before, pre = _hoisted(pre, names)
     return before + [pre], new
@@ -257,14 +260,14 @@ def render_kernel(k: Kernel) -> str:
     stages = unnested + before
 
     all_exprs = [e for st in stages if not isinstance(st, RawStage) for _, e in st] + [e for _, e in outputs]
-    used = set().union(*[sp.sympify(e).free_symbols for e in all_exprs]) if all_exprs else set()
+    used = dag_free_symbols(all_exprs)
     used |= {u for st in stages if isinstance(st, RawStage) for u in st.uses}
     pr = Printer()
     lines = []
     deco = "@nb.njit(cache=True, fastmath=FASTMATH)" if k.fastmath else "@nb.njit(cache=True)"
     # CSE hoists the parts of every branch of a Piecewise (log of SO(3) near π beside its generic branch) out of the
     # condition, so a branch that is not taken may divide by zero: IEEE division then (inf, not an exception)
-    error_model = k.error_model or ("numpy" if any(sp.sympify(e).has(sp.Piecewise) for e in all_exprs) else None)
+    error_model = k.error_model or ("numpy" if dag_atoms(all_exprs, sp.Piecewise) else None)
     if error_model:
         deco = deco[:-1] + f', error_model="{error_model}")'
     lines.append(deco)
@@ -337,7 +340,8 @@ def render_kernel(k: Kernel) -> str:
                         body.append(f"{fs.name} = {fname}({arg_code}, {s_sym.name}, {c_sym.name})")
                         done.add(fname)
                     repl[atom] = fs
-        exprs = [e.xreplace(repl).xreplace(arg_names) for e in exprs]
+        m1, m2 = {}, {}
+        exprs = [dag_xreplace(dag_xreplace(e, repl, m1), arg_names, m2) for e in exprs]
         reps, reduced = sp.cse(exprs, symbols=tmp, order="canonical")
         for s, e in reps:
             body.append(f"{s.name} = {pr(e)}")

@@ -27,6 +27,7 @@ from functools import cached_property
 
 import sympy as sp
 
+from ..dag import dag_replace
 from ..lie.groups import SE2, SE3, Product, Rn
 from ..lie.limits import jacobian_at_zero
 from ..lie.so3 import orthonormal_reduce, rotation_matrix, rotation_vector, rotation_vector_entry
@@ -205,7 +206,7 @@ class MotionModel:
         """An expression with the carried substitutions and identities applied; a log of a rotation that is not
         carried (``rotation_vector_entry`` of a computed matrix) in its closed form, as kernels compute it."""
         e = sp.sympify(e).subs(self.carried_substitutions).xreplace(self.carried_identities)
-        return e.replace(lambda a: isinstance(a, rotation_vector_entry), lambda a: a.closed_form())
+        return dag_replace(e, lambda a: isinstance(a, rotation_vector_entry), lambda a: a.closed_form())
 
     @cached_property
     def Omega(self) -> sp.Matrix:

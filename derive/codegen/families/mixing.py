@@ -22,6 +22,7 @@ from __future__ import annotations
 import sympy as sp
 
 from ...algebra import packed_index
+from ...dag import dag_xreplace
 from ...lie.special import ANGLE_FUNCTIONS, wrap
 from ..printer import Kernel
 
@@ -68,7 +69,8 @@ def mixing_kernels(model) -> list:
     # Φ(d)⁻¹ with the d_k inside angle functions replaced by their expressions (shared sin/cos, see _angle_args_to)
     eps = sp.symbols(f"eps0:{n}", real=True)
     Tinv = model.group.right_jacobian_inv(list(eps))
-    Tinv = Tinv.subs(dict(zip(eps, dsyms)), simultaneous=True)
+    memo: dict = {}  # a renaming of symbols: xreplace, each shared subexpression once (derive.dag)
+    Tinv = Tinv.applyfunc(lambda e: dag_xreplace(e, dict(zip(eps, dsyms)), memo))
     Tinv = Tinv.applyfunc(lambda e: _angle_args_to(e, dict(zip(dsyms, d_expr))))
     tdefs, T = _symbolic(Tinv, "T")
     psyms = {(i, j): sp.Symbol(f"pt{i}_{j}", real=True) for i in range(n) for j in range(i, n)}
