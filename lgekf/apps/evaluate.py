@@ -216,7 +216,9 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
     if imm is not None and not SPACES[ds.space]["mixes"]:
-        raise ValueError("--imm: the IMM mixes planar models only (yet); the dataset is in 3-D space")
+        raise ValueError(f"--imm: the IMM does not mix the models of the dataset's space ({ds.space})")
+    if imm is not None:
+        imm = imm.for_space(ds.space)  # the modes of the dataset's space (its default ones unless --imm-modes)
     if runner is not None and imm is None:
         out = runner(ds, zs, cfg, models)
     else:

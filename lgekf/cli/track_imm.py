@@ -11,7 +11,9 @@ from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_options import check_imm_options
 from .track_parquet import is_parquet
-from .track_pipeline import TrackEstimator
+from .track_pipeline import SPACE_HINTS, SPACE_WORDS, TrackEstimator, input_space
+from ..core.registry import DEFAULT_SPACE, SPACES, models_of, space_of_positions
+from ..estimators.imm.estimator import parse_modes, space_of_modes
 
 __all__ = ["ImmTrack", "check_imm_options", "imm_modes_line"]
 
@@ -28,8 +30,33 @@ class ImmTrack(TrackEstimator):
 
     def __init__(self, a, say):
         super().__init__(a, say)
-        self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch)
+        self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch, self._modes_space(a))
         self.models = ["imm"]  # one output file
+
+    @staticmethod
+    def _modes_space(a) -> str:
+        """The space the IMM is set up for before reading: the input's (its header, ``input_space``), else that of the
+        given modes, else the plane."""
+        space = input_space(a)
+        if space is None and a.imm_modes is not None:
+            space = space_of_modes(parse_modes(a.imm_modes))
+        return space or DEFAULT_SPACE
+
+    def adopt_space(self, meas) -> None:
+        """After reading: the IMM of the input's space (its default modes, or ``--imm-modes``, which must be models of
+        it); a space whose models the IMM does not mix, or ``--tune`` / ``--smooth`` outside the plane, is one line."""
+        space = space_of_positions(meas.z.shape[1])
+        if not SPACES[space]["mixes"]:
+            raise ValueError(f"--model imm: the IMM does not mix the models of {SPACE_WORDS[space]}; use --model "
+                             f"{', '.join(models_of(space))}")
+        if space != self.opts.space:
+            self.opts = ImmTrackOptions(self.a.imm_modes, self.a.imm_switch, space)
+        if space != DEFAULT_SPACE:  # the IMM smoother and the IMM's likelihood fit run in the plane only (yet)
+            missing = [name for given, name in ((getattr(self.a, "smooth", False), "--smooth (the IMM smoother)"),
+                                                (getattr(self.a, "tune", False), "--tune (the IMM's noise fit)")) if given]
+            if missing:
+                raise ValueError(f"--model imm: {', '.join(missing)} runs in the plane only (yet); the input has "
+                                 f"{SPACE_HINTS[space]}")
 
     def check(self) -> None:
         """The IMM's own argument errors (the shared ones: ``lgekf.cli.track.check_track_arguments``)."""

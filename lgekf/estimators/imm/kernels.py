@@ -63,7 +63,7 @@ class, the smoother's forward pass) keep the separate prediction, log det S and 
 
 from __future__ import annotations
 
-from ...core.registry import imm_kernel
+from ...core.registry import get_measurement, imm_kernel, imm_module
 from ..threads import run_on_threads
 from ...generated.imm import (
     MEASUREMENT_NAMES,
@@ -80,15 +80,27 @@ from ...generated.imm import (
 )
 
 __all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "run_batch", "measurement_index",
-           "mix_on_group", "combined_common", "workspace", "mix_common", "_mix"]
+           "mix_on_group", "combined_common", "workspace", "mix_common", "_mix", "loop_of"]
+
+
+def loop_of(space: str):
+    """The generated IMM loop of the models of ``space`` (``lgekf.core.registry.imm_module``): the module whose
+    ``imm_predict``, ``imm_update``, ``combined_common``, ``workspace``, ... this module exports for the plane
+    (``generated/imm.py``); 3-D space has its own (``generated/imm_3d.py``), sized by its 12 common coordinates."""
+    return imm_module(space)
 
 
 def measurement_index(measurement: str) -> int:
-    """The index of ``measurement`` in the generated IMM's ``MEASUREMENT_NAMES``: the ``meas`` argument of
-    ``imm_update``, ``imm_step``, ``imm_loglik_one`` and ``imm_run_one``."""
-    if measurement not in MEASUREMENT_NAMES:
-        raise ValueError(f"measurement: the IMM supports {', '.join(MEASUREMENT_NAMES)}, got {measurement!r}")
-    return MEASUREMENT_NAMES.index(measurement)
+    """The index of ``measurement`` in the ``MEASUREMENT_NAMES`` of the generated IMM loop of its space: the ``meas``
+    argument of ``imm_update``, ``imm_step``, ``imm_loglik_one`` and ``imm_run_one``."""
+    names = MEASUREMENT_NAMES
+    try:
+        names = loop_of(get_measurement(measurement).space).MEASUREMENT_NAMES
+    except ValueError:
+        pass
+    if measurement not in names:
+        raise ValueError(f"measurement: the IMM supports {', '.join(names)}, got {measurement!r}")
+    return names.index(measurement)
 
 
 def run_batch(measurement: str):

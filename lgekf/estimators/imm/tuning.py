@@ -176,7 +176,7 @@ class _Likelihood:
 
     def __init__(self, modes, meas_std, tr: _Tracks, measurement: str):
         self.setup = _Setup(modes, None, meas_std, measurement, None)
-        self.S0, self.Pp0 = self.setup.initial(*_common_inputs(tr.c0, tr.P0))
+        self.S0, self.Pp0 = self.setup.initial(*_common_inputs(tr.c0, tr.P0, self.setup.space))
         self.tr = tr
 
     def __call__(self, factors, switch: float) -> tuple[float, int]:
