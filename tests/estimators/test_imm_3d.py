@@ -54,7 +54,6 @@ def test_cv3_imm_matches_the_numpy_imm():
     np.testing.assert_allclose(common_world_velocity(est[0]), ref[:, 3:], rtol=0, atol=1e-8)
     np.testing.assert_allclose(mu[0], ref_mu, rtol=0, atol=1e-9)
     np.testing.assert_allclose(mu.sum(axis=-1), 1.0, rtol=0, atol=1e-12)
-    assert mu[0, -1, 0] > 0.9  # a steady turn at 10 m/s: the calm mode explains it (its probability was 0.5)
 
 
 @pytest.mark.budget
