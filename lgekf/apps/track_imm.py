@@ -96,8 +96,11 @@ class ImmTrackOptions:
         return SPACES[self.space]["common_names"]
 
     def candidates(self) -> list:
-        """The mode sets ``--tune`` fits: the given ``--imm-modes``, else every set of ``TUNE_MODE_SETS``."""
-        return [self.modes_text] if self.modes_given else list(TUNE_MODE_SETS)
+        """The mode sets ``--tune`` fits: the given ``--imm-modes``, else every set of ``TUNE_MODE_SETS`` in the plane
+        and the space's default modes elsewhere."""
+        if self.modes_given or self.space != DEFAULT_SPACE:
+            return [self.modes_text]
+        return list(TUNE_MODE_SETS)
 
     def tunable_models(self) -> list:
         """The distinct models of modes whose noise is a named level or the default (not given as numbers)."""
@@ -280,12 +283,13 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
 
     models = []
     for text in opts.candidates():
-        for m in ImmTrackOptions(text).tunable_models():
+        for m in ImmTrackOptions(text, space=opts.space).tunable_models():
             if m not in models:
                 models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
-    fits = tune_models(meas.t, meas.z, starts, models, {m: BASE_MEASUREMENT for m in models}, meas_std, None, None, omega_std, method,
+    position = measurement_in(opts.space, BASE_MEASUREMENT)
+    fits = tune_models(meas.t, meas.z, starts, models, {m: position for m in models}, meas_std, None, None, omega_std, method,
                        start_noise=data_starts(meas.t, meas.z, starts, models, meas_std, omega_std))
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
@@ -293,7 +297,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                         + (f"; not identified: {', '.join(f.problems)}" if f.problems else "") + ")" for m, f in fits.items())
     src = "given" if meas_std is not None else f"learned with {best}, the best log-likelihood"
     t = np.asarray(meas.t, float)
-    z = np.asarray(meas.z, float)[:, :2]
+    z = np.asarray(meas.z, float)[:, :SPACES[opts.space]["dim"]]
     tracks = [(t[a:b], z[a:b]) for a, b in zip(starts[:-1], starts[1:]) if b - a >= 3]
     learned_q = {m: f.accel_std for m, f in fits.items()}
     try:
@@ -348,7 +352,8 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
         fixed = [bool(m.label) and m.label not in NOISE_LEVELS for m in cand.modes]
         try:
             table.append((text, learn_imm(cand.modes, tracks, meas_std=meas_std, switch=cand.switch, omega_std=omega_std,
-                                          fit_switch=not opts.switch_given, fixed=fixed)))
+                                          fit_switch=not opts.switch_given, fixed=fixed,
+                                          measurement=measurement_in(opts.space, BASE_MEASUREMENT))))
         except ValueError as e:
             table.append((text, str(e)))
     fitted = [(text, f) for text, f in table if not isinstance(f, str)]
@@ -454,7 +459,7 @@ def tune_imm_classes(meas, starts, opts: ImmTrackOptions, meas_std: float | None
     noise, summaries = [None] * len(found.plans), [None] * len(found.plans)
     for c in np.argsort(-sizes, kind="stable").tolist():  # the largest class first: it chooses the mode set
         rows, sub = objects_subset(starts, np.flatnonzero(classes.of_object == c))
-        o = ImmTrackOptions(chosen, switch)
+        o = ImmTrackOptions(chosen, switch, opts.space)
         try:
             r, _, summary = tune_imm(SimpleNamespace(t=t[rows], z=z[rows]), sub, o, meas_std, omega_std, say=say,
                                      method=method)
@@ -465,7 +470,7 @@ def tune_imm_classes(meas, starts, opts: ImmTrackOptions, meas_std: float | None
         noise[c], summaries[c] = (o, r), f"class {c + 1}: " + summary
     for c, plan in enumerate(found.plans):
         if noise[c] is None:  # not tuned: the chosen mode set with the class's noise from the data
-            o = ImmTrackOptions(chosen, switch)
+            o = ImmTrackOptions(chosen, switch, opts.space)
             o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
             noise[c] = (o, classes.noise[c][1])
     return ImmClasses(classes.of_object, noise), found, summaries
