@@ -129,8 +129,9 @@ class Space3(Space):
     dispatch_module, imm_module = "dispatch_3d", "imm_3d"
     common_angles = (3, 4, 5)
     common_velocity = (6, 7, 8)
-    #: measured on a climbing turn and KITTI 3-D (docs/space3d.md, "The IMM in 3-D")
-    default_imm_modes = "cv3,ct3"
+    #: CV3 and a calm and a manoeuvring CT3, as in the plane: best of the mode sets tried on KITTI 3-D, second to
+    #: ct3:calm,ct3:manoeuvre on a climbing turn (docs/space3d.md, "The IMM in 3-D")
+    default_imm_modes = "cv3,ct3:calm,ct3:manoeuvre"
     monitored = True
 
     def common_of_physical(self, model) -> list:

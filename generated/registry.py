@@ -27,7 +27,7 @@ SPACES = {'2d': {'dim': 2,
         'common_velocity': (6, 7, 8),
         'dispatch_module': 'dispatch_3d',
         'imm_module': 'imm_3d',
-        'imm_modes': 'cv3,ct3'}}
+        'imm_modes': 'cv3,ct3:calm,ct3:manoeuvre'}}
 
 #: the space of the commands' defaults (the paper's plane)
 DEFAULT_SPACE = '2d'

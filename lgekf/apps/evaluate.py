@@ -336,6 +336,8 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     """
     if imm is not None and runner is not None:
         raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
+    if imm is not None and SPACES[ds.space]["mixes"]:
+        imm = imm.for_space(ds.space)  # the modes of the dataset's space (its default ones unless --imm-modes)
     seed_list = [base_seed + s for s in range(seeds)]
     filters = filters_of(ds)  # the models of the dataset's space
     turning = tuple(m for m in filters if _turning(m))

@@ -44,19 +44,16 @@ class ImmTrack(TrackEstimator):
 
     def adopt_space(self, meas) -> None:
         """After reading: the IMM of the input's space (its default modes, or ``--imm-modes``, which must be models of
-        it); a space whose models the IMM does not mix, or ``--tune`` / ``--smooth`` outside the plane, is one line."""
+        it); a space whose models the IMM does not mix, or ``--smooth`` outside the plane, is one line."""
         space = space_of_positions(meas.z.shape[1])
         if not SPACES[space]["mixes"]:
             raise ValueError(f"--model imm: the IMM does not mix the models of {SPACE_WORDS[space]}; use --model "
                              f"{', '.join(models_of(space))}")
         if space != self.opts.space:
             self.opts = ImmTrackOptions(self.a.imm_modes, self.a.imm_switch, space)
-        if space != DEFAULT_SPACE:  # the IMM smoother and the IMM's likelihood fit run in the plane only (yet)
-            missing = [name for given, name in ((getattr(self.a, "smooth", False), "--smooth (the IMM smoother)"),
-                                                (getattr(self.a, "tune", False), "--tune (the IMM's noise fit)")) if given]
-            if missing:
-                raise ValueError(f"--model imm: {', '.join(missing)} runs in the plane only (yet); the input has "
-                                 f"{SPACE_HINTS[space]}")
+        if space != DEFAULT_SPACE and getattr(self.a, "smooth", False):  # the IMM smoother is the plane's (yet)
+            raise ValueError(f"--model imm: --smooth (the IMM smoother) runs in the plane only (yet); the input has "
+                             f"{SPACE_HINTS[space]}")
 
     def check(self) -> None:
         """The IMM's own argument errors (the shared ones: ``lgekf.cli.track.check_track_arguments``)."""

@@ -128,8 +128,9 @@ def test_track_imm_on_a_3d_file(tmp_path, capsys):
     assert len(rows) == 240
     head = list(rows[0])
     assert head[2:14] == ["x", "y", "z", "roll", "pitch", "yaw", "vx", "vy", "vz", "wx", "wy", "wz"]
-    assert head[-3:] == ["mu_cv3", "mu_ct3", "flag"] and "climb" in head and "turn_rate" in head
-    mu = np.array([[float(r["mu_cv3"]), float(r["mu_ct3"])] for r in rows])
+    mus = ["mu_cv3", "mu_ct3_calm", "mu_ct3_manoeuvre"]
+    assert head[-4:] == [*mus, "flag"] and "climb" in head and "turn_rate" in head
+    mu = np.array([[float(r[c]) for c in mus] for r in rows])
     np.testing.assert_allclose(mu.sum(axis=1), 1.0, atol=1e-9)
     speed = np.array([float(r["speed"]) for r in rows[10:120]])
     climb = np.array([float(r["climb"]) for r in rows[10:120]])
