@@ -86,12 +86,20 @@ def model_compile_seconds(model: str) -> float:
         return 3.0
 
 
-def imm_compile_seconds(tune: bool, smooth: bool) -> float:
+def imm_compile_seconds(tune: bool, smooth: bool, space: str | None = None) -> float:
     """Estimated seconds to compile ``lgekf track --model imm`` cold, with ``--tune`` and/or ``--smooth``
     (``IMM_COMPILE_SECONDS``, one process: the IMM's kernels share the models' leaves, so parallel processes would
-    compile the same leaves twice)."""
+    compile the same leaves twice). The figures are the plane's; the IMM of another ``space`` compiles every model of
+    that space, so its estimate is scaled by the size of their generated modules against the plane's (3-D: about
+    2.6×; measured 152 s for the loop alone, docs/space3d.md)."""
+    from ..core.registry import DEFAULT_SPACE, models_of
+
     c = IMM_COMPILE_SECONDS
-    return c["imm"] + (c["tune"] if tune else 0.0) + (c["smooth"] if smooth else 0.0)
+    base = c["imm"] + (c["tune"] if tune else 0.0) + (c["smooth"] if smooth else 0.0)
+    if space is None or space == DEFAULT_SPACE:
+        return base
+    plane = sum(model_compile_seconds(m) for m in models_of(DEFAULT_SPACE))
+    return base * sum(model_compile_seconds(m) for m in models_of(space)) / plane
 
 
 def worker_count() -> int:

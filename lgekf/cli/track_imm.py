@@ -35,12 +35,9 @@ class ImmTrack(TrackEstimator):
 
     @staticmethod
     def _modes_space(a) -> str:
-        """The space the IMM is set up for before reading: the input's (its header, ``input_space``), else that of the
-        given modes, else the plane."""
-        space = input_space(a)
-        if space is None and a.imm_modes is not None:
-            space = space_of_modes(parse_modes(a.imm_modes))
-        return space or DEFAULT_SPACE
+        """The space the IMM is set up for before its input is looked at: that of the given modes, else the plane
+        (``check`` then takes the input's, from its header, and ``adopt_space`` the one of the rows read)."""
+        return space_of_modes(parse_modes(a.imm_modes)) if a.imm_modes is not None else DEFAULT_SPACE
 
     def adopt_space(self, meas) -> None:
         """After reading: the IMM of the input's space (its default modes, or ``--imm-modes``, which must be models of
@@ -67,11 +64,15 @@ class ImmTrack(TrackEstimator):
                 raise ValueError(f"--model imm: {name} is not supported")
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--model imm: Parquet input or output is not supported (yet); use CSV")
+        space = input_space(a)  # from the header (None from stdin: adopt_space decides after reading)
+        if space is not None and space != self.opts.space:
+            self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch, space)
 
     def compile_seconds(self):
         """The compile notice's estimate (``lgekf.apps.warmup.imm_compile_seconds``): the IMM compiles much more
         than one model does."""
-        return imm_compile_seconds(bool(getattr(self.a, "tune", False)), bool(getattr(self.a, "smooth", False)))
+        return imm_compile_seconds(bool(getattr(self.a, "tune", False)), bool(getattr(self.a, "smooth", False)),
+                                   self.opts.space)
 
     def plan(self, meas, starts, monitor) -> None:
         """The IMM's noise: from the data per class of objects, or ``--tune``'s fit."""
