@@ -9,6 +9,10 @@ Two kinds (chosen automatically from the modes, never from a model's name):
   c = (x, y, θ, v_x, v_y, ω) through the generated conversions; components a model lacks (CV: ω) are
   taken from the receiving mode itself.
 
+The modes are models of one space: in 3-D space (cv3, ct3, se3r6, se3se3) c = (x, y, z, roll, pitch, yaw, v_x,
+v_y, v_z, ω_x, ω_y, ω_z) and the loop is the space's own (``lgekf.core.registry.imm_module``: ``generated/imm_3d.py``;
+``generated/imm.py`` in the plane), found from the modes' space; "position" means the space's position measurement.
+
 The mathematics and the exact Jacobians are in :mod:`lgekf.estimators.imm.kernels` (the numba loop).
 The combined estimate ``x`` is always in the common coordinates, with its covariance ``P``; ``mu`` holds
 the mode probabilities. The cycle is the standard IMM (Blom and Bar-Shalom 1988): interaction (mixing),

@@ -27,7 +27,8 @@ X = μ_i·exp(ε_i), ε_i ~ N(0, P_i). The mixture Σ w_i N_G(μ_i, P_i) is redu
   (between, Φ⁻¹ and the congruence in one straight-line kernel over the packed covariances; derive/codegen/mixing.py).
 
 Mixing across models (``same_group`` false): in the common coordinates c = (x, y, θ, v_x, v_y, ω) (body
-velocity). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
+velocity; in 3-D space (x, y, z, roll, pitch, yaw, body velocity, body rate), the loop of ``generated/imm_3d.py``:
+``loop_of``, the same template sized by the space, its three angles wrapped and capped as θ is). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
 A_i = ∂c/∂ε_i (``physical_to_common_jacobian``). A model carries no information on some coordinates
 (``common_missing``: CV has no ω; its θ is the direction of its velocity and v_y = 0, no side slip, as for
 CTRV and SE(2)×R²): for mixing into mode j those coordinates of mode i are replaced by mode j's own
