@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..core.registry import DEFAULT_SPACE
-from ..estimators.imm.estimator import NOISE_LEVELS, Mode, default_modes, imm_batch, parse_modes
+from ..estimators.imm.estimator import NOISE_LEVELS, Mode, default_modes, imm_batch, parse_modes, space_of_modes
 from .metrics import position_rmse
 
 if TYPE_CHECKING:
@@ -220,6 +220,9 @@ def imm_options_from_args(modes: str | None, switch: float | None, train: int | 
                           space: str = DEFAULT_SPACE) -> ImmStudyOptions:
     """The study's IMM options from ``--imm-modes`` / ``--imm-switch`` / ``--imm-train`` (None: the defaults of the
     study's ``space``; no switch: the chain is learned), validated."""
+    if modes is not None and space_of_modes(parse_modes(modes)) != space:
+        raise ValueError(f"imm-modes: {modes} are models of space {space_of_modes(parse_modes(modes))!r}, and the study "
+                         f"runs in {space!r}")
     opts = ImmStudyOptions(study_default_modes(space) if modes is None else modes, switch,
                            DEFAULT_TRAIN_TRAJECTORIES if train is None else train)
     opts.validate()

@@ -150,3 +150,16 @@ def test_track_imm_3d_bad_input(tmp_path, capsys, args, msg):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and msg in err[0], err
     assert not out.exists()
+
+
+@pytest.mark.budget
+def test_study_3d_with_the_imm(tmp_path):
+    """The study in 3-D takes the IMM among its filters (the space's default modes, the chain learned): finite RMSE
+    per σ_ω, below the measurements'."""
+    out = tmp_path / "study"
+    assert main(["study", "--space", "3d", "--filters", "cv3,ct3,imm", "--trajectories", "3", "--sigmas", "0,0.1",
+                 "--steps", "30", "--imm-train", "4", "--out", str(out)]) == 0
+    rows = list(csv.DictReader((out / "summary.csv").open()))
+    imm = np.array([float(r["mean_rmse"]) for r in rows if r["filter"] == "imm"])
+    meas = np.array([float(r["mean_rmse"]) for r in rows if r["filter"] == "measurements"])
+    assert imm.shape == (2,) and np.all(np.isfinite(imm)) and np.all(imm < meas)

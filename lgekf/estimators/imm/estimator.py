@@ -238,7 +238,7 @@ class _Setup:
         return S0, P0
 
 
-def _common_inputs(c0, P0c, space: str, B=None):
+def _common_inputs(c0, P0c, space: str = DEFAULT_SPACE, B=None):
     nc = len(SPACES[space]["common_names"])
     c0 = as_float_array("c0", c0)
     if c0.ndim == 1:
