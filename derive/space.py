@@ -55,8 +55,20 @@ class Space:
     common_names: tuple = ()
     common_doc = ""  # the common coordinates as docstrings write them
     position_names: tuple = ()
-    #: the generated IMM loop (``generated/dispatch.py``, ``generated/imm.py``) mixes the models of this space
+    #: the generated IMM loop mixes the models of this space: its model chains ``generated/<dispatch_module>.py`` and its
+    #: loop ``generated/<imm_module>.py`` (``derive/codegen/dispatch.py``, ``derive/codegen/families/imm.py``)
     mixes = False
+    dispatch_module = ""
+    imm_module = ""
+    #: the indices of the common coordinates that are angles: the IMM wraps them to (−π, π] when it mixes and caps their
+    #: std at π (a heading read off a velocity near zero is unknown, not infinitely uncertain)
+    common_angles: tuple = ()
+    #: the indices of the body-frame velocity in c, the forward speed first: below ``SPEED_FLOOR`` the IMM evaluates the
+    #: conversions' Jacobians at that forward speed (an attitude read off the velocity is singular at rest)
+    common_velocity: tuple = ()
+    #: the modes of ``lgekf track --model imm`` (and ``lgekf evaluate --imm``) in this space (measured: docs/imm.md,
+    #: docs/space3d.md)
+    default_imm_modes = ""
     #: the divergence monitor's kernels (its two-point restart, ``derive/codegen/families/monitor.py``) serve this space
     monitored = False
 
@@ -78,6 +90,12 @@ class Plane(Space):
     common_doc = "(x, y, θ, v_x, v_y, ω)"
     position_names = ("x", "y")
     mixes = True
+    dispatch_module, imm_module = "dispatch", "imm"
+    common_angles = (2,)
+    common_velocity = (3, 4)
+    #: CV and a calm and a manoeuvring SE(2)×R³ (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre
+    #: and cv,se2r3, docs/imm.md)
+    default_imm_modes = "cv,se2r3:calm,se2r3:manoeuvre"
     monitored = True
 
     def common_of_physical(self, model) -> list:
@@ -107,6 +125,13 @@ class Space3(Space):
     common_names = ("x", "y", "z", "roll", "pitch", "yaw", "vx", "vy", "vz", "wx", "wy", "wz")
     common_doc = "(x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z)"
     position_names = ("x", "y", "z")
+    mixes = True
+    dispatch_module, imm_module = "dispatch_3d", "imm_3d"
+    common_angles = (3, 4, 5)
+    common_velocity = (6, 7, 8)
+    #: CV3 and a calm and a manoeuvring CT3, as in the plane: best of the mode sets tried on KITTI 3-D, second to
+    #: ct3:calm,ct3:manoeuvre on a climbing turn (docs/space3d.md, "The IMM in 3-D")
+    default_imm_modes = "cv3,ct3:calm,ct3:manoeuvre"
     monitored = True
 
     def common_of_physical(self, model) -> list:

@@ -42,7 +42,13 @@ LOG_2PI = math.log(2.0 * math.pi)
 NMAX = int(np.max(D.N_TANGENT))  # the largest tangent dimension of the registry
 LMAX = int(np.max(D.N_INTERNAL))
 NPMAX = NMAX * (NMAX + 1) // 2
-NW = max(NMAX, 6)  # square scratch matrices hold n × n and n × 6 blocks
+NC = 6  # the common coordinates of the space (derive/space.py)
+NC2 = NC * NC
+NW = max(NMAX, NC)  # square scratch matrices hold n × n and n × NC blocks
+#: 1.0 at the common coordinates that are angles (``Space.common_angles``): wrapped when mixed, std capped at π
+IS_ANGLE = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 0.0])
+#: the body-frame velocity in c, the forward speed first (``Space.common_velocity``)
+VELOCITY = np.array([3, 4])
 SPEED_FLOOR = 1e-9  # m/s: conversions' Jacobians are evaluated at least this far from speed 0
 
 # rows of the workspace (module docstring): fixed ones, then blocks of M rows (_r_* give their first row)
@@ -50,11 +56,11 @@ _R_DELTA = 0  # the mean iteration's Σ w_i d_i (n)
 _R_CBAR = 1  # predicted mode probabilities Σ_i PI_ij μ_i (M)
 _R_LOGLIK = 2  # each mode's log N_j (M)
 _R_PRIOR = 3  # the probabilities before the update (M)
-_R_FILLC = 4  # common coordinates a source lacks: mean (6)
-_R_FILLP = 5  # ... and variance (6 × 6 row-major, diagonal used)
-_R_CM = 6  # a mixed common mean (6)
-_R_PCM = 7  # its covariance (6 × 6 row-major)
-_R_D = 8  # a deviation (6)
+_R_FILLC = 4  # common coordinates a source lacks: mean (NC)
+_R_FILLP = 5  # ... and variance (NC × NC row-major, diagonal used)
+_R_CM = 6  # a mixed common mean (NC)
+_R_PCM = 7  # its covariance (NC × NC row-major)
+_R_D = 8  # a deviation (NC)
 _R_SMIX = 9  # the combined estimate on the group: state (L)
 _R_PMIX = 10  # ... packed covariance (n(n+1)/2)
 _R_MU = 11  # the weights of the combined estimate (M)
@@ -87,31 +93,31 @@ def _r_pnew(M):
 
 @nb.njit(cache=True, inline="always")
 def _r_c(M):
-    """First of M rows: each mode's common mean (6)."""
+    """First of M rows: each mode's common mean (NC)."""
     return _R_BLOCKS + 3 * M
 
 
 @nb.njit(cache=True, inline="always")
 def _r_pc(M):
-    """First of M rows: each mode's common covariance (6 × 6 row-major)."""
+    """First of M rows: each mode's common covariance (NC × NC row-major)."""
     return _R_BLOCKS + 4 * M
 
 
 @nb.njit(cache=True, inline="always")
 def _r_miss(M):
-    """First of M rows: each mode's COMMON_MISSING flags (6)."""
+    """First of M rows: each mode's COMMON_MISSING flags (NC)."""
     return _R_BLOCKS + 5 * M
 
 
 @nb.njit(cache=True, inline="always")
 def _r_ci(M):
-    """First of M rows: scratch of mix_common (sources with filled coordinates, 6)."""
+    """First of M rows: scratch of mix_common (sources with filled coordinates, NC)."""
     return _R_BLOCKS + 6 * M
 
 
 @nb.njit(cache=True, inline="always")
 def _r_pi(M):
-    """First of M rows: scratch of mix_common (their covariances, 36)."""
+    """First of M rows: scratch of mix_common (their covariances, NC²)."""
     return _R_BLOCKS + 7 * M
 
 
@@ -148,7 +154,7 @@ def _model(ws, j):
 def workspace(M):
     """The workspace of one IMM of M modes: one 2-D float array, a quantity per row (module docstring; no
     allocation and no views inside the step loop)."""
-    return np.zeros((_R_BLOCKS + _N_BLOCKS * M, max(36, LMAX, NPMAX, M, 8)))
+    return np.zeros((_R_BLOCKS + _N_BLOCKS * M, max(NC2, LMAX, NPMAX, M, 8)))
 
 
 @nb.njit(cache=True)
@@ -239,15 +245,24 @@ def _mix_on_group(ws, M, model, rw, rs, rp):
 
 @nb.njit(cache=True, error_model="numpy")
 def _to_common(ws, model, js, jp, rc, rP):
-    """State ws[js], packed covariance ws[jp] of a model -> common c (ws[rc], 6) and its covariance (ws[rP],
-    6 × 6 row-major) (A P Aᵀ, generated ``common_of_state``).
+    """State ws[js], packed covariance ws[jp] of a model -> common c (ws[rc], NC) and its covariance (ws[rP],
+    NC × NC row-major) (A P Aᵀ, generated ``common_of_state``).
 
-    At a speed below SPEED_FLOOR the Jacobian is taken at the state with speed SPEED_FLOOR along θ (a heading
-    read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_heading)."""
+    At a speed below SPEED_FLOOR the Jacobian is taken at the state with forward speed SPEED_FLOOR (a heading or
+    attitude read off the velocity, CV's, is singular at 0; its variance is then capped by _cap_angles)."""
     D.common_of_state_at(model, ws, js, jp, rc, rP)  # generated, straight line: c and A P Aᵀ at s
-    if math.hypot(ws[rc, 3], ws[rc, 4]) < SPEED_FLOOR:
+    if _speed(ws, rc) < SPEED_FLOOR:
         _to_common_slow(ws, model, js, jp, rc, rP)
-    _cap_heading(ws, rc, rP)
+    _cap_angles(ws, rc, rP)
+
+
+@nb.njit(cache=True, inline="always")
+def _speed(ws, rc):
+    """|v| of the body-frame velocity (the entries VELOCITY) of the common coordinates ws[rc]."""
+    acc = 0.0
+    for a in VELOCITY:
+        acc += ws[rc, a] * ws[rc, a]
+    return math.sqrt(acc)
 
 
 @nb.njit(cache=True)
@@ -255,41 +270,45 @@ def _to_common_slow(ws, model, js, jp, rc, rP):
     """_to_common's path below SPEED_FLOOR (rare: allocates its scratch)."""
     n = D.N_TANGENT[model]
     s, p = ws[js].copy(), ws[jp].copy()
-    x, A, row = np.empty(NMAX), np.empty((6, NMAX)), np.empty(NW)
-    Pd, ctmp, Pc = np.empty((NW, NW)), np.empty(6), np.empty((6, 6))
+    x, A, row = np.empty(NMAX), np.empty((NC, NMAX)), np.empty(NW)
+    Pd, ctmp, Pc = np.empty((NW, NW)), np.empty(NC), np.empty((NC, NC))
     D.physical_into(model, s, x)
     D.physical_to_common_into(model, x, ctmp)
-    for k in range(6):
+    for k in range(NC):
         ws[rc, k] = ctmp[k]
-    if math.hypot(ctmp[3], ctmp[4]) < SPEED_FLOOR:
-        ctmp[3] = SPEED_FLOOR
-        ctmp[4] = 0.0
+    if _speed(ws, rc) < SPEED_FLOOR:
+        for a in VELOCITY:
+            ctmp[a] = 0.0
+        ctmp[VELOCITY[0]] = SPEED_FLOOR
         D.common_to_state_into(model, ctmp, x)
     D.physical_to_common_jacobian_into(model, x, A)
     unpack_into(p, n, Pd)
-    _congruence_dense(A, 6, Pd, n, row, Pc)
-    for a in range(6):
-        for b in range(6):
-            ws[rP, 6 * a + b] = Pc[a, b]
+    _congruence_dense(A, NC, Pd, n, row, Pc)
+    for a in range(NC):
+        for b in range(NC):
+            ws[rP, NC * a + b] = Pc[a, b]
 
 
 @nb.njit(cache=True, inline="always")
-def _cap_heading(ws, rc, rP):
-    """Cap the std of the common θ (ws[rc, 2], covariance ws[rP] 6 × 6 row-major) at π by congruence scaling (as
-    the filters' limit_angle_variance): a heading read off a velocity near zero (CV) is unknown, not infinitely
-    uncertain; at exactly zero θ = 0, variance π²."""
-    v = ws[rP, 14]
-    if not (np.isfinite(v) and np.isfinite(ws[rc, 2])):
-        ws[rc, 2] = 0.0
-        for k in range(6):
-            ws[rP, 12 + k] = 0.0
-            ws[rP, 6 * k + 2] = 0.0
-        ws[rP, 14] = math.pi * math.pi
-    elif v > math.pi * math.pi:
-        f = math.pi / math.sqrt(v)
-        for k in range(6):
-            ws[rP, 12 + k] *= f
-            ws[rP, 6 * k + 2] *= f
+def _cap_angles(ws, rc, rP):
+    """Cap the std of every common angle a (IS_ANGLE; ws[rc, a], covariance ws[rP] NC × NC row-major) at π by
+    congruence scaling of its row and column (as the filters' limit_angle_variance): a heading or attitude read off a
+    velocity near zero (CV) is unknown, not infinitely uncertain; a non-finite one becomes a = 0, variance π²."""
+    for a in range(NC):
+        if IS_ANGLE[a] < 0.5:
+            continue
+        v = ws[rP, (NC + 1) * a]
+        if not (np.isfinite(v) and np.isfinite(ws[rc, a])):
+            ws[rc, a] = 0.0
+            for k in range(NC):
+                ws[rP, NC * a + k] = 0.0
+                ws[rP, NC * k + a] = 0.0
+            ws[rP, (NC + 1) * a] = math.pi * math.pi
+        elif v > math.pi * math.pi:
+            f = math.pi / math.sqrt(v)
+            for k in range(NC):
+                ws[rP, NC * a + k] *= f
+                ws[rP, NC * k + a] *= f
 
 
 @nb.njit(cache=True, inline="always")
@@ -299,84 +318,88 @@ def _wrap(a):
 
 @nb.njit(cache=True)
 def mix_common(C, PC, miss, w, fill_c, fill_P, c_out, P_out, Ci, Pi, d):
-    """Moment-match Σ w_i N(c_i, P_c,i) in the common coordinates (θ wrapped); coordinates k a source does not
+    """Moment-match Σ w_i N(c_i, P_c,i) in the common coordinates (angles wrapped); coordinates k a source does not
     carry (miss[i, k] = 1) take fill_c[k] and the variance fill_P[k, k] (no correlation) for that source.
-    Ci (M, 6), Pi (M, 6, 6), d (6,): scratch. (The IMM's loop runs the same on its workspace rows.)"""
+    Ci (M, NC), Pi (M, NC, NC), d (NC,): scratch. (The IMM's loop runs the same on its workspace rows.)"""
     M = C.shape[0]
     ws = workspace(M)
     for i in range(M):
         ws[_R_MU, i] = w[i]
-        for a in range(6):
+        for a in range(NC):
             ws[_r_c(M) + i, a] = C[i, a]
             ws[_r_miss(M) + i, a] = miss[i, a]
-            for b in range(6):
-                ws[_r_pc(M) + i, 6 * a + b] = PC[i, a, b]
-    for a in range(6):
+            for b in range(NC):
+                ws[_r_pc(M) + i, NC * a + b] = PC[i, a, b]
+    for a in range(NC):
         ws[_R_FILLC, a] = fill_c[a]
-        for b in range(6):
-            ws[_R_FILLP, 6 * a + b] = fill_P[a, b]
+        for b in range(NC):
+            ws[_R_FILLP, NC * a + b] = fill_P[a, b]
     _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
-    for a in range(6):
+    for a in range(NC):
         c_out[a] = ws[_R_CM, a]
-        for b in range(6):
-            P_out[a, b] = ws[_R_PCM, 6 * a + b]
+        for b in range(NC):
+            P_out[a, b] = ws[_R_PCM, NC * a + b]
 
 
 @nb.njit(cache=True, error_model="numpy")
 def _mix_common(ws, M, rw, rfc, rfp, rc, rP):
     """mix_common on workspace rows: sources c_i, P_c,i, miss_i in the blocks _r_c, _r_pc, _r_miss; weights ws[rw];
-    fill mean ws[rfc], fill covariance ws[rfp] (6 × 6 row-major, diagonal used); result into ws[rc], ws[rP]."""
+    fill mean ws[rfc], fill covariance ws[rfp] (NC × NC row-major, diagonal used); result into ws[rc], ws[rP];
+    the angles (IS_ANGLE) averaged as differences wrapped to (−π, π] about the most probable source."""
     rC, rPC, rMS, rCI, rPI = _r_c(M), _r_pc(M), _r_miss(M), _r_ci(M), _r_pi(M)
     best = 0
     for i in range(M):
         if ws[rw, i] > ws[rw, best]:
             best = i
     for i in range(M):
-        for a in range(6):
+        for a in range(NC):
             ws[rCI + i, a] = ws[rC + i, a]
-        for e in range(36):
+        for e in range(NC2):
             ws[rPI + i, e] = ws[rPC + i, e]
-        for a in range(6):
+        for a in range(NC):
             if ws[rMS + i, a] > 0.5:
                 ws[rCI + i, a] = ws[rfc, a]
-                for b in range(6):
-                    ws[rPI + i, 6 * a + b] = 0.0
-                    ws[rPI + i, 6 * b + a] = 0.0
-                ws[rPI + i, 7 * a] = ws[rfp, 7 * a]
-    ref = ws[rCI + best, 2]
-    for a in range(6):
+                for b in range(NC):
+                    ws[rPI + i, NC * a + b] = 0.0
+                    ws[rPI + i, NC * b + a] = 0.0
+                ws[rPI + i, (NC + 1) * a] = ws[rfp, (NC + 1) * a]
+    for a in range(NC):
         ws[rc, a] = 0.0
     for i in range(M):
         w = ws[rw, i]
         if w == 0.0:
             continue
-        for a in range(6):
+        for a in range(NC):
             v = ws[rCI + i, a]
-            if a == 2:
+            if IS_ANGLE[a] > 0.5:
+                ref = ws[rCI + best, a]
                 v = ref + _wrap(v - ref)
             ws[rc, a] += w * v
-    for e in range(36):
+    for e in range(NC2):
         ws[rP, e] = 0.0
     for i in range(M):
         w = ws[rw, i]
         if w == 0.0:
             continue
-        for a in range(6):
+        for a in range(NC):
             ws[_R_D, a] = ws[rCI + i, a] - ws[rc, a]
-        ws[_R_D, 2] = _wrap(ws[_R_D, 2])
-        for a in range(6):
-            for b in range(6):
-                ws[rP, 6 * a + b] += w * (ws[rPI + i, 6 * a + b] + ws[_R_D, a] * ws[_R_D, b])
-    ws[rc, 2] = _wrap(ws[rc, 2])
+            if IS_ANGLE[a] > 0.5:
+                ws[_R_D, a] = _wrap(ws[_R_D, a])
+        for a in range(NC):
+            for b in range(NC):
+                ws[rP, NC * a + b] += w * (ws[rPI + i, NC * a + b] + ws[_R_D, a] * ws[_R_D, b])
+    for a in range(NC):
+        if IS_ANGLE[a] > 0.5:
+            ws[rc, a] = _wrap(ws[rc, a])
 
 
 @nb.njit(cache=True, error_model="numpy")
 def _all_common(ws, M):
-    """Every mode in the common coordinates: the workspace blocks _r_c (M, 6), _r_pc (M, 36), _r_miss (M, 6)."""
+    """Every mode in the common coordinates: the workspace blocks _r_c (M, NC), _r_pc (M, NC²), _r_miss (M, NC)."""
     for i in range(M):
         model = _model(ws, i)
         _to_common(ws, model, _r_s(M) + i, _r_pp(M) + i, _r_c(M) + i, _r_pc(M) + i)
-        for a in range(6):
+        for a in range(NC):
             ws[_r_miss(M) + i, a] = D.COMMON_MISSING[model, a]
 
 
@@ -394,9 +417,9 @@ def _combined(ws, M, same_group):
     _all_common(ws, M)
     rC, rPC, rMS = _r_c(M), _r_pc(M), _r_miss(M)
     # a coordinate some modes lack: filled with the probability-weighted mean/variance of the modes that carry it
-    for e in range(36):
+    for e in range(NC2):
         ws[_R_FILLP, e] = 0.0
-    for a in range(6):
+    for a in range(NC):
         ws[_R_FILLC, a] = 0.0
         tot = 0.0
         for i in range(M):
@@ -409,21 +432,21 @@ def _combined(ws, M, same_group):
             for i in range(M):
                 if ws[rMS + i, a] < 0.5:
                     e = ws[rC + i, a] - ws[_R_FILLC, a]
-                    ws[_R_FILLP, 7 * a] += ws[_R_MU, i] / tot * (ws[rPC + i, 7 * a] + e * e)
+                    ws[_R_FILLP, (NC + 1) * a] += ws[_R_MU, i] / tot * (ws[rPC + i, (NC + 1) * a] + e * e)
     _mix_common(ws, M, _R_MU, _R_FILLC, _R_FILLP, _R_CM, _R_PCM)
 
 
 @nb.njit(cache=True)
 def combined_common(models, S, Pp, mu, same_group, c_out, P_out, ws):
-    """The IMM's combined estimate in the common coordinates: c (6,), P_c (6, 6)."""
+    """The IMM's combined estimate in the common coordinates: c (NC,), P_c (NC, NC)."""
     _load_modes(ws, models, S, Pp)
     for i in range(models.shape[0]):
         ws[_R_MU, i] = mu[i]
     _combined(ws, models.shape[0], same_group)
-    for a in range(6):
+    for a in range(NC):
         c_out[a] = ws[_R_CM, a]
-        for b in range(6):
-            P_out[a, b] = ws[_R_PCM, 6 * a + b]
+        for b in range(NC):
+            P_out[a, b] = ws[_R_PCM, NC * a + b]
 
 
 @nb.njit(cache=True)
@@ -431,18 +454,18 @@ def _state_of_common_slow(ws, model, rc, rP, rs, rp):
     """The mixed common Gaussian ws[rc], ws[rP] below SPEED_FLOOR to a mode's state ws[rs] and packed covariance
     ws[rp] (rare: allocates its scratch)."""
     n = D.N_TANGENT[model]
-    c, Pc, x = np.empty(6), np.empty((6, 6)), np.empty(NMAX)
+    c, Pc, x = np.empty(NC), np.empty((NC, NC)), np.empty(NMAX)
     J, P, row = np.empty((NW, NW)), np.empty((NW, NW)), np.empty(NW)
     s, p = np.empty(LMAX), np.empty(NPMAX)
-    for a in range(6):
+    for a in range(NC):
         c[a] = ws[rc, a]
-        for b in range(6):
-            Pc[a, b] = ws[rP, 6 * a + b]
+        for b in range(NC):
+            Pc[a, b] = ws[rP, NC * a + b]
     D.common_to_state_into(model, c, x)
     D.state_from_physical_into(model, x, s)
-    c[3] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
+    c[VELOCITY[0]] = SPEED_FLOOR  # the Jacobian of a heading of motion is singular at speed 0
     D.common_jacobian_into(model, c, J)
-    _congruence_dense(J, n, Pc, 6, row, P)
+    _congruence_dense(J, n, Pc, NC, row, P)
     pack_from(P, n, p)
     for k in range(D.N_INTERNAL[model]):
         ws[rs, k] = s[k]
@@ -476,7 +499,7 @@ def _mix_rows(ws, M, same_group):
         for j in range(M):
             _mix_common(ws, M, rW + j, _r_c(M) + j, _r_pc(M) + j, _R_CM, _R_PCM)
             model = _model(ws, j)
-            if math.hypot(ws[_R_CM, 3], ws[_R_CM, 4]) >= SPEED_FLOOR:  # generated, straight line: state, J Pc Jᵀ
+            if _speed(ws, _R_CM) >= SPEED_FLOOR:  # generated, straight line: state, J Pc Jᵀ
                 D.state_of_common_at(model, ws, _R_CM, _R_PCM, rSn + j, rPn + j)
             else:
                 _state_of_common_slow(ws, model, _R_CM, _R_PCM, rSn + j, rPn + j)
@@ -623,19 +646,19 @@ def _outputs(ws, M, k, same_group, out_c, out_P, out_mu):
         ws[_R_MU, j] = ws[_R_MUV, j]
         out_mu[k, j] = ws[_R_MUV, j]
     _combined(ws, M, same_group)
-    for a in range(6):
+    for a in range(NC):
         out_c[k, a] = ws[_R_CM, a]
     if out_P.shape[0] > k:
-        for a in range(6):
-            for b in range(6):
-                out_P[k, a, b] = ws[_R_PCM, 6 * a + b]
+        for a in range(NC):
+            for b in range(NC):
+                out_P[k, a, b] = ws[_R_PCM, NC * a + b]
 
 
 @nb.njit(cache=True)
 def imm_run_one(models, S, Pp, mu, PI, Q, r, z, dts, same_group, meas, out_c, out_P, out_mu):
     """Run the IMM over one trajectory z (K, m) with steps dts (K,), from the state (S, Pp, mu) (modified).
 
-    Writes the combined common estimate out_c (K, 6), its covariance out_P (K, 6, 6) when out_P.shape[0] == K,
+    Writes the combined common estimate out_c (K, NC), its covariance out_P (K, NC, NC) when out_P.shape[0] == K,
     and the mode probabilities out_mu (K, M).
     """
     M = models.shape[0]

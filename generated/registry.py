@@ -12,12 +12,22 @@ SPACES = {'2d': {'dim': 2,
         'common_names': ('x', 'y', 'theta', 'vx', 'vy', 'omega'),
         'position_names': ('x', 'y'),
         'mixes': True,
-        'monitored': True},
+        'monitored': True,
+        'common_angles': (2,),
+        'common_velocity': (3, 4),
+        'dispatch_module': 'dispatch',
+        'imm_module': 'imm',
+        'imm_modes': 'cv,se2r3:calm,se2r3:manoeuvre'},
  '3d': {'dim': 3,
         'common_names': ('x', 'y', 'z', 'roll', 'pitch', 'yaw', 'vx', 'vy', 'vz', 'wx', 'wy', 'wz'),
         'position_names': ('x', 'y', 'z'),
-        'mixes': False,
-        'monitored': True}}
+        'mixes': True,
+        'monitored': True,
+        'common_angles': (3, 4, 5),
+        'common_velocity': (6, 7, 8),
+        'dispatch_module': 'dispatch_3d',
+        'imm_module': 'imm_3d',
+        'imm_modes': 'cv3,ct3:calm,ct3:manoeuvre'}}
 
 #: the space of the commands' defaults (the paper's plane)
 DEFAULT_SPACE = '2d'

@@ -38499,7 +38499,7 @@ def step_ll_pose3(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, z_roll, z
     ws[jp, 75] = out_p75
     ws[jp, 76] = out_p76
     ws[jp, 77] = out_p77
-    if not covariance_is_pd_fused(p):
+    if not covariance_is_pd_fused(ws[jp]):
         ws[jp, 0] = pp0_0
         ws[jp, 1] = pp0_1
         ws[jp, 2] = pp0_2
@@ -40147,7 +40147,7 @@ def step_ll_position3(ws, js, jp, dt, sigma_a, sigma_alpha, z_x, z_y, z_z, r):
     ws[jp, 75] = out_p75
     ws[jp, 76] = out_p76
     ws[jp, 77] = out_p77
-    if not covariance_is_pd_fused(p):
+    if not covariance_is_pd_fused(ws[jp]):
         ws[jp, 0] = pp0_0
         ws[jp, 1] = pp0_1
         ws[jp, 2] = pp0_2

@@ -57,12 +57,15 @@ def arg_list(prefix, k):
 
 def on_rows(code: str, rows: dict) -> str:
     """``code`` with each array parameter x of ``rows`` read and written as a row of a 2-D array: x → (array, row,
-    ncols): x[i] → array[row, i], and for a 2-D x of ncols columns x[a, b] → array[row, a·ncols + b] (stored flat)."""
+    ncols): x[i] → array[row, i], and for a 2-D x of ncols columns x[a, b] → array[row, a·ncols + b] (stored flat);
+    x passed whole to a call → array[row] (a view of the row)."""
     for x, (array, row, ncols) in rows.items():
         if ncols is not None:
             code = re.sub(rf"\b{x}\[(\d+), (\d+)\]",
                           lambda m, a=array, r=row, nc=ncols: f"{a}[{r}, {int(m[1]) * nc + int(m[2])}]", code)
         code = re.sub(rf"\b{x}\[", f"{array}[{row}, ", code)
+        # x passed whole (the PD test of a large packed covariance, ``covariance_is_pd_fused(p)``): the row itself
+        code = re.sub(rf"\b{x}\b(?!\[)", f"{array}[{row}]", code)
     return code
 
 

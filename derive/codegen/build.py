@@ -256,7 +256,10 @@ def render_registry(models: dict, measurements: dict) -> str:
     for sp_ in [DEFAULT_SPACE] + [m.space for m in models.values()] + [m.space for m in measurements.values()]:
         spaces.setdefault(sp_.name, {"dim": sp_.dim, "common_names": tuple(sp_.common_names),
                                      "position_names": tuple(sp_.position_names), "mixes": sp_.mixes,
-                                     "monitored": sp_.monitored})
+                                     "monitored": sp_.monitored, "common_angles": tuple(sp_.common_angles),
+                                     "common_velocity": tuple(sp_.common_velocity),
+                                     "dispatch_module": sp_.dispatch_module, "imm_module": sp_.imm_module,
+                                     "imm_modes": sp_.default_imm_modes})
     out.append("\n#: the spaces of motion (derive/space.py): their common coordinates and what the generated loops serve\n")
     out.append("SPACES = " + pprint.pformat(spaces, sort_dicts=False, width=110) + "\n")
     out.append(f"\n#: the space of the commands' defaults (the paper's plane)\nDEFAULT_SPACE = {DEFAULT_SPACE.name!r}\n")
@@ -282,6 +285,15 @@ def _bar(total: int):
     except ImportError:  # pragma: no cover - tqdm is a dependency
         return _NoBar()
     return tqdm(total=total, desc="lgekf derive", unit="model", leave=False, file=sys.stderr)
+
+
+def _mixing_spaces(models: dict) -> list:
+    """The spaces of the models whose IMM loop is generated (``Space.mixes``), in order of first appearance."""
+    out = []
+    for m in models.values():
+        if m.space.mixes and m.space not in out:
+            out.append(m.space)
+    return out
 
 
 def render_all(jobs: int = 2, models_dir=None, meas_dir=None, cache: bool = True) -> dict[str, str]:
@@ -319,11 +331,14 @@ def render_all(jobs: int = 2, models_dir=None, meas_dir=None, cache: bool = True
     files["registry.py"] = render_registry(models, measurements)
     from .dispatch import render_dispatch
 
-    # the IMM's loop mixes the models of the spaces it is written for (derive.space.Space.mixes)
-    mixed = {n: m for n, m in models.items() if m.space.mixes}
-    mixed_meas = {n: m for n, m in measurements.items() if m.space.mixes}
-    files["dispatch.py"] = render_dispatch(mixed, {n: _fitting(m, mixed_meas)[0] for n, m in mixed.items()}, mixed_meas)
-    files["imm.py"] = render_imm(mixed_meas)  # the IMM's loop, per measurement from its definition (families/imm.py)
+    # the IMM's loop mixes the models of each space it is written for (derive.space.Space.mixes): one dispatch module
+    # and one loop per space, named by the space
+    for space in _mixing_spaces(models):
+        mixed = {n: m for n, m in models.items() if m.space is space}
+        mixed_meas = {n: m for n, m in measurements.items() if m.space is space}
+        files[f"{space.dispatch_module}.py"] = render_dispatch(mixed, {n: _fitting(m, mixed_meas)[0] for n, m in mixed.items()},
+                                                               mixed_meas)
+        files[f"{space.imm_module}.py"] = render_imm(space, mixed_meas)  # per measurement from its definition (families/imm.py)
     files["__init__.py"] = HEADER.format(
         title="Numba kernels generated from derive/ (SymPy): one module per motion model, SE(2) and SE(3) blocks, the model table.",
         source="derive/codegen/build.py",

@@ -1,10 +1,13 @@
 """Kernels for estimators that combine several models (the IMM): the common coordinates read off a state,
-and ``generated/dispatch.py``, which calls any registry model's kernels by its index with one signature.
+and ``generated/dispatch.py`` (one module per mixing space, ``derive.space.Space.dispatch_module``: ``dispatch.py``
+for the plane, ``dispatch_3d.py`` for 3-D space), which calls any of the space's models' kernels by its index with
+one signature.
 
 Per model (appended to ``generated/<model>.py``):
 
-* ``physical_to_common(x)``: c = (x, y, θ, v_x, v_y, ω) of a physical state (``MotionModel.common_of_physical``);
-* ``physical_to_common_jacobian(x)``: ∂c/∂ε (6 × n) at x, for X = μ·exp(ε);
+* ``physical_to_common(x)``: c of a physical state (``MotionModel.common_of_physical``; in the plane
+  (x, y, θ, v_x, v_y, ω));
+* ``physical_to_common_jacobian(x)``: ∂c/∂ε (n_c × n) at x, for X = μ·exp(ε);
 * ``common_missing()``: 1.0 for each common coordinate the model carries no information on (CV: ω), else 0;
 * ``between_add``, ``mix_transport``: the fused terms of mixing on the group; ``common_of_state``,
   ``state_of_common``: a Gaussian to and from the common coordinates in one kernel (``derive.codegen.mixing``);
@@ -44,7 +47,8 @@ def _chain(fname: str, params: str, names: list, call, ret: bool) -> str:
 
 
 def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
-    """generated/dispatch.py for the models (sorted names = model indices) and the measurements they fit."""
+    """generated/dispatch.py (or a space's ``dispatch_module``) for the models of one space (sorted names = model
+    indices) and the measurements they fit."""
     names = sorted(models)
     out = [HEADER.format(title="Every model's kernels behind one signature, selected by the model index (sorted names).",
                          source="derive/codegen/dispatch.py (from the model table)")]
@@ -54,7 +58,7 @@ def render_dispatch(models: dict, fits: dict, measurements: dict) -> str:
     out.append(f"N_TANGENT = np.array({[models[n].n for n in names]!r})\n")
     out.append(f"N_INTERNAL = np.array({[len(models[n].internal) for n in names]!r})\n")
     out.append("#: COMMON_MISSING[model, k] = 1.0 where the model carries no information on common coordinate k (common_missing)\n")
-    out.append(f"COMMON_MISSING = np.array({[[1.0 if i in models[n].common_missing else 0.0 for i in range(6)] for n in names]!r})\n")
+    out.append(f"COMMON_MISSING = np.array({[[1.0 if i in models[n].common_missing else 0.0 for i in range(models[n].n_common)] for n in names]!r})\n")
     funcs = []
     funcs.append(_chain("predict", "s, p, dt, q", names,
                         lambda n: f"{n}.predict(s, p, dt, {', '.join(f'q[{i}]' for i in range(len(models[n].noise_names)))})", False))

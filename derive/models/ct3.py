@@ -8,7 +8,7 @@ y' = y + vT sin(ψ + ωT/2) sinc(ωT/2), z' = z + v_z T, ψ' = ψ + ωT is finit
 along-track, yaw and vertical accelerations (σ_a, σ_α, σ_z) through G(ψ) = [[T²/2 cos ψ, 0, 0],
 [T²/2 sin ψ, 0, 0], [0, 0, T²/2], [0, T²/2, 0], [T, 0, 0], [0, T, 0], [0, 0, T]], taken at the state before the
 step.  CT3 has no attitude of its own: its common attitude is level flight along the course (roll 0, pitch from
-the climb), its body rate (0, 0, ω).
+the climb), its body rate Rᵀ·(0, 0, ω) (the turn about the vertical, in that body frame).
 """
 
 import sympy as sp
@@ -64,7 +64,12 @@ class CT3(VectorModel):
         return sp.Matrix([v * sp.cos(psi), v * sp.sin(psi), vz_])
 
     def body_rate(self):
-        return [0, 0, omega]
+        """The body rate of the turn at ω about the world's vertical, in the common body frame (level along the
+        course, pitched by the climb: pitch = −atan2(v_z, v)): ω_body = Rᵀ·(0, 0, ω) = ω·(v_z, 0, v)/√(v² + v_z²),
+        so that ``from_common``'s (R·ω_body)_z gives ω back (a round trip c → state → c is the identity; with
+        (0, 0, ω) it shrank ω by cos(pitch), which the IMM's mixing across models applies every step)."""
+        h = sp.sqrt(v**2 + vz_**2)
+        return [omega * vz_ / h, 0, omega * v / h]
 
 
 MODEL = CT3()

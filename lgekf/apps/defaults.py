@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.initiation import moving_backwards
-from ..core.registry import get_model
+from ..core.registry import BASE_MEASUREMENT, get_model, measurement_in
 from .divergence import MonitorConfig, speed_limits
 from ..io.units import gap_rows
 from ..io.grouping import objects_subset
@@ -337,6 +337,7 @@ def data_starts(t, z, starts, models, meas_std=None, omega_std: float = DEFAULT_
     """``NoisePlan.tune_starts`` of the noise ``lgekf track`` estimates from all objects (``plan_noise``: position
     measurements, the divergence monitor on, the heading prior of ``lgekf track``), for a caller without a plan (the
     IMM's ``--tune``)."""
+    position = {m: measurement_in(get_model(m).space, BASE_MEASUREMENT) for m in models}  # position3 for a 3-D model
     plan = plan_noise(t, z, starts, list(models), meas_std=meas_std, omega_std=omega_std, heading_std=DEFAULT_HEADING_STD,
-                      heading_cap=TRACK_HEADING_CAP, monitor=MonitorConfig())
-    return plan.tune_starts()
+                      heading_cap=TRACK_HEADING_CAP, monitor=MonitorConfig(), measurement=position)
+    return plan.tune_starts(position)

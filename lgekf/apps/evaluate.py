@@ -216,7 +216,9 @@ def run_filters(ds: Dataset, cfg: TrackConfig, seeds, stream, models=FILTERS, ru
         meas[si] = _per_track_rmse(ds, np.sum((z - ds.p) ** 2, axis=1))
         zs.append(z)
     if imm is not None and not SPACES[ds.space]["mixes"]:
-        raise ValueError("--imm: the IMM mixes planar models only (yet); the dataset is in 3-D space")
+        raise ValueError(f"--imm: the IMM does not mix the models of the dataset's space ({ds.space})")
+    if imm is not None:
+        imm = imm.for_space(ds.space)  # the modes of the dataset's space (its default ones unless --imm-modes)
     if runner is not None and imm is None:
         out = runner(ds, zs, cfg, models)
     else:
@@ -334,6 +336,8 @@ def evaluate_dataset(ds: Dataset, *, meas_std=0.3, seeds=5, base_seed=0, tune=Fa
     """
     if imm is not None and runner is not None:
         raise ValueError("--imm: not with --workers/--scheduler (the IMM runs in one process)")
+    if imm is not None and SPACES[ds.space]["mixes"]:
+        imm = imm.for_space(ds.space)  # the modes of the dataset's space (its default ones unless --imm-modes)
     seed_list = [base_seed + s for s in range(seeds)]
     filters = filters_of(ds)  # the models of the dataset's space
     turning = tuple(m for m in filters if _turning(m))

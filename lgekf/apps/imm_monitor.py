@@ -2,17 +2,18 @@
 (``lgekf.apps.divergence``) applied to the IMM's combined estimate.
 
 The IMM runs object by object (``lgekf.estimators.imm.imm_batch``) from the two-point start; its combined
-posterior c_k = (x, y, θ, v_x, v_y, ω) (common coordinates, body-frame velocity) with covariance P_k is then
-scanned row by row since the last (re-)initialisation:
+posterior c_k (common coordinates of the space, body-frame velocity: (x, y, θ, v_x, v_y, ω) in the plane,
+(x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z) in 3-D) with covariance P_k is then scanned row by row
+since the last (re-)initialisation (d = 2 or 3 the dimension of the positions z):
 
-* **Residual window**: the posterior residual e_k = z_k − (x_k, y_k) of a consistent filter has covariance
+* **Residual window**: the posterior residual e_k = z_k − (position of c_k) of a consistent filter has covariance
   R − H P_k Hᵀ ⪯ R = r² I (r the measurement std in use), so d_k = |e_k|² / r², each clipped at its
-  99.99 % χ²₂ quantile (``clip``), summed over the last W = ``window`` (and over the last ``short``) updates exceeds the
-  (1 − α) χ² quantile with 2W (2·short) degrees of freedom with probability at most α (the test is
+  99.99 % χ²_d quantile (``clip``), summed over the last W = ``window`` (and over the last ``short``) updates exceeds the
+  (1 − α) χ² quantile with dW (d·short) degrees of freedom with probability at most α (the test is
   conservative). An IMM that has lost the object, over-confident while its estimate drifts off the
   measurements, exceeds it persistently. (The IMM's combined prediction, which a NIS would need, is not an
   output of its kernel; the posterior residual needs nothing more than the output.)
-* **Absurd speed**: |(v_x, v_y)| − ``n_sigma`` · √λ_max(P_k[v, v]) above the object's speed limit
+* **Absurd speed**: |v| − ``n_sigma`` · √λ_max(P_k[v, v]) (v the body velocity of c, ``SPACES[space]["common_velocity"]``) above the object's speed limit
   (``divergence.speed_limits``: twice the data's largest chord speed plus the chord's noise and a margin).
   The speed is |v| in the body frame, equal to the world speed; its gradient has unit norm, so the std
   bound is exact for the velocity block.
@@ -35,12 +36,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.initiation import two_point
+from ..core.registry import SPACES, space_of_positions
 from ..estimators.imm.estimator import Mode, imm_batch
 from .divergence import Alarm, MonitorConfig
 
 __all__ = ["Segment", "ImmRun", "imm_monitored", "first_imm_alarm", "scaled_modes"]
 
-MEAS_DIM = 2  # the IMM of lgekf track measures positions
 
 
 @dataclass
@@ -56,7 +57,7 @@ class Segment:
 
 @dataclass
 class ImmRun:
-    """One object's monitored IMM: combined estimates c (K, 6), covariances P (K, 6, 6), mode probabilities
+    """One object's monitored IMM: combined estimates c (K, n_c), covariances P (K, n_c, n_c), mode probabilities
     mu (K, M), flags (K,), alarms (rows relative to the object's first row) and the segments run."""
 
     c: np.ndarray
@@ -84,20 +85,27 @@ def _window_sums(d: np.ndarray, w: int) -> np.ndarray:
 
 
 def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
-    """The first alarm of a segment's rows (z (K, 2), c (K, 6), P (K, 6, 6)), as (k, kind, value, threshold,
+    """The first alarm of a segment's rows (z (K, d), c (K, n_c), P (K, n_c, n_c)), as (k, kind, value, threshold,
     updates, first flagged k) with k counted from the segment's first row, or None (module docstring). The flagged
     rows are the alarm's window and the row before it (-1: the segment's start row), as for the single models."""
     K = c.shape[0]
     if K == 0:
         return None
     finite = np.isfinite(c).all(axis=1) & np.isfinite(P.reshape(K, -1)).all(axis=1)
-    clip, thr_w, thr_s = cfg.nis_thresholds(MEAS_DIM)  # the single models' thresholds, for m = 2
-    e = z[:, :2] - c[:, :2]
-    d = np.minimum(np.where(finite, (e[:, 0] ** 2 + e[:, 1] ** 2) / meas_std ** 2, 0.0), clip)
+    dim = z.shape[1]
+    clip, thr_w, thr_s = cfg.nis_thresholds(dim)  # the single models' thresholds, for m = d
+    e = z[:, :dim] - c[:, :dim]
+    d = np.minimum(np.where(finite, np.sum(e ** 2, axis=1) / meas_std ** 2, 0.0), clip)
     sw, ss = _window_sums(d, cfg.window), _window_sums(d, cfg.short)
-    a, b, cc = P[:, 3, 3], P[:, 4, 4], P[:, 3, 4]
-    lam = 0.5 * (a + b) + np.sqrt(0.25 * (a - b) ** 2 + cc ** 2)  # λ_max of the 2x2 velocity block
-    speed = np.hypot(c[:, 3], c[:, 4]) - cfg.n_sigma * np.sqrt(np.maximum(lam, 0.0))
+    vel = list(SPACES[space_of_positions(dim)]["common_velocity"])
+    if len(vel) == 2:
+        a, b, cc = P[:, vel[0], vel[0]], P[:, vel[1], vel[1]], P[:, vel[0], vel[1]]
+        lam = 0.5 * (a + b) + np.sqrt(0.25 * (a - b) ** 2 + cc ** 2)  # λ_max of the 2x2 velocity block
+    else:
+        block = np.where(finite[:, None, None], P[:, vel][:, :, vel], 0.0)
+        lam = np.linalg.eigvalsh(block)[:, -1]  # λ_max of the velocity block
+    speed_k = np.linalg.norm(c[:, vel], axis=1)
+    speed = speed_k - cfg.n_sigma * np.sqrt(np.maximum(lam, 0.0))
     with np.errstate(invalid="ignore"):
         hits = {
             3: np.flatnonzero(~finite),
@@ -111,7 +119,7 @@ def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
     if kind == 3:
         return k, 3, math.nan, math.nan, 0, k
     if kind == 2:
-        return k, 2, float(np.hypot(c[k, 3], c[k, 4])), float(limit), 0, k - 1
+        return k, 2, float(speed_k[k]), float(limit), 0, k - 1
     if sw[k] > thr_w:
         return k, 1, float(sw[k] / cfg.window), thr_w / cfg.window, cfg.window, k - cfg.window
     return k, 1, float(ss[k] / cfg.short), thr_s / cfg.short, cfg.short, k - cfg.short
@@ -119,12 +127,13 @@ def first_imm_alarm(z, c, P, meas_std: float, limit: float, cfg: MonitorConfig):
 
 def imm_monitored(t, z, modes, switch: float, meas_std: float, omega_std: float, c0, var0, limit: float,
                   cfg: MonitorConfig | None, baseline: float, heading_cap: float) -> ImmRun:
-    """One object's IMM (rows 2, 3, ... of t (K,), z (K, 2); rows 0 and 1 are the caller's two-point start
-    c0 (6,), var0 (6,)) with the monitor and recovery of the module docstring; ``cfg`` None: unmonitored."""
+    """One object's IMM (rows 2, 3, ... of t (K,), z (K, d); rows 0 and 1 are the caller's two-point start
+    c0 (n_c,), var0 (n_c,)) with the monitor and recovery of the module docstring; ``cfg`` None: unmonitored."""
     K = t.size
     M = len(modes)
-    c = np.full((K, 6), np.nan)
-    P = np.full((K, 6, 6), np.nan)
+    nc = np.size(c0)
+    c = np.full((K, nc), np.nan)
+    P = np.full((K, nc, nc), np.nan)
     mu = np.full((K, M), 1.0 / M)
     flag = np.zeros(K, np.int8)
     alarms, segments = [], []
@@ -147,7 +156,7 @@ def imm_monitored(t, z, modes, switch: float, meas_std: float, omega_std: float,
             alarms.append(Alarm(0, g, kind, value, thr, updates, reinitialised=False, scale=scale))
             break
         if kind == 1 and g - last_reinit <= cfg.repeat * cfg.window:
-            scale *= min(max(math.sqrt(value / MEAS_DIM), 1.0), cfg.max_inflation)
+            scale *= min(max(math.sqrt(value / z.shape[1]), 1.0), cfg.max_inflation)
         alarms.append(Alarm(0, g, kind, value, thr, updates, scale=scale))
         j = int(np.searchsorted(t[:g], t[g] - baseline, side="right")) - 1
         cg, vg = two_point(t, z, np.array([g]), meas_std * scale, omega_std, heading_cap=heading_cap, first=np.array([max(j, 0)]))

@@ -38,14 +38,16 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..core.common import COMMON_NAMES, common_world_velocity
-from ..core.registry import BASE_MEASUREMENT
-from ..estimators.imm.estimator import DEFAULT_MODES, DEFAULT_SWITCH, NOISE_LEVELS, Mode, parse_modes, transition_matrix
+from ..core.common import COMMON_NAMES, common_turn_rate, common_world_velocity
+from ..core.registry import BASE_MEASUREMENT, DEFAULT_SPACE, SPACES, measurement_in
+from ..estimators.imm.estimator import (DEFAULT_MODES, DEFAULT_SWITCH, NOISE_LEVELS, Mode, default_modes, parse_modes,
+                                        space_of_modes, transition_matrix)
 from ..io.formatting import format_rows, label_bytes, output_digits
 from ..io.grouping import objects_subset, row_objects
 from .divergence import MonitorConfig, speed_limits
 from .imm_monitor import imm_monitored, scaled_modes
-from .track import MOTION_COLUMNS, speed_and_course, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED, TRACK_HEADING_CAP, initial_common
+from .track import (MOTION_COLUMNS, MOTION_COLUMNS_3D, speed_and_course, ORIGIN_COLUMNS, REINIT_BASELINE, SMOOTH_FAILED,
+                    TRACK_HEADING_CAP, initial_common)
 
 __all__ = ["DEFAULT_TRACK_MODES", "TUNE_MODE_SETS", "ImmTrackOptions", "ImmTracked", "ImmClasses", "imm_track_classes", "fit_imm", "imm_columns", "write_imm",
            "imm_track_common", "imm_noise", "tune_imm", "common_world_velocity", "mode_columns", "COMMON_NAMES", "IMM_FILTER"]
@@ -62,19 +64,43 @@ FIT_MAX_STEPS = 20_000
 
 
 class ImmTrackOptions:
-    """The IMM of ``lgekf track``: modes (``parse_modes`` syntax) and the per-step switching probability."""
+    """The IMM of ``lgekf track``: modes (``parse_modes`` syntax; by default the space's, ``default_modes``) and the
+    per-step switching probability, for an input of ``space`` (the modes must be models of it: one line otherwise)."""
 
-    def __init__(self, modes: str | None = None, switch: float | None = None):
+    def __init__(self, modes: str | None = None, switch: float | None = None, space: str = DEFAULT_SPACE):
         self.modes_given = modes is not None
         self.switch_given = switch is not None
-        self.modes_text = DEFAULT_TRACK_MODES if modes is None else modes
+        self.space = space
+        self.modes_text = default_modes(space) if modes is None else modes
         self.switch = DEFAULT_SWITCH if switch is None else float(switch)
         self.modes = parse_modes(self.modes_text)
+        own = space_of_modes(self.modes)
+        if own != space:
+            words = {DEFAULT_SPACE: "the plane"}.get(own, f"{own} space")
+            raise ValueError(f"--imm-modes: {self.modes_text} are models of {words}, and the input has "
+                             f"{SPACES[space]['dim']}-D positions; the models that fit: "
+                             f"{', '.join(m for m in _models_of(space))} (default modes {default_modes(space)})")
         transition_matrix(len(self.modes), self.switch)
 
+    def for_space(self, space: str) -> "ImmTrackOptions":
+        """These options for an input of ``space``: the given modes and switch (the modes must be models of it), else
+        that space's default modes."""
+        if space == self.space:
+            return self
+        return ImmTrackOptions(self.modes_text if self.modes_given else None, self.switch if self.switch_given else None,
+                               space)
+
+    @property
+    def common_names(self) -> tuple:
+        """The names of the common coordinates of the modes' space (the IMM's output columns)."""
+        return SPACES[self.space]["common_names"]
+
     def candidates(self) -> list:
-        """The mode sets ``--tune`` fits: the given ``--imm-modes``, else every set of ``TUNE_MODE_SETS``."""
-        return [self.modes_text] if self.modes_given else list(TUNE_MODE_SETS)
+        """The mode sets ``--tune`` fits: the given ``--imm-modes``, else every set of ``TUNE_MODE_SETS`` in the plane
+        and the space's default modes elsewhere."""
+        if self.modes_given or self.space != DEFAULT_SPACE:
+            return [self.modes_text]
+        return list(TUNE_MODE_SETS)
 
     def tunable_models(self) -> list:
         """The distinct models of modes whose noise is a named level or the default (not given as numbers)."""
@@ -127,13 +153,39 @@ def mode_columns(modes, prefix: str = "mu_") -> list:
     return mode_cols
 
 
+def _models_of(space: str) -> list:
+    from ..core.registry import models_of
+
+    return list(models_of(space))
+
+
+def imm_motion_columns(opts: ImmTrackOptions) -> tuple:
+    """The motion columns of an IMM track file: speed, course; in 3-D also climb and turn_rate (as the single models')."""
+    return MOTION_COLUMNS if SPACES[opts.space]["dim"] == 2 else MOTION_COLUMNS_3D
+
+
+def imm_origin_columns(opts: ImmTrackOptions) -> tuple:
+    """origin_lat, origin_lon (, origin_alt in 3-D) of an IMM track file from lat, lon (, alt) input."""
+    return ORIGIN_COLUMNS + (("origin_alt",) if SPACES[opts.space]["dim"] == 3 else ())
+
+
+def imm_motion(opts: ImmTrackOptions, c: np.ndarray) -> np.ndarray:
+    """The motion columns (``imm_motion_columns``) of combined estimates c (N, n_c): speed and course of the world
+    velocity; in 3-D its climb rate v_z and the turn rate (``lgekf.core.common.common_turn_rate``)."""
+    v = common_world_velocity(c)
+    if v.shape[1] == 2:
+        return speed_and_course(v)
+    return np.column_stack([np.linalg.norm(v, axis=1), np.arctan2(v[:, 1], v[:, 0]), v[:, 2], common_turn_rate(c)])
+
+
 def imm_columns(opts: ImmTrackOptions, origin: bool = False, smooth: bool = False) -> list:
     """The header of an IMM track file (module docstring); mode columns are named mu_<model>[_<label>]
     (the labels of modes given as numbers: their labels at the time of parsing, i.e. the numbers)."""
-    smoothed = ([*(f"smooth_{s}" for s in COMMON_NAMES), *(f"smooth_std_{s}" for s in COMMON_NAMES),
+    names = opts.common_names
+    smoothed = ([*(f"smooth_{s}" for s in names), *(f"smooth_std_{s}" for s in names),
                  *mode_columns(opts.modes, "smooth_mu_")] if smooth else [])
-    return (["id", "t", *COMMON_NAMES, *(f"std_{s}" for s in COMMON_NAMES), *MOTION_COLUMNS, *mode_columns(opts.modes, "mu_")]
-            + (list(ORIGIN_COLUMNS) if origin else []) + ["flag"] + smoothed)
+    return (["id", "t", *names, *(f"std_{s}" for s in names), *imm_motion_columns(opts), *mode_columns(opts.modes, "mu_")]
+            + (list(imm_origin_columns(opts)) if origin else []) + ["flag"] + smoothed)
 
 
 def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmTrackOptions, smooth: bool = False,
@@ -149,22 +201,23 @@ def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmT
     filter's values (the object is named in ``failed``). ``full``: return ``ImmTracked`` (adds flags, alarms, the
     objects whose smoothing failed).
     """
+    dim, nc = SPACES[opts.space]["dim"], len(opts.common_names)
     t = np.ascontiguousarray(t, float)
-    z = np.ascontiguousarray(z, float)[:, :2]
+    z = np.ascontiguousarray(np.ascontiguousarray(z, float)[:, :dim])
     starts = np.asarray(starts, dtype=np.int64)
     N, M = t.size, len(opts.modes)
-    c = np.full((N, 6), np.nan)
-    sd = np.full((N, 6), np.nan)
+    c = np.full((N, nc), np.nan)
+    sd = np.full((N, nc), np.nan)
     mu = np.full((N, M), 1.0 / M)
     flag = np.zeros(N, np.int8)
     alarms, failed = [], []
     c0, var0 = initial_common(t, z, starts, meas_std, omega_std, heading_cap=TRACK_HEADING_CAP)
     limits = speed_limits(t, z, starts, meas_std, monitor) if monitor is not None else np.full(len(starts) - 1, np.inf)
-    smoothed = (np.full((N, 6), np.nan), np.full((N, 6), np.nan), np.full((N, M), 1.0 / M)) if smooth else None
+    smoothed = (np.full((N, nc), np.nan), np.full((N, nc), np.nan), np.full((N, M), 1.0 / M)) if smooth else None
     for b in range(len(starts) - 1):
         a, e = int(starts[b]), int(starts[b + 1])
         c[a] = c0[b]  # as the filters of lgekf track: the two-point estimate, at the first measurement's position
-        c[a, :2] = z[a]
+        c[a, :dim] = z[a]
         c[a + 1] = c0[b]
         sd[a:a + 2] = np.sqrt(var0[b])
         run = imm_monitored(t[a:e], z[a:e], opts.modes, opts.switch, meas_std, omega_std, c0[b], var0[b], float(limits[b]),
@@ -230,12 +283,13 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
 
     models = []
     for text in opts.candidates():
-        for m in ImmTrackOptions(text).tunable_models():
+        for m in ImmTrackOptions(text, space=opts.space).tunable_models():
             if m not in models:
                 models.append(m)
     if not models:
         raise ValueError("--tune: every mode's noise is given as numbers in --imm-modes; nothing to learn")
-    fits = tune_models(meas.t, meas.z, starts, models, {m: BASE_MEASUREMENT for m in models}, meas_std, None, None, omega_std, method,
+    position = measurement_in(opts.space, BASE_MEASUREMENT)
+    fits = tune_models(meas.t, meas.z, starts, models, {m: position for m in models}, meas_std, None, None, omega_std, method,
                        start_noise=data_starts(meas.t, meas.z, starts, models, meas_std, omega_std))
     best = max(fits, key=lambda m: fits[m].loglik)
     r = float(meas_std) if meas_std is not None else float(np.asarray(fits[best].meas_std).reshape(-1)[0])
@@ -243,7 +297,7 @@ def tune_imm(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega_
                         + (f"; not identified: {', '.join(f.problems)}" if f.problems else "") + ")" for m, f in fits.items())
     src = "given" if meas_std is not None else f"learned with {best}, the best log-likelihood"
     t = np.asarray(meas.t, float)
-    z = np.asarray(meas.z, float)[:, :2]
+    z = np.asarray(meas.z, float)[:, :SPACES[opts.space]["dim"]]
     tracks = [(t[a:b], z[a:b]) for a, b in zip(starts[:-1], starts[1:]) if b - a >= 3]
     learned_q = {m: f.accel_std for m, f in fits.items()}
     try:
@@ -293,12 +347,13 @@ def fit_imm(opts: ImmTrackOptions, tracks, meas_std: float, omega_std: float, le
         if say is not None:
             say(f"imm --tune: fitting mode set {i + 1}/{len(texts)} ({text}) on {sum(len(t) for t, _ in tracks)} measurements "
                 f"of {len(tracks)} tracks")
-        cand = ImmTrackOptions(text, opts.switch if opts.switch_given else None)
+        cand = ImmTrackOptions(text, opts.switch if opts.switch_given else None, opts.space)
         cand.with_learned_noise({m: learned[m] for m in cand.tunable_models() if m in learned})
         fixed = [bool(m.label) and m.label not in NOISE_LEVELS for m in cand.modes]
         try:
             table.append((text, learn_imm(cand.modes, tracks, meas_std=meas_std, switch=cand.switch, omega_std=omega_std,
-                                          fit_switch=not opts.switch_given, fixed=fixed)))
+                                          fit_switch=not opts.switch_given, fixed=fixed,
+                                          measurement=measurement_in(opts.space, BASE_MEASUREMENT))))
         except ValueError as e:
             table.append((text, str(e)))
     fitted = [(text, f) for text, f in table if not isinstance(f, str)]
@@ -332,8 +387,9 @@ def imm_track_classes(t, z, starts, classes: ImmClasses, omega_std: float, smoot
         opts, r = classes.noise[0]
         return imm_track_common(t, z, starts, r, omega_std, opts, smooth, monitor=monitor, full=True)
     N, M = len(t), len(classes.noise[0][0].modes)
-    out = ImmTracked(np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M)), np.zeros(N, np.int8), [], [],
-                     *((np.empty((N, 6)), np.empty((N, 6)), np.empty((N, M))) if smooth else ()))
+    nc = len(classes.noise[0][0].common_names)
+    out = ImmTracked(np.empty((N, nc)), np.empty((N, nc)), np.empty((N, M)), np.zeros(N, np.int8), [], [],
+                     *((np.empty((N, nc)), np.empty((N, nc)), np.empty((N, M))) if smooth else ()))
     for c, (opts, r) in enumerate(classes.noise):
         objs = np.flatnonzero(classes.of_object == c)
         if objs.size == 0:
@@ -367,11 +423,12 @@ def write_imm(fh, meas, starts, classes: ImmClasses, omega_std: float, digits: i
     for b in res.smooth_failed:
         res.flag[starts[b]:starts[b + 1]] |= SMOOTH_FAILED
     col_digits, t_digits = output_digits(imm_columns(opts, origin, smooth)[2:], digits, meas.z, t)  # None: 0.1 mm, 1 µs
-    v = common_world_velocity(res.c)
-    parts = [res.c, res.sd, speed_and_course(v), res.mu]
+    motion = imm_motion(opts, res.c)
+    parts = [res.c, res.sd, motion, res.mu]
     if origin:
-        col_digits[14 + M:14 + M + 2] = 17
-        parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, 2)))
+        first, n_origin = 2 * res.c.shape[1] + motion.shape[1] + M, len(imm_origin_columns(opts))
+        col_digits[first:first + n_origin] = 17
+        parts.append(np.broadcast_to(np.asarray(meas.origin, dtype=float), (t.size, n_origin)))
     parts.append(res.flag[:, None])
     if smooth:
         parts.extend([res.c_smooth, res.sd_smooth, res.mu_smooth])
@@ -402,7 +459,7 @@ def tune_imm_classes(meas, starts, opts: ImmTrackOptions, meas_std: float | None
     noise, summaries = [None] * len(found.plans), [None] * len(found.plans)
     for c in np.argsort(-sizes, kind="stable").tolist():  # the largest class first: it chooses the mode set
         rows, sub = objects_subset(starts, np.flatnonzero(classes.of_object == c))
-        o = ImmTrackOptions(chosen, switch)
+        o = ImmTrackOptions(chosen, switch, opts.space)
         try:
             r, _, summary = tune_imm(SimpleNamespace(t=t[rows], z=z[rows]), sub, o, meas_std, omega_std, say=say,
                                      method=method)
@@ -413,7 +470,7 @@ def tune_imm_classes(meas, starts, opts: ImmTrackOptions, meas_std: float | None
         noise[c], summaries[c] = (o, r), f"class {c + 1}: " + summary
     for c, plan in enumerate(found.plans):
         if noise[c] is None:  # not tuned: the chosen mode set with the class's noise from the data
-            o = ImmTrackOptions(chosen, switch)
+            o = ImmTrackOptions(chosen, switch, opts.space)
             o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
             noise[c] = (o, classes.noise[c][1])
     return ImmClasses(classes.of_object, noise), found, summaries
@@ -429,11 +486,15 @@ def imm_noise(meas, starts, opts: ImmTrackOptions, meas_std: float | None, omega
     from .defaults import plan_noise_by_class
     from .track import DEFAULT_HEADING_STD
 
-    found = plan_noise_by_class(meas.t, meas.z, starts, opts.tunable_models(), meas_std=meas_std, omega_std=omega_std,
-                                heading_std=DEFAULT_HEADING_STD, heading_cap=TRACK_HEADING_CAP, monitor=monitor)
+    models = opts.tunable_models()
+    position = measurement_in(opts.space, BASE_MEASUREMENT)  # the positions of the modes' space (position3 in 3-D)
+    found = plan_noise_by_class(meas.t, meas.z, starts, models, meas_std=meas_std, omega_std=omega_std,
+                                heading_std=DEFAULT_HEADING_STD, heading_cap=TRACK_HEADING_CAP, monitor=monitor,
+                                measurement={m: position for m in models})
     noise = []
     for plan in found.plans:
-        o = ImmTrackOptions(opts.modes_text if opts.modes_given else None, opts.switch if opts.switch_given else None)
+        o = ImmTrackOptions(opts.modes_text if opts.modes_given else None, opts.switch if opts.switch_given else None,
+                            opts.space)
         o.with_learned_noise({m: q for m, q in plan.accel_std.items() if plan.accel_source.get(m) == "data"})
         noise.append((o, float(plan.meas_std)))
     return ImmClasses(found.of_object, noise), found

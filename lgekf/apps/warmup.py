@@ -48,6 +48,10 @@ SECONDS_PER_BYTE = 0.4e-4
 # CPU seconds of one process on the 2-core x86-64 machine, 2026-11-29 12:19 UTC (load 1.0, a 1 000-row file):
 # 88 s alone, 98 s with --tune, 105 s with --smooth, 115 s with both (wall 90, 104, 108, 121 s)
 IMM_COMPILE_SECONDS = {"imm": 88.0, "tune": 10.0, "smooth": 17.0}
+# the part of the IMM's compile that does not grow with its space's models (the loop's own functions, the noise search's
+# shared leaves): the line through the plane's 88 s and 3-D space's 202 s (CPU, a 1 200-row 3-D file, load 3,
+# 2026-11-30) against the sizes of their generated model modules
+IMM_FIXED_SECONDS = 39.0
 # numba's own start in a worker and the kernels every job shares (special functions, helpers)
 WORKER_OVERHEAD_SECONDS = 1.5
 
@@ -86,12 +90,20 @@ def model_compile_seconds(model: str) -> float:
         return 3.0
 
 
-def imm_compile_seconds(tune: bool, smooth: bool) -> float:
+def imm_compile_seconds(tune: bool, smooth: bool, space: str | None = None) -> float:
     """Estimated seconds to compile ``lgekf track --model imm`` cold, with ``--tune`` and/or ``--smooth``
     (``IMM_COMPILE_SECONDS``, one process: the IMM's kernels share the models' leaves, so parallel processes would
-    compile the same leaves twice)."""
+    compile the same leaves twice). The figures are the plane's; the IMM of another ``space`` compiles every model of
+    that space, so the part of its estimate above ``IMM_FIXED_SECONDS`` is scaled by the size of their generated
+    modules against the plane's (3-D: about 200 s, measured 202 s)."""
+    from ..core.registry import DEFAULT_SPACE, models_of
+
     c = IMM_COMPILE_SECONDS
-    return c["imm"] + (c["tune"] if tune else 0.0) + (c["smooth"] if smooth else 0.0)
+    base = c["imm"] + (c["tune"] if tune else 0.0) + (c["smooth"] if smooth else 0.0)
+    if space is None or space == DEFAULT_SPACE:
+        return base
+    plane = sum(model_compile_seconds(m) for m in models_of(DEFAULT_SPACE))
+    return IMM_FIXED_SECONDS + (base - IMM_FIXED_SECONDS) * sum(model_compile_seconds(m) for m in models_of(space)) / plane
 
 
 def worker_count() -> int:

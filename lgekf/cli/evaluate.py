@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from ..apps.evaluate import TUNE_RATIOS, TUNE_SCALES, evaluate_dataset, filters_of
+from ..core.registry import DEFAULT_SPACE
 from ..apps.report import _csv_text, _fmt, evaluation_figure, format_table, markdown_table, motion_table, summary_fields
 from ..apps.track import DEFAULT_ACCEL_STD
 from ..experiments.statistics import BOOTSTRAP_RESAMPLES, BOOTSTRAP_SEED, MIN_TRACKS_CI
@@ -84,7 +85,12 @@ def _evaluate(a, runner=None) -> int:
 
     if not a.imm and (a.imm_modes is not None or a.imm_switch is not None):
         raise ValueError("--imm-modes/--imm-switch: only with --imm")
-    imm = ImmTrackOptions(a.imm_modes, a.imm_switch) if a.imm else None
+    imm = None
+    if a.imm:  # for the space of the given modes (else the plane's defaults; each dataset takes its own space's)
+        from ..estimators.imm.estimator import parse_modes, space_of_modes
+
+        imm = ImmTrackOptions(a.imm_modes, a.imm_switch,
+                              space_of_modes(parse_modes(a.imm_modes)) if a.imm_modes is not None else DEFAULT_SPACE)
     names = []
     for d in a.datasets:
         names += GROUPS.get(d, [d])

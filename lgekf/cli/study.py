@@ -164,7 +164,7 @@ def cmd_study(argv) -> int:
         raise UsageError("--imm-train: only with imm in --filters")
     if a.imm_train is not None and a.imm_switch is not None:
         raise UsageError("--imm-train: only for the learned chain, not with --imm-switch")
-    imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train)
+    imm = imm_options_from_args(a.imm_modes, a.imm_switch, a.imm_train, cfg.space)
     if "imm" in cfg.filters:
         imm.validate(cfg.steps)  # the training draws' size, before any compile or draw
     t0 = time.perf_counter()

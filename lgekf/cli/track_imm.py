@@ -11,7 +11,9 @@ from ..core.registry import BASE_MEASUREMENT
 from .alarms import divergence_warnings, smooth_failure_warnings, warn_misfit
 from .track_options import check_imm_options
 from .track_parquet import is_parquet
-from .track_pipeline import TrackEstimator
+from .track_pipeline import SPACE_HINTS, SPACE_WORDS, TrackEstimator, input_space
+from ..core.registry import DEFAULT_SPACE, SPACES, models_of, space_of_positions
+from ..estimators.imm.estimator import parse_modes, space_of_modes
 
 __all__ = ["ImmTrack", "check_imm_options", "imm_modes_line"]
 
@@ -28,8 +30,27 @@ class ImmTrack(TrackEstimator):
 
     def __init__(self, a, say):
         super().__init__(a, say)
-        self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch)
+        self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch, self._modes_space(a))
         self.models = ["imm"]  # one output file
+
+    @staticmethod
+    def _modes_space(a) -> str:
+        """The space the IMM is set up for before its input is looked at: that of the given modes, else the plane
+        (``check`` then takes the input's, from its header, and ``adopt_space`` the one of the rows read)."""
+        return space_of_modes(parse_modes(a.imm_modes)) if a.imm_modes is not None else DEFAULT_SPACE
+
+    def adopt_space(self, meas) -> None:
+        """After reading: the IMM of the input's space (its default modes, or ``--imm-modes``, which must be models of
+        it); a space whose models the IMM does not mix, or ``--smooth`` outside the plane, is one line."""
+        space = space_of_positions(meas.z.shape[1])
+        if not SPACES[space]["mixes"]:
+            raise ValueError(f"--model imm: the IMM does not mix the models of {SPACE_WORDS[space]}; use --model "
+                             f"{', '.join(models_of(space))}")
+        if space != self.opts.space:
+            self.opts = ImmTrackOptions(self.a.imm_modes, self.a.imm_switch, space)
+        if space != DEFAULT_SPACE and getattr(self.a, "smooth", False):  # the IMM smoother is the plane's (yet)
+            raise ValueError(f"--model imm: --smooth (the IMM smoother) runs in the plane only (yet); the input has "
+                             f"{SPACE_HINTS[space]}")
 
     def check(self) -> None:
         """The IMM's own argument errors (the shared ones: ``lgekf.cli.track.check_track_arguments``)."""
@@ -43,11 +64,15 @@ class ImmTrack(TrackEstimator):
                 raise ValueError(f"--model imm: {name} is not supported")
         if is_parquet(a.input) or is_parquet(a.output):
             raise ValueError("--model imm: Parquet input or output is not supported (yet); use CSV")
+        space = input_space(a)  # from the header (None from stdin: adopt_space decides after reading)
+        if space is not None and space != self.opts.space:
+            self.opts = ImmTrackOptions(a.imm_modes, a.imm_switch, space)
 
     def compile_seconds(self):
         """The compile notice's estimate (``lgekf.apps.warmup.imm_compile_seconds``): the IMM compiles much more
         than one model does."""
-        return imm_compile_seconds(bool(getattr(self.a, "tune", False)), bool(getattr(self.a, "smooth", False)))
+        return imm_compile_seconds(bool(getattr(self.a, "tune", False)), bool(getattr(self.a, "smooth", False)),
+                                   self.opts.space)
 
     def plan(self, meas, starts, monitor) -> None:
         """The IMM's noise: from the data per class of objects, or ``--tune``'s fit."""

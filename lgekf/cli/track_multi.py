@@ -16,7 +16,7 @@ from ..apps.track_multi import (
     AGREE, clutter_line, fastest_track_speed, fit_noise, multi_alarm_line, no_track_reason, scan_window_from_data, scans,
     volume_unit, write_multi,
 )
-from ..core.registry import ALL_MODELS, DEFAULT_SPACE, SPACES, get_measurement, get_model, measurement_in, models_of, space_of_positions
+from ..core.registry import ALL_MODELS, DEFAULT_SPACE, get_measurement, get_model, measurement_in, models_of, space_of_positions
 from ..core.validate import positive_scalar
 from ..estimators.multitarget.clutter import DEFAULT_CLUTTER_SOURCE, clutter_from_data
 from ..estimators.multitarget.tracker import IMM_MODEL
@@ -121,8 +121,8 @@ class MultiTrack(TrackEstimator):
         self.space = space
         if not self.model_given:
             a.model = default_model(space, a.measure)
-        elif a.model == IMM_MODEL and not SPACES[space]["mixes"]:
-            raise ValueError(f"--multi --model imm: the IMM mixes models of the plane only (yet), and the input has "
+        elif a.model == IMM_MODEL and space != DEFAULT_SPACE:  # the multi-target IMM bank is the plane's (yet)
+            raise ValueError(f"--multi --model imm: the multi-target IMM runs in the plane only (yet), and the input has "
                              f"{SPACE_HINTS[space]}; choose one of {', '.join(models_of(space))}")
         elif a.model != IMM_MODEL and get_model(a.model).space != space:
             raise ValueError(f"--model {a.model}: a model of {SPACE_WORDS[get_model(a.model).space]}, and the input has "

@@ -209,10 +209,6 @@ def check_estimator_options(a) -> None:
     option of the labelled-object estimators with it, an IMM option without ``--model imm``; then the multi-target
     defaults filled in."""
     check_imm_options(a)
-    if a.model == "imm":  # the IMM mixes and tracks in the plane only (yet)
-        if a.measure not in MEASUREMENTS:
-            raise ValueError(f"--model imm: tracks in the plane only (yet); --measure {a.measure} observes 3-D space: "
-                             f"choose one of {', '.join(MEASUREMENTS)}")
     # --multi without --model: the default model of the input's space (``MultiTrack.check``, from its header)
     if a.multi:
         given = [name for attr, default, name in SINGLE_ONLY if getattr(a, attr) != default]

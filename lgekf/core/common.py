@@ -11,7 +11,8 @@ from numpy.typing import ArrayLike
 from .registry import DEFAULT_SPACE, SPACES, get_model
 from .validate import as_float_array
 
-__all__ = ["state_from_common", "covariance_from_common", "common_world_velocity", "COMMON_NAMES"]
+__all__ = ["state_from_common", "covariance_from_common", "common_world_velocity", "common_turn_rate", "euler_rotations",
+           "COMMON_NAMES"]
 
 #: the names of the common coordinates (the physical state of SE(2)×SE(2) and SE(2)×R³)
 COMMON_NAMES = SPACES[DEFAULT_SPACE]["common_names"]  # the plane's: ("x", "y", "theta", "vx", "vy", "omega")
@@ -87,6 +88,33 @@ def covariance_from_common(model: str, c: ArrayLike, P_common: ArrayLike) -> np.
 
 
 def common_world_velocity(c: np.ndarray) -> np.ndarray:
-    """World-frame velocity (N, 2) of common coordinates c (N, 6): R(θ)·(v_x, v_y)."""
-    ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
-    return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
+    """World-frame velocity (N, d) of common coordinates c (N, n_c): in the plane (n_c = 6) R(θ)·(v_x, v_y); in 3-D
+    (n_c = 12) R·(v_x, v_y, v_z) with R = R_z(yaw) R_y(pitch) R_x(roll) (``derive.space.euler_rotation``)."""
+    if c.shape[1] == 6:
+        ct, st = np.cos(c[:, 2]), np.sin(c[:, 2])
+        return np.stack([ct * c[:, 3] - st * c[:, 4], st * c[:, 3] + ct * c[:, 4]], axis=1)
+    return np.einsum("nij,nj->ni", euler_rotations(c[:, 3:6]), c[:, 6:9])
+
+
+def euler_rotations(rpy: np.ndarray) -> np.ndarray:
+    """R = R_z(yaw) R_y(pitch) R_x(roll) (N, 3, 3) of Z-Y-X Euler angles rpy (N, 3) = (roll, pitch, yaw) (the common
+    attitude of 3-D space, ``derive.space.euler_rotation``)."""
+    cr, sr = np.cos(rpy[:, 0]), np.sin(rpy[:, 0])
+    cp, sp = np.cos(rpy[:, 1]), np.sin(rpy[:, 1])
+    cy, sy = np.cos(rpy[:, 2]), np.sin(rpy[:, 2])
+    return np.stack([np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], axis=-1),
+                     np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], axis=-1),
+                     np.stack([-sp, cp * sr, cp * cr], axis=-1)], axis=1)
+
+
+def common_turn_rate(c: np.ndarray) -> np.ndarray:
+    """The turn rate dχ/dt (N,) (rad/s) of 3-D common coordinates c (N, 12), χ = atan2(v_y, v_x) the course of the world
+    velocity v = R v_b: with the body velocity v_b constant in the body frame and the body rate ω, the world
+    acceleration is a = R (ω × v_b), and dχ/dt = (v_x a_y − v_y a_x)/(v_x² + v_y²) (NaN where the horizontal speed
+    is 0); for a level turn at rate ω_z this is ω_z, the CT3 model's turn rate."""
+    R = euler_rotations(c[:, 3:6])
+    v = np.einsum("nij,nj->ni", R, c[:, 6:9])
+    a = np.einsum("nij,nj->ni", R, np.cross(c[:, 9:12], c[:, 6:9]))
+    h2 = v[:, 0] ** 2 + v[:, 1] ** 2
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(h2 > 0, (v[:, 0] * a[:, 1] - v[:, 1] * a[:, 0]) / h2, np.nan)

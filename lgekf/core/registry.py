@@ -18,7 +18,7 @@ from ..generated.registry import MODELS as _TABLE
 __all__ = ["ModelSpec", "MeasurementSpec", "MODELS", "ALL_MODELS", "MEASUREMENTS", "ALL_MEASUREMENTS", "BASE_MEASUREMENT",
            "SPACES", "DEFAULT_SPACE", "models_of", "measurements_of", "base_measurement", "rotation_dims", "space_of_positions",
            "measurement_in", "get_model", "get_measurement",
-           "imm_kernel"]
+           "imm_kernel", "imm_module", "dispatch_module"]
 
 
 @dataclass(frozen=True)
@@ -251,12 +251,27 @@ def get_measurement(name: str) -> MeasurementSpec:
         raise ValueError(f"measurement: unknown measurement {name!r}; choose one of {', '.join(ALL_MEASUREMENTS)}") from None
 
 
+def imm_module(space: str) -> ModuleType:
+    """The generated IMM loop of the models of ``space`` (``SPACES[space]["imm_module"]``: ``generated/imm.py`` for the
+    plane, ``generated/imm_3d.py`` for 3-D space); a ValueError for a space whose models the IMM does not mix."""
+    entry = SPACES.get(space)
+    if entry is None or not entry["mixes"]:
+        raise ValueError(f"the IMM does not mix the models of space {space!r}")
+    return importlib.import_module(f"lgekf.generated.{entry['imm_module']}")
+
+
+def dispatch_module(space: str) -> ModuleType:
+    """The generated model chains of ``space`` (``SPACES[space]["dispatch_module"]``): its ``MODEL_NAMES`` are the model
+    indices of that space's IMM loop (``imm_module``)."""
+    imm_module(space)
+    return importlib.import_module(f"lgekf.generated.{SPACES[space]['dispatch_module']}")
+
+
 def imm_kernel(family: str, measurement: str):
-    """The generated IMM kernel of ``family`` for ``measurement`` (``generated/imm.py``, e.g.
-    ``imm_kernel("imm_run_batch", "pose")``): named ``<family>_<measurement>`` as ``ModelSpec.kernel`` names a model's
-    kernels (the IMM's loop spans models, so it is one module, not a model's)."""
-    get_measurement(measurement)
-    return getattr(importlib.import_module("lgekf.generated.imm"), kernel_name(family, measurement))
+    """The generated IMM kernel of ``family`` for ``measurement`` (in the IMM loop of the measurement's space,
+    ``imm_module``, e.g. ``imm_kernel("imm_run_batch", "pose")``): named ``<family>_<measurement>`` as
+    ``ModelSpec.kernel`` names a model's kernels (the IMM's loop spans models, so it is one module, not a model's)."""
+    return getattr(imm_module(get_measurement(measurement).space), kernel_name(family, measurement))
 
 
 def kernel_name(family: str, measurement: str) -> str:

@@ -23,7 +23,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..estimators.imm.estimator import NOISE_LEVELS, Mode, imm_batch, parse_modes
+from ..core.registry import DEFAULT_SPACE
+from ..estimators.imm.estimator import NOISE_LEVELS, Mode, default_modes, imm_batch, parse_modes, space_of_modes
 from .metrics import position_rmse
 
 if TYPE_CHECKING:
@@ -126,8 +127,8 @@ def training_draws(cfg, B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         Process-noise draws.
     u_meas : ndarray, (B, K, ≥2)
         Measurement-noise draws.
-    u_init : ndarray, (B, 6)
-        Initial-error draws.
+    u_init : ndarray, (B, n_c)
+        Initial-error draws (one per common coordinate of the study's space).
     """
     from ..core.registry import get_model
 
@@ -136,7 +137,7 @@ def training_draws(cfg, B: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     truth = get_model(cfg.truth)
     n_meas = truth.measurement(cfg.measurement).dim
     return (rng.standard_normal((B, K, max(3, len(truth.noise_inputs)))), rng.standard_normal((B, K, n_meas)),
-            rng.standard_normal((B, 6)))
+            rng.standard_normal((B, len(cfg.init_std))))
 
 
 def _measured(cfg, sim) -> np.ndarray:
@@ -166,7 +167,7 @@ def study_chain(cfg, opts: ImmStudyOptions, sigma_w: float) -> "ChainFit":
 
     B = int(opts.train_trajectories)
     u_proc, u_meas, u_init = training_draws(cfg, B)
-    truth0 = np.tile([0.0, 0.0, 0.0, cfg.v0[0], cfg.v0[1], cfg.w0], (B, 1))
+    truth0 = np.tile(cfg.start, (B, 1))
     sim = simulate(truth0, dt=cfg.dt, steps=cfg.steps, sigma_v=cfg.sigma_v, sigma_w=sigma_w,
                    meas_std=cfg.meas_noise(cfg.measurement), truth=cfg.truth, measurement=cfg.measurement,
                    std_normal_process=u_proc, std_normal_meas=u_meas)
@@ -188,7 +189,7 @@ def imm_study_rmse(cfg, opts: ImmStudyOptions, sim, sigma_w: float, est0: np.nda
             chains.append({"sigma_w": float(sigma_w), **fit.to_dict()})
     est, _ = imm_batch(_measured(cfg, sim), modes, transition, dt=cfg.dt, meas_std=cfg.meas_noise(cfg.measurement),
                        x0=est0, P0=P0_phys, measurement=cfg.measurement, mu0=mu0)
-    return position_rmse(est, pos)
+    return position_rmse(est, pos, cfg.dim)
 
 
 def imm_options_record(opts: ImmStudyOptions) -> dict:
@@ -209,10 +210,20 @@ def imm_options_record(opts: ImmStudyOptions) -> dict:
             **({"train_trajectories": int(opts.train_trajectories)} if learned else {})}
 
 
-def imm_options_from_args(modes: str | None, switch: float | None, train: int | None = None) -> ImmStudyOptions:
-    """The study's IMM options from ``--imm-modes`` / ``--imm-switch`` / ``--imm-train`` (None: the defaults; no
-    switch: the chain is learned), validated."""
-    opts = ImmStudyOptions(DEFAULT_STUDY_MODES if modes is None else modes, switch,
+def study_default_modes(space: str) -> str:
+    """The study's IMM modes by default in ``space``: ``DEFAULT_STUDY_MODES`` in the plane (measured on the paper's
+    protocol, docs/study.md), else the space's own default modes (``default_modes``; docs/space3d.md)."""
+    return DEFAULT_STUDY_MODES if space == DEFAULT_SPACE else default_modes(space)
+
+
+def imm_options_from_args(modes: str | None, switch: float | None, train: int | None = None,
+                          space: str = DEFAULT_SPACE) -> ImmStudyOptions:
+    """The study's IMM options from ``--imm-modes`` / ``--imm-switch`` / ``--imm-train`` (None: the defaults of the
+    study's ``space``; no switch: the chain is learned), validated."""
+    if modes is not None and space_of_modes(parse_modes(modes)) != space:
+        raise ValueError(f"imm-modes: {modes} are models of space {space_of_modes(parse_modes(modes))!r}, and the study "
+                         f"runs in {space!r}")
+    opts = ImmStudyOptions(study_default_modes(space) if modes is None else modes, switch,
                            DEFAULT_TRAIN_TRAJECTORIES if train is None else train)
     opts.validate()
     return opts

@@ -35,7 +35,7 @@ from ..core.common import covariance_from_common, state_from_common
 from .metrics import position_rmse
 from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, base_measurement, get_model, models_of, rotation_dims
 from ..core.validate import positive_scalar
-from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_study_rmse
+from .imm_study import IMM_FILTER, MAX_TRAJECTORY_STEPS, ImmStudyOptions, imm_options_from_args, imm_study_rmse
 from .simulate import measurement_noise, simulate, truth_models
 
 __all__ = ["StudyConfig", "StudyResult", "run_study", "claims_check", "FILTERS", "PAPER_FILTERS"]
@@ -133,7 +133,7 @@ class StudyConfig:
                 raise ValueError(f"filters: {f} is a model of {get_model(f).space}, the study runs in {self.space}; "
                                  f"choose from {', '.join(own)}")
         if IMM_FILTER in self.filters and not SPACES[self.space]["mixes"]:
-            raise ValueError(f"filters: the imm filter is not available in {self.space} yet")
+            raise ValueError(f"filters: the imm filter does not mix the models of {self.space}")
         if self.measurement != base_measurement(self.space):
             get_model(self.truth).measurement(self.measurement)
             positive_scalar("heading_std", self.heading_std)
@@ -193,7 +193,7 @@ def run_study(cfg: StudyConfig, progress=None, imm: ImmStudyOptions | None = Non
     passes a tqdm bar's update). ``imm``: the IMM's options when ``cfg.filters`` has "imm".
     """
     cfg.validate()
-    imm = ImmStudyOptions() if imm is None else imm
+    imm = imm_options_from_args(None, None, None, cfg.space) if imm is None else imm
     if IMM_FILTER in cfg.filters:
         imm.validate(cfg.steps)
     rng = np.random.default_rng(cfg.seed)

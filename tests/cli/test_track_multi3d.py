@@ -151,7 +151,7 @@ GOOD3 = "t,x,y,z\n0,0,0,100\n0.2,1,0,100.2\n0.4,2,0.1,100.4\n0.6,3,0.1,100.7\n"
 BAD = {
     "planar_model_on_3d": (GOOD3, ["--model", "se2r3"], "--model se2r3: a model of the plane, and the input has 3-D positions"),
     "3d_model_on_planar": ("t,x,y\n0,0,0\n1,1,0\n", ["--model", "cv3"], "--model cv3: a model of 3-D space, and the input has 2-D"),
-    "imm_on_3d": (GOOD3, ["--model", "imm"], "--multi --model imm: the IMM mixes models of the plane only"),
+    "imm_on_3d": (GOOD3, ["--model", "imm"], "--multi --model imm: the multi-target IMM runs in the plane only"),
     "position3_on_planar": ("t,x,y\n0,0,0\n1,1,0\n", ["--measure", "position3"], "--measure position3: observes 3-D space"),
     "pose3_on_ct3": (GOOD3, ["--model", "ct3", "--measure", "pose"], "the ct3 model has no attitude to measure"),
 }

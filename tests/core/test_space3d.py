@@ -12,7 +12,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 import lgekf
-from lgekf.core.registry import ALL_MODELS, DEFAULT_SPACE, MODELS, SPACES, base_measurement, get_model, models_of
+from lgekf.core.registry import (ALL_MODELS, DEFAULT_SPACE, MODELS, SPACES, base_measurement, dispatch_module, get_model,
+                                 imm_module, models_of)
 from lgekf.generated import dispatch, imm
 
 THREE = models_of("3d")
@@ -42,12 +43,17 @@ def test_planar_measurements_are_refused_with_the_reason(name):
         assert "position3" in planar.refused
 
 
-def test_the_imm_loop_stays_in_the_plane_and_the_monitor_serves_both_spaces():
-    """The IMM's generated loop mixes the models of a space that declares it (derive.space.Space.mixes): the 3-D models
-    do not compile into the IMM's dispatch. The divergence monitor serves every space that declares it
-    (``Space.monitored``, its two-point restart generic over the space): every model has its ``recover_<meas>``."""
+def test_each_space_has_its_imm_loop_and_the_monitor_serves_both_spaces():
+    """The IMM's generated loop is emitted per space that declares it (derive.space.Space.mixes): the planar dispatch
+    holds the plane's models only (the 3-D models do not compile into it), the 3-D loop the 3-D models and
+    measurements. The divergence monitor serves every space that declares it (``Space.monitored``, its two-point
+    restart generic over the space): every model has its ``recover_<meas>``."""
     assert not set(dispatch.MODEL_NAMES) & set(THREE) and set(dispatch.MODEL_NAMES) == set(MODELS)
     assert "position3" not in imm.MEASUREMENT_NAMES
+    assert SPACES["3d"]["mixes"] and (SPACES["2d"]["imm_module"], SPACES["2d"]["dispatch_module"]) == ("imm", "dispatch")
+    assert set(dispatch_module("3d").MODEL_NAMES) == set(THREE)
+    assert set(imm_module("3d").MEASUREMENT_NAMES) == {"position3", "pose3"}
+    assert imm_module("3d").NC == 12 and list(imm_module("3d").IS_ANGLE.nonzero()[0]) == [3, 4, 5]
     assert SPACES["3d"]["monitored"] and SPACES["2d"]["monitored"]
     for name, spec in ALL_MODELS.items():
         assert all(hasattr(spec.kernels, f"recover_{m}") for m in spec.measurements), name

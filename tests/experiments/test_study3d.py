@@ -61,7 +61,7 @@ def test_study_3d_cli(tmp_path):
     (["--space", "3d", "--v0", "3,0"], "--v0: expected 3"),
     (["--space", "3d", "--w0", "0.1"], "--w0: expected 3"),
     (["--space", "3d", "--filters", "se3r6,se2r3"], "--filters: unknown filter 'se2r3'"),
-    (["--space", "3d", "--filters", "se3r6,imm"], "--filters: unknown filter 'imm'"),
+    (["--space", "3d", "--filters", "se3r6,imm", "--imm-modes", "cv,se2r3"], "imm-modes: cv,se2r3 are models of space '2d'"),
     (["--space", "3d", "--truth", "se2se2"], "truth"),
     (["--space", "3d", "--noise-scale", "cv=3"], "--noise-scale: unknown filter 'cv'"),
 ])

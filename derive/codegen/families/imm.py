@@ -1,10 +1,12 @@
 """The IMM family: ``generated/imm.py``, the IMM's loop in numba, with its per-measurement parts emitted from the
-measurement definitions (no runtime code names a measurement).
+measurement definitions (no runtime code names a measurement); one module per mixing space (``derive.space.Space``:
+``imm.py`` for the plane, ``imm_3d.py`` for 3-D space), sized by its common coordinates.
 
 The model-independent part (``templates/imm_helpers.py.tmpl``: the workspace, mixing on the group and in the common
 coordinates, the mode probabilities, the combined estimate, ``imm_predict``, ``imm_step``, ``imm_loglik_one``,
-``imm_run_one``; the maths in ``lgekf.estimators.imm.kernels``) is emitted as it is; every model is reached through
-``generated/dispatch.py``. Per measurement (``templates/imm_measurement.py.tmpl``): ``imm_update_<meas>`` (each
+``imm_run_one``; the maths in ``lgekf.estimators.imm.kernels``) is emitted with the space's facts filled in (the
+number of common coordinates, which are angles, where the body velocity is); every model is reached through the
+space's ``generated/dispatch.py``. Per measurement (``templates/imm_measurement.py.tmpl``): ``imm_update_<meas>`` (each
 mode's log det S and update), ``_modes_<meas>`` (each mode's fused step ``step_ll_<meas>``, with its fallback),
 ``_run_<meas>`` and ``imm_run_batch_<meas>`` (the loop over a trajectory, compiling only that measurement's
 kernels). The generic functions take the measurement as an index ``meas`` into ``MEASUREMENT_NAMES`` (sorted) and
@@ -40,10 +42,16 @@ def _chain(fname: str, params: str, names: list, call: str, ret: bool) -> str:
     return "\n".join(lines) + "\n"
 
 
-def render_imm(measurements: dict) -> str:
-    """generated/imm.py for the measurements (sorted names = measurement indices)."""
+def render_imm(space, measurements: dict) -> str:
+    """``generated/<space.imm_module>.py`` (``imm.py`` for the plane) for the measurements of one mixing space (sorted
+    names = measurement indices): the loop sized by the space's common coordinates (``NC``), told which are angles
+    (``Space.common_angles``: wrapped when mixed, std capped) and where the body velocity is (``Space.common_velocity``),
+    and reaching the space's models through its ``generated/<space.dispatch_module>.py``."""
     names = sorted(measurements)
-    helpers = load("imm_helpers.py.tmpl")
+    nc = len(space.common)
+    helpers = (load("imm_helpers.py.tmpl").replace("{dispatch}", space.dispatch_module).replace("{n_common}", str(nc))
+               .replace("{is_angle}", repr([1.0 if a in space.common_angles else 0.0 for a in range(nc)]))
+               .replace("{velocity}", repr(list(space.common_velocity))))
     per = "".join(load("imm_measurement.py.tmpl").replace("{meas}", name) for name in names)
     chains = [
         _chain("imm_update", "models, S, Pp, mu, r, z, meas, nis_out, ws", names,

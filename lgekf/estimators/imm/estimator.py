@@ -9,6 +9,10 @@ Two kinds (chosen automatically from the modes, never from a model's name):
   c = (x, y, θ, v_x, v_y, ω) through the generated conversions; components a model lacks (CV: ω) are
   taken from the receiving mode itself.
 
+The modes are models of one space: in 3-D space (cv3, ct3, se3r6, se3se3) c = (x, y, z, roll, pitch, yaw, v_x,
+v_y, v_z, ω_x, ω_y, ω_z) and the loop is the space's own (``lgekf.core.registry.imm_module``: ``generated/imm_3d.py``;
+``generated/imm.py`` in the plane), found from the modes' space; "position" means the space's position measurement.
+
 The mathematics and the exact Jacobians are in :mod:`lgekf.estimators.imm.kernels` (the numba loop).
 The combined estimate ``x`` is always in the common coordinates, with its covariance ``P``; ``mu`` holds
 the mode probabilities. The cycle is the standard IMM (Blom and Bar-Shalom 1988): interaction (mixing),
@@ -28,22 +32,28 @@ from ...core.batch import measurements_array, step_lengths
 from ...core.common import covariance_from_common, state_from_common
 from ...core.covariance import pack
 from ...core.filters import measurement_std
-from ...core.registry import MODELS, get_model
+from ...core.registry import ALL_MODELS, DEFAULT_SPACE, SPACES, dispatch_module, get_model, imm_module, measurement_in
 from ...core.validate import as_float_array, positive_scalar, positive_vector, spd_matrix
-from ...generated.dispatch import MODEL_NAMES, N_INTERNAL, N_TANGENT
 
 __all__ = [
     "Mode", "IMM", "imm_batch", "parse_modes", "transition_matrix", "NOISE_LEVELS", "DEFAULT_SWITCH", "DEFAULT_MODES",
+    "default_modes", "space_of_modes",
 ]
 
 #: named noise levels of a mode, as factors of the model's ``default_accel_std``
 NOISE_LEVELS = {"calm": 0.2, "default": 1.0, "manoeuvre": 4.0, "maneuver": 4.0}
 #: default probability of leaving a mode per step (the transition matrix's off-diagonal mass)
 DEFAULT_SWITCH = 0.05
-#: the modes of ``lgekf track --model imm``, ``lgekf evaluate --imm`` and the multi-target tracker's IMM by default: CV
-#: and a calm and a manoeuvring SE(2)×R³ (measured on the real-data evaluation against se2r3:calm,se2r3:manoeuvre and
-#: cv,se2r3, see docs/imm.md)
-DEFAULT_MODES = "cv,se2r3:calm,se2r3:manoeuvre"
+def default_modes(space: str) -> str:
+    """The modes of ``lgekf track --model imm`` and ``lgekf evaluate --imm`` in ``space`` by default (the space's
+    definition, ``derive.space.Space.default_imm_modes``; why: docs/imm.md, docs/space3d.md)."""
+    return SPACES[space]["imm_modes"]
+
+
+#: the modes of ``lgekf track --model imm``, ``lgekf evaluate --imm`` and the multi-target tracker's IMM by default in
+#: the plane: CV and a calm and a manoeuvring SE(2)×R³ (measured on the real-data evaluation against
+#: se2r3:calm,se2r3:manoeuvre and cv,se2r3, see docs/imm.md)
+DEFAULT_MODES = default_modes(DEFAULT_SPACE)
 #: below this speed (m/s) the conversions' Jacobians are evaluated at this speed (singular at 0)
 SPEED_FLOOR = 1e-9
 
@@ -85,8 +95,8 @@ def parse_modes(text: str) -> list[Mode]:
         raise ValueError(f"imm-modes: expected MODEL[:LEVEL],... (e.g. se2r3:calm,se2r3:manoeuvre), got {text!r}")
     for item in items:
         model, _, level = item.partition(":")
-        if model not in MODELS:
-            raise ValueError(f"imm-modes: unknown model {model!r} in {item!r}; choose one of {', '.join(MODELS)}")
+        if model not in ALL_MODELS:
+            raise ValueError(f"imm-modes: unknown model {model!r} in {item!r}; choose one of {', '.join(ALL_MODELS)}")
         spec = get_model(model)
         if not level:
             modes.append(make_mode(model))
@@ -137,6 +147,20 @@ def _check_transition(PI, M: int) -> np.ndarray:
     return np.ascontiguousarray(PI)
 
 
+def space_of_modes(modes) -> str:
+    """The space of the modes' models (``Mode`` list); a ValueError (one line) when they are of different spaces or of
+    a space whose models the IMM does not mix."""
+    spaces = {get_model(m.model).space for m in modes}
+    if len(spaces) != 1:
+        raise ValueError("imm-modes: the modes are models of different spaces ("
+                         + ", ".join(f"{m.name}: {get_model(m.model).space}" for m in modes)
+                         + "); an IMM mixes the models of one space")
+    space = spaces.pop()
+    if not SPACES[space]["mixes"]:
+        raise ValueError(f"imm-modes: the IMM does not mix the models of space {space!r}")
+    return space
+
+
 def _modes(modes) -> list[Mode]:
     if isinstance(modes, str):
         return parse_modes(modes)
@@ -161,8 +185,15 @@ class _Setup:
         self.modes = _modes(modes)
         M = len(self.modes)
         self.M = M
+        self.space = space_of_modes(self.modes)
+        # the generated loop and model chains of the modes' space (their model indices); "position" means the
+        # space's own position measurement (position3 in 3-D), as for lgekf track
+        self.loop, D = imm_module(self.space), dispatch_module(self.space)
+        self.nc = len(SPACES[self.space]["common_names"])
+        self.velocity = list(SPACES[self.space]["common_velocity"])
+        measurement = measurement_in(self.space, measurement)
         self.measurement = measurement
-        self.models = np.array([MODEL_NAMES.index(m.model) for m in self.modes], dtype=np.int64)
+        self.models = np.array([D.MODEL_NAMES.index(m.model) for m in self.modes], dtype=np.int64)
         for m in self.modes:
             get_model(m.model).measurement(measurement)
         self.r = np.ascontiguousarray(measurement_std(get_model(self.modes[0].model), measurement, meas_std), dtype=float)
@@ -182,11 +213,11 @@ class _Setup:
             raise ValueError("mu0: mode probabilities must not all be zero")
         self.mu0 = np.ascontiguousarray(mu0 / mu0.sum(), dtype=float)
         self.same_group = len({m.model for m in self.modes}) == 1
-        self.L = int(max(N_INTERNAL[i] for i in self.models))
-        self.NP = int(max(N_TANGENT[i] * (N_TANGENT[i] + 1) // 2 for i in self.models))
+        self.L = int(max(D.N_INTERNAL[i] for i in self.models))
+        self.NP = int(max(D.N_TANGENT[i] * (D.N_TANGENT[i] + 1) // 2 for i in self.models))
 
     def initial(self, c0: np.ndarray, P0c: np.ndarray):
-        """(S0 (B, M, L), P0 (B, M, NP)) from common c0 (B, 6) and P0c (B, 6, 6)."""
+        """(S0 (B, M, L), P0 (B, M, NP)) from common c0 (B, n_c) and P0c (B, n_c, n_c)."""
         B = c0.shape[0]
         S0 = np.zeros((B, self.M, self.L))
         P0 = np.zeros((B, self.M, self.NP))
@@ -197,8 +228,8 @@ class _Setup:
             # a heading-of-motion coordinate (CTRV's ψ) has a singular Jacobian at speed 0: evaluate it just off
             # zero, as lgekf track does
             cj = c0.copy()
-            slow = np.hypot(cj[:, 3], cj[:, 4]) < SPEED_FLOOR
-            cj[slow, 3] = SPEED_FLOOR
+            slow = np.linalg.norm(cj[:, self.velocity], axis=1) < SPEED_FLOOR
+            cj[slow, self.velocity[0]] = SPEED_FLOOR
             P = covariance_from_common(m.model, cj, P0c) + 1e-12 * np.eye(spec.n)
             for b in range(B):
                 s = spec.kernels.state_from_physical(x[b])
@@ -207,14 +238,16 @@ class _Setup:
         return S0, P0
 
 
-def _common_inputs(c0, P0c, B=None):
+def _common_inputs(c0, P0c, space: str = DEFAULT_SPACE, B=None):
+    nc = len(SPACES[space]["common_names"])
     c0 = as_float_array("c0", c0)
     if c0.ndim == 1:
         c0 = c0[None]
-    if c0.ndim != 2 or c0.shape[1] != 6 or (B is not None and c0.shape[0] != B):
-        raise ValueError(f"c0: expected common coordinates (x, y, θ, v_x, v_y, ω) of shape (6,) or ({B or 'B'}, 6), got {c0.shape}")
-    P0c = spd_matrix("P0", P0c, 6, batch=True)
-    P0c = np.broadcast_to(P0c, (c0.shape[0], 6, 6))
+    if c0.ndim != 2 or c0.shape[1] != nc or (B is not None and c0.shape[0] != B):
+        raise ValueError(f"c0: expected common coordinates ({', '.join(SPACES[space]['common_names'])}) of shape ({nc},) or "
+                         f"({B or 'B'}, {nc}), got {c0.shape}")
+    P0c = spd_matrix("P0", P0c, nc, batch=True)
+    P0c = np.broadcast_to(P0c, (c0.shape[0], nc, nc))
     return np.ascontiguousarray(c0), np.ascontiguousarray(P0c)
 
 
@@ -232,19 +265,22 @@ class IMM:
         Default step length in s.
     meas_std : float or array_like
         Measurement-noise std(s), as for the filters.
-    x0 : array_like, (6,)
-        Initial estimate in the common coordinates (x, y, θ, v_x, v_y, ω), body-frame velocity.
-    P0 : array_like, (6, 6)
+    x0 : array_like, (n_c,)
+        Initial estimate in the common coordinates of the modes' space: (x, y, θ, v_x, v_y, ω) in the plane,
+        (x, y, z, roll, pitch, yaw, v_x, v_y, v_z, ω_x, ω_y, ω_z) in 3-D; body-frame velocity.
+    P0 : array_like, (n_c, n_c)
         Its covariance; each mode starts from it converted to its own coordinates.
-    measurement : {"position", "pose"}
+    measurement : str
+        A measurement of the modes' space ("position", "pose"; in 3-D "position3", "pose3"; "position" means the
+        space's own position measurement).
     mu0 : array_like, optional
         Initial mode probabilities (default uniform).
 
     Attributes
     ----------
-    x : ndarray, (6,)
+    x : ndarray, (n_c,)
         Combined estimate in the common coordinates.
-    P : ndarray, (6, 6)
+    P : ndarray, (n_c, n_c)
         Its covariance.
     mu : ndarray, (M,)
         Mode probabilities.
@@ -256,17 +292,15 @@ class IMM:
                  measurement: str = "position", mu0=None):
         self._set = _Setup(modes, transition, meas_std, measurement, mu0)
         self.dt = positive_scalar("dt", dt)
-        c0, P0c = _common_inputs(x0, P0, 1)
+        c0, P0c = _common_inputs(x0, P0, self._set.space, 1)
         S0, Pp0 = self._set.initial(c0, P0c)
         self._S = S0[0]
         self._p = Pp0[0]
         self._mu = self._set.mu0.copy()
-        self._m = get_model(self._set.modes[0].model).measurement(measurement).dim
+        self._m = get_model(self._set.modes[0].model).measurement(self._set.measurement).dim
         self.nis = np.full(self._set.M, np.nan)
         self.log_likelihood = float("nan")
-        from .kernels import workspace
-
-        self._ws = workspace(self._set.M)
+        self._ws = self._set.loop.workspace(self._set.M)
 
     @property
     def modes(self) -> list:
@@ -280,29 +314,23 @@ class IMM:
 
     def predict(self, dt: float | None = None) -> None:
         """Interaction (mixing) and every mode's prediction by ``dt`` (default: the IMM's ``dt``)."""
-        from .kernels import imm_predict
-
         step = self.dt if dt is None else positive_scalar("dt", dt)
         s = self._set
-        imm_predict(s.models, self._S, self._p, self._mu, s.PI, s.Q, step, s.same_group, self._ws)
+        s.loop.imm_predict(s.models, self._S, self._p, self._mu, s.PI, s.Q, step, s.same_group, self._ws)
 
     def update(self, z: ArrayLike) -> float:
         """Every mode's update with z and the new mode probabilities; returns log p(z | past)."""
-        from .kernels import imm_update
-
         z = as_float_array("z", z, (self._m,))
         s = self._set
-        self.log_likelihood = float(imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas, self.nis,
+        self.log_likelihood = float(s.loop.imm_update(s.models, self._S, self._p, self._mu, s.r, z, s.meas, self.nis,
                                                self._ws))
         return self.log_likelihood
 
     def _combined(self):
-        from .kernels import combined_common
-
-        c = np.empty(6)
-        P = np.empty((6, 6))
         s = self._set
-        combined_common(s.models, self._S, self._p, self._mu, s.same_group, c, P, self._ws)
+        c = np.empty(s.nc)
+        P = np.empty((s.nc, s.nc))
+        s.loop.combined_common(s.models, self._S, self._p, self._mu, s.same_group, c, P, self._ws)
         return c, P
 
     @property
@@ -334,13 +362,13 @@ def _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0):
     """The checked inputs of a batch IMM run (``imm_batch``, ``lgekf.estimators.imm.smoother``): the set-up
     ``_Setup``, z (B, K, m), dts (B, K) and each trajectory's initial mode states and packed covariances."""
     s = _Setup(modes, transition, meas_std, measurement, mu0)
-    z = measurements_array(z, get_model(s.modes[0].model).measurement(measurement).dim)
+    z = measurements_array(z, get_model(s.modes[0].model).measurement(s.measurement).dim)
     B, K = z.shape[:2]
     dts = step_lengths(dt, B, K)
-    c0, P0c = _common_inputs(x0, P0)
+    c0, P0c = _common_inputs(x0, P0, s.space)
     if c0.shape[0] == 1 and B > 1:
-        c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, 6)))
-        P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, 6, 6)))
+        c0 = np.ascontiguousarray(np.broadcast_to(c0, (B, s.nc)))
+        P0c = np.ascontiguousarray(np.broadcast_to(P0c, (B, s.nc, s.nc)))
     if c0.shape[0] != B:
         raise ValueError(f"x0: expected {B} initial estimates, got {c0.shape[0]}")
     S0, Pp0 = s.initial(c0, P0c)
@@ -359,28 +387,29 @@ def imm_batch(z: ArrayLike, modes, transition=None, *, dt, meas_std, x0: ArrayLi
         As for :class:`IMM`.
     dt : float or array_like
         A number, (K,) or (B, K).
-    x0 : array_like, (B, 6) or (6,)
-        Initial estimates in the common coordinates (x, y, θ, v_x, v_y, ω).
-    P0 : array_like, (6, 6) or (B, 6, 6)
+    x0 : array_like, (B, n_c) or (n_c,)
+        Initial estimates in the common coordinates of the modes' space (n_c = 6 in the plane: x, y, θ, v_x, v_y,
+        ω; 12 in 3-D).
+    P0 : array_like, (n_c, n_c) or (B, n_c, n_c)
         Their covariance.
     return_cov : bool
-        Also return the combined covariances (B, K, 6, 6).
+        Also return the combined covariances (B, K, n_c, n_c).
 
     Returns
     -------
-    x : ndarray, (B, K, 6)
+    x : ndarray, (B, K, n_c)
         Combined posterior estimates in the common coordinates.
     mu : ndarray, (B, K, M)
         Mode probabilities after each update.
-    P : ndarray, (B, K, 6, 6)
+    P : ndarray, (B, K, n_c, n_c)
         Only with ``return_cov``.
     """
     from .kernels import run_batch
 
     s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
     B, K = z.shape[:2]
-    out_c = np.empty((B, K, 6))
-    out_P = np.empty((B, K if return_cov else 0, 6, 6))
+    out_c = np.empty((B, K, s.nc))
+    out_P = np.empty((B, K if return_cov else 0, s.nc, s.nc))
     out_mu = np.empty((B, K, s.M))
     run = run_batch(s.measurement)  # the generated loop of the measurement: compiles its kernels only
     run(s.models, S0, Pp0, s.mu0, s.PI, s.Q, s.r, z, dts, s.same_group, out_c, out_P, out_mu)

@@ -27,7 +27,8 @@ X = μ_i·exp(ε_i), ε_i ~ N(0, P_i). The mixture Σ w_i N_G(μ_i, P_i) is redu
   (between, Φ⁻¹ and the congruence in one straight-line kernel over the packed covariances; derive/codegen/mixing.py).
 
 Mixing across models (``same_group`` false): in the common coordinates c = (x, y, θ, v_x, v_y, ω) (body
-velocity). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
+velocity; in 3-D space (x, y, z, roll, pitch, yaw, body velocity, body rate), the loop of ``generated/imm_3d.py``:
+``loop_of``, the same template sized by the space, its three angles wrapped and capped as θ is). Mode i's Gaussian is mapped to c_i = ``physical_to_common``(x_i), P_c,i = A_i P_i A_iᵀ with
 A_i = ∂c/∂ε_i (``physical_to_common_jacobian``). A model carries no information on some coordinates
 (``common_missing``: CV has no ω; its θ is the direction of its velocity and v_y = 0, no side slip, as for
 CTRV and SE(2)×R²): for mixing into mode j those coordinates of mode i are replaced by mode j's own
@@ -63,7 +64,7 @@ class, the smoother's forward pass) keep the separate prediction, log det S and 
 
 from __future__ import annotations
 
-from ...core.registry import imm_kernel
+from ...core.registry import get_measurement, imm_kernel, imm_module
 from ..threads import run_on_threads
 from ...generated.imm import (
     MEASUREMENT_NAMES,
@@ -80,15 +81,27 @@ from ...generated.imm import (
 )
 
 __all__ = ["imm_predict", "imm_update", "imm_step", "imm_loglik_one", "imm_run_one", "run_batch", "measurement_index",
-           "mix_on_group", "combined_common", "workspace", "mix_common", "_mix"]
+           "mix_on_group", "combined_common", "workspace", "mix_common", "_mix", "loop_of"]
+
+
+def loop_of(space: str):
+    """The generated IMM loop of the models of ``space`` (``lgekf.core.registry.imm_module``): the module whose
+    ``imm_predict``, ``imm_update``, ``combined_common``, ``workspace``, ... this module exports for the plane
+    (``generated/imm.py``); 3-D space has its own (``generated/imm_3d.py``), sized by its 12 common coordinates."""
+    return imm_module(space)
 
 
 def measurement_index(measurement: str) -> int:
-    """The index of ``measurement`` in the generated IMM's ``MEASUREMENT_NAMES``: the ``meas`` argument of
-    ``imm_update``, ``imm_step``, ``imm_loglik_one`` and ``imm_run_one``."""
-    if measurement not in MEASUREMENT_NAMES:
-        raise ValueError(f"measurement: the IMM supports {', '.join(MEASUREMENT_NAMES)}, got {measurement!r}")
-    return MEASUREMENT_NAMES.index(measurement)
+    """The index of ``measurement`` in the ``MEASUREMENT_NAMES`` of the generated IMM loop of its space: the ``meas``
+    argument of ``imm_update``, ``imm_step``, ``imm_loglik_one`` and ``imm_run_one``."""
+    names = MEASUREMENT_NAMES
+    try:
+        names = loop_of(get_measurement(measurement).space).MEASUREMENT_NAMES
+    except ValueError:
+        pass
+    if measurement not in names:
+        raise ValueError(f"measurement: the IMM supports {', '.join(names)}, got {measurement!r}")
+    return names.index(measurement)
 
 
 def run_batch(measurement: str):

@@ -51,7 +51,7 @@ from dataclasses import dataclass
 import numba as nb
 import numpy as np
 
-from ...core.registry import get_model, imm_kernel
+from ...core.registry import DEFAULT_SPACE, get_model, imm_kernel
 from ...generated import dispatch as D
 from .estimator import _Setup, _batch_inputs
 from .kernels import _mix, combined_common, workspace
@@ -264,6 +264,8 @@ def imm_smooth_batch(z, modes, transition=None, *, dt, meas_std, x0, P0, measure
     """
 
     s, z, dts, S0, Pp0 = _batch_inputs(z, modes, transition, dt, meas_std, x0, P0, measurement, mu0)
+    if s.space != DEFAULT_SPACE:  # its forward pass and backward mixing are the plane's loop (generated/imm.py)
+        raise ValueError(f"the IMM smoother runs on the models of the plane only (yet); the modes are of space {s.space!r}")
     B, K = z.shape[:2]
     out = {k: np.empty((B, K) + sh) for k, sh in (("c_filt", (6,)), ("P_filt", (6, 6)), ("mu_filt", (s.M,)),
                                                    ("c_smooth", (6,)), ("P_smooth", (6, 6)), ("mu_smooth", (s.M,)))}

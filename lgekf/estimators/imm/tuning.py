@@ -160,10 +160,12 @@ class _Tracks:
         self.z, self.dts, self.lengths = batch.z, batch.dts, batch.lengths
         self.skip = np.array(skip, dtype=np.int64)
         B, K = self.z.shape[:2]
-        self.c0, var0 = two_point(batch.t01.reshape(-1), batch.z01[:, :, :2].reshape(-1, 2), np.arange(1, 2 * B, 2),
+        # the positions (m: a position measurement of the plane or 3-D space) -> the common coordinates of their space
+        self.c0, var0 = two_point(batch.t01.reshape(-1), batch.z01[:, :, :m].reshape(-1, m), np.arange(1, 2 * B, 2),
                                   meas_std, omega_std)
-        self.P0 = np.zeros((B, 6, 6))
-        self.P0[:, range(6), range(6)] = var0
+        nc = var0.shape[1]
+        self.P0 = np.zeros((B, nc, nc))
+        self.P0[:, range(nc), range(nc)] = var0
         counted = np.arange(K)[None, :]
         ok = (counted >= self.skip[:, None]) & (counted < self.lengths[:, None]) & ~np.any(np.isnan(self.z), axis=2)
         self.n_updates = int(ok.sum())
@@ -176,7 +178,7 @@ class _Likelihood:
 
     def __init__(self, modes, meas_std, tr: _Tracks, measurement: str):
         self.setup = _Setup(modes, None, meas_std, measurement, None)
-        self.S0, self.Pp0 = self.setup.initial(*_common_inputs(tr.c0, tr.P0))
+        self.S0, self.Pp0 = self.setup.initial(*_common_inputs(tr.c0, tr.P0, self.setup.space))
         self.tr = tr
 
     def __call__(self, factors, switch: float) -> tuple[float, int]:
@@ -270,13 +272,13 @@ def learn_imm(modes, tracks, *, meas_std: float, switch: float = DEFAULT_SWITCH,
         raise ValueError(f"meas_std: must be positive, got {meas_std}")
     transition_matrix(M, switch)  # checks the switching probability
     fit_switch = fit_switch and M > 1
-    _position_only(measurement)
+    m = _position_only(measurement)
     fixed = np.zeros(M, dtype=bool) if fixed is None else np.asarray(fixed, dtype=bool).reshape(-1)
     if fixed.shape != (M,):
         raise ValueError(f"fixed: expected {M} flags, one per mode, got {fixed.shape[0]}")
     free = np.flatnonzero(~fixed)
     F = free.size
-    tr = _Tracks(tracks, 2, meas_std, omega_std, baseline)
+    tr = _Tracks(tracks, m, meas_std, omega_std, baseline)
     d = F + int(fit_switch)
     if d == 0:
         raise ValueError("nothing to fit: every mode's noise is fixed and the switching probability too")

@@ -70,7 +70,7 @@ import numba as nb
 import numpy as np
 
 from ...core.initiation import DEFAULT_HEADING_STD, DEFAULT_OMEGA_STD, initial_estimates, two_point
-from ...core.registry import SPACES, get_measurement, get_model, rotation_dims, space_of_positions
+from ...core.registry import DEFAULT_SPACE, SPACES, get_measurement, get_model, rotation_dims, space_of_positions
 from ...core.validate import positive_scalar
 from .association import association_marginals, association_weights, existence_and_weights
 from .bank import ModelBank, TrackFilterBank
@@ -362,8 +362,8 @@ class MultiTargetTracker:
                 raise ValueError("accel-std: not with the IMM; give each mode's noise in the modes (e.g. "
                                  "se2r3:0.2/0.2/0.5)")
             spec, meas = None, get_measurement(measurement)
-            if not SPACES[meas.space]["mixes"]:
-                raise ValueError(f"measurement: the IMM mixes models of the plane only (yet); {measurement} observes "
+            if meas.space != DEFAULT_SPACE:  # the IMM bank (imm_bank.py) runs the plane's loop (yet)
+                raise ValueError(f"measurement: the multi-target IMM runs in the plane only (yet); {measurement} observes "
                                  f"{meas.space} space")
         else:
             if imm_modes is not None or imm_switch is not None:
