@@ -3,7 +3,9 @@
 and its one-line refusals.
 
 The 3-D loop reaches every model of 3-D space through ``generated/dispatch_3d.py``, so its first call compiles all of
-them (docs/space3d.md, "The IMM in 3-D"): one test runs by default, the others are marked ``budget``."""
+them (docs/space3d.md, "The IMM in 3-D"), about 150 s of CPU on a cold cache: every check that runs the loop is marked
+``budget`` (CI's 15 minutes; ``pytest -m budget`` runs them). The default run checks the conversions the loop mixes
+through and the one-line refusals; the loop's template is the plane's, which the planar IMM tests run by default."""
 
 from __future__ import annotations
 
@@ -40,6 +42,7 @@ def _helix(K=80, seed=3):
 P0C = np.diag([1.0, 1.0, 1.0, 0.01, 0.01, 0.01, 1.0, 1.0, 1.0, 0.01, 0.01, 0.01])
 
 
+@pytest.mark.budget
 def test_cv3_imm_matches_the_numpy_imm():
     """Two CV3 modes (mixed on the group ℝ⁶): combined position, world velocity, mode probabilities and the
     step likelihoods' sum equal an IMM written out in numpy (tests/_imm_numpy.py), probabilities summing to 1."""
