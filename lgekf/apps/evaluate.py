@@ -48,6 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.registry import DEFAULT_SPACE, MODELS, SPACES, get_model, models_of
+from ..core.common import euler_rotations
 from ..experiments.statistics import bootstrap_ci
 from ..io.datasets import Dataset
 from ..io.readers import DataError
@@ -149,19 +150,9 @@ def motion_errors(model: str, x: np.ndarray, ds: Dataset) -> dict:
     return out
 
 
-def _euler_matrices(a: np.ndarray) -> np.ndarray:
-    """R = R_z(yaw) R_y(pitch) R_x(roll) (N, 3, 3) of Euler angles a (N, 3) = (roll, pitch, yaw) (``derive/space.py``)."""
-    cr, sr, cp, sp, cy, sy = (f(a[:, i]) for i in range(3) for f in (np.cos, np.sin))
-    R = np.empty((a.shape[0], 3, 3))
-    R[:, 0] = np.stack([cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr], axis=1)
-    R[:, 1] = np.stack([sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr], axis=1)
-    R[:, 2] = np.stack([-sp, cp * sr, cp * cr], axis=1)
-    return R
-
-
 def _rotation_angle(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """(N,): the angle of the rotation R(a)ᵀ R(b) between two attitudes given as Euler angles (N, 3), in [0, π]."""
-    tr = np.einsum("nij,nij->n", _euler_matrices(a), _euler_matrices(b))  # trace(R_aᵀ R_b)
+    tr = np.einsum("nij,nij->n", euler_rotations(a), euler_rotations(b))  # trace(R_aᵀ R_b)
     return np.arccos(np.clip(0.5 * (tr - 1.0), -1.0, 1.0))
 
 

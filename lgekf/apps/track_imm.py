@@ -39,7 +39,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..core.common import COMMON_NAMES, common_turn_rate, common_world_velocity
-from ..core.registry import BASE_MEASUREMENT, DEFAULT_SPACE, SPACES, measurement_in
+from ..core.registry import BASE_MEASUREMENT, DEFAULT_SPACE, SPACES, measurement_in, models_of
 from ..estimators.imm.estimator import (DEFAULT_MODES, DEFAULT_SWITCH, NOISE_LEVELS, Mode, default_modes, parse_modes,
                                         space_of_modes, transition_matrix)
 from ..io.formatting import format_rows, label_bytes, output_digits
@@ -79,7 +79,7 @@ class ImmTrackOptions:
             words = {DEFAULT_SPACE: "the plane"}.get(own, f"{own} space")
             raise ValueError(f"--imm-modes: {self.modes_text} are models of {words}, and the input has "
                              f"{SPACES[space]['dim']}-D positions; the models that fit: "
-                             f"{', '.join(m for m in _models_of(space))} (default modes {default_modes(space)})")
+                             f"{', '.join(models_of(space))} (default modes {default_modes(space)})")
         transition_matrix(len(self.modes), self.switch)
 
     def for_space(self, space: str) -> "ImmTrackOptions":
@@ -153,12 +153,6 @@ def mode_columns(modes, prefix: str = "mu_") -> list:
     return mode_cols
 
 
-def _models_of(space: str) -> list:
-    from ..core.registry import models_of
-
-    return list(models_of(space))
-
-
 def imm_motion_columns(opts: ImmTrackOptions) -> tuple:
     """The motion columns of an IMM track file: speed, course; in 3-D also climb and turn_rate (as the single models')."""
     return MOTION_COLUMNS if SPACES[opts.space]["dim"] == 2 else MOTION_COLUMNS_3D
@@ -203,7 +197,7 @@ def imm_track_common(t, z, starts, meas_std: float, omega_std: float, opts: ImmT
     """
     dim, nc = SPACES[opts.space]["dim"], len(opts.common_names)
     t = np.ascontiguousarray(t, float)
-    z = np.ascontiguousarray(np.ascontiguousarray(z, float)[:, :dim])
+    z = np.ascontiguousarray(np.asarray(z, float)[:, :dim])
     starts = np.asarray(starts, dtype=np.int64)
     N, M = t.size, len(opts.modes)
     c = np.full((N, nc), np.nan)
